@@ -1,0 +1,43 @@
+// Boundary conditions and loads (prefix -bc_): Dirichlet per component on any physical group, tractions and
+// pressure on physical curves, point forces on node sets, a body force.
+#pragma once
+
+#include <petscsys.h>
+
+#include <string>
+#include <vector>
+
+namespace signorini {
+
+struct DirichletSpec {
+  std::string group;
+  int component = 0;
+  double value = 0;
+};
+
+/// A load on a physical group: a vector (traction, point force) or a scalar (pressure).
+struct LoadSpec {
+  std::string group;
+  std::vector<double> value;
+};
+
+struct BoundaryConditions {
+  std::vector<DirichletSpec> dirichlet; ///< -bc_dirichlet GROUP:x[=v][:y[=v]],...
+  std::vector<LoadSpec> traction;       ///< -bc_traction GROUP:tx:ty,...   (force per unit area, reference config.)
+  std::vector<LoadSpec> pressure;       ///< -bc_pressure GROUP:p,...       (along the inward normal)
+  std::vector<LoadSpec> point_force;    ///< -bc_point_force GROUP:fx:fy,... (force on every node of the group)
+  std::vector<double> body_force;       ///< -bc_body_force bx,by           (force per unit volume)
+};
+
+/// Reads and validates the -bc_ options for a mesh of dimension dim (group names are checked against the mesh
+/// later, when the conditions are applied). Collective.
+[[nodiscard]] PetscErrorCode ReadBoundaryConditions(MPI_Comm comm, int dim, BoundaryConditions &bc);
+
+/// Parses one Dirichlet entry "GROUP:x=0:y=-0.1" (components x, y, z, or several letters such as xy sharing one
+/// value; the value defaults to 0). Returns an empty string on success, else what is wrong.
+std::string ParseDirichlet(const std::string &entry, int dim, std::vector<DirichletSpec> &out);
+
+/// Parses one load entry "GROUP:v1[:v2...]" with exactly `count` finite numbers.
+std::string ParseLoad(const std::string &entry, int count, const char *what, LoadSpec &out);
+
+} // namespace signorini

@@ -1,0 +1,30 @@
+// Contact results: per-node multiplier, pressure, gap and active flag, and the global quantities of the summary
+// (contact force and its balance, contact length, peak pressure, penetration, complementarity residual).
+#pragma once
+
+#include "signorini/solver/contact_solver.hpp"
+
+#include <array>
+#include <vector>
+
+namespace signorini {
+
+struct ContactSummary {
+  PetscInt candidates = 0, pairs = 0, active_pairs = 0, active_nodes = 0;
+  std::array<double, 3> contact_force{}, applied_force{}, reaction_force{};
+  double force_balance = 0;   ///< |contact + applied + reaction| / max(|applied|, |contact|)
+  double contact_length = 0;  ///< sum of tributary lengths of the active nodes
+  double max_pressure = 0, max_penetration = 0, complementarity = 0, min_lambda = 0;
+  double max_displacement = 0, strain_energy = 0;
+};
+
+/// Per local vertex: summed multiplier, pressure lambda / (w t), smallest gap (NaN where the node has no pair),
+/// active flag. Collective.
+struct NodeContact {
+  std::vector<double> lambda, pressure, gap, active;
+};
+
+[[nodiscard]] PetscErrorCode ComputeContactResults(ContactSolver &solver, const Material &material,
+                                                   NodeContact &nodes, ContactSummary &summary);
+
+} // namespace signorini

@@ -1,0 +1,22 @@
+// Error reporting: one clear message per failure, a non-zero exit on every rank, never a hang.
+#pragma once
+
+#include <petscsys.h>
+
+#include <string>
+
+namespace signorini {
+
+/// Installs the error handler that prints "signorini: error: <message>" once (rank 0 for collective errors) and
+/// aborts the MPI job for errors raised on a single rank, so that no rank waits forever. Call once after
+/// PetscInitialize, on all ranks.
+[[nodiscard]] PetscErrorCode InstallErrorHandler();
+
+/// Collective check of a condition that may hold on some ranks only: if any rank has ok == false, every rank raises
+/// PETSC_ERR_USER_INPUT with the message of the lowest failing rank. Call on all ranks of comm together.
+[[nodiscard]] PetscErrorCode CheckCollective(MPI_Comm comm, bool ok, const std::string &message);
+
+/// Broadcasts a status/message pair from rank 0 and raises the error on all ranks when it is not empty.
+[[nodiscard]] PetscErrorCode RaiseFromRoot(MPI_Comm comm, const std::string &message_on_root);
+
+} // namespace signorini

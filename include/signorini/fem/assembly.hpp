@@ -1,0 +1,53 @@
+// Global assembly of the stiffness K(u), the internal force F_int(u), the external loads and the Dirichlet data
+// into the displacement rows of the saddle-point numbering.
+#pragma once
+
+#include "signorini/bc/boundary_conditions.hpp"
+#include "signorini/fem/dof_map.hpp"
+#include "signorini/fem/element.hpp"
+#include "signorini/fem/material.hpp"
+#include "signorini/mesh/mesh.hpp"
+
+#include <vector>
+
+namespace signorini {
+
+/// Dirichlet data per local vertex dof (v * dim + k): whether it is fixed, and its full prescribed value.
+struct DirichletData {
+  std::vector<char> fixed;
+  std::vector<double> value;
+};
+
+/// Marks the Dirichlet dofs of every local vertex (ghosts included). Unknown groups are errors. Collective.
+[[nodiscard]] PetscErrorCode BuildDirichlet(const Mesh &mesh, const BoundaryConditions &bc, DirichletData &data);
+
+class Assembler {
+public:
+  Assembler(const Mesh &mesh, const Material &material, const DofMap &dofs, const DirichletData &dirichlet)
+      : mesh_(mesh), material_(material), dofs_(dofs), dirichlet_(dirichlet) {}
+
+  /// Checks every local cell's Jacobian (positive, no inversion). Collective.
+  [[nodiscard]] PetscErrorCode CheckCells() const;
+  /// Inserts the nonzero pattern of K (free rows and columns) and the Dirichlet diagonal into A (values 0).
+  [[nodiscard]] PetscErrorCode InsertPattern(Mat A) const;
+  /// Adds K(u) to A (free rows and columns, plus dirichlet_diag on the Dirichlet diagonal) when A is given, and
+  /// F_int(u) to fint (every displacement row, Dirichlet rows included) when fint is given. u_local holds dim values
+  /// per local vertex. Returns through min_J the smallest det F over the cells (svk). Collective.
+  [[nodiscard]] PetscErrorCode Assemble(const double *u_local, Mat A, double dirichlet_diag, Vec fint,
+                                        double *min_J) const;
+  /// Adds the external loads (tractions, pressures, point forces, body force) scaled by factor to f. Collective.
+  [[nodiscard]] PetscErrorCode AssembleLoads(const BoundaryConditions &bc, double factor, Vec f) const;
+  /// Cell strain, stress and von Mises at u. Local cells.
+  [[nodiscard]] PetscErrorCode CellResults(const double *u_local, std::vector<CellStress> &cells) const;
+  /// Mean diagonal entry of the element stiffness (a stiffness scale for Dirichlet rows). Collective.
+  [[nodiscard]] PetscErrorCode StiffnessScale(double &scale) const;
+
+private:
+  bool Geometry(PetscInt c, ElementGeometry &g, PetscInt &nn, const PetscInt *&vertices) const;
+  const Mesh &mesh_;
+  const Material &material_;
+  const DofMap &dofs_;
+  const DirichletData &dirichlet_;
+};
+
+} // namespace signorini

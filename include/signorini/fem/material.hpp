@@ -1,0 +1,35 @@
+// Material options and the elastic constants derived from them (prefix -material_).
+#pragma once
+
+#include <petscsys.h>
+
+#include <string>
+
+namespace signorini {
+
+enum class MaterialModel { LINEAR, SVK };
+
+/// Isotropic elastic material in 2D (plane strain or plane stress) or 3D.
+struct Material {
+  MaterialModel model = MaterialModel::LINEAR; ///< -material_model linear | svk
+  double E = 200.0;                            ///< -material_E, Young's modulus
+  double nu = 0.3;                             ///< -material_nu, Poisson's ratio in (-1, 0.5)
+  bool plane_stress = false;                   ///< -material_plane strain | stress
+  double thickness = 1.0;                      ///< -material_thickness, out-of-plane thickness (scales stiffness and
+                                               ///< distributed loads)
+
+  double Mu() const { return E / (2.0 * (1.0 + nu)); }
+  double Lambda3D() const { return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)); }
+  /// The first Lamé parameter of the in-plane law: 3D value in plane strain, 2 lambda mu / (lambda + 2 mu) in plane
+  /// stress (sigma_zz = 0 eliminates eps_zz exactly, for linear and for St. Venant-Kirchhoff alike).
+  double LambdaPlane() const {
+    const double l = Lambda3D(), m = Mu();
+    return plane_stress ? 2.0 * l * m / (l + 2.0 * m) : l;
+  }
+  const char *ModelName() const { return model == MaterialModel::SVK ? "svk" : "linear"; }
+};
+
+/// Reads and validates the -material_ options. Collective.
+[[nodiscard]] PetscErrorCode ReadMaterialOptions(MPI_Comm comm, Material &m);
+
+} // namespace signorini

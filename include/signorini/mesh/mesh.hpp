@@ -1,0 +1,85 @@
+// The distributed mesh: a DMPlex built from the gmsh file, labelled by physical-group names, partitioned and
+// distributed, with the per-rank arrays the element loops use.
+#pragma once
+
+#include "signorini/core/handle.hpp"
+#include "signorini/mesh/serial_mesh.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace signorini {
+
+/// Mesh options (prefix -mesh_), read by Mesh::Create.
+struct MeshOptions {
+  std::string file;               ///< -mesh_file: gmsh .msh or .geo
+  double size_factor = 1.0;       ///< -mesh_size_factor: scales the mesh size of a .geo
+  std::string partitioner = "metis"; ///< -mesh_partitioner: metis | ptscotch | simple
+};
+
+[[nodiscard]] PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, MeshOptions &opts);
+
+class Mesh {
+public:
+  /// Reads the file on rank 0, builds, labels, partitions and distributes the DMPlex. Collective.
+  [[nodiscard]] PetscErrorCode Create(MPI_Comm comm, const MeshOptions &opts);
+
+  MPI_Comm Comm() const { return comm_; }
+  DM Dm() const { return dm_; }
+  int Dim() const { return dim_; }
+  PetscInt NumLocalVertices() const { return (PetscInt)vertex_owned_.size(); }
+  PetscInt NumLocalCells() const { return (PetscInt)cell_orig_.size(); }
+  PetscInt NumGlobalNodes() const { return num_global_nodes_; }
+  PetscInt NumGlobalCells() const { return num_global_cells_; }
+  bool Owned(PetscInt v) const { return vertex_owned_[v]; }
+  /// Index of local vertex v (or cell c) in the file's node (cell) order.
+  PetscInt VertexOriginal(PetscInt v) const { return vertex_orig_[v]; }
+  PetscInt CellOriginal(PetscInt c) const { return cell_orig_[c]; }
+  const double *X(PetscInt v) const { return &coords_[dim_ * v]; }
+  /// Local vertex indices of cell c in closure order (a cyclic order around the cell).
+  const PetscInt *CellVertices(PetscInt c, PetscInt &n) const {
+    n = cell_offsets_[c + 1] - cell_offsets_[c];
+    return &cell_vertices_[cell_offsets_[c]];
+  }
+  const std::vector<std::string> &GroupNames() const { return group_names_; }
+  /// The serial mesh as read (filled on rank 0 only; group names everywhere).
+  const SerialMesh &Serial() const { return serial_; }
+
+  /// Local vertices (owned and ghost) of the physical group `name`; an unknown name is an error listing the names.
+  /// Collective.
+  [[nodiscard]] PetscErrorCode GroupVertices(const std::string &name, std::vector<PetscInt> &vertices) const;
+  /// Owned edges of a physical curve as local vertex pairs, oriented so that the body lies on their left (the
+  /// outward normal is the right normal); error if the group is not a curve. Collective.
+  [[nodiscard]] PetscErrorCode GroupEdges(const std::string &name, std::vector<std::array<PetscInt, 2>> &edges) const;
+  /// Local vertices on the boundary of the body. Collective.
+  [[nodiscard]] PetscErrorCode BoundaryVertices(std::vector<PetscInt> &vertices) const;
+  /// Owned edges on the boundary of the body, oriented with the body on their left. Collective.
+  [[nodiscard]] PetscErrorCode BoundaryEdges(std::vector<std::array<PetscInt, 2>> &edges) const;
+  /// Sums a per-vertex quantity over the ranks that share a vertex, so that every copy holds the total. Collective.
+  [[nodiscard]] PetscErrorCode SumShared(std::vector<double> &per_vertex) const;
+
+private:
+  [[nodiscard]] PetscErrorCode BuildSerialDM(DM *dm);
+  [[nodiscard]] PetscErrorCode Partition(DM dm, const std::string &partitioner);
+  [[nodiscard]] PetscErrorCode Distribute(DMH &dm);
+  [[nodiscard]] PetscErrorCode BuildLocalArrays();
+  [[nodiscard]] PetscErrorCode LabelVertices(const std::string &label, std::vector<PetscInt> &vertices) const;
+  [[nodiscard]] PetscErrorCode LabelEdges(const std::string &label, std::vector<std::array<PetscInt, 2>> &edges) const;
+  [[nodiscard]] PetscErrorCode CheckGroup(const std::string &name, int required_dim) const;
+
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  DMH dm_;
+  int dim_ = 2;
+  PetscInt vstart_ = 0, cstart_ = 0;
+  PetscInt num_global_nodes_ = 0, num_global_cells_ = 0;
+  std::vector<PetscInt> vertex_orig_, cell_orig_;
+  std::vector<char> vertex_owned_, point_leaf_;
+  std::vector<double> coords_;
+  std::vector<PetscInt> cell_offsets_, cell_vertices_;
+  std::vector<std::string> group_names_;
+  std::vector<int> group_dims_;
+  SerialMesh serial_;
+};
+
+} // namespace signorini

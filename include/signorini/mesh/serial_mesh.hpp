@@ -1,0 +1,44 @@
+// The mesh as read from a gmsh file on rank 0: nodes with their file tags, cells, named physical groups.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace signorini {
+
+/// A physical group of the gmsh file: its name (or its number when unnamed), dimension, and what it holds, all as
+/// indices into SerialMesh's node and cell arrays.
+struct PhysicalGroup {
+  std::string name;
+  int dim = 0;
+  int tag = 0;
+  std::vector<int> nodes;          ///< every node of the group (sorted, unique)
+  std::vector<int> edges;          ///< dim 1: node pairs of its line elements, flattened
+  std::vector<int> cells;          ///< dim 2: cells of the group
+};
+
+/// The serial mesh. Nodes are the nodes used by cells, in the order of the file; cells are counter-clockwise.
+struct SerialMesh {
+  int dim = 2;
+  std::vector<double> coords;              ///< dim values per node
+  std::vector<std::size_t> node_tags;      ///< the file's own node tags
+  std::vector<int> cell_offsets{0};        ///< CSR offsets into cell_nodes
+  std::vector<int> cell_nodes;             ///< node indices of each cell, counter-clockwise
+  std::vector<std::size_t> cell_tags;      ///< the file's element tags
+  std::vector<PhysicalGroup> groups;
+
+  int NumNodes() const { return (int)node_tags.size(); }
+  int NumCells() const { return (int)cell_tags.size(); }
+  int CellSize(int c) const { return cell_offsets[c + 1] - cell_offsets[c]; }
+};
+
+/// Reads a gmsh .msh file (2.2 or 4.1, ASCII or binary) or meshes a .geo file with the given size factor, through
+/// the gmsh API. Serial: call on one rank only. Returns an empty string on success, else the error message.
+std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &mesh);
+
+/// Checks orientation and shape of every cell: a mesh whose cells are all clockwise is flipped; cells oriented
+/// against the rest, with zero area, or not convex are errors. Returns an empty string on success.
+std::string CheckAndOrientCells(SerialMesh &mesh);
+
+} // namespace signorini

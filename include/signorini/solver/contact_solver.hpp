@@ -1,0 +1,106 @@
+// The active-set loop of seed Algorithm 1, merged with Newton-Raphson for the nonlinear material (a semismooth
+// Newton method), inside load steps with step cutting. Options: -load_steps, -load_max_cuts, -newton_*.
+#pragma once
+
+#include "signorini/bc/boundary_conditions.hpp"
+#include "signorini/contact/active_set.hpp"
+#include "signorini/contact/constraints.hpp"
+#include "signorini/contact/contact_set.hpp"
+#include "signorini/fem/assembly.hpp"
+#include "signorini/solver/saddle_point.hpp"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace signorini {
+
+struct SolverOptions {
+  PetscInt load_steps = 1;    ///< -load_steps
+  PetscInt max_cuts = 5;      ///< -load_max_cuts: halvings of a failed load increment
+  PetscInt newton_max_it = 30; ///< -newton_max_it (svk): iterations per load step
+  double newton_rtol = 1e-9;  ///< -newton_rtol: residual relative to the load scale
+  double newton_atol = 1e-12; ///< -newton_atol
+  PetscBool line_search = PETSC_TRUE; ///< -newton_linesearch
+};
+
+[[nodiscard]] PetscErrorCode ReadSolverOptions(MPI_Comm comm, SolverOptions &opts);
+
+/// One line of the monitor.
+struct IterationRecord {
+  PetscInt step, iteration, active, changed, krylov;
+  double load_factor, min_lambda, max_penetration, residual;
+};
+
+/// Timings (seconds, maximum over ranks) and counters of a run.
+struct SolveStats {
+  double time_assembly = 0, time_active_set = 0, time_solve = 0;
+  PetscInt solves = 0, active_set_iterations = 0, krylov_iterations = 0, steps = 0, cuts = 0;
+  std::vector<IterationRecord> history;
+  std::string reason;
+};
+
+class ContactSolver {
+public:
+  ContactSolver(const Mesh &mesh, const Material &material, const BoundaryConditions &bc, const Obstacle &obstacle,
+                const ContactOptions &contact, const SolverOptions &solver)
+      : mesh_(mesh), material_(material), bc_(bc), obstacle_(obstacle), contact_(contact), opts_(solver) {}
+
+  /// Dirichlet data, candidate pairs, numbering, the saddle-point system and its KSP. Collective.
+  [[nodiscard]] PetscErrorCode Setup();
+  /// Runs the load steps; step_done(step, load factor) is called after each converged step. Collective.
+  [[nodiscard]] PetscErrorCode Solve(const std::function<PetscErrorCode(PetscInt, double)> &step_done);
+
+  const Mesh &GetMesh() const { return mesh_; }
+  const DofMap &Dofs() const { return dofs_; }
+  const Assembler &GetAssembler() const { return *assembler_; }
+  const DirichletData &Dirichlet() const { return dirichlet_; }
+  const std::vector<ContactPair> &Pairs() const { return pairs_; }
+  const std::vector<PairState> &States() const { return states_; }
+  const std::vector<std::array<double, 3>> &Normals() const { return normals_; }
+  const std::vector<char> &Candidates() const { return candidate_; }
+  const std::vector<double> &ULocal() const { return u_local_; }
+  const SolveStats &Stats() const { return stats_; }
+  SaddlePointSystem &System() { return system_; }
+  /// External load and internal force at the converged state (displacement rows of the saddle-point layout).
+  Vec Fext() const { return fext_; }
+  Vec Fint() const { return fint_; }
+  double StiffnessScale() const { return kscale_; }
+
+private:
+  [[nodiscard]] PetscErrorCode UpdateLocal();
+  [[nodiscard]] PetscErrorCode Residual(const std::vector<double> &lambda, double &norm, double &scale);
+  [[nodiscard]] PetscErrorCode SetDirichlet(double factor);
+  [[nodiscard]] PetscErrorCode UpdateSolution(double residual_before);
+  [[nodiscard]] PetscErrorCode LoadStep(PetscInt step, double factor, bool first, bool &ok);
+  [[nodiscard]] PetscErrorCode Monitor(const IterationRecord &r) const;
+  [[nodiscard]] PetscErrorCode ActiveSetHash(const std::vector<char> &active, unsigned long long &h) const;
+
+  const Mesh &mesh_;
+  const Material &material_;
+  const BoundaryConditions &bc_;
+  const Obstacle &obstacle_;
+  const ContactOptions &contact_;
+  const SolverOptions &opts_;
+  DirichletData dirichlet_;
+  std::vector<ContactPair> pairs_;
+  std::vector<char> candidate_, active_;
+  std::vector<PairState> states_;
+  std::vector<ConstraintRow> rows_;
+  std::vector<std::array<double, 3>> normals_;
+  DofMap dofs_;
+  std::unique_ptr<Assembler> assembler_;
+  SaddlePointSystem system_;
+  VecH u_, du_, fext_, fint_, u_seq_;
+  VecScatter scatter_ = nullptr;
+  std::vector<double> u_local_, lambda_;
+  double kscale_ = 1;
+  bool k_assembled_ = false;
+  SolveStats stats_;
+
+public:
+  ~ContactSolver() { (void)VecScatterDestroy(&scatter_); }
+};
+
+} // namespace signorini

@@ -1,0 +1,145 @@
+// Printed summary, summary.json and the Hertz comparison.
+#include "signorini/app/report.hpp"
+
+#include "signorini/io/json.hpp"
+
+#include <cmath>
+
+namespace signorini {
+
+PetscErrorCode ReadReportOptions(MPI_Comm comm, HertzReport &hertz) {
+  PetscReal v[2];
+  PetscInt n = 2;
+  PetscBool set = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Report", "signorini");
+  PetscCall(PetscOptionsRealArray("-report_hertz", "Compare with Hertz line contact: cylinder radius R, load P per "
+                                  "unit thickness (R,P)", "", v, &n, &set));
+  PetscOptionsEnd();
+  if (!set) PetscFunctionReturn(0);
+  PetscCheck(n == 2 && std::isfinite(v[0]) && std::isfinite(v[1]) && v[0] > 0 && v[1] > 0, comm,
+             PETSC_ERR_USER_INPUT, "-report_hertz expects two positive numbers R,P (cylinder radius, load per unit "
+             "thickness)");
+  hertz.enabled = true;
+  hertz.R = v[0];
+  hertz.P = v[1];
+  PetscFunctionReturn(0);
+}
+
+void ComputeHertz(const Material &m, const ContactSummary &s, HertzReport &h) {
+  if (!h.enabled) return;
+  const double Estar = m.plane_stress ? m.E : m.E / (1 - m.nu * m.nu);
+  h.a = std::sqrt(4 * h.P * h.R / (M_PI * Estar));
+  h.p0 = 2 * h.P / (M_PI * h.a);
+  h.a_h = 0.5 * s.contact_length;
+  h.p0_h = s.max_pressure;
+}
+
+PetscErrorCode PrintSummary(MPI_Comm comm, const RunInfo &info, const Material &m, ContactSolver &solver,
+                            const ContactSummary &s, const HertzReport &h) {
+  const SolveStats &st = solver.Stats();
+  const DofMap &dofs = solver.Dofs();
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(comm, "signorini: 2D %s, plane %s, E = %g, nu = %g, thickness = %g\n", m.ModelName(),
+                        m.plane_stress ? "stress" : "strain", m.E, m.nu, m.thickness));
+  PetscCall(PetscPrintf(comm, "  mesh %s: %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells, %d rank(s)\n",
+                        info.mesh_file.c_str(), solver.GetMesh().NumGlobalNodes(), solver.GetMesh().NumGlobalCells(),
+                        info.ranks));
+  PetscCall(PetscPrintf(comm, "  unknowns: %" PetscInt_FMT " displacements, %" PetscInt_FMT " multipliers (%"
+                        PetscInt_FMT " candidate nodes)\n", dofs.GlobalU(), dofs.GlobalLambda(), s.candidates));
+  PetscCall(PetscPrintf(comm, "  %s after %" PetscInt_FMT " active-set iteration(s) in %" PetscInt_FMT
+                        " load step(s): %" PetscInt_FMT " active pair(s) on %" PetscInt_FMT " node(s)\n",
+                        st.reason.c_str(), st.active_set_iterations, st.steps, s.active_pairs, s.active_nodes));
+  PetscCall(PetscPrintf(comm, "  contact force (%.6g, %.6g), applied load (%.6g, %.6g), reactions (%.6g, %.6g), "
+                        "balance %.2e\n", s.contact_force[0], s.contact_force[1], s.applied_force[0],
+                        s.applied_force[1], s.reaction_force[0], s.reaction_force[1], s.force_balance));
+  PetscCall(PetscPrintf(comm, "  contact length %.6g, max pressure %.6g, max penetration %.3e, max |lambda g| "
+                        "%.3e, max |u| %.6g\n", s.contact_length, s.max_pressure, s.max_penetration, s.complementarity,
+                        s.max_displacement));
+  if (h.enabled) {
+    PetscCall(PetscPrintf(comm, "  Hertz (R = %g, P = %g): half-width a = %.6g computed %.6g (%+.2f%%), peak "
+                          "pressure p0 = %.6g computed %.6g (%+.2f%%)\n", h.R, h.P, h.a, h.a_h,
+                          100 * (h.a_h - h.a) / h.a, h.p0, h.p0_h, 100 * (h.p0_h - h.p0) / h.p0));
+  }
+  PetscFunctionReturn(0);
+}
+
+std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &solver, const ContactSummary &s,
+                        const HertzReport &h) {
+  const SolveStats &st = solver.Stats();
+  const DofMap &dofs = solver.Dofs();
+  const auto vec3 = [](const std::array<double, 3> &v) { return std::vector<double>{v[0], v[1]}; };
+  JsonWriter j;
+  j.BeginObject();
+  j.String("status", "converged").String("reason", st.reason);
+  j.BeginObject("mesh")
+      .String("file", info.mesh_file)
+      .Integer("nodes", solver.GetMesh().NumGlobalNodes())
+      .Integer("cells", solver.GetMesh().NumGlobalCells())
+      .Integer("ranks", info.ranks)
+      .EndObject();
+  j.BeginObject("material")
+      .String("model", m.ModelName())
+      .String("plane", m.plane_stress ? "stress" : "strain")
+      .Number("E", m.E)
+      .Number("nu", m.nu)
+      .Number("thickness", m.thickness)
+      .EndObject();
+  j.BeginObject("problem")
+      .Integer("displacement_dofs", dofs.GlobalU())
+      .Integer("multipliers", dofs.GlobalLambda())
+      .Integer("candidate_nodes", s.candidates)
+      .EndObject();
+  j.BeginObject("iterations")
+      .Integer("active_set", st.active_set_iterations)
+      .Integer("solves", st.solves)
+      .Integer("krylov", st.krylov_iterations)
+      .Integer("load_steps", st.steps)
+      .Integer("step_cuts", st.cuts);
+  j.BeginArray("history");
+  for (const auto &r : st.history)
+    j.BeginObject()
+        .Integer("step", r.step)
+        .Number("load_factor", r.load_factor)
+        .Integer("iteration", r.iteration)
+        .Integer("active", r.active)
+        .Integer("changed", r.changed)
+        .Number("min_lambda", r.min_lambda)
+        .Number("max_penetration", r.max_penetration)
+        .Number("residual", r.residual)
+        .Integer("krylov", r.krylov)
+        .EndObject();
+  j.EndArray().EndObject();
+  j.BeginObject("timings");
+  for (const auto &[k, v] : info.timings) j.Number(k, v);
+  j.EndObject();
+  j.BeginObject("contact")
+      .Integer("pairs", s.pairs)
+      .Integer("active_pairs", s.active_pairs)
+      .Integer("active_nodes", s.active_nodes)
+      .Numbers("contact_force", vec3(s.contact_force))
+      .Numbers("applied_force", vec3(s.applied_force))
+      .Numbers("reaction_force", vec3(s.reaction_force))
+      .Number("force_balance", s.force_balance)
+      .Number("contact_length", s.contact_length)
+      .Number("max_pressure", s.max_pressure)
+      .Number("max_penetration", s.max_penetration)
+      .Number("complementarity", s.complementarity)
+      .Number("min_lambda", s.min_lambda)
+      .EndObject();
+  j.BeginObject("solution").Number("max_displacement", s.max_displacement).Number("strain_energy", s.strain_energy);
+  j.EndObject();
+  if (h.enabled)
+    j.BeginObject("hertz")
+        .Number("R", h.R)
+        .Number("P", h.P)
+        .Number("a", h.a)
+        .Number("a_computed", h.a_h)
+        .Number("p0", h.p0)
+        .Number("p0_computed", h.p0_h)
+        .EndObject();
+  j.EndObject();
+  return j.Text();
+}
+
+} // namespace signorini

@@ -1,0 +1,108 @@
+// Contact results per node and for the summary.
+#include "signorini/contact/contact_results.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace signorini {
+
+PetscErrorCode ComputeContactResults(ContactSolver &solver, const Material &material, NodeContact &nodes,
+                                     ContactSummary &s) {
+  const Mesh &mesh = solver.GetMesh();
+  const DofMap &dofs = solver.Dofs();
+  const int dim = mesh.Dim();
+  const PetscInt nv = mesh.NumLocalVertices();
+  const auto &pairs = solver.Pairs();
+  const auto &states = solver.States();
+  const auto &normals = solver.Normals();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  MPI_Comm comm = mesh.Comm();
+  PetscFunctionBeginUser;
+  std::vector<double> w;
+  PetscCall(TributaryLengths(mesh, solver.Candidates(), w));
+  nodes.lambda.assign(nv, 0.0);
+  nodes.pressure.assign(nv, 0.0);
+  nodes.gap.assign(nv, nan);
+  nodes.active.assign(nv, 0.0);
+  double local[16] = {0};
+  double maxes[4] = {0, 0, 0, -std::numeric_limits<double>::infinity()}; // pressure, penetration, |lambda g|, -min l
+  PetscInt counts[4] = {0, (PetscInt)pairs.size(), 0, 0};
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const PetscInt v = pairs[p].vertex;
+    const PairState &st = states[p];
+    nodes.lambda[v] += st.lambda;
+    nodes.gap[v] = std::isnan(nodes.gap[v]) ? st.gap : std::min(nodes.gap[v], st.gap);
+    if (st.active) {
+      nodes.active[v] = 1;
+      counts[2]++;
+      maxes[3] = std::max(maxes[3], -st.lambda);
+    }
+    for (int k = 0; k < dim; ++k) local[k] += st.lambda * normals[p][k];
+    maxes[1] = std::max(maxes[1], -st.gap);
+    maxes[2] = std::max(maxes[2], std::abs(st.lambda * st.gap));
+  }
+  for (PetscInt v = 0; v < nv; ++v) {
+    if (!mesh.Owned(v)) continue;
+    counts[0] += solver.Candidates()[v];
+    if (w[v] > 0) nodes.pressure[v] = nodes.lambda[v] / (w[v] * material.thickness);
+    if (nodes.active[v]) {
+      counts[3]++;
+      local[3] += w[v];
+      maxes[0] = std::max(maxes[0], nodes.pressure[v]);
+    }
+  }
+  // Applied load, reactions R = F_int - f - lambda n on the Dirichlet dofs, largest displacement, strain energy.
+  const PetscScalar *fi, *fe;
+  PetscCall(VecGetArrayRead(solver.Fint(), &fi));
+  PetscCall(VecGetArrayRead(solver.Fext(), &fe));
+  std::vector<double> contact_at(dofs.OwnedU(), 0.0);
+  for (std::size_t p = 0; p < pairs.size(); ++p)
+    for (int k = 0; k < dim; ++k) contact_at[dofs.LocalOffset(pairs[p].vertex, k)] += states[p].lambda * normals[p][k];
+  double umax = 0;
+  for (PetscInt v = 0; v < nv; ++v) {
+    if (!mesh.Owned(v)) continue;
+    double u2 = 0;
+    for (int k = 0; k < dim; ++k) {
+      const PetscInt i = dofs.LocalOffset(v, k);
+      const double u = solver.ULocal()[v * dim + k];
+      u2 += u * u;
+      local[4 + k] += fe[i];
+      if (solver.Dirichlet().fixed[v * dim + k]) local[8 + k] += fi[i] - fe[i] - contact_at[i];
+      local[12] += 0.5 * fi[i] * u;
+    }
+    umax = std::max(umax, std::sqrt(u2));
+  }
+  PetscCall(VecRestoreArrayRead(solver.Fint(), &fi));
+  PetscCall(VecRestoreArrayRead(solver.Fext(), &fe));
+  maxes[0] = std::max(maxes[0], 0.0);
+  double global[16], gmax[5], lmax[5] = {maxes[0], maxes[1], maxes[2], maxes[3], umax};
+  PetscInt gcounts[4];
+  PetscCallMPI(MPI_Allreduce(local, global, 16, MPI_DOUBLE, MPI_SUM, comm));
+  PetscCallMPI(MPI_Allreduce(lmax, gmax, 5, MPI_DOUBLE, MPI_MAX, comm));
+  PetscCallMPI(MPI_Allreduce(counts, gcounts, 4, MPIU_INT, MPI_SUM, comm));
+  s.candidates = gcounts[0];
+  s.pairs = gcounts[1];
+  s.active_pairs = gcounts[2];
+  s.active_nodes = gcounts[3];
+  double total[3] = {0, 0, 0}, na = 0, nc = 0;
+  for (int k = 0; k < 3; ++k) {
+    s.contact_force[k] = global[k];
+    s.applied_force[k] = global[4 + k];
+    s.reaction_force[k] = global[8 + k];
+    total[k] = global[k] + global[4 + k] + global[8 + k];
+    na += global[4 + k] * global[4 + k];
+    nc += global[k] * global[k];
+  }
+  const double ref = std::max(std::sqrt(na), std::sqrt(nc));
+  s.force_balance = ref > 0 ? std::sqrt(total[0] * total[0] + total[1] * total[1] + total[2] * total[2]) / ref : 0;
+  s.contact_length = global[3];
+  s.strain_energy = global[12];
+  s.max_pressure = gmax[0];
+  s.max_penetration = std::max(0.0, gmax[1]);
+  s.complementarity = gmax[2];
+  s.min_lambda = s.active_pairs ? -gmax[3] : 0.0;
+  s.max_displacement = gmax[4];
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini

@@ -1,0 +1,170 @@
+// Contact options, the spatial search for candidate pairs, initial gaps and tributary lengths.
+#include "signorini/contact/contact_set.hpp"
+
+#include "signorini/core/parse.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace signorini {
+
+PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOptions &opts) {
+  char *groups[64];
+  PetscInt ngroups = 64;
+  PetscBool set = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  opts.search_radius = 0.1 * L;
+  opts.touch_tol = 1e-8 * L;
+  opts.gap_tol = 1e-9 * L;
+  opts.c = k;
+  PetscOptionsBegin(comm, nullptr, "Contact options", "signorini");
+  PetscCall(PetscOptionsStringArray("-contact_groups", "Physical groups of candidate nodes (default: whole boundary)",
+                                    "", groups, &ngroups, &set));
+  PetscCall(PetscOptionsReal("-contact_search_radius", "Pair a node with the facets within this distance (default "
+                             "0.1 x body diagonal)", "", opts.search_radius, &opts.search_radius, nullptr));
+  PetscCall(PetscOptionsReal("-contact_touch_tol", "Initial gap that counts as touching (default 1e-8 x diagonal)", "",
+                             opts.touch_tol, &opts.touch_tol, nullptr));
+  PetscCall(PetscOptionsReal("-contact_gap_tol", "Penetration tolerance of the active-set rule (default 1e-9 x "
+                             "diagonal)", "", opts.gap_tol, &opts.gap_tol, nullptr));
+  PetscCall(PetscOptionsReal("-contact_alpha_tol", "Tolerance on the projection parameter alpha in [0,1]", "",
+                             opts.alpha_tol, &opts.alpha_tol, nullptr));
+  PetscCall(PetscOptionsReal("-contact_complementarity_c", "Weight c of the gap in the rule lambda - c g > 0 "
+                             "(default E x thickness)", "", opts.c, &opts.c, nullptr));
+  PetscCall(PetscOptionsInt("-contact_max_it", "Maximum active-set iterations per load step", "", opts.max_it,
+                            &opts.max_it, nullptr));
+  PetscCall(PetscOptionsBool("-contact_monitor", "Print one line per active-set iteration", "", opts.monitor,
+                             &opts.monitor, nullptr));
+  PetscCall(PetscOptionsBool("-contact_converged_reason", "Print why the active-set loop stopped", "",
+                             opts.converged_reason, &opts.converged_reason, nullptr));
+  PetscOptionsEnd();
+  opts.groups.clear();
+  if (set)
+    for (PetscInt i = 0; i < ngroups; ++i) {
+      opts.groups.emplace_back(groups[i]);
+      PetscCall(PetscFree(groups[i]));
+    }
+  const struct {
+    const char *name;
+    double value;
+    bool zero_ok;
+  } positive[] = {{"-contact_search_radius", opts.search_radius, false},
+                  {"-contact_touch_tol", opts.touch_tol, true},
+                  {"-contact_gap_tol", opts.gap_tol, true},
+                  {"-contact_alpha_tol", opts.alpha_tol, true},
+                  {"-contact_complementarity_c", opts.c, false}};
+  for (const auto &p : positive)
+    PetscCheck(std::isfinite(p.value) && (p.value > 0 || (p.zero_ok && p.value == 0)), comm, PETSC_ERR_USER_INPUT,
+               "%s %g is invalid; expected a finite number %s 0", p.name, p.value, p.zero_ok ? ">=" : ">");
+  PetscCheck(opts.max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-contact_max_it %" PetscInt_FMT " is invalid; expected >= 1",
+             opts.max_it);
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+/// Uniform grid of bins over the facets' bounding boxes inflated by the search radius.
+class FacetBins {
+public:
+  FacetBins(const Obstacle &obstacle, double radius) {
+    lo_[0] = lo_[1] = 1e300;
+    double hi[2] = {-1e300, -1e300}, total = 0;
+    const auto &facets = obstacle.facets;
+    for (const auto &f : facets) {
+      double a[2], b[2];
+      f->Bounds(a, b);
+      for (int i = 0; i < 2; ++i) lo_[i] = std::min(lo_[i], a[i] - radius), hi[i] = std::max(hi[i], b[i] + radius);
+      total += std::max(b[0] - a[0], b[1] - a[1]);
+    }
+    if (facets.empty()) return;
+    h_ = std::max({radius, total / facets.size(), 1e-300});
+    for (int i = 0; i < 2; ++i) n_[i] = std::clamp((long)std::ceil((hi[i] - lo_[i]) / h_), 1L, 4096L);
+    h_ = std::max((hi[0] - lo_[0]) / n_[0], (hi[1] - lo_[1]) / n_[1]);
+    for (std::size_t k = 0; k < facets.size(); ++k) {
+      double a[2], b[2];
+      facets[k]->Bounds(a, b);
+      const long i0 = Cell(a[0] - radius, 0), i1 = Cell(b[0] + radius, 0);
+      const long j0 = Cell(a[1] - radius, 1), j1 = Cell(b[1] + radius, 1);
+      for (long i = i0; i <= i1; ++i)
+        for (long j = j0; j <= j1; ++j) bins_[i * n_[1] + j].push_back((PetscInt)k);
+    }
+  }
+  const std::vector<PetscInt> *Find(const double *x) const {
+    if (bins_.empty()) return nullptr;
+    const long i = (long)std::floor((x[0] - lo_[0]) / h_), j = (long)std::floor((x[1] - lo_[1]) / h_);
+    if (i < 0 || j < 0 || i >= n_[0] || j >= n_[1]) return nullptr;
+    const auto it = bins_.find(i * n_[1] + j);
+    return it == bins_.end() ? nullptr : &it->second;
+  }
+
+private:
+  long Cell(double x, int d) const { return std::clamp((long)std::floor((x - lo_[d]) / h_), 0L, n_[d] - 1); }
+  double lo_[2], h_ = 1;
+  long n_[2] = {1, 1};
+  std::map<long, std::vector<PetscInt>> bins_;
+};
+
+} // namespace
+
+PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
+                                const std::vector<char> &fixed, std::vector<ContactPair> &pairs,
+                                std::vector<char> &candidate) {
+  const int dim = mesh.Dim();
+  const PetscInt nv = mesh.NumLocalVertices();
+  PetscFunctionBeginUser;
+  candidate.assign(nv, 0);
+  std::vector<PetscInt> vertices;
+  if (opts.groups.empty()) {
+    PetscCall(mesh.BoundaryVertices(vertices));
+    for (PetscInt v : vertices) candidate[v] = 1;
+  } else {
+    for (const auto &g : opts.groups) {
+      PetscCall(mesh.GroupVertices(g, vertices));
+      for (PetscInt v : vertices) candidate[v] = 1;
+    }
+  }
+  // Seed section 4.2.1: nodes with every component fixed cannot move and are no candidates.
+  for (PetscInt v = 0; v < nv; ++v) {
+    bool all_fixed = true;
+    for (int k = 0; k < dim; ++k) all_fixed = all_fixed && fixed[v * dim + k];
+    if (all_fixed) candidate[v] = 0;
+  }
+  pairs.clear();
+  const FacetBins bins(obstacle, opts.search_radius);
+  for (PetscInt v = 0; v < nv; ++v) {
+    if (!candidate[v] || !mesh.Owned(v)) continue;
+    const auto *near = bins.Find(mesh.X(v));
+    if (!near) continue;
+    for (PetscInt f : *near) {
+      const Facet &facet = *obstacle.facets[f];
+      if (facet.Distance(mesh.X(v)) > opts.search_radius) continue;
+      const Projection p = facet.Project(mesh.X(v), opts.alpha_tol);
+      ContactPair pair{v, f, {p.normal[0], p.normal[1], p.normal[2]}, p.gap, p.inside};
+      pairs.push_back(pair);
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [&](const ContactPair &a, const ContactPair &b) {
+    const PetscInt oa = mesh.VertexOriginal(a.vertex), ob = mesh.VertexOriginal(b.vertex);
+    return oa != ob ? oa < ob : a.facet < b.facet;
+  });
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TributaryLengths(const Mesh &mesh, const std::vector<char> &candidate, std::vector<double> &length) {
+  std::vector<std::array<PetscInt, 2>> edges;
+  PetscFunctionBeginUser;
+  PetscCall(mesh.BoundaryEdges(edges));
+  length.assign(mesh.NumLocalVertices(), 0.0);
+  for (const auto &e : edges) {
+    if (!candidate[e[0]] || !candidate[e[1]]) continue;
+    const double *a = mesh.X(e[0]), *b = mesh.X(e[1]);
+    double L2 = 0;
+    for (int d = 0; d < mesh.Dim(); ++d) L2 += (b[d] - a[d]) * (b[d] - a[d]);
+    length[e[0]] += 0.5 * std::sqrt(L2);
+    length[e[1]] += 0.5 * std::sqrt(L2);
+  }
+  PetscCall(mesh.SumShared(length));
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini

@@ -1,0 +1,216 @@
+// Global assembly over the local cells: stiffness, internal force, loads, Dirichlet data.
+#include "signorini/fem/assembly.hpp"
+
+#include <array>
+#include <cmath>
+
+namespace signorini {
+
+PetscErrorCode BuildDirichlet(const Mesh &mesh, const BoundaryConditions &bc, DirichletData &data) {
+  const int dim = mesh.Dim();
+  PetscFunctionBeginUser;
+  data.fixed.assign(mesh.NumLocalVertices() * dim, 0);
+  data.value.assign(mesh.NumLocalVertices() * dim, 0.0);
+  std::vector<PetscInt> vertices;
+  for (const auto &d : bc.dirichlet) {
+    PetscCall(mesh.GroupVertices(d.group, vertices));
+    for (PetscInt v : vertices) {
+      data.fixed[v * dim + d.component] = 1;
+      data.value[v * dim + d.component] = d.value;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+bool Assembler::Geometry(PetscInt c, ElementGeometry &g, PetscInt &nn, const PetscInt *&vertices) const {
+  const int dim = mesh_.Dim();
+  vertices = mesh_.CellVertices(c, nn);
+  double X[MAX_NODES * MAX_DIM];
+  for (PetscInt a = 0; a < nn; ++a)
+    for (int d = 0; d < dim; ++d) X[a * dim + d] = mesh_.X(vertices[a])[d];
+  return ComputeGeometry(dim, (int)nn, X, material_.thickness, g);
+}
+
+PetscErrorCode Assembler::CheckCells() const {
+  PetscFunctionBeginUser;
+  bool ok = true;
+  PetscInt bad = -1;
+  for (PetscInt c = 0; c < mesh_.NumLocalCells() && ok; ++c) {
+    ElementGeometry g;
+    PetscInt nn;
+    const PetscInt *v;
+    ok = Geometry(c, g, nn, v) && g.min_detJ * g.max_detJ > 0;
+    if (!ok) bad = mesh_.CellOriginal(c);
+  }
+  PetscInt gbad;
+  PetscCallMPI(MPI_Allreduce(&bad, &gbad, 1, MPIU_INT, MPI_MAX, mesh_.Comm()));
+  PetscCheck(gbad < 0, mesh_.Comm(), PETSC_ERR_USER_INPUT,
+             "element number %" PetscInt_FMT " (in file order) is degenerate or inverted", gbad + 1);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::InsertPattern(Mat A) const {
+  const int dim = mesh_.Dim();
+  std::array<PetscInt, MAX_EDOF> idx;
+  std::array<PetscScalar, MAX_EDOF * MAX_EDOF> zeros{};
+  PetscFunctionBeginUser;
+  for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
+    PetscInt nn;
+    const PetscInt *v = mesh_.CellVertices(c, nn);
+    for (PetscInt a = 0; a < nn; ++a)
+      for (int k = 0; k < dim; ++k) idx[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : dofs_.Row(v[a], k);
+    PetscCall(MatSetValues(A, nn * dim, idx.data(), nn * dim, idx.data(), zeros.data(), ADD_VALUES));
+  }
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    for (int k = 0; k < dim; ++k)
+      if (mesh_.Owned(v) && dirichlet_.fixed[v * dim + k]) {
+        const PetscInt r = dofs_.Row(v, k);
+        PetscCall(MatSetValue(A, r, r, 0.0, ADD_VALUES));
+      }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichlet_diag, Vec fint,
+                                   double *min_J) const {
+  const int dim = mesh_.Dim();
+  std::array<PetscInt, MAX_EDOF> rows, all;
+  std::array<double, MAX_EDOF * MAX_EDOF> Ke;
+  std::array<double, MAX_EDOF> fe, ue;
+  double jmin = 1e300;
+  PetscFunctionBeginUser;
+  for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
+    ElementGeometry g;
+    PetscInt nn;
+    const PetscInt *v;
+    Geometry(c, g, nn, v);
+    for (PetscInt a = 0; a < nn; ++a)
+      for (int k = 0; k < dim; ++k) {
+        ue[a * dim + k] = u_local[v[a] * dim + k];
+        all[a * dim + k] = dofs_.Row(v[a], k);
+        rows[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : all[a * dim + k];
+      }
+    ElementTangentAndForce(material_, g, ue.data(), Ke.data(), fe.data());
+    if (material_.model == MaterialModel::SVK) {
+      // det F at the quadrature points: the deformation must stay invertible.
+      for (int q = 0; q < g.nqp; ++q) {
+        double F[MAX_DIM][MAX_DIM];
+        for (int i = 0; i < dim; ++i)
+          for (int j = 0; j < dim; ++j) {
+            F[i][j] = i == j;
+            for (PetscInt a = 0; a < nn; ++a) F[i][j] += ue[a * dim + i] * g.dN[q][a][j];
+          }
+        jmin = std::min(jmin, dim == 2 ? F[0][0] * F[1][1] - F[0][1] * F[1][0] : jmin);
+      }
+    }
+    if (A) PetscCall(MatSetValues(A, nn * dim, rows.data(), nn * dim, rows.data(), Ke.data(), ADD_VALUES));
+    if (fint) PetscCall(VecSetValues(fint, nn * dim, all.data(), fe.data(), ADD_VALUES));
+  }
+  if (A)
+    for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+      for (int k = 0; k < dim; ++k)
+        if (mesh_.Owned(v) && dirichlet_.fixed[v * dim + k]) {
+          const PetscInt r = dofs_.Row(v, k);
+          PetscCall(MatSetValue(A, r, r, dirichlet_diag, ADD_VALUES));
+        }
+  if (fint) {
+    PetscCall(VecAssemblyBegin(fint));
+    PetscCall(VecAssemblyEnd(fint));
+  }
+  if (min_J) PetscCallMPI(MPI_Allreduce(&jmin, min_J, 1, MPI_DOUBLE, MPI_MIN, mesh_.Comm()));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::AssembleLoads(const BoundaryConditions &bc, double factor, Vec f) const {
+  const int dim = mesh_.Dim();
+  const double t = material_.thickness;
+  std::vector<std::array<PetscInt, 2>> edges;
+  std::vector<PetscInt> vertices;
+  PetscFunctionBeginUser;
+  auto add = [&](PetscInt v, const double *value, double scale) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    for (int k = 0; k < dim; ++k) PetscCall(VecSetValue(f, dofs_.Row(v, k), factor * scale * value[k], ADD_VALUES));
+    PetscFunctionReturn(0);
+  };
+  for (const auto &tr : bc.traction) {
+    PetscCall(mesh_.GroupEdges(tr.group, edges));
+    for (const auto &e : edges) {
+      const double *a = mesh_.X(e[0]), *b = mesh_.X(e[1]);
+      const double L = std::hypot(b[0] - a[0], b[1] - a[1]);
+      PetscCall(add(e[0], tr.value.data(), 0.5 * L * t));
+      PetscCall(add(e[1], tr.value.data(), 0.5 * L * t));
+    }
+  }
+  for (const auto &pr : bc.pressure) {
+    PetscCall(mesh_.GroupEdges(pr.group, edges));
+    for (const auto &e : edges) {
+      // The body lies left of a -> b, so the inward normal is the left normal; pressure p pushes along it.
+      const double *a = mesh_.X(e[0]), *b = mesh_.X(e[1]);
+      const double force[2] = {-(b[1] - a[1]) * pr.value[0], (b[0] - a[0]) * pr.value[0]};
+      PetscCall(add(e[0], force, 0.5 * t));
+      PetscCall(add(e[1], force, 0.5 * t));
+    }
+  }
+  for (const auto &pf : bc.point_force) {
+    PetscCall(mesh_.GroupVertices(pf.group, vertices));
+    for (PetscInt v : vertices)
+      if (mesh_.Owned(v)) PetscCall(add(v, pf.value.data(), 1.0));
+  }
+  if (!bc.body_force.empty()) {
+    std::array<PetscInt, MAX_EDOF> rows;
+    std::array<double, MAX_EDOF> fe;
+    for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
+      ElementGeometry g;
+      PetscInt nn;
+      const PetscInt *v;
+      Geometry(c, g, nn, v);
+      ElementBodyForce(g, bc.body_force.data(), fe.data());
+      for (PetscInt a = 0; a < nn; ++a)
+        for (int k = 0; k < dim; ++k) rows[a * dim + k] = dofs_.Row(v[a], k), fe[a * dim + k] *= factor;
+      PetscCall(VecSetValues(f, nn * dim, rows.data(), fe.data(), ADD_VALUES));
+    }
+  }
+  PetscCall(VecAssemblyBegin(f));
+  PetscCall(VecAssemblyEnd(f));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::CellResults(const double *u_local, std::vector<CellStress> &cells) const {
+  const int dim = mesh_.Dim();
+  std::array<double, MAX_EDOF> ue;
+  PetscFunctionBeginUser;
+  cells.resize(mesh_.NumLocalCells());
+  for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
+    ElementGeometry g;
+    PetscInt nn;
+    const PetscInt *v;
+    Geometry(c, g, nn, v);
+    for (PetscInt a = 0; a < nn; ++a)
+      for (int k = 0; k < dim; ++k) ue[a * dim + k] = u_local[v[a] * dim + k];
+    cells[c] = ElementStress(material_, g, ue.data());
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::StiffnessScale(double &scale) const {
+  const int dim = mesh_.Dim();
+  std::array<double, MAX_EDOF * MAX_EDOF> Ke;
+  std::array<double, MAX_EDOF> fe, ue{};
+  double sum[2] = {0, 0}, gsum[2];
+  PetscFunctionBeginUser;
+  Material linear = material_;
+  linear.model = MaterialModel::LINEAR;
+  for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
+    ElementGeometry g;
+    PetscInt nn;
+    const PetscInt *v;
+    Geometry(c, g, nn, v);
+    ElementTangentAndForce(linear, g, ue.data(), Ke.data(), fe.data());
+    for (PetscInt i = 0; i < nn * dim; ++i) sum[0] += Ke[i * nn * dim + i];
+    sum[1] += nn * dim;
+  }
+  PetscCallMPI(MPI_Allreduce(sum, gsum, 2, MPI_DOUBLE, MPI_SUM, mesh_.Comm()));
+  scale = gsum[1] > 0 ? gsum[0] / gsum[1] : 1.0;
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini

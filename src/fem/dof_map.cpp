@@ -1,0 +1,52 @@
+// Numbering of the saddle-point unknowns.
+#include "signorini/fem/dof_map.hpp"
+
+namespace signorini {
+
+PetscErrorCode DofMap::Create(const Mesh &mesh, PetscInt num_owned_multipliers) {
+  MPI_Comm comm = mesh.Comm();
+  PetscFunctionBeginUser;
+  dim_ = mesh.Dim();
+  const PetscInt nv = mesh.NumLocalVertices();
+  PetscInt owned = 0;
+  for (PetscInt v = 0; v < nv; ++v) owned += mesh.Owned(v);
+  nu_ = dim_ * owned;
+  nl_ = num_owned_multipliers;
+  const PetscInt local = nu_ + nl_;
+  PetscCallMPI(MPI_Scan(&local, &row_start_, 1, MPIU_INT, MPI_SUM, comm));
+  row_start_ -= local;
+  PetscCallMPI(MPI_Allreduce(&local, &n_global_, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCallMPI(MPI_Allreduce(&nu_, &nu_global_, 1, MPIU_INT, MPI_SUM, comm));
+
+  // Owners number their vertices; the point SF carries the numbers to the ghosts.
+  DM dm = mesh.Dm();
+  PetscInt pstart, pend, vstart, vend;
+  PetscCall(DMPlexGetChart(dm, &pstart, &pend));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vstart, &vend));
+  std::vector<PetscInt> root(pend - pstart, -1), leaf(pend - pstart, -1);
+  PetscInt next = row_start_;
+  for (PetscInt v = 0; v < nv; ++v)
+    if (mesh.Owned(v)) root[vstart + v - pstart] = next, next += dim_;
+  leaf = root;
+  PetscSF sf;
+  PetscInt nroots;
+  PetscCall(DMGetPointSF(dm, &sf));
+  PetscCall(PetscSFGetGraph(sf, &nroots, nullptr, nullptr, nullptr));
+  if (nroots >= 0) {
+    PetscCall(PetscSFBcastBegin(sf, MPIU_INT, root.data(), leaf.data(), MPI_REPLACE));
+    PetscCall(PetscSFBcastEnd(sf, MPIU_INT, root.data(), leaf.data(), MPI_REPLACE));
+  }
+  vertex_row_.resize(nv);
+  for (PetscInt v = 0; v < nv; ++v) {
+    vertex_row_[v] = leaf[vstart + v - pstart];
+    PetscCheck(vertex_row_[v] >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "vertex %" PetscInt_FMT " has no dof number", v);
+  }
+  PetscCall(ISCreateStride(comm, nu_, row_start_, 1, is_u_.out()));
+  PetscCall(ISSetBlockSize(is_u_, dim_));
+  PetscCall(ISCreateStride(comm, nl_, row_start_ + nu_, 1, is_lambda_.out()));
+  PetscCall(PetscObjectSetName((PetscObject)is_u_.get(), "u"));
+  PetscCall(PetscObjectSetName((PetscObject)is_lambda_.get(), "lambda"));
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini

@@ -1,0 +1,247 @@
+// Reference elements, quadrature and element kernels (linear elasticity, St. Venant-Kirchhoff).
+#include "signorini/fem/element.hpp"
+
+#include <cmath>
+#include <cstring>
+
+namespace signorini {
+
+namespace {
+
+/// Reference shape functions and derivatives at a point xi of the reference cell.
+void ReferenceShape(int dim, int nodes, const double *xi, double *N, double (*dN)[MAX_DIM]) {
+  if (dim == 2 && nodes == 3) {
+    N[0] = 1 - xi[0] - xi[1], N[1] = xi[0], N[2] = xi[1];
+    dN[0][0] = -1, dN[0][1] = -1, dN[1][0] = 1, dN[1][1] = 0, dN[2][0] = 0, dN[2][1] = 1;
+  } else if (dim == 2 && nodes == 4) {
+    const double s[4] = {-1, 1, 1, -1}, t[4] = {-1, -1, 1, 1};
+    for (int a = 0; a < 4; ++a) {
+      N[a] = 0.25 * (1 + s[a] * xi[0]) * (1 + t[a] * xi[1]);
+      dN[a][0] = 0.25 * s[a] * (1 + t[a] * xi[1]);
+      dN[a][1] = 0.25 * t[a] * (1 + s[a] * xi[0]);
+    }
+  }
+}
+
+/// Quadrature rule on the reference cell: exact for quadratics on the triangle, 2x2 Gauss on the quadrilateral.
+int ReferenceQuadrature(int dim, int nodes, double (*xi)[MAX_DIM], double *w) {
+  if (dim == 2 && nodes == 3) {
+    const double p[3][2] = {{1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6}, {1.0 / 6, 2.0 / 3}};
+    for (int q = 0; q < 3; ++q) xi[q][0] = p[q][0], xi[q][1] = p[q][1], w[q] = 1.0 / 6;
+    return 3;
+  }
+  if (dim == 2 && nodes == 4) {
+    const double g = 1.0 / std::sqrt(3.0);
+    const double p[4][2] = {{-g, -g}, {g, -g}, {g, g}, {-g, g}};
+    for (int q = 0; q < 4; ++q) xi[q][0] = p[q][0], xi[q][1] = p[q][1], w[q] = 1.0;
+    return 4;
+  }
+  return 0;
+}
+
+double Det(int dim, const double J[MAX_DIM][MAX_DIM]) {
+  if (dim == 2) return J[0][0] * J[1][1] - J[0][1] * J[1][0];
+  return J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+         J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+}
+
+void Inverse(int dim, const double J[MAX_DIM][MAX_DIM], double det, double Ji[MAX_DIM][MAX_DIM]) {
+  if (dim == 2) {
+    Ji[0][0] = J[1][1] / det, Ji[0][1] = -J[0][1] / det, Ji[1][0] = -J[1][0] / det, Ji[1][1] = J[0][0] / det;
+    return;
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const int i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+      Ji[i][j] = (J[i1][j1] * J[i2][j2] - J[i1][j2] * J[i2][j1]) / det;
+    }
+}
+
+/// Voigt index pairs: 2D (xx, yy, xy), 3D (xx, yy, zz, yz, xz, xy).
+constexpr int VOIGT2[3][2] = {{0, 0}, {1, 1}, {0, 1}};
+constexpr int VOIGT3[6][2] = {{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
+int NumVoigt(int dim) { return dim == 2 ? 3 : 6; }
+const int (*Voigt(int dim))[2] { return dim == 2 ? VOIGT2 : VOIGT3; }
+
+/// Isotropic elasticity matrix in Voigt form (engineering shear strain).
+void ElasticityMatrix(const Material &m, int dim, double D[6][6]) {
+  const double lam = dim == 2 ? m.LambdaPlane() : m.Lambda3D(), mu = m.Mu();
+  const int nv = NumVoigt(dim);
+  std::memset(D, 0, sizeof(double) * 36);
+  for (int i = 0; i < dim; ++i) {
+    for (int j = 0; j < dim; ++j) D[i][j] = lam;
+    D[i][i] = lam + 2 * mu;
+  }
+  for (int i = dim; i < nv; ++i) D[i][i] = mu;
+}
+
+/// Deformation gradient F = I + grad u at quadrature point q (identity for the linear model).
+void DeformationGradient(const ElementGeometry &g, int q, const double *u, bool large, double F[MAX_DIM][MAX_DIM]) {
+  for (int i = 0; i < g.dim; ++i)
+    for (int j = 0; j < g.dim; ++j) {
+      F[i][j] = i == j ? 1.0 : 0.0;
+      if (large)
+        for (int a = 0; a < g.nodes; ++a) F[i][j] += u[a * g.dim + i] * g.dN[q][a][j];
+    }
+}
+
+/// Strain in Voigt form with engineering shear: Green-Lagrange (large) or small strain.
+void Strain(const ElementGeometry &g, int q, const double *u, bool large, double eps[6]) {
+  const int dim = g.dim, nv = NumVoigt(dim);
+  double H[MAX_DIM][MAX_DIM] = {};
+  for (int a = 0; a < g.nodes; ++a)
+    for (int i = 0; i < dim; ++i)
+      for (int j = 0; j < dim; ++j) H[i][j] += u[a * dim + i] * g.dN[q][a][j];
+  for (int v = 0; v < nv; ++v) {
+    const int i = Voigt(dim)[v][0], j = Voigt(dim)[v][1];
+    double e = H[i][j] + H[j][i]; // Eq. 1: grad u + grad u^T (+ grad u^T grad u)
+    if (large)
+      for (int k = 0; k < dim; ++k) e += H[k][i] * H[k][j];
+    eps[v] = i == j ? 0.5 * e : e;
+  }
+}
+
+} // namespace
+
+bool ComputeGeometry(int dim, int nodes, const double *X, double thickness, ElementGeometry &g) {
+  double xi[MAX_QP][MAX_DIM], wq[MAX_QP];
+  g.dim = dim;
+  g.nodes = nodes;
+  g.nqp = ReferenceQuadrature(dim, nodes, xi, wq);
+  if (g.nqp == 0) return false;
+  g.min_detJ = 1e300;
+  g.max_detJ = -1e300;
+  for (int q = 0; q < g.nqp; ++q) {
+    double dNref[MAX_NODES][MAX_DIM] = {}, J[MAX_DIM][MAX_DIM] = {}, Ji[MAX_DIM][MAX_DIM];
+    ReferenceShape(dim, nodes, xi[q], g.N[q].data(), dNref);
+    for (int a = 0; a < nodes; ++a)
+      for (int i = 0; i < dim; ++i)
+        for (int j = 0; j < dim; ++j) J[i][j] += X[a * dim + i] * dNref[a][j];
+    const double det = Det(dim, J);
+    g.min_detJ = std::min(g.min_detJ, det);
+    g.max_detJ = std::max(g.max_detJ, det);
+    Inverse(dim, J, det, Ji);
+    for (int a = 0; a < nodes; ++a)
+      for (int i = 0; i < dim; ++i) {
+        g.dN[q][a][i] = 0;
+        for (int j = 0; j < dim; ++j) g.dN[q][a][i] += dNref[a][j] * Ji[j][i];
+      }
+    g.w[q] = wq[q] * std::abs(det) * (dim == 2 ? thickness : 1.0);
+  }
+  return true;
+}
+
+void ElementTangentAndForce(const Material &m, const ElementGeometry &g, const double *u, double *K, double *f) {
+  const int dim = g.dim, n = g.nodes * dim, nv = NumVoigt(dim);
+  const bool large = m.model == MaterialModel::SVK;
+  double D[6][6];
+  ElasticityMatrix(m, dim, D);
+  std::memset(K, 0, sizeof(double) * n * n);
+  std::memset(f, 0, sizeof(double) * n);
+  for (int q = 0; q < g.nqp; ++q) {
+    double F[MAX_DIM][MAX_DIM], eps[6], S[6] = {};
+    DeformationGradient(g, q, u, large, F);
+    Strain(g, q, u, large, eps);
+    for (int a = 0; a < nv; ++a)
+      for (int b = 0; b < nv; ++b) S[a] += D[a][b] * eps[b]; // Eq. 4: S = C : E
+    // B[v][a*dim+k]: variation of the Voigt strain v with respect to u_ak, F^T grad N symmetrised.
+    double B[6][MAX_EDOF];
+    for (int v = 0; v < nv; ++v) {
+      const int i = Voigt(dim)[v][0], j = Voigt(dim)[v][1];
+      for (int a = 0; a < g.nodes; ++a)
+        for (int k = 0; k < dim; ++k)
+          B[v][a * dim + k] =
+              i == j ? F[k][i] * g.dN[q][a][i] : F[k][i] * g.dN[q][a][j] + F[k][j] * g.dN[q][a][i];
+    }
+    double DB[6][MAX_EDOF];
+    for (int v = 0; v < nv; ++v)
+      for (int c = 0; c < n; ++c) {
+        DB[v][c] = 0;
+        for (int w = 0; w < nv; ++w) DB[v][c] += D[v][w] * B[w][c];
+      }
+    const double wq = g.w[q];
+    for (int r = 0; r < n; ++r) {
+      for (int v = 0; v < nv; ++v) f[r] += wq * B[v][r] * S[v]; // Eq. 15: dE/du : S
+      for (int c = 0; c < n; ++c) {
+        double kij = 0;
+        for (int v = 0; v < nv; ++v) kij += B[v][r] * DB[v][c];
+        K[r * n + c] += wq * kij;
+      }
+    }
+    if (large) {
+      // Geometric (initial-stress) term of Eq. 17: d2E/du2 : S = (grad N_a . S grad N_b) delta_ik.
+      double Sm[MAX_DIM][MAX_DIM];
+      for (int v = 0; v < nv; ++v) {
+        const int i = Voigt(dim)[v][0], j = Voigt(dim)[v][1];
+        Sm[i][j] = Sm[j][i] = S[v];
+      }
+      for (int a = 0; a < g.nodes; ++a)
+        for (int b = 0; b < g.nodes; ++b) {
+          double gab = 0;
+          for (int i = 0; i < dim; ++i)
+            for (int j = 0; j < dim; ++j) gab += g.dN[q][a][i] * Sm[i][j] * g.dN[q][b][j];
+          for (int k = 0; k < dim; ++k) K[(a * dim + k) * n + b * dim + k] += wq * gab;
+        }
+    }
+  }
+}
+
+CellStress ElementStress(const Material &m, const ElementGeometry &g, const double *u) {
+  const int dim = g.dim, nv = NumVoigt(dim);
+  const bool large = m.model == MaterialModel::SVK;
+  double D[6][6];
+  ElasticityMatrix(m, dim, D);
+  CellStress out;
+  double wsum = 0;
+  for (int q = 0; q < g.nqp; ++q) {
+    double F[MAX_DIM][MAX_DIM], eps[6], S[6] = {};
+    DeformationGradient(g, q, u, large, F);
+    Strain(g, q, u, large, eps);
+    for (int a = 0; a < nv; ++a)
+      for (int b = 0; b < nv; ++b) S[a] += D[a][b] * eps[b];
+    double Sm[MAX_DIM][MAX_DIM] = {}, sig[MAX_DIM][MAX_DIM] = {};
+    for (int v = 0; v < nv; ++v) {
+      const int i = Voigt(dim)[v][0], j = Voigt(dim)[v][1];
+      Sm[i][j] = Sm[j][i] = S[v];
+    }
+    const double J = Det(dim, F);
+    out.min_J = q == 0 ? J : std::min(out.min_J, J);
+    for (int i = 0; i < dim; ++i)
+      for (int j = 0; j < dim; ++j)
+        for (int k = 0; k < dim; ++k)
+          for (int l = 0; l < dim; ++l) sig[i][j] += F[i][k] * Sm[k][l] * F[j][l] / J;
+    const double w = g.w[q];
+    wsum += w;
+    for (int v = 0; v < nv; ++v) {
+      const int i = Voigt(dim)[v][0], j = Voigt(dim)[v][1];
+      out.strain[v] += w * (i == j ? eps[v] : 0.5 * eps[v]);
+      out.stress[v] += w * sig[i][j];
+    }
+    if (dim == 2 && !m.plane_stress) {
+      // Plane strain: E_zz = 0, so S_zz = lambda tr E; F_zz = 1 gives sigma_zz = S_zz / J.
+      out.stress_zz += w * m.Lambda3D() * (eps[0] + eps[1]) / J;
+    }
+  }
+  for (int v = 0; v < nv; ++v) out.strain[v] /= wsum, out.stress[v] /= wsum;
+  out.stress_zz /= wsum;
+  const auto &s = out.stress;
+  if (dim == 2) {
+    const double sx = s[0], sy = s[1], sz = out.stress_zz, txy = s[2];
+    out.von_mises = std::sqrt(0.5 * ((sx - sy) * (sx - sy) + (sy - sz) * (sy - sz) + (sz - sx) * (sz - sx)) +
+                              3 * txy * txy);
+  } else {
+    out.von_mises = std::sqrt(0.5 * ((s[0] - s[1]) * (s[0] - s[1]) + (s[1] - s[2]) * (s[1] - s[2]) +
+                                     (s[2] - s[0]) * (s[2] - s[0])) +
+                              3 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
+  }
+  return out;
+}
+
+void ElementBodyForce(const ElementGeometry &g, const double *b, double *f) {
+  std::memset(f, 0, sizeof(double) * g.nodes * g.dim);
+  for (int q = 0; q < g.nqp; ++q)
+    for (int a = 0; a < g.nodes; ++a)
+      for (int k = 0; k < g.dim; ++k) f[a * g.dim + k] += g.w[q] * g.N[q][a] * b[k];
+}
+
+} // namespace signorini

@@ -1,0 +1,429 @@
+// Building, labelling, partitioning and distributing the DMPlex, and the per-rank arrays of the element loops.
+#include "signorini/mesh/mesh.hpp"
+
+#include "signorini/core/errors.hpp"
+#include "signorini/core/parse.hpp"
+
+#include <metis.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace signorini {
+
+namespace {
+
+const std::string LABEL_PREFIX = "phys_";
+const char *BOUNDARY_LABEL = "signorini_boundary";
+
+/// Sends the group names and dimensions of rank 0 to every rank.
+PetscErrorCode BroadcastGroups(MPI_Comm comm, const SerialMesh &serial, std::vector<std::string> &names,
+                               std::vector<int> &dims) {
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  std::string packed;
+  if (rank == 0)
+    for (const auto &g : serial.groups) packed += std::to_string(g.dim) + g.name + '\n';
+  int len = (int)packed.size();
+  PetscCallMPI(MPI_Bcast(&len, 1, MPI_INT, 0, comm));
+  packed.resize(len);
+  PetscCallMPI(MPI_Bcast(packed.data(), len, MPI_CHAR, 0, comm));
+  names.clear();
+  dims.clear();
+  for (const auto &line : Split(packed, '\n')) {
+    if (line.empty()) continue;
+    dims.push_back(line[0] - '0');
+    names.push_back(line.substr(1));
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, MeshOptions &opts) {
+  char file[PETSC_MAX_PATH_LEN], part[64];
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(file, default_file.c_str(), sizeof(file)));
+  PetscCall(PetscStrncpy(part, opts.partitioner.c_str(), sizeof(part)));
+  PetscOptionsBegin(comm, nullptr, "Mesh options", "signorini");
+  PetscCall(PetscOptionsString("-mesh_file", "gmsh mesh (.msh 2.2/4.1) or geometry (.geo, meshed in-process)", "",
+                               file, file, sizeof(file), nullptr));
+  PetscCall(PetscOptionsReal("-mesh_size_factor", "Mesh size factor applied when meshing a .geo file", "",
+                             opts.size_factor, &opts.size_factor, nullptr));
+  PetscCall(PetscOptionsString("-mesh_partitioner", "Partitioner: metis, ptscotch or simple", "", part, part,
+                               sizeof(part), nullptr));
+  PetscOptionsEnd();
+  opts.file = file;
+  opts.partitioner = part;
+  PetscCheck(!opts.file.empty(), comm, PETSC_ERR_USER_INPUT, "-mesh_file is empty; expected a .msh or .geo path");
+  PetscCheck(opts.size_factor > 0 && std::isfinite(opts.size_factor), comm, PETSC_ERR_USER_INPUT,
+             "-mesh_size_factor %g is invalid; expected a positive number", (double)opts.size_factor);
+  PetscCheck(opts.partitioner == "metis" || opts.partitioner == "ptscotch" || opts.partitioner == "simple", comm,
+             PETSC_ERR_USER_INPUT, "-mesh_partitioner '%s' is unknown; expected metis, ptscotch or simple",
+             opts.partitioner.c_str());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  comm_ = comm;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  std::string error;
+  if (rank == 0) error = ReadGmsh(opts.file, opts.size_factor, serial_);
+  PetscCall(RaiseFromRoot(comm, error));
+  PetscCall(BroadcastGroups(comm, serial_, group_names_, group_dims_));
+  DMH dm;
+  PetscCall(BuildSerialDM(dm.out()));
+  PetscCall(Partition(dm, opts.partitioner));
+  PetscCall(Distribute(dm));
+  dm_ = std::move(dm);
+  PetscCall(BuildLocalArrays());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::BuildSerialDM(DM *out) {
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  const PetscInt nc = serial_.NumCells(), nv = serial_.NumNodes();
+  DMH dm;
+  PetscCall(DMPlexCreate(comm_, dm.out()));
+  PetscCall(DMSetDimension(dm, dim_));
+  PetscCall(DMPlexSetChart(dm, 0, nc + nv));
+  for (PetscInt c = 0; c < nc; ++c) PetscCall(DMPlexSetConeSize(dm, c, serial_.CellSize(c)));
+  PetscCall(DMSetUp(dm));
+  std::vector<PetscInt> cone(4);
+  for (PetscInt c = 0; c < nc; ++c) {
+    const int n = serial_.CellSize(c);
+    for (int j = 0; j < n; ++j) cone[j] = nc + serial_.cell_nodes[serial_.cell_offsets[c] + j];
+    PetscCall(DMPlexSetCone(dm, c, cone.data()));
+  }
+  PetscCall(DMPlexSymmetrize(dm));
+  PetscCall(DMPlexStratify(dm));
+  PetscCall(DMPlexComputeCellTypes(dm));
+  DMH idm;
+  PetscCall(DMPlexInterpolate(dm, idm.out()));
+  PetscCall(DMPlexBuildCoordinatesFromCellList(idm, dim_, serial_.coords.data()));
+  PetscInt vstart, vend, cstart, cend;
+  PetscCall(DMPlexGetDepthStratum(idm, 0, &vstart, &vend));
+  PetscCall(DMPlexGetHeightStratum(idm, 0, &cstart, &cend));
+  PetscCheck(vend - vstart == nv && cend - cstart == nc, comm_, PETSC_ERR_PLIB, "interpolation changed the mesh");
+
+  // One label per physical group, value 1, completed to the closure of what the group holds.
+  for (std::size_t g = 0; g < group_names_.size(); ++g) {
+    const std::string label_name = LABEL_PREFIX + group_names_[g];
+    PetscCall(DMCreateLabel(idm, label_name.c_str()));
+    DMLabel label;
+    PetscCall(DMGetLabel(idm, label_name.c_str(), &label));
+    if (rank == 0) {
+      const PhysicalGroup &group = serial_.groups[g];
+      for (int v : group.nodes) PetscCall(DMLabelSetValue(label, vstart + v, 1));
+      for (int c : group.cells) PetscCall(DMLabelSetValue(label, cstart + c, 1));
+      for (std::size_t e = 0; e + 1 < group.edges.size(); e += 2) {
+        const PetscInt pts[2] = {vstart + group.edges[e], vstart + group.edges[e + 1]};
+        PetscInt njoin;
+        const PetscInt *join;
+        PetscCall(DMPlexGetJoin(idm, 2, pts, &njoin, &join));
+        const PetscInt edge = njoin == 1 ? join[0] : -1;
+        PetscCall(DMPlexRestoreJoin(idm, 2, pts, &njoin, &join));
+        PetscCheck(edge >= 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+                   "a line element of physical curve '%s' is not an edge of any cell", group.name.c_str());
+        PetscCall(DMLabelSetValue(label, edge, 1));
+      }
+    }
+    PetscCall(DMPlexLabelComplete(idm, label));
+  }
+  PetscCall(DMCreateLabel(idm, BOUNDARY_LABEL));
+  DMLabel boundary;
+  PetscCall(DMGetLabel(idm, BOUNDARY_LABEL, &boundary));
+  PetscCall(DMPlexMarkBoundaryFaces(idm, 1, boundary));
+  PetscCall(DMPlexLabelComplete(idm, boundary));
+
+  // The file's node and cell order travels with the points as a field: 1 dof on every cell and vertex.
+  vertex_orig_.resize(nv);
+  cell_orig_.resize(nc);
+  for (PetscInt v = 0; v < nv; ++v) vertex_orig_[v] = v;
+  for (PetscInt c = 0; c < nc; ++c) cell_orig_[c] = c;
+  vstart_ = vstart;
+  cstart_ = cstart;
+  PetscInt ng[2] = {nv, nc};
+  PetscCallMPI(MPI_Bcast(ng, 2, MPIU_INT, 0, comm_));
+  num_global_nodes_ = ng[0];
+  num_global_cells_ = ng[1];
+  *out = idm.get();
+  PetscCall(PetscObjectReference((PetscObject)*out));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::Partition(DM dm, const std::string &partitioner) {
+  PetscMPIInt rank, size;
+  PetscPartitioner part;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  PetscCall(DMPlexGetPartitioner(dm, &part));
+  if (partitioner == "ptscotch") {
+    PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
+    PetscFunctionReturn(0);
+  }
+  if (partitioner == "simple" || size == 1) {
+    PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSIMPLE));
+    PetscFunctionReturn(0);
+  }
+  // METIS on the dual graph of the serial mesh (cells sharing an edge), handed to DMPlex as a shell partition.
+  PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSHELL));
+  std::vector<PetscInt> sizes(size, 0), points;
+  if (rank == 0) {
+    idx_t ne = serial_.NumCells(), nn = serial_.NumNodes(), ncommon = dim_, nparts = size, objval = 0;
+    std::vector<idx_t> eptr(serial_.cell_offsets.begin(), serial_.cell_offsets.end());
+    std::vector<idx_t> eind(serial_.cell_nodes.begin(), serial_.cell_nodes.end());
+    std::vector<idx_t> epart(ne), npart(nn);
+    idx_t options[METIS_NOPTIONS];
+    METIS_SetDefaultOptions(options);
+    options[METIS_OPTION_SEED] = 7;
+    const int status = METIS_PartMeshDual(&ne, &nn, eptr.data(), eind.data(), nullptr, nullptr, &ncommon, &nparts,
+                                          nullptr, options, &objval, epart.data(), npart.data());
+    PetscCheck(status == METIS_OK, PETSC_COMM_SELF, PETSC_ERR_LIB, "METIS_PartMeshDual failed (%d)", status);
+    for (idx_t c = 0; c < ne; ++c) sizes[epart[c]]++;
+    std::vector<PetscInt> start(size + 1, 0);
+    for (int p = 0; p < size; ++p) start[p + 1] = start[p] + sizes[p];
+    points.resize(ne);
+    for (idx_t c = 0; c < ne; ++c) points[start[epart[c]]++] = c;
+  }
+  PetscCall(PetscPartitionerShellSetPartition(part, size, sizes.data(), points.data()));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::Distribute(DMH &dm) {
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  if (size == 1) PetscFunctionReturn(0);
+  // Section with one dof on every cell and vertex holding its index in the file.
+  PetscInt pstart, pend;
+  PetscCall(DMPlexGetChart(dm, &pstart, &pend));
+  SectionH sec;
+  PetscCall(PetscSectionCreate(PETSC_COMM_SELF, sec.out()));
+  PetscCall(PetscSectionSetChart(sec, pstart, pend));
+  const PetscInt nv = (PetscInt)vertex_orig_.size(), nc = (PetscInt)cell_orig_.size();
+  for (PetscInt c = 0; c < nc; ++c) PetscCall(PetscSectionSetDof(sec, cstart_ + c, 1));
+  for (PetscInt v = 0; v < nv; ++v) PetscCall(PetscSectionSetDof(sec, vstart_ + v, 1));
+  PetscCall(PetscSectionSetUp(sec));
+  VecH orig;
+  PetscInt n;
+  PetscCall(PetscSectionGetStorageSize(sec, &n));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, orig.out()));
+  PetscScalar *a;
+  PetscCall(VecGetArray(orig, &a));
+  for (PetscInt c = 0; c < nc; ++c) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(sec, cstart_ + c, &off));
+    a[off] = cell_orig_[c];
+  }
+  for (PetscInt v = 0; v < nv; ++v) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(sec, vstart_ + v, &off));
+    a[off] = vertex_orig_[v];
+  }
+  PetscCall(VecRestoreArray(orig, &a));
+
+  SFH migration;
+  DMH dist;
+  PetscCall(DMPlexDistribute(dm, 0, migration.out(), dist.out()));
+  if (!dist) PetscFunctionReturn(0);
+  SectionH new_sec;
+  VecH new_orig;
+  PetscCall(PetscSectionCreate(PETSC_COMM_SELF, new_sec.out()));
+  PetscCall(VecCreate(PETSC_COMM_SELF, new_orig.out()));
+  PetscCall(DMPlexDistributeField(dm, migration, sec, orig, new_sec, new_orig));
+  PetscCall(DMPlexGetDepthStratum(dist, 0, &vstart_, &pend));
+  vertex_orig_.assign(pend - vstart_, -1);
+  PetscCall(DMPlexGetHeightStratum(dist, 0, &cstart_, &pend));
+  cell_orig_.assign(pend - cstart_, -1);
+  const PetscScalar *b;
+  PetscCall(VecGetArrayRead(new_orig, &b));
+  for (PetscInt v = 0; v < (PetscInt)vertex_orig_.size(); ++v) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(new_sec, vstart_ + v, &off));
+    vertex_orig_[v] = (PetscInt)PetscRealPart(b[off]);
+  }
+  for (PetscInt c = 0; c < (PetscInt)cell_orig_.size(); ++c) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(new_sec, cstart_ + c, &off));
+    cell_orig_[c] = (PetscInt)PetscRealPart(b[off]);
+  }
+  PetscCall(VecRestoreArrayRead(new_orig, &b));
+  dm = std::move(dist);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::BuildLocalArrays() {
+  PetscInt pstart, pend, vend, cend;
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetChart(dm_, &pstart, &pend));
+  PetscCall(DMPlexGetDepthStratum(dm_, 0, &vstart_, &vend));
+  PetscCall(DMPlexGetHeightStratum(dm_, 0, &cstart_, &cend));
+  const PetscInt nv = vend - vstart_, nc = cend - cstart_;
+  PetscCheck((PetscInt)vertex_orig_.size() == nv && (PetscInt)cell_orig_.size() == nc, comm_, PETSC_ERR_PLIB,
+             "inconsistent distributed mesh");
+
+  point_leaf_.assign(pend - pstart, 0);
+  PetscSF sf;
+  PetscInt nroots, nleaves;
+  const PetscInt *ilocal;
+  PetscCall(DMGetPointSF(dm_, &sf));
+  PetscCall(PetscSFGetGraph(sf, &nroots, &nleaves, &ilocal, nullptr));
+  if (nroots >= 0)
+    for (PetscInt i = 0; i < nleaves; ++i) point_leaf_[(ilocal ? ilocal[i] : i) - pstart] = 1;
+  vertex_owned_.resize(nv);
+  for (PetscInt v = 0; v < nv; ++v) vertex_owned_[v] = !point_leaf_[vstart_ + v - pstart];
+
+  Vec coords;
+  PetscSection csec;
+  const PetscScalar *x;
+  PetscCall(DMGetCoordinatesLocal(dm_, &coords));
+  PetscCall(DMGetCoordinateSection(dm_, &csec));
+  PetscCall(VecGetArrayRead(coords, &x));
+  coords_.resize(dim_ * nv);
+  for (PetscInt v = 0; v < nv; ++v) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(csec, vstart_ + v, &off));
+    for (int d = 0; d < dim_; ++d) coords_[dim_ * v + d] = PetscRealPart(x[off + d]);
+  }
+  PetscCall(VecRestoreArrayRead(coords, &x));
+
+  cell_offsets_.assign(1, 0);
+  cell_vertices_.clear();
+  for (PetscInt c = 0; c < nc; ++c) {
+    PetscInt n, *pts = nullptr;
+    PetscCall(DMPlexGetTransitiveClosure(dm_, cstart_ + c, PETSC_TRUE, &n, &pts));
+    for (PetscInt i = 0; i < n; ++i)
+      if (pts[2 * i] >= vstart_ && pts[2 * i] < vend) cell_vertices_.push_back(pts[2 * i] - vstart_);
+    PetscCall(DMPlexRestoreTransitiveClosure(dm_, cstart_ + c, PETSC_TRUE, &n, &pts));
+    cell_offsets_.push_back((PetscInt)cell_vertices_.size());
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::LabelVertices(const std::string &label_name, std::vector<PetscInt> &vertices) const {
+  DMLabel label;
+  PetscFunctionBeginUser;
+  vertices.clear();
+  PetscCall(DMGetLabel(dm_, label_name.c_str(), &label));
+  if (!label) PetscFunctionReturn(0);
+  ISH is;
+  PetscCall(DMLabelGetStratumIS(label, 1, is.out()));
+  if (!is) PetscFunctionReturn(0);
+  PetscInt n;
+  const PetscInt *pts;
+  PetscCall(ISGetLocalSize(is, &n));
+  PetscCall(ISGetIndices(is, &pts));
+  const PetscInt nv = NumLocalVertices();
+  for (PetscInt i = 0; i < n; ++i)
+    if (pts[i] >= vstart_ && pts[i] < vstart_ + nv) vertices.push_back(pts[i] - vstart_);
+  PetscCall(ISRestoreIndices(is, &pts));
+  std::sort(vertices.begin(), vertices.end());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::CheckGroup(const std::string &name, int required_dim) const {
+  PetscFunctionBeginUser;
+  const auto it = std::find(group_names_.begin(), group_names_.end(), name);
+  PetscCheck(it != group_names_.end(), comm_, PETSC_ERR_USER_INPUT,
+             "physical group '%s' is not in the mesh; the mesh has: %s", name.c_str(),
+             group_names_.empty() ? "(no physical groups)" : Join(group_names_, ", ").c_str());
+  const int dim = group_dims_[it - group_names_.begin()];
+  PetscCheck(required_dim < 0 || dim == required_dim, comm_, PETSC_ERR_USER_INPUT,
+             "physical group '%s' has dimension %d; expected a physical curve (dimension %d)", name.c_str(), dim,
+             required_dim);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::GroupVertices(const std::string &name, std::vector<PetscInt> &vertices) const {
+  PetscFunctionBeginUser;
+  PetscCall(CheckGroup(name, -1));
+  PetscCall(LabelVertices(LABEL_PREFIX + name, vertices));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::BoundaryVertices(std::vector<PetscInt> &vertices) const {
+  PetscFunctionBeginUser;
+  PetscCall(LabelVertices(BOUNDARY_LABEL, vertices));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::GroupEdges(const std::string &name, std::vector<std::array<PetscInt, 2>> &edges) const {
+  PetscFunctionBeginUser;
+  PetscCall(CheckGroup(name, 1));
+  PetscCall(LabelEdges(LABEL_PREFIX + name, edges));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::BoundaryEdges(std::vector<std::array<PetscInt, 2>> &edges) const {
+  PetscFunctionBeginUser;
+  PetscCall(LabelEdges(BOUNDARY_LABEL, edges));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::SumShared(std::vector<double> &per_vertex) const {
+  PetscInt pstart, pend, nroots;
+  PetscSF sf;
+  PetscFunctionBeginUser;
+  PetscCall(DMGetPointSF(dm_, &sf));
+  PetscCall(PetscSFGetGraph(sf, &nroots, nullptr, nullptr, nullptr));
+  if (nroots < 0) PetscFunctionReturn(0);
+  PetscCall(DMPlexGetChart(dm_, &pstart, &pend));
+  std::vector<double> root(pend - pstart, 0.0), leaf(pend - pstart, 0.0);
+  for (PetscInt v = 0; v < NumLocalVertices(); ++v) {
+    (Owned(v) ? root : leaf)[vstart_ + v - pstart] = per_vertex[v];
+  }
+  PetscCall(PetscSFReduceBegin(sf, MPI_DOUBLE, leaf.data(), root.data(), MPI_SUM));
+  PetscCall(PetscSFReduceEnd(sf, MPI_DOUBLE, leaf.data(), root.data(), MPI_SUM));
+  PetscCall(PetscSFBcastBegin(sf, MPI_DOUBLE, root.data(), leaf.data(), MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(sf, MPI_DOUBLE, root.data(), leaf.data(), MPI_REPLACE));
+  for (PetscInt v = 0; v < NumLocalVertices(); ++v) per_vertex[v] = (Owned(v) ? root : leaf)[vstart_ + v - pstart];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::LabelEdges(const std::string &label_name, std::vector<std::array<PetscInt, 2>> &edges) const {
+  PetscFunctionBeginUser;
+  edges.clear();
+  DMLabel label;
+  PetscCall(DMGetLabel(dm_, label_name.c_str(), &label));
+  if (!label) PetscFunctionReturn(0);
+  ISH is;
+  PetscCall(DMLabelGetStratumIS(label, 1, is.out()));
+  if (!is) PetscFunctionReturn(0);
+  PetscInt n, estart, eend, pstart, pend;
+  const PetscInt *pts;
+  PetscCall(DMPlexGetDepthStratum(dm_, 1, &estart, &eend));
+  PetscCall(DMPlexGetChart(dm_, &pstart, &pend));
+  PetscCall(ISGetLocalSize(is, &n));
+  PetscCall(ISGetIndices(is, &pts));
+  for (PetscInt i = 0; i < n; ++i) {
+    if (pts[i] < estart || pts[i] >= eend || point_leaf_[pts[i] - pstart]) continue;
+    const PetscInt *cone, *support;
+    PetscInt nsupport;
+    PetscCall(DMPlexGetCone(dm_, pts[i], &cone));
+    PetscCall(DMPlexGetSupportSize(dm_, pts[i], &nsupport));
+    PetscCall(DMPlexGetSupport(dm_, pts[i], &support));
+    std::array<PetscInt, 2> e = {cone[0] - vstart_, cone[1] - vstart_};
+    if (nsupport >= 1) {
+      // Orient the edge so that its cell (the body) lies on its left.
+      PetscInt nc;
+      const PetscInt *cv = CellVertices(support[0] - cstart_, nc);
+      double centre[2] = {0, 0};
+      for (PetscInt k = 0; k < nc; ++k) centre[0] += X(cv[k])[0] / nc, centre[1] += X(cv[k])[1] / nc;
+      const double *a = X(e[0]), *b = X(e[1]);
+      if ((b[0] - a[0]) * (centre[1] - a[1]) - (b[1] - a[1]) * (centre[0] - a[0]) < 0) std::swap(e[0], e[1]);
+    }
+    edges.push_back(e);
+  }
+  PetscCall(ISRestoreIndices(is, &pts));
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini

@@ -1,0 +1,391 @@
+// The load-step / active-set / Newton loop.
+#include "signorini/solver/contact_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace signorini {
+
+namespace {
+PetscLogEvent EV_ASSEMBLY = 0, EV_ACTIVE_SET = 0, EV_SOLVE = 0;
+
+/// Accumulates the wall time of a scope (maximum over ranks is taken when reported).
+class ScopedTimer {
+public:
+  ScopedTimer(double &total) : total_(total), start_(MPI_Wtime()) {}
+  ~ScopedTimer() { total_ += MPI_Wtime() - start_; }
+
+private:
+  double &total_;
+  double start_;
+};
+} // namespace
+
+PetscErrorCode ReadSolverOptions(MPI_Comm comm, SolverOptions &opts) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Load stepping and Newton-Raphson", "signorini");
+  PetscCall(PetscOptionsInt("-load_steps", "Number of load increments", "", opts.load_steps, &opts.load_steps,
+                            nullptr));
+  PetscCall(PetscOptionsInt("-load_max_cuts", "Halvings allowed for a failed load increment", "", opts.max_cuts,
+                            &opts.max_cuts, nullptr));
+  PetscCall(PetscOptionsInt("-newton_max_it", "Newton/active-set iterations per load step (svk)", "",
+                            opts.newton_max_it, &opts.newton_max_it, nullptr));
+  PetscCall(PetscOptionsReal("-newton_rtol", "Residual tolerance relative to the force scale", "", opts.newton_rtol,
+                             &opts.newton_rtol, nullptr));
+  PetscCall(PetscOptionsReal("-newton_atol", "Absolute residual tolerance", "", opts.newton_atol, &opts.newton_atol,
+                             nullptr));
+  PetscCall(PetscOptionsBool("-newton_linesearch", "Backtracking line search on the residual norm", "",
+                             opts.line_search, &opts.line_search, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(opts.load_steps >= 1, comm, PETSC_ERR_USER_INPUT,
+             "-load_steps %" PetscInt_FMT " is invalid; expected >= 1", opts.load_steps);
+  PetscCheck(opts.max_cuts >= 0, comm, PETSC_ERR_USER_INPUT,
+             "-load_max_cuts %" PetscInt_FMT " is invalid; expected >= 0", opts.max_cuts);
+  PetscCheck(opts.newton_max_it >= 1, comm, PETSC_ERR_USER_INPUT,
+             "-newton_max_it %" PetscInt_FMT " is invalid; expected >= 1", opts.newton_max_it);
+  PetscCheck(std::isfinite(opts.newton_rtol) && opts.newton_rtol > 0, comm, PETSC_ERR_USER_INPUT,
+             "-newton_rtol %g is invalid; expected > 0", opts.newton_rtol);
+  PetscCheck(std::isfinite(opts.newton_atol) && opts.newton_atol >= 0, comm, PETSC_ERR_USER_INPUT,
+             "-newton_atol %g is invalid; expected >= 0", opts.newton_atol);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::Setup() {
+  MPI_Comm comm = mesh_.Comm();
+  const int dim = mesh_.Dim();
+  PetscFunctionBeginUser;
+  if (!EV_ASSEMBLY) {
+    PetscClassId id;
+    PetscCall(PetscClassIdRegister("signorini", &id));
+    PetscCall(PetscLogEventRegister("SigAssembly", id, &EV_ASSEMBLY));
+    PetscCall(PetscLogEventRegister("SigActiveSet", id, &EV_ACTIVE_SET));
+    PetscCall(PetscLogEventRegister("SigSolve", id, &EV_SOLVE));
+  }
+  PetscCall(BuildDirichlet(mesh_, bc_, dirichlet_));
+  PetscCall(FindContactPairs(mesh_, obstacle_, contact_, dirichlet_.fixed, pairs_, candidate_));
+  PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size()));
+  assembler_ = std::make_unique<Assembler>(mesh_, material_, dofs_, dirichlet_);
+  PetscCall(assembler_->CheckCells());
+  PetscCall(assembler_->StiffnessScale(kscale_));
+
+  // Coordinates of the owned vertices in dof order, for the rigid-body modes.
+  std::vector<double> coords(dofs_.OwnedU());
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    if (mesh_.Owned(v))
+      for (int k = 0; k < dim; ++k) coords[dofs_.LocalOffset(v, k)] = mesh_.X(v)[k];
+  u_local_.assign(mesh_.NumLocalVertices() * dim, 0.0);
+  EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, false, u_local_.data(), states_, rows_,
+                normals_);
+  PetscCall(system_.Create(dofs_, rows_, coords, [&](Mat P) { return assembler_->InsertPattern(P); }));
+
+  PetscCall(MatCreateVecs(system_.A(), u_.out(), nullptr));
+  PetscCall(VecDuplicate(u_, du_.out()));
+  PetscCall(VecDuplicate(u_, fext_.out()));
+  PetscCall(VecDuplicate(u_, fint_.out()));
+  PetscCall(PetscObjectSetName((PetscObject)u_.get(), "displacement"));
+  std::vector<PetscInt> from(mesh_.NumLocalVertices() * dim);
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    for (int k = 0; k < dim; ++k) from[v * dim + k] = dofs_.Row(v, k);
+  ISH is_from;
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)from.size(), from.data(), PETSC_COPY_VALUES, is_from.out()));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, (PetscInt)from.size(), u_seq_.out()));
+  PetscCall(VecScatterCreate(u_, is_from, u_seq_, nullptr, &scatter_));
+  lambda_.assign(pairs_.size(), 0.0);
+  active_.assign(pairs_.size(), 0);
+  (void)comm;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::UpdateLocal() {
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterBegin(scatter_, u_, u_seq_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(scatter_, u_, u_seq_, INSERT_VALUES, SCATTER_FORWARD));
+  const PetscScalar *a;
+  PetscCall(VecGetArrayRead(u_seq_, &a));
+  std::copy(a, a + u_local_.size(), u_local_.begin());
+  PetscCall(VecRestoreArrayRead(u_seq_, &a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::SetDirichlet(double factor) {
+  const int dim = mesh_.Dim();
+  PetscScalar *u;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(u_, &u));
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    if (mesh_.Owned(v))
+      for (int k = 0; k < dim; ++k)
+        if (dirichlet_.fixed[v * dim + k]) u[dofs_.LocalOffset(v, k)] = factor * dirichlet_.value[v * dim + k];
+  PetscCall(VecRestoreArray(u_, &u));
+  PetscCall(UpdateLocal());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double &norm, double &scale) {
+  const int dim = mesh_.Dim();
+  double min_J;
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(fint_));
+  PetscCall(assembler_->Assemble(u_local_.data(), nullptr, 0, fint_, &min_J));
+  const PetscScalar *fi, *fe;
+  PetscCall(VecGetArrayRead(fint_, &fi));
+  PetscCall(VecGetArrayRead(fext_, &fe));
+  std::vector<double> r(dofs_.OwnedU(), 0.0);
+  for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) r[i] = fi[i] - fe[i];
+  double s[2] = {0, 0};
+  for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) s[1] += fi[i] * fi[i] + fe[i] * fe[i];
+  PetscCall(VecRestoreArrayRead(fint_, &fi));
+  PetscCall(VecRestoreArrayRead(fext_, &fe));
+  // Contact forces B^T lambda (all rows of the pair's node are local: pairs live with their owned node).
+  for (std::size_t p = 0; p < pairs_.size(); ++p)
+    for (int k = 0; k < dim; ++k) r[dofs_.LocalOffset(pairs_[p].vertex, k)] -= lambda[p] * normals_[p][k];
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    if (mesh_.Owned(v))
+      for (int k = 0; k < dim; ++k)
+        if (!dirichlet_.fixed[v * dim + k]) s[0] += r[dofs_.LocalOffset(v, k)] * r[dofs_.LocalOffset(v, k)];
+  double gs[2];
+  PetscCallMPI(MPI_Allreduce(s, gs, 2, MPI_DOUBLE, MPI_SUM, mesh_.Comm()));
+  norm = std::isfinite(min_J) && min_J > 0 ? std::sqrt(gs[0]) : INFINITY;
+  scale = std::sqrt(gs[1]);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::ActiveSetHash(const std::vector<char> &active, unsigned long long &h) const {
+  unsigned long long mine = 0;
+  PetscFunctionBeginUser;
+  for (std::size_t p = 0; p < pairs_.size(); ++p)
+    if (active[p]) {
+      unsigned long long z = (unsigned long long)mesh_.VertexOriginal(pairs_[p].vertex) * 1000003ULL +
+                             (unsigned long long)pairs_[p].facet + 0x9E3779B97F4A7C15ULL;
+      z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+      z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+      mine += z ^ (z >> 31);
+    }
+  PetscCallMPI(MPI_Allreduce(&mine, &h, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, mesh_.Comm()));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::Monitor(const IterationRecord &r) const {
+  PetscFunctionBeginUser;
+  if (contact_.monitor)
+    PetscCall(PetscPrintf(mesh_.Comm(),
+                          "  step %" PetscInt_FMT " (load %.4g) it %" PetscInt_FMT ": active %" PetscInt_FMT
+                          " changed %" PetscInt_FMT " min lambda %.6e max penetration %.6e residual %.6e ksp its %"
+                          PetscInt_FMT "\n",
+                          r.step, r.load_factor, r.iteration, r.active, r.changed, r.min_lambda, r.max_penetration,
+                          r.residual, r.krylov));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first, bool &ok) {
+  MPI_Comm comm = mesh_.Comm();
+  const bool large = material_.model == MaterialModel::SVK;
+  const PetscInt max_it = large ? std::max(opts_.newton_max_it, contact_.max_it) : contact_.max_it;
+  const double force_tol = contact_.c * contact_.gap_tol;
+  std::vector<unsigned long long> seen;
+  std::vector<char> next(pairs_.size());
+  PetscInt krylov = 0;
+  PetscFunctionBeginUser;
+  ok = false;
+  PetscCall(SetDirichlet(factor));
+  PetscCall(VecZeroEntries(fext_));
+  PetscCall(assembler_->AssembleLoads(bc_, factor, fext_));
+  for (PetscInt it = 0;; ++it) {
+    double rnorm, rscale;
+    {
+      ScopedTimer t(stats_.time_assembly);
+      PetscCall(PetscLogEventBegin(EV_ASSEMBLY, 0, 0, 0, 0));
+      EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_local_.data(), states_,
+                    rows_, normals_);
+      PetscCall(Residual(lambda_, rnorm, rscale));
+      PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
+    }
+    // Active-set update (seed 4.1): first the pairs touching at the start, then the complementarity rule.
+    PetscInt counts[2] = {0, 0};
+    double mins[2] = {INFINITY, INFINITY};
+    {
+      ScopedTimer t(stats_.time_active_set);
+      for (std::size_t p = 0; p < pairs_.size(); ++p) {
+        states_[p].lambda = lambda_[p];
+        states_[p].active = active_[p];
+        if (it == 0)
+          next[p] = first ? (states_[p].inside && states_[p].gap <= contact_.touch_tol) : active_[p];
+        else
+          next[p] = NextActive(states_[p], contact_.c, force_tol);
+        counts[0] += next[p];
+        counts[1] += next[p] != active_[p];
+        if (active_[p]) mins[0] = std::min(mins[0], lambda_[p]);
+        mins[1] = std::min(mins[1], states_[p].gap);
+      }
+    }
+    PetscInt gcounts[2];
+    double gmins[2];
+    PetscCallMPI(MPI_Allreduce(counts, gcounts, 2, MPIU_INT, MPI_SUM, comm));
+    PetscCallMPI(MPI_Allreduce(mins, gmins, 2, MPI_DOUBLE, MPI_MIN, comm));
+    const bool residual_ok = !large || rnorm <= opts_.newton_rtol * rscale + opts_.newton_atol;
+    IterationRecord rec{step, it, gcounts[0], gcounts[1], krylov, factor,
+                        std::isfinite(gmins[0]) ? gmins[0] : 0.0, std::max(0.0, std::isfinite(gmins[1]) ? -gmins[1] : 0.0),
+                        rnorm};
+    if (it > 0) {
+      stats_.history.push_back(rec);
+      PetscCall(Monitor(rec));
+    }
+    if (it > 0 && gcounts[1] == 0 && residual_ok) {
+      stats_.reason = large ? "CONVERGED_ACTIVE_SET_AND_RESIDUAL" : "CONVERGED_ACTIVE_SET_UNCHANGED";
+      ok = true;
+      break;
+    }
+    if (!std::isfinite(rnorm)) {
+      stats_.reason = "DIVERGED_NONINVERTIBLE_DEFORMATION";
+      break;
+    }
+    if (it >= max_it) {
+      stats_.reason = "DIVERGED_MAX_IT";
+      break;
+    }
+    unsigned long long h;
+    PetscCall(ActiveSetHash(next, h));
+    if (gcounts[1] > 0 && it > 0) {
+      const auto repeats = std::count(seen.begin(), seen.end(), h);
+      if (repeats >= (large ? 3 : 1)) {
+        stats_.reason = "DIVERGED_CYCLING";
+        break;
+      }
+    }
+    seen.push_back(h);
+    active_ = next;
+
+    {
+      ScopedTimer t(stats_.time_assembly);
+      PetscCall(PetscLogEventBegin(EV_ASSEMBLY, 0, 0, 0, 0));
+      if (large || !k_assembled_) {
+        PetscCall(MatZeroEntries(system_.A()));
+        PetscCall(assembler_->Assemble(u_local_.data(), system_.A(), kscale_, nullptr, nullptr));
+        PetscCall(MatAssemblyBegin(system_.A(), MAT_FLUSH_ASSEMBLY));
+        PetscCall(MatAssemblyEnd(system_.A(), MAT_FLUSH_ASSEMBLY));
+        k_assembled_ = true;
+      }
+      PetscCall(system_.SetConstraints(rows_, active_, -1.0 / kscale_));
+      // Right-hand side: f - F_int on free rows, 0 on Dirichlet rows, the current gap on active multiplier rows.
+      PetscScalar *b;
+      const PetscScalar *fi, *fe;
+      PetscCall(VecGetArray(system_.Rhs(), &b));
+      PetscCall(VecGetArrayRead(fint_, &fi));
+      PetscCall(VecGetArrayRead(fext_, &fe));
+      for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) b[i] = fe[i] - fi[i];
+      for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+        if (mesh_.Owned(v))
+          for (int k = 0; k < mesh_.Dim(); ++k)
+            if (dirichlet_.fixed[v * mesh_.Dim() + k]) b[dofs_.LocalOffset(v, k)] = 0;
+      for (std::size_t p = 0; p < pairs_.size(); ++p) b[dofs_.OwnedU() + p] = active_[p] ? states_[p].gap : 0.0;
+      PetscCall(VecRestoreArrayRead(fint_, &fi));
+      PetscCall(VecRestoreArrayRead(fext_, &fe));
+      PetscCall(VecRestoreArray(system_.Rhs(), &b));
+      PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
+    }
+    {
+      ScopedTimer t(stats_.time_solve);
+      PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
+      PetscCall(system_.Solve(krylov));
+      PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
+    }
+    stats_.solves++;
+    stats_.active_set_iterations++;
+    stats_.krylov_iterations += krylov;
+    PetscCall(UpdateSolution(rnorm));
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini
+
+namespace signorini {
+
+PetscErrorCode ContactSolver::UpdateSolution(double r0) {
+  const bool large = material_.model == MaterialModel::SVK;
+  const PetscInt nu = dofs_.OwnedU();
+  std::vector<double> new_lambda(pairs_.size());
+  PetscFunctionBeginUser;
+  const PetscScalar *x;
+  PetscCall(VecGetArrayRead(system_.Solution(), &x));
+  for (std::size_t p = 0; p < pairs_.size(); ++p) new_lambda[p] = x[nu + p];
+  PetscCall(VecRestoreArrayRead(system_.Solution(), &x));
+  PetscCall(VecCopy(u_, du_));
+  for (double s = 1.0;; s *= 0.5) {
+    // u = u_old + s du on the displacement rows (du_ holds u_old while trying).
+    PetscScalar *u;
+    const PetscScalar *u_old, *dx;
+    PetscCall(VecGetArray(u_, &u));
+    PetscCall(VecGetArrayRead(du_, &u_old));
+    PetscCall(VecGetArrayRead(system_.Solution(), &dx));
+    for (PetscInt i = 0; i < nu; ++i) u[i] = u_old[i] + s * dx[i];
+    PetscCall(VecRestoreArrayRead(system_.Solution(), &dx));
+    PetscCall(VecRestoreArrayRead(du_, &u_old));
+    PetscCall(VecRestoreArray(u_, &u));
+    PetscCall(UpdateLocal());
+    if (!large || !opts_.line_search || s < 1.0 / 64) break;
+    double r, scale;
+    EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_local_.data(), states_, rows_,
+                  normals_);
+    PetscCall(Residual(new_lambda, r, scale));
+    if (std::isfinite(r) && (r < r0 || r <= opts_.newton_rtol * scale + opts_.newton_atol)) break;
+  }
+  lambda_ = new_lambda;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt, double)> &step_done) {
+  MPI_Comm comm = mesh_.Comm();
+  const bool large = material_.model == MaterialModel::SVK;
+  PetscFunctionBeginUser;
+  VecH u_saved;
+  PetscCall(VecDuplicate(u_, u_saved.out()));
+  PetscCall(VecCopy(u_, u_saved));
+  std::vector<double> lambda_saved = lambda_;
+  std::vector<char> active_saved = active_;
+  double t = 0, dt = 1.0 / opts_.load_steps;
+  PetscInt step = 0;
+  while (t < 1.0 - 1e-12) {
+    const double t_try = std::min(1.0, t + dt);
+    bool ok;
+    PetscCall(LoadStep(step + 1, t_try, step == 0, ok));
+    if (contact_.converged_reason)
+      PetscCall(PetscPrintf(comm, "Contact solve %s: %s at load factor %g after %" PetscInt_FMT " solve(s)\n",
+                            ok ? "converged" : "diverged", stats_.reason.c_str(), t_try, stats_.solves));
+    if (ok) {
+      t = t_try;
+      ++step;
+      stats_.steps = step;
+      PetscCall(VecCopy(u_, u_saved));
+      lambda_saved = lambda_;
+      active_saved = active_;
+      PetscCall(step_done(step, t));
+      continue;
+    }
+    const std::string &why = stats_.reason;
+    const char *what = why == "DIVERGED_CYCLING" ? "the active set cycles (an earlier active set came back)"
+                       : why == "DIVERGED_NONINVERTIBLE_DEFORMATION"
+                           ? "the deformation became non-invertible (det F <= 0)"
+                           : "the active-set/Newton loop reached its iteration limit (-contact_max_it, -newton_max_it)";
+    PetscCheck(large && stats_.cuts < opts_.max_cuts, comm, PETSC_ERR_NOT_CONVERGED,
+               "the contact solve did not converge at load factor %g: %s%s", t_try, what,
+               large ? "; no more load-step cuts allowed (-load_max_cuts)" : "");
+    stats_.cuts++;
+    dt *= 0.5;
+    PetscCall(PetscPrintf(comm, "Load step at factor %g failed (%s); cutting the increment to %g\n", t_try,
+                          why.c_str(), dt));
+    PetscCall(VecCopy(u_saved, u_));
+    PetscCall(UpdateLocal());
+    lambda_ = lambda_saved;
+    active_ = active_saved;
+  }
+  // Final state of the pairs for the results.
+  EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_local_.data(), states_, rows_,
+                normals_);
+  for (std::size_t p = 0; p < pairs_.size(); ++p) states_[p].lambda = lambda_[p], states_[p].active = active_[p];
+  double rnorm, rscale;
+  PetscCall(Residual(lambda_, rnorm, rscale));
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini
