@@ -34,7 +34,7 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, SolverOptions &opts) {
                              &opts.newton_rtol, nullptr));
   PetscCall(PetscOptionsReal("-newton_atol", "Absolute residual tolerance", "", opts.newton_atol, &opts.newton_atol,
                              nullptr));
-  PetscCall(PetscOptionsBool("-newton_linesearch", "Backtracking line search on the residual norm", "",
+  PetscCall(PetscOptionsBool("-newton_linesearch", "Line search on du.R(u + s du) (det F <= 0 always halves the step)", "",
                              opts.line_search, &opts.line_search, nullptr));
   PetscOptionsEnd();
   PetscCheck(opts.load_steps >= 1, comm, PETSC_ERR_USER_INPUT,
@@ -121,7 +121,8 @@ PetscErrorCode ContactSolver::SetDirichlet(double factor) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double &norm, double &scale) {
+PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double &norm, double &scale,
+                                        const PetscScalar *direction, double *dot) {
   const int dim = mesh_.Dim();
   double min_J;
   PetscFunctionBeginUser;
@@ -132,7 +133,7 @@ PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double
   PetscCall(VecGetArrayRead(fext_, &fe));
   std::vector<double> r(dofs_.OwnedU(), 0.0);
   for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) r[i] = fi[i] - fe[i];
-  double s[2] = {0, 0};
+  double s[3] = {0, 0, 0};
   for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) s[1] += fi[i] * fi[i] + fe[i] * fe[i];
   PetscCall(VecRestoreArrayRead(fint_, &fi));
   PetscCall(VecRestoreArrayRead(fext_, &fe));
@@ -142,9 +143,14 @@ PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double
   for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
     if (mesh_.Owned(v))
       for (int k = 0; k < dim; ++k)
-        if (!dirichlet_.fixed[v * dim + k]) s[0] += r[dofs_.LocalOffset(v, k)] * r[dofs_.LocalOffset(v, k)];
-  double gs[2];
-  PetscCallMPI(MPI_Allreduce(s, gs, 2, MPI_DOUBLE, MPI_SUM, mesh_.Comm()));
+        if (!dirichlet_.fixed[v * dim + k]) {
+          const PetscInt i = dofs_.LocalOffset(v, k);
+          s[0] += r[i] * r[i];
+          if (direction) s[2] += direction[i] * r[i];
+        }
+  double gs[3];
+  PetscCallMPI(MPI_Allreduce(s, gs, 3, MPI_DOUBLE, MPI_SUM, mesh_.Comm()));
+  if (dot) *dot = gs[2];
   norm = std::isfinite(min_J) && min_J > 0 ? std::sqrt(gs[0]) : INFINITY;
   scale = std::sqrt(gs[1]);
   PetscFunctionReturn(0);
@@ -311,24 +317,44 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0) {
   for (std::size_t p = 0; p < pairs_.size(); ++p) new_lambda[p] = x[nu + p];
   PetscCall(VecRestoreArrayRead(system_.Solution(), &x));
   PetscCall(VecCopy(u_, du_));
-  for (double s = 1.0;; s *= 0.5) {
-    // u = u_old + s du on the displacement rows (du_ holds u_old while trying).
-    PetscScalar *u;
-    const PetscScalar *u_old, *dx;
-    PetscCall(VecGetArray(u_, &u));
-    PetscCall(VecGetArrayRead(du_, &u_old));
-    PetscCall(VecGetArrayRead(system_.Solution(), &dx));
-    for (PetscInt i = 0; i < nu; ++i) u[i] = u_old[i] + s * dx[i];
-    PetscCall(VecRestoreArrayRead(system_.Solution(), &dx));
-    PetscCall(VecRestoreArrayRead(du_, &u_old));
-    PetscCall(VecRestoreArray(u_, &u));
-    PetscCall(UpdateLocal());
-    if (!large || !opts_.line_search || s < 1.0 / 64) break;
+  // Step length: halved while det F <= 0 somewhere (always); with -newton_linesearch, the line search of Crisfield
+  // along du on g(s) = du . R(u + s du, lambda): g(0) = -du.K du < 0, a full step is kept unless it overshoots
+  // (g(1) > 0.8 |g(0)|), then the secant step; at most 8 trials.
+  const PetscScalar *dx;
+  PetscCall(VecGetArrayRead(system_.Solution(), &dx));
+  std::vector<double> dir(dx, dx + nu);
+  PetscCall(VecRestoreArrayRead(system_.Solution(), &dx));
+  double g0 = 0;
+  if (large && opts_.line_search) {
     double r, scale;
     EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_local_.data(), states_, rows_,
                   normals_);
-    PetscCall(Residual(new_lambda, r, scale));
-    if (std::isfinite(r) && (r < r0 || r <= opts_.newton_rtol * scale + opts_.newton_atol)) break;
+    PetscCall(Residual(new_lambda, r, scale, dir.data(), &g0));
+  }
+  double s = 1.0;
+  for (int k = 0;; ++k) {
+    // u = u_old + s du on the displacement rows (du_ holds u_old while trying).
+    PetscScalar *u;
+    const PetscScalar *u_old;
+    PetscCall(VecGetArray(u_, &u));
+    PetscCall(VecGetArrayRead(du_, &u_old));
+    for (PetscInt i = 0; i < nu; ++i) u[i] = u_old[i] + s * dir[i];
+    PetscCall(VecRestoreArrayRead(du_, &u_old));
+    PetscCall(VecRestoreArray(u_, &u));
+    PetscCall(UpdateLocal());
+    if (!large || k == 8) break;
+    double r, scale, g;
+    EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_local_.data(), states_, rows_,
+                  normals_);
+    PetscCall(Residual(new_lambda, r, scale, dir.data(), &g));
+    PetscCall(PetscInfo(nullptr, "line search: step %g g(s)/g(0) %g residual %g (before %g)\n", s, g / g0, r, r0));
+    if (!std::isfinite(r)) {
+      // Safeguard, always on: det F <= 0 somewhere, halve the step.
+      s *= 0.5;
+      continue;
+    }
+    if (!opts_.line_search || g0 >= 0 || g <= 0.8 * std::abs(g0)) break;
+    s = std::max(0.1 * s, s * g0 / (g0 - g));
   }
   lambda_ = new_lambda;
   PetscFunctionReturn(0);

@@ -22,7 +22,7 @@ struct SolverOptions {
   PetscInt newton_max_it = 30; ///< -newton_max_it (svk): iterations per load step
   double newton_rtol = 1e-9;  ///< -newton_rtol: residual relative to the load scale
   double newton_atol = 1e-12; ///< -newton_atol
-  PetscBool line_search = PETSC_TRUE; ///< -newton_linesearch
+  PetscBool line_search = PETSC_FALSE; ///< -newton_linesearch (Crisfield's line search; det F <= 0 always backtracks)
 };
 
 [[nodiscard]] PetscErrorCode ReadSolverOptions(MPI_Comm comm, SolverOptions &opts);
@@ -70,7 +70,9 @@ public:
 
 private:
   [[nodiscard]] PetscErrorCode UpdateLocal();
-  [[nodiscard]] PetscErrorCode Residual(const std::vector<double> &lambda, double &norm, double &scale);
+  /// Norm of R(u, lambda) = F_int - f - B^T lambda on the free rows, a force scale, and optionally direction . R.
+  [[nodiscard]] PetscErrorCode Residual(const std::vector<double> &lambda, double &norm, double &scale,
+                                        const PetscScalar *direction = nullptr, double *dot = nullptr);
   [[nodiscard]] PetscErrorCode SetDirichlet(double factor);
   [[nodiscard]] PetscErrorCode UpdateSolution(double residual_before);
   [[nodiscard]] PetscErrorCode LoadStep(PetscInt step, double factor, bool first, bool &ok);
