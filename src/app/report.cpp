@@ -108,6 +108,7 @@ std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &s
         .Number("max_penetration", r.max_penetration)
         .Number("residual", r.residual)
         .Integer("krylov", r.krylov)
+        .Number("solve_time", r.solve_time)
         .EndObject();
   j.EndArray().EndObject();
   j.BeginObject("timings");

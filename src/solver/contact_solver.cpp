@@ -191,6 +191,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
   std::vector<unsigned long long> seen;
   std::vector<char> next(pairs_.size());
   PetscInt krylov = 0;
+  double last_solve_time = 0;
   PetscFunctionBeginUser;
   ok = false;
   PetscCall(SetDirichlet(factor));
@@ -229,9 +230,8 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     PetscCallMPI(MPI_Allreduce(counts, gcounts, 2, MPIU_INT, MPI_SUM, comm));
     PetscCallMPI(MPI_Allreduce(mins, gmins, 2, MPI_DOUBLE, MPI_MIN, comm));
     const bool residual_ok = !large || rnorm <= opts_.newton_rtol * rscale + opts_.newton_atol;
-    IterationRecord rec{step, it, gcounts[0], gcounts[1], krylov, factor,
-                        std::isfinite(gmins[0]) ? gmins[0] : 0.0, std::max(0.0, std::isfinite(gmins[1]) ? -gmins[1] : 0.0),
-                        rnorm};
+    IterationRecord rec{step,   it, gcounts[0], gcounts[1], krylov, factor, std::isfinite(gmins[0]) ? gmins[0] : 0.0,
+                        std::max(0.0, std::isfinite(gmins[1]) ? -gmins[1] : 0.0), rnorm, last_solve_time};
     if (it > 0) {
       stats_.history.push_back(rec);
       PetscCall(Monitor(rec));
@@ -291,9 +291,12 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     }
     {
       ScopedTimer t(stats_.time_solve);
+      const double t0 = MPI_Wtime();
       PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
       PetscCall(system_.Solve(krylov));
       PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
+      const double dt = MPI_Wtime() - t0;
+      PetscCallMPI(MPI_Allreduce(&dt, &last_solve_time, 1, MPI_DOUBLE, MPI_MAX, comm));
     }
     stats_.solves++;
     stats_.active_set_iterations++;

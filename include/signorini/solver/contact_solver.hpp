@@ -31,6 +31,7 @@ struct SolverOptions {
 struct IterationRecord {
   PetscInt step, iteration, active, changed, krylov;
   double load_factor, min_lambda, max_penetration, residual;
+  double solve_time; ///< seconds of the saddle-point solve that produced this iterate (factorisation included)
 };
 
 /// Timings (seconds, maximum over ranks) and counters of a run.
