@@ -45,7 +45,7 @@ PetscErrorCode HelpKsp(MPI_Comm comm) {
   KSPH ksp;
   PetscFunctionBeginUser;
   PetscCall(KSPCreate(comm, ksp.out()));
-  PetscCall(KSPSetOptionsPrefix(ksp, "contact_"));
+  PetscCall(SetDefaultSolver(ksp));
   PetscCall(KSPSetFromOptions(ksp));
   PetscFunctionReturn(0);
 }

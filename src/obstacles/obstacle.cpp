@@ -1,6 +1,7 @@
 // The registry of obstacle shapes and the reading of the -obstacle_ options.
 #include "signorini/obstacles/obstacle.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace signorini {
@@ -17,6 +18,7 @@ PetscErrorCode ReadObstacle(MPI_Comm comm, Obstacle &obstacle) {
   obstacle.facets.clear();
   PetscOptionsBegin(comm, nullptr, "Rigid obstacle", "signorini");
   for (const ShapeType &shape : ShapeRegistry()) {
+    std::fill(values.begin(), values.end(), 0.0);
     PetscInt n = MAX_VALUES;
     PetscBool set = PETSC_FALSE;
     PetscCall(PetscOptionsRealArray(shape.option, shape.help, "", values.data(), &n, &set));

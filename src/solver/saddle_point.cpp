@@ -19,18 +19,26 @@ PetscErrorCode SaddlePointSystem::CreatePattern(const std::vector<ConstraintRow>
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SetDefaultSolver(KSP ksp) {
+  PC pc;
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetOptionsPrefix(ksp, "contact_"));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCCHOLESKY));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(KSPSetTolerances(ksp, 1e-10, 1e-50, PETSC_DEFAULT, 2000));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   PC pc;
   PetscFunctionBeginUser;
   PetscCall(KSPCreate(comm, ksp_.out()));
-  PetscCall(KSPSetOptionsPrefix(ksp_, "contact_"));
+  PetscCall(SetDefaultSolver(ksp_));
   PetscCall(KSPSetOperators(ksp_, A_, A_));
-  PetscCall(KSPSetType(ksp_, KSPPREONLY));
   PetscCall(KSPGetPC(ksp_, &pc));
-  PetscCall(PCSetType(pc, PCCHOLESKY));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  PetscCall(KSPSetTolerances(ksp_, 1e-10, 1e-50, PETSC_DEFAULT, 2000));
   // Rigid-body modes of the displacement block, offered to fieldsplit's "u" solver as its near-null space.
   VecH xyz;
   const int dim = dofs_->Dim();

@@ -18,6 +18,10 @@ struct ConstraintRow {
   double coef[3] = {0, 0, 0};
 };
 
+/// The default saddle-point solver (MUMPS LDL^T of the whole matrix, options prefix -contact_, iterative
+/// tolerances rtol 1e-10); options given by the user override it at KSPSetFromOptions.
+[[nodiscard]] PetscErrorCode SetDefaultSolver(KSP ksp);
+
 class SaddlePointSystem {
 public:
   /// Creates the matrix with the pattern of K (inserted by insert_k), the constraint rows and the multiplier diagonal,
