@@ -6,12 +6,11 @@ static const char help[] = "signorini: frictionless (Signorini) contact of elast
                            "Every input is a PETSc option; without -mesh_file the built-in 2D Hertz case runs.\n\n";
 
 int main(int argc, char **argv) {
-  PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
+  // The handler goes first so that a bad -options_file, read by PetscInitialize, is reported like any other input.
   PetscCall(signorini::InstallErrorHandler());
+  PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   const PetscErrorCode ierr = signorini::Run();
   if (ierr) (void)PetscOptionsSetValue(nullptr, "-options_left", "0");
-  // The handler's stack entry is PETSc memory: pop it so that -malloc_dump reports no leak.
-  PetscCall(PetscPopErrorHandler());
   PetscCall(PetscFinalize());
   return ierr ? 1 : 0;
 }

@@ -31,6 +31,9 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
                              opts.alpha_tol, &opts.alpha_tol, nullptr));
   PetscCall(PetscOptionsReal("-contact_complementarity_c", "Weight c of the gap in the rule lambda - c g > 0 "
                              "(default E x thickness)", "", opts.c, &opts.c, nullptr));
+  PetscCall(PetscOptionsReal("-contact_activation_fraction", "Activate only pairs penetrating deeper than this "
+                             "fraction of the deepest penetration (0: all)", "", opts.activation_fraction,
+                             &opts.activation_fraction, nullptr));
   PetscCall(PetscOptionsInt("-contact_max_it", "Maximum active-set iterations per load step", "", opts.max_it,
                             &opts.max_it, nullptr));
   PetscCall(PetscOptionsBool("-contact_monitor", "Print one line per active-set iteration", "", opts.monitor,
@@ -56,6 +59,9 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
   for (const auto &p : positive)
     PetscCheck(std::isfinite(p.value) && (p.value > 0 || (p.zero_ok && p.value == 0)), comm, PETSC_ERR_USER_INPUT,
                "%s %g is invalid; expected a finite number %s 0", p.name, p.value, p.zero_ok ? ">=" : ">");
+  PetscCheck(std::isfinite(opts.activation_fraction) && opts.activation_fraction >= 0 && opts.activation_fraction < 1,
+             comm, PETSC_ERR_USER_INPUT, "-contact_activation_fraction %g is invalid; expected a number in [0, 1)",
+             opts.activation_fraction);
   PetscCheck(opts.max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-contact_max_it %" PetscInt_FMT " is invalid; expected >= 1",
              opts.max_it);
   PetscFunctionReturn(0);

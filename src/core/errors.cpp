@@ -1,24 +1,72 @@
 // Error handler and collective error checks.
 #include "signorini/core/errors.hpp"
 
+#include <cctype>
 #include <cstdio>
 #include <cstring>
+#include <sstream>
 #include <vector>
 
 namespace signorini {
 
 namespace {
 
+/// Rewrites PETSc's "Input string abc has no numeric value" (and its integer and logical variants) to name the option
+/// holding the bad value, found by that value in the options database, and to say what was expected.
+std::string DescribeBadOptionValue(const std::string &mess) {
+  const std::string input = "Input string ", logical = "Unknown logical value: ";
+  std::string token, expected;
+  if (mess.rfind(input, 0) == 0 && mess.find(" has no ") != std::string::npos) {
+    token = mess.substr(input.size(), mess.find(" has no ") - input.size());
+    expected = mess.find("integer") != std::string::npos ? "an integer" : "a real number";
+  } else if (mess.rfind(logical, 0) == 0) {
+    token = mess.substr(logical.size());
+    expected = "true or false";
+  } else {
+    return mess;
+  }
+  std::string option;
+  char *all = nullptr;
+  if (PetscOptionsGetAll(nullptr, &all) == 0 && all) {
+    // "-name value -name -name value ...": a word starting with '-' and a letter is a name, anything else a value.
+    std::istringstream words(all);
+    std::string word, name;
+    while (option.empty() && words >> word) {
+      if (word.size() > 1 && word[0] == '-' && std::isalpha((unsigned char)word[1])) {
+        name = word;
+        continue;
+      }
+      std::istringstream items(word);
+      std::string item;
+      while (option.empty() && std::getline(items, item, ','))
+        if (item == token) option = name + " " + word + ": ";
+    }
+    (void)PetscFree(all);
+  }
+  return option + "'" + token + "' is invalid; expected " + expected;
+}
+
 PetscErrorCode Handler(MPI_Comm comm, int line, const char *func, const char *file, PetscErrorCode n,
                        PetscErrorType p, const char *mess, void *) {
   if (p != PETSC_ERROR_INITIAL) return n;
-  int world_size = 1, comm_size = 1, rank = 0;
-  MPI_Comm_size(PETSC_COMM_WORLD, &world_size);
-  if (comm != MPI_COMM_NULL) MPI_Comm_size(comm, &comm_size);
-  if (comm != MPI_COMM_NULL) MPI_Comm_rank(comm, &rank);
+  int mpi_up = 0, world_size = 1, comm_size = 1, rank = 0;
+  MPI_Initialized(&mpi_up);
+  const MPI_Comm world = PETSC_COMM_WORLD != MPI_COMM_NULL ? PETSC_COMM_WORLD : MPI_COMM_WORLD;
+  if (mpi_up) MPI_Comm_size(world, &world_size);
+  if (mpi_up && comm != MPI_COMM_NULL) MPI_Comm_size(comm, &comm_size), MPI_Comm_rank(comm, &rank);
+  // PETSc's options code: while PetscInitialize reads -options_file (the handler is installed before it), or, once
+  // it is done, a bad option value. The latter is raised on PETSC_COMM_SELF but on every rank alike, since every
+  // rank holds the same options and reads them together: report it once, from rank 0, and let every rank unwind.
+  const bool options_code = file && std::strstr(file, "sys/objects/options") != nullptr;
+  const bool option_value = options_code && PetscInitializeCalled;
+  if (option_value && mpi_up) MPI_Comm_rank(world, &rank), comm_size = world_size;
   const bool collective = comm_size == world_size;
-  const char *text = mess ? mess : "";
-  const bool user = n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_READ ||
+  std::string message = mess ? mess : "";
+  while (!message.empty() && std::isspace((unsigned char)message.back())) message.pop_back();
+  if (option_value) message = DescribeBadOptionValue(message);
+  else if (options_code) message = "-options_file: " + message + "; expected a readable YAML or PETSc options file";
+  const char *text = message.c_str();
+  const bool user = options_code || n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_READ ||
                     n == PETSC_ERR_FILE_WRITE || n == PETSC_ERR_FILE_UNEXPECTED || n == PETSC_ERR_ARG_OUTOFRANGE ||
                     n == PETSC_ERR_NOT_CONVERGED || n == PETSC_ERR_CONV_FAILED || n == PETSC_ERR_ARG_WRONG;
   if (!collective || rank == 0) {
@@ -30,7 +78,7 @@ PetscErrorCode Handler(MPI_Comm comm, int line, const char *func, const char *fi
       std::fprintf(stderr, "signorini: error: %s [PETSc error %d in %s() at %s:%d]\n", text, (int)n, func, file, line);
     std::fflush(stderr);
   }
-  if (!collective && world_size > 1) MPI_Abort(PETSC_COMM_WORLD, 1);
+  if (!collective && world_size > 1) MPI_Abort(world, 1);
   return n;
 }
 

@@ -134,6 +134,12 @@ std::string ReadModel(const std::string &path, SerialMesh &mesh) {
         } else if (dim == 2) {
           for (std::size_t t : etags[k]) g.cells.push_back(cell_of_tag.at(t));
         }
+        // The nodes of the group's elements: a format 2.2 file classifies each node on one entity only, so the
+        // entity's own nodes (below) miss those it shares with neighbouring entities (corners, curve ends).
+        for (std::size_t t : enodes[k]) {
+          auto it = tag_pos.find(t);
+          if (it != tag_pos.end() && used[it->second] >= 0) g.nodes.push_back(used[it->second]);
+        }
       }
       std::vector<std::size_t> ntags;
       std::vector<double> nc, np;

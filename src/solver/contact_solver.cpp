@@ -212,13 +212,19 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     double mins[2] = {INFINITY, INFINITY};
     {
       ScopedTimer t(stats_.time_active_set);
+      // Activation threshold: the deepest penetration of an inactive pair times -contact_activation_fraction.
+      double deepest = 0, gdeepest;
+      for (std::size_t p = 0; p < pairs_.size(); ++p)
+        if (!active_[p] && states_[p].inside) deepest = std::max(deepest, -states_[p].gap);
+      PetscCallMPI(MPI_Allreduce(&deepest, &gdeepest, 1, MPI_DOUBLE, MPI_MAX, comm));
+      const double activate_tol = std::max(force_tol, contact_.c * contact_.activation_fraction * gdeepest);
       for (std::size_t p = 0; p < pairs_.size(); ++p) {
         states_[p].lambda = lambda_[p];
         states_[p].active = active_[p];
         if (it == 0)
           next[p] = first ? (states_[p].inside && states_[p].gap <= contact_.touch_tol) : active_[p];
         else
-          next[p] = NextActive(states_[p], contact_.c, force_tol);
+          next[p] = NextActive(states_[p], contact_.c, force_tol, activate_tol);
         counts[0] += next[p];
         counts[1] += next[p] != active_[p];
         if (active_[p]) mins[0] = std::min(mins[0], lambda_[p]);

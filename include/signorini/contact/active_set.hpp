@@ -12,12 +12,14 @@ struct PairState {
   bool active = false; ///< active in the solve that produced lambda
 };
 
-/// Whether the pair is active in the next solve. An active pair stays active while lambda - c g > -tol (its
-/// multiplier is compressive); an inactive pair becomes active when it penetrates inside the facet,
-/// lambda - c g > tol. c > 0 converts a gap to a force; tol >= 0 is a force tolerance.
-inline bool NextActive(const PairState &s, double c, double tol) {
+/// Whether the pair is active in the next solve. Only a pair whose node projects onto its facet can be active. An
+/// active pair stays active while lambda - c g > -tol (its multiplier is compressive); an inactive pair becomes
+/// active when it penetrates, lambda - c g > activate_tol (>= tol). c > 0 converts a gap to a force; the tolerances
+/// are forces.
+inline bool NextActive(const PairState &s, double c, double tol, double activate_tol) {
   const double score = s.lambda - c * s.gap;
-  return s.active ? score > -tol : s.inside && score > tol;
+  return s.inside && (s.active ? score > -tol : score > activate_tol);
 }
+inline bool NextActive(const PairState &s, double c, double tol) { return NextActive(s, c, tol, tol); }
 
 } // namespace signorini

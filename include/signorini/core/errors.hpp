@@ -8,8 +8,8 @@
 namespace signorini {
 
 /// Installs the error handler that prints "signorini: error: <message>" once (rank 0 for collective errors) and
-/// aborts the MPI job for errors raised on a single rank, so that no rank waits forever. Call once after
-/// PetscInitialize, on all ranks.
+/// aborts the MPI job for errors raised on a single rank, so that no rank waits forever. Call once on all ranks,
+/// before PetscInitialize so that errors in reading -options_file are reported the same way.
 [[nodiscard]] PetscErrorCode InstallErrorHandler();
 
 /// Collective check of a condition that may hold on some ranks only: if any rank has ok == false, every rank raises
