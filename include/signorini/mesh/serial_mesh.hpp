@@ -18,7 +18,8 @@ struct PhysicalGroup {
   std::vector<int> cells;          ///< dim 2: cells of the group
 };
 
-/// The serial mesh. Nodes are the nodes used by cells, in the order of the file; cells are counter-clockwise.
+/// The serial mesh. Nodes are the nodes used by cells, in the order gmsh returns them (the file order for format
+/// 4.1, grouped by entity for 2.2); each keeps its file tag. Cells are counter-clockwise.
 struct SerialMesh {
   int dim = 2;
   std::vector<double> coords;              ///< dim values per node

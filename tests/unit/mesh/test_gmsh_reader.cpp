@@ -1,0 +1,280 @@
+// Reading gmsh files (format 2.2 and 4.1) into the serial mesh, and the orientation and shape checks of cells.
+#include "signorini/mesh/serial_mesh.hpp"
+
+#include "mesh/mesh_files.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+
+namespace signorini {
+namespace {
+
+using test::MIXED_MESH_22;
+using test::MIXED_MESH_41;
+using test::TempDir;
+using Tags = std::set<std::size_t>;
+
+double SignedArea(const SerialMesh &mesh, int c) {
+  const int n = mesh.CellSize(c);
+  const int *v = &mesh.cell_nodes[mesh.cell_offsets[c]];
+  double a = 0;
+  for (int k = 0; k < n; ++k) {
+    const double *p = &mesh.coords[2 * v[k]], *q = &mesh.coords[2 * v[(k + 1) % n]];
+    a += p[0] * q[1] - q[0] * p[1];
+  }
+  return 0.5 * a;
+}
+
+const PhysicalGroup *FindGroup(const SerialMesh &mesh, const std::string &name) {
+  for (const auto &g : mesh.groups)
+    if (g.name == name) return &g;
+  return nullptr;
+}
+
+Tags NodeTags(const SerialMesh &mesh, const std::vector<int> &nodes) {
+  Tags tags;
+  for (int v : nodes)
+    tags.insert(mesh.node_tags[v]);
+  return tags;
+}
+
+int CellWithTag(const SerialMesh &mesh, std::size_t tag) {
+  const auto it = std::find(mesh.cell_tags.begin(), mesh.cell_tags.end(), tag);
+  return it == mesh.cell_tags.end() ? -1 : (int)(it - mesh.cell_tags.begin());
+}
+
+/// Node tags of a cell, rotated to start at its smallest tag (cyclic order kept).
+std::vector<std::size_t> CellNodeTags(const SerialMesh &mesh, int c) {
+  std::vector<std::size_t> tags;
+  for (int k = mesh.cell_offsets[c]; k < mesh.cell_offsets[c + 1]; ++k)
+    tags.push_back(mesh.node_tags[mesh.cell_nodes[k]]);
+  std::rotate(tags.begin(), std::min_element(tags.begin(), tags.end()), tags.end());
+  return tags;
+}
+
+/// Checks the mixed mesh of mesh_files.hpp as read from either format.
+void CheckMixedMesh(const SerialMesh &mesh) {
+  EXPECT_EQ(mesh.dim, 2);
+  ASSERT_EQ(mesh.NumNodes(), 6); // node 99 belongs to no cell
+  ASSERT_EQ(mesh.coords.size(), 12u);
+  EXPECT_EQ(Tags(mesh.node_tags.begin(), mesh.node_tags.end()), (Tags{11, 12, 13, 21, 22, 23}));
+  const std::map<std::size_t, std::array<double, 2>> xy = {{11, {0, 0}}, {12, {1, 0}}, {13, {2, 0}},
+                                                           {21, {0, 1}}, {22, {1, 1}}, {23, {2, 1}}};
+  for (int v = 0; v < mesh.NumNodes(); ++v) {
+    ASSERT_EQ(xy.count(mesh.node_tags[v]), 1u) << "unexpected node tag " << mesh.node_tags[v];
+    EXPECT_EQ(mesh.coords[2 * v], xy.at(mesh.node_tags[v])[0]);
+    EXPECT_EQ(mesh.coords[2 * v + 1], xy.at(mesh.node_tags[v])[1]);
+  }
+
+  ASSERT_EQ(mesh.NumCells(), 3);
+  EXPECT_EQ(Tags(mesh.cell_tags.begin(), mesh.cell_tags.end()), (Tags{5, 6, 7}));
+  const int quad = CellWithTag(mesh, 5), tri6 = CellWithTag(mesh, 6), tri7 = CellWithTag(mesh, 7);
+  ASSERT_GE(quad, 0);
+  ASSERT_GE(tri6, 0);
+  ASSERT_GE(tri7, 0);
+  EXPECT_EQ(CellNodeTags(mesh, quad), (std::vector<std::size_t>{11, 12, 22, 21}));
+  EXPECT_EQ(CellNodeTags(mesh, tri6), (std::vector<std::size_t>{12, 13, 23}));
+  EXPECT_EQ(CellNodeTags(mesh, tri7), (std::vector<std::size_t>{12, 23, 22}));
+  EXPECT_DOUBLE_EQ(SignedArea(mesh, quad), 1.0);
+  EXPECT_DOUBLE_EQ(SignedArea(mesh, tri6), 0.5);
+  EXPECT_DOUBLE_EQ(SignedArea(mesh, tri7), 0.5);
+
+  const PhysicalGroup *corner = FindGroup(mesh, "corner"), *bottom = FindGroup(mesh, "bottom"),
+                      *left = FindGroup(mesh, "left"), *body = FindGroup(mesh, "body");
+  ASSERT_TRUE(corner && bottom && left && body);
+  EXPECT_EQ(corner->dim, 0);
+  EXPECT_EQ(corner->tag, 4);
+  EXPECT_EQ(NodeTags(mesh, corner->nodes), (Tags{13}));
+  EXPECT_EQ(bottom->dim, 1);
+  EXPECT_EQ(bottom->tag, 2);
+  EXPECT_EQ(NodeTags(mesh, bottom->nodes), (Tags{11, 12, 13}));
+  EXPECT_TRUE(std::is_sorted(bottom->nodes.begin(), bottom->nodes.end()));
+  ASSERT_EQ(bottom->edges.size(), 4u);
+  std::set<Tags> edges;
+  for (std::size_t e = 0; e < bottom->edges.size(); e += 2)
+    edges.insert({mesh.node_tags[bottom->edges[e]], mesh.node_tags[bottom->edges[e + 1]]});
+  EXPECT_EQ(edges, (std::set<Tags>{{11, 12}, {12, 13}}));
+  EXPECT_EQ(left->dim, 1);
+  EXPECT_EQ(NodeTags(mesh, left->nodes), (Tags{11, 21}));
+  EXPECT_EQ(left->edges.size(), 2u);
+  EXPECT_EQ(body->dim, 2);
+  EXPECT_EQ(body->tag, 1);
+  EXPECT_EQ(std::set<int>(body->cells.begin(), body->cells.end()), (std::set<int>{0, 1, 2}));
+  EXPECT_EQ(NodeTags(mesh, body->nodes), (Tags{11, 12, 13, 21, 22, 23}));
+}
+
+TEST(ReadGmsh, MixedMeshInFormat22) {
+  TempDir dir;
+  SerialMesh mesh;
+  ASSERT_EQ(ReadGmsh(dir.Write("mixed22.msh", MIXED_MESH_22), 1.0, mesh), "");
+  CheckMixedMesh(mesh);
+  // A physical group without a name is named by its number.
+  const PhysicalGroup *right = FindGroup(mesh, "9");
+  ASSERT_NE(right, nullptr);
+  EXPECT_EQ(right->dim, 1);
+  EXPECT_EQ(right->tag, 9);
+  EXPECT_EQ(NodeTags(mesh, right->nodes), (Tags{13, 23}));
+  EXPECT_EQ(mesh.groups.size(), 5u);
+}
+
+TEST(ReadGmsh, MixedMeshInFormat41) {
+  TempDir dir;
+  SerialMesh mesh;
+  ASSERT_EQ(ReadGmsh(dir.Write("mixed41.msh", MIXED_MESH_41), 1.0, mesh), "");
+  CheckMixedMesh(mesh);
+  // Format 4.1 lists nodes by entity, and they keep the order of the file.
+  EXPECT_EQ(mesh.node_tags, (std::vector<std::size_t>{11, 13, 21, 12, 22, 23}));
+  EXPECT_EQ(mesh.groups.size(), 4u);
+}
+
+TEST(ReadGmsh, ClockwiseFileIsReadCounterClockwise) {
+  std::string text = MIXED_MESH_22;
+  for (const auto &[from, to] : {std::pair<std::string, std::string>{"11 12 22 21\n", "21 22 12 11\n"},
+                                 {"12 13 23\n", "23 13 12\n"},
+                                 {"12 23 22\n", "22 23 12\n"}}) {
+    const auto pos = text.find(from);
+    ASSERT_NE(pos, std::string::npos);
+    text.replace(pos, from.size(), to);
+  }
+  TempDir dir;
+  SerialMesh mesh;
+  ASSERT_EQ(ReadGmsh(dir.Write("clockwise.msh", text), 1.0, mesh), "");
+  ASSERT_EQ(mesh.NumCells(), 3);
+  for (int c = 0; c < mesh.NumCells(); ++c)
+    EXPECT_GT(SignedArea(mesh, c), 0.0) << "cell " << c;
+  EXPECT_EQ(CellNodeTags(mesh, CellWithTag(mesh, 5)), (std::vector<std::size_t>{11, 12, 22, 21}));
+}
+
+TEST(ReadGmsh, InvertedElementInAFileIsAnError) {
+  std::string text = MIXED_MESH_41;
+  const auto pos = text.find("7 12 23 22\n");
+  ASSERT_NE(pos, std::string::npos);
+  text.replace(pos, 11, "7 12 22 23\n");
+  TempDir dir;
+  SerialMesh mesh;
+  const std::string error = ReadGmsh(dir.Write("inverted.msh", text), 1.0, mesh);
+  EXPECT_NE(error.find("inverted"), std::string::npos) << error;
+  EXPECT_NE(error.find("element 7"), std::string::npos) << error;
+}
+
+TEST(ReadGmsh, RepositoryMeshes) {
+  SerialMesh beam;
+  ASSERT_EQ(ReadGmsh(SIGNORINI_SOURCE_DIR "/meshes/beam.msh", 1.0, beam), "");
+  EXPECT_EQ(beam.NumNodes(), 205);
+  std::set<std::string> names;
+  for (const auto &g : beam.groups)
+    names.insert(g.name);
+  EXPECT_EQ(names, (std::set<std::string>{"tip", "bottom", "right", "top", "left", "body"}));
+  const PhysicalGroup *top = FindGroup(beam, "top"), *left = FindGroup(beam, "left"), *body = FindGroup(beam, "body");
+  ASSERT_TRUE(top && left && body);
+  EXPECT_EQ(top->dim, 1);
+  EXPECT_EQ(body->dim, 2);
+  EXPECT_EQ((int)body->cells.size(), beam.NumCells());
+  EXPECT_GT(top->nodes.size(), 2u);
+  for (int v : top->nodes)
+    EXPECT_NEAR(beam.coords[2 * v + 1], 1.0, 1e-12);
+  for (int v : left->nodes)
+    EXPECT_NEAR(beam.coords[2 * v], 0.0, 1e-12);
+  EXPECT_EQ(top->edges.size(), 2 * (top->nodes.size() - 1));
+  for (int c = 0; c < beam.NumCells(); ++c)
+    ASSERT_GT(SignedArea(beam, c), 0.0) << "cell " << c;
+
+  SerialMesh hertz;
+  ASSERT_EQ(ReadGmsh(SIGNORINI_SOURCE_DIR "/meshes/hertz.msh", 1.0, hertz), "");
+  names.clear();
+  for (const auto &g : hertz.groups)
+    names.insert(g.name);
+  EXPECT_EQ(names, (std::set<std::string>{"top_centre", "top", "contact", "body"}));
+  const PhysicalGroup *centre = FindGroup(hertz, "top_centre");
+  ASSERT_NE(centre, nullptr);
+  EXPECT_EQ(centre->dim, 0);
+  ASSERT_EQ(centre->nodes.size(), 1u);
+  EXPECT_NEAR(hertz.coords[2 * centre->nodes[0]], 0.0, 1e-12);
+  EXPECT_NEAR(hertz.coords[2 * centre->nodes[0] + 1], 0.0, 1e-12);
+}
+
+TEST(ReadGmsh, UnreadableFilesAreErrors) {
+  TempDir dir;
+  SerialMesh mesh;
+  EXPECT_NE(ReadGmsh(dir.Path("missing.msh"), 1.0, mesh).find("cannot open"), std::string::npos);
+  EXPECT_NE(ReadGmsh(dir.Write("empty.msh", ""), 1.0, mesh).find("empty"), std::string::npos);
+  EXPECT_NE(ReadGmsh(dir.Write("text.msh", "hello\n"), 1.0, mesh).find("$MeshFormat"), std::string::npos);
+  // Only line elements: no cells.
+  const std::string lines = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n"
+                            "$Elements\n1\n1 1 2 1 1 1 2\n$EndElements\n";
+  EXPECT_NE(ReadGmsh(dir.Write("lines.msh", lines), 1.0, mesh).find("no triangles"), std::string::npos);
+  // Quadratic triangle (gmsh type 9): not a linear element.
+  const std::string quadratic = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n6\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+                                "4 0.5 0 0\n5 0.5 0.5 0\n6 0 0.5 0\n$EndNodes\n"
+                                "$Elements\n1\n1 9 2 1 1 1 2 3 4 5 6\n$EndElements\n";
+  const std::string error = ReadGmsh(dir.Write("quadratic.msh", quadratic), 1.0, mesh);
+  EXPECT_NE(error.find("expected linear triangles"), std::string::npos) << error;
+}
+
+/// The mixed mesh of mesh_files.hpp built in memory: nodes 0..5 at (0,0) (1,0) (2,0) (0,1) (1,1) (2,1) plus
+/// node 6 at (0.2,0.2); cells with tags 5, 6, 7, ...
+SerialMesh MakeMesh(const std::vector<std::vector<int>> &cells) {
+  SerialMesh mesh;
+  mesh.coords = {0, 0, 1, 0, 2, 0, 0, 1, 1, 1, 2, 1, 0.2, 0.2};
+  for (std::size_t v = 0; v < mesh.coords.size() / 2; ++v)
+    mesh.node_tags.push_back(v + 1);
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    mesh.cell_nodes.insert(mesh.cell_nodes.end(), cells[c].begin(), cells[c].end());
+    mesh.cell_offsets.push_back((int)mesh.cell_nodes.size());
+    mesh.cell_tags.push_back(5 + c);
+  }
+  return mesh;
+}
+
+TEST(CheckAndOrientCells, CounterClockwiseMeshIsUnchanged) {
+  SerialMesh mesh = MakeMesh({{0, 1, 4, 3}, {1, 2, 5}, {1, 5, 4}});
+  const std::vector<int> before = mesh.cell_nodes;
+  EXPECT_EQ(CheckAndOrientCells(mesh), "");
+  EXPECT_EQ(mesh.cell_nodes, before);
+}
+
+TEST(CheckAndOrientCells, ClockwiseMeshIsFlippedSilently) {
+  SerialMesh mesh = MakeMesh({{3, 4, 1, 0}, {5, 2, 1}, {4, 5, 1}});
+  EXPECT_EQ(CheckAndOrientCells(mesh), "");
+  for (int c = 0; c < mesh.NumCells(); ++c)
+    EXPECT_GT(SignedArea(mesh, c), 0.0) << "cell " << c;
+  EXPECT_EQ(mesh.cell_nodes, (std::vector<int>{0, 1, 4, 3, 1, 2, 5, 1, 5, 4}));
+}
+
+TEST(CheckAndOrientCells, OneInvertedElementIsAnError) {
+  SerialMesh mesh = MakeMesh({{0, 1, 4, 3}, {1, 2, 5}, {1, 4, 5}});
+  const std::string error = CheckAndOrientCells(mesh);
+  EXPECT_NE(error.find("1 inverted element(s) of 3"), std::string::npos) << error;
+  EXPECT_NE(error.find("element 7"), std::string::npos) << error;
+  // The minority is reported whichever orientation it has.
+  SerialMesh flipped = MakeMesh({{3, 4, 1, 0}, {5, 2, 1}, {1, 5, 4}});
+  const std::string error2 = CheckAndOrientCells(flipped);
+  EXPECT_NE(error2.find("element 7"), std::string::npos) << error2;
+}
+
+TEST(CheckAndOrientCells, ZeroAreaElementsAreErrors) {
+  SerialMesh collinear = MakeMesh({{0, 1, 4, 3}, {0, 1, 2}});
+  const std::string error = CheckAndOrientCells(collinear);
+  EXPECT_NE(error.find("element 6 has zero area"), std::string::npos) << error;
+  SerialMesh repeated = MakeMesh({{0, 1, 4, 3}, {1, 2, 2}});
+  EXPECT_NE(CheckAndOrientCells(repeated).find("zero area"), std::string::npos);
+  // A quadrilateral with three collinear corners is a degenerate (triangle-shaped) quadrilateral.
+  SerialMesh degenerate = MakeMesh({{0, 1, 2, 5}});
+  EXPECT_NE(CheckAndOrientCells(degenerate).find("zero area"), std::string::npos);
+}
+
+TEST(CheckAndOrientCells, NonConvexQuadrilateralsAreErrors) {
+  SerialMesh bow_tie = MakeMesh({{0, 1, 3, 4}});
+  const std::string error = CheckAndOrientCells(bow_tie);
+  EXPECT_NE(error.find("element 5 is not convex"), std::string::npos) << error;
+  SerialMesh dart = MakeMesh({{1, 2, 5}, {0, 1, 6, 3}});
+  const std::string error2 = CheckAndOrientCells(dart);
+  EXPECT_NE(error2.find("element 6 is not convex"), std::string::npos) << error2;
+}
+
+} // namespace
+} // namespace signorini

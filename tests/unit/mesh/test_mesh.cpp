@@ -1,0 +1,215 @@
+// The distributed mesh on one rank: group lookup by name, group and boundary edges with their orientation, the
+// error for an unknown group, the -mesh_ options, and no leaked PETSc objects.
+#include "signorini/mesh/mesh.hpp"
+
+#include "mesh/mesh_files.hpp"
+#include "petsc_helpers.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+namespace signorini {
+namespace {
+
+using test::ErrorCapture;
+using test::ScopedOptions;
+using test::TempDir;
+
+MeshOptions Options(const std::string &file) {
+  MeshOptions opts;
+  opts.file = file;
+  return opts;
+}
+
+class MixedMesh : public ::testing::Test {
+protected:
+  void SetUp() override {
+    ASSERT_EQ(mesh_.Create(PETSC_COMM_SELF, Options(dir_.Write("mixed.msh", test::MIXED_MESH_22))), 0);
+  }
+
+  /// Coordinates of a list of local vertices, as a sorted set.
+  std::set<std::pair<double, double>> Points(const std::vector<PetscInt> &vertices) const {
+    std::set<std::pair<double, double>> points;
+    for (PetscInt v : vertices)
+      points.insert({mesh_.X(v)[0], mesh_.X(v)[1]});
+    return points;
+  }
+
+  TempDir dir_;
+  Mesh mesh_;
+};
+
+TEST_F(MixedMesh, SizesAndFileOrder) {
+  EXPECT_EQ(mesh_.Dim(), 2);
+  EXPECT_EQ(mesh_.NumGlobalNodes(), 6);
+  EXPECT_EQ(mesh_.NumGlobalCells(), 3);
+  ASSERT_EQ(mesh_.NumLocalVertices(), 6);
+  ASSERT_EQ(mesh_.NumLocalCells(), 3);
+  const SerialMesh &serial = mesh_.Serial();
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v) {
+    EXPECT_TRUE(mesh_.Owned(v));
+    const PetscInt o = mesh_.VertexOriginal(v);
+    EXPECT_EQ(mesh_.X(v)[0], serial.coords[2 * o]);
+    EXPECT_EQ(mesh_.X(v)[1], serial.coords[2 * o + 1]);
+  }
+  for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
+    PetscInt n;
+    const PetscInt *cv = mesh_.CellVertices(c, n);
+    const int o = (int)mesh_.CellOriginal(c);
+    ASSERT_EQ(n, serial.CellSize(o));
+    std::multiset<PetscInt> local, file;
+    for (PetscInt k = 0; k < n; ++k)
+      local.insert(mesh_.VertexOriginal(cv[k]));
+    for (int k = serial.cell_offsets[o]; k < serial.cell_offsets[o + 1]; ++k)
+      file.insert(serial.cell_nodes[k]);
+    EXPECT_EQ(local, file) << "cell " << c;
+  }
+}
+
+TEST_F(MixedMesh, GroupVerticesByName) {
+  const std::vector<std::string> names = mesh_.GroupNames();
+  EXPECT_EQ(std::set<std::string>(names.begin(), names.end()),
+            (std::set<std::string>{"corner", "bottom", "left", "body", "9"}));
+  std::vector<PetscInt> vertices;
+  ASSERT_EQ(mesh_.GroupVertices("bottom", vertices), 0);
+  EXPECT_EQ(Points(vertices), (std::set<std::pair<double, double>>{{0, 0}, {1, 0}, {2, 0}}));
+  ASSERT_EQ(mesh_.GroupVertices("left", vertices), 0);
+  EXPECT_EQ(Points(vertices), (std::set<std::pair<double, double>>{{0, 0}, {0, 1}}));
+  ASSERT_EQ(mesh_.GroupVertices("corner", vertices), 0);
+  EXPECT_EQ(Points(vertices), (std::set<std::pair<double, double>>{{2, 0}}));
+  ASSERT_EQ(mesh_.GroupVertices("body", vertices), 0);
+  EXPECT_EQ(vertices.size(), 6u);
+  ASSERT_EQ(mesh_.GroupVertices("9", vertices), 0);
+  EXPECT_EQ(Points(vertices), (std::set<std::pair<double, double>>{{2, 0}, {2, 1}}));
+}
+
+TEST_F(MixedMesh, UnknownGroupIsAnErrorListingTheKnownNames) {
+  std::vector<PetscInt> vertices;
+  ErrorCapture capture;
+  EXPECT_NE(mesh_.GroupVertices("contact", vertices), 0);
+  const std::string &message = capture.Message();
+  EXPECT_NE(message.find("'contact'"), std::string::npos) << message;
+  for (const char *name : {"corner", "bottom", "left", "body", "9"})
+    EXPECT_NE(message.find(name), std::string::npos) << name << " missing from: " << message;
+}
+
+TEST_F(MixedMesh, GroupEdgesHaveTheBodyOnTheirLeft) {
+  std::vector<std::array<PetscInt, 2>> edges;
+  ASSERT_EQ(mesh_.GroupEdges("bottom", edges), 0);
+  ASSERT_EQ(edges.size(), 2u);
+  for (const auto &e : edges) {
+    EXPECT_EQ(mesh_.X(e[0])[1], 0.0);
+    EXPECT_EQ(mesh_.X(e[1])[1], 0.0);
+    EXPECT_EQ(mesh_.X(e[1])[0] - mesh_.X(e[0])[0], 1.0); // along +x: the body (y > 0) is on the left
+  }
+  ASSERT_EQ(mesh_.GroupEdges("left", edges), 0);
+  ASSERT_EQ(edges.size(), 1u);
+  EXPECT_EQ(mesh_.X(edges[0][0])[1], 1.0); // downwards: the body (x > 0) is on the left
+  EXPECT_EQ(mesh_.X(edges[0][1])[1], 0.0);
+}
+
+TEST_F(MixedMesh, GroupEdgesRequireACurve) {
+  std::vector<std::array<PetscInt, 2>> edges;
+  for (const char *name : {"body", "corner"}) {
+    ErrorCapture capture;
+    EXPECT_NE(mesh_.GroupEdges(name, edges), 0) << name;
+    EXPECT_NE(capture.Message().find("expected a physical curve"), std::string::npos) << capture.Message();
+  }
+}
+
+TEST_F(MixedMesh, BoundaryEdgesEncloseTheBodyCounterClockwise) {
+  std::vector<PetscInt> vertices;
+  ASSERT_EQ(mesh_.BoundaryVertices(vertices), 0);
+  EXPECT_EQ(vertices.size(), 6u);
+  std::vector<std::array<PetscInt, 2>> edges;
+  ASSERT_EQ(mesh_.BoundaryEdges(edges), 0);
+  ASSERT_EQ(edges.size(), 6u);
+  double area = 0; // shoelace over the oriented boundary: +area for a counter-clockwise boundary
+  for (const auto &e : edges)
+    area += 0.5 * (mesh_.X(e[0])[0] * mesh_.X(e[1])[1] - mesh_.X(e[1])[0] * mesh_.X(e[0])[1]);
+  EXPECT_DOUBLE_EQ(area, 2.0);
+}
+
+TEST(Mesh, CreateAndDestroyLeaveNoPetscObjects) {
+  TempDir dir;
+  const MeshOptions opts = Options(dir.Write("mixed.msh", test::MIXED_MESH_41));
+  {
+    Mesh warm_up;
+    ASSERT_EQ(warm_up.Create(PETSC_COMM_SELF, opts), 0);
+  }
+  const double before = test::PetscMemoryInUse();
+  ASSERT_GT(before, 0.0) << "PETSc memory tracing (-malloc_debug) is off";
+  {
+    Mesh mesh;
+    ASSERT_EQ(mesh.Create(PETSC_COMM_SELF, opts), 0);
+    std::vector<PetscInt> vertices;
+    std::vector<std::array<PetscInt, 2>> edges;
+    ASSERT_EQ(mesh.GroupVertices("bottom", vertices), 0);
+    ASSERT_EQ(mesh.GroupEdges("bottom", edges), 0);
+    ASSERT_EQ(mesh.BoundaryEdges(edges), 0);
+    std::vector<double> per_vertex(mesh.NumLocalVertices(), 1.0);
+    ASSERT_EQ(mesh.SumShared(per_vertex), 0);
+    EXPECT_EQ(per_vertex, std::vector<double>(6, 1.0)); // one rank: nothing shared
+  }
+  EXPECT_EQ(test::PetscMemoryInUse(), before);
+}
+
+TEST(Mesh, BeamGroupsSitOnTheirEdges) {
+  Mesh mesh;
+  ASSERT_EQ(mesh.Create(PETSC_COMM_SELF, Options(SIGNORINI_SOURCE_DIR "/meshes/beam.msh")), 0);
+  std::vector<PetscInt> top, left;
+  ASSERT_EQ(mesh.GroupVertices("top", top), 0);
+  ASSERT_EQ(mesh.GroupVertices("left", left), 0);
+  ASSERT_GT(top.size(), 2u);
+  ASSERT_GT(left.size(), 1u);
+  for (PetscInt v : top)
+    EXPECT_NEAR(mesh.X(v)[1], 1.0, 1e-12);
+  for (PetscInt v : left)
+    EXPECT_NEAR(mesh.X(v)[0], 0.0, 1e-12);
+  std::vector<std::array<PetscInt, 2>> edges;
+  ASSERT_EQ(mesh.GroupEdges("top", edges), 0);
+  EXPECT_EQ(edges.size(), top.size() - 1);
+  for (const auto &e : edges)
+    EXPECT_LT(mesh.X(e[1])[0], mesh.X(e[0])[0]); // top edge runs in -x, body below
+}
+
+TEST(Mesh, MissingFileIsAnError) {
+  TempDir dir;
+  Mesh mesh;
+  ErrorCapture capture;
+  EXPECT_NE(mesh.Create(PETSC_COMM_SELF, Options(dir.Path("none.msh"))), 0);
+  EXPECT_NE(capture.Message().find("none.msh"), std::string::npos) << capture.Message();
+}
+
+TEST(MeshOptions, ValuesAreReadAndValidated) {
+  {
+    ScopedOptions options({{"-mesh_file", "a.msh"}, {"-mesh_size_factor", "0.5"}, {"-mesh_partitioner", "simple"}});
+    MeshOptions opts;
+    ASSERT_EQ(ReadMeshOptions(PETSC_COMM_SELF, "default.msh", opts), 0);
+    EXPECT_EQ(opts.file, "a.msh");
+    EXPECT_EQ(opts.size_factor, 0.5);
+    EXPECT_EQ(opts.partitioner, "simple");
+  }
+  {
+    MeshOptions opts;
+    ASSERT_EQ(ReadMeshOptions(PETSC_COMM_SELF, "default.msh", opts), 0);
+    EXPECT_EQ(opts.file, "default.msh");
+    EXPECT_EQ(opts.partitioner, "metis");
+  }
+  for (const auto &[name, value] : {std::pair<const char *, const char *>{"-mesh_size_factor", "0"},
+                                    {"-mesh_size_factor", "-1"},
+                                    {"-mesh_size_factor", "inf"},
+                                    {"-mesh_partitioner", "chaco"}}) {
+    SCOPED_TRACE(std::string(name) + " " + value);
+    ScopedOptions options({{name, value}});
+    ErrorCapture capture;
+    MeshOptions opts;
+    EXPECT_NE(ReadMeshOptions(PETSC_COMM_SELF, "default.msh", opts), 0);
+    EXPECT_NE(capture.Message().find(name), std::string::npos) << capture.Message();
+  }
+}
+
+} // namespace
+} // namespace signorini

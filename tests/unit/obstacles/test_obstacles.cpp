@@ -1,0 +1,262 @@
+// Obstacle facets (gap, normal, projection parameter, distance), the shape registry and the -obstacle_ options.
+#include "signorini/obstacles/obstacle.hpp"
+
+#include "petsc_helpers.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+namespace signorini {
+namespace {
+
+using test::ErrorCapture;
+using test::ScopedOptions;
+
+Projection ProjectOn(const Facet &facet, double x, double y, double alpha_tol = 0.0) {
+  const double p[2] = {x, y};
+  return facet.Project(p, alpha_tol);
+}
+
+double DistanceTo(const Facet &facet, double x, double y) {
+  const double p[2] = {x, y};
+  return facet.Distance(p);
+}
+
+const ShapeType &Shape(const std::string &option) {
+  for (const ShapeType &shape : ShapeRegistry())
+    if (option == shape.option) return shape;
+  ADD_FAILURE() << "no shape type " << option << " in the registry";
+  static const ShapeType none{"", "", 0, nullptr};
+  return none;
+}
+
+TEST(Segment, NormalIsTheLeftNormalOfTheDirection) {
+  const double p0[2] = {1, 1}, p1[2] = {4, 5};
+  const Segment s(p0, p1);
+  EXPECT_DOUBLE_EQ(s.Length(), 5.0);
+  const Projection p = ProjectOn(s, 0, 0);
+  EXPECT_NEAR(p.normal[0], -0.8, 1e-15);
+  EXPECT_NEAR(p.normal[1], 0.6, 1e-15);
+  const Segment reversed(p1, p0);
+  const Projection q = ProjectOn(reversed, 0, 0);
+  EXPECT_NEAR(q.normal[0], 0.8, 1e-15);
+  EXPECT_NEAR(q.normal[1], -0.6, 1e-15);
+}
+
+TEST(Segment, GapIsPositiveAboveAndNegativeWhenPenetrating) {
+  const double p0[2] = {0, 0}, p1[2] = {2, 0};
+  const Segment s(p0, p1);
+  const Projection above = ProjectOn(s, 0.5, 0.3);
+  EXPECT_NEAR(above.gap, 0.3, 1e-15);
+  EXPECT_NEAR(above.normal[0], 0.0, 1e-15);
+  EXPECT_NEAR(above.normal[1], 1.0, 1e-15);
+  EXPECT_NEAR(ProjectOn(s, 1.5, -0.2).gap, -0.2, 1e-15);
+  EXPECT_NEAR(ProjectOn(s, 1.0, 0.0).gap, 0.0, 1e-15);
+  // The same points seen from the reversed segment (normal pointing down) have the opposite gap.
+  const Segment reversed(p1, p0);
+  EXPECT_NEAR(ProjectOn(reversed, 0.5, 0.3).gap, -0.3, 1e-15);
+
+  // A slanted segment: gap is the signed distance along its normal.
+  const double a[2] = {1, 1}, b[2] = {4, 5};
+  const Segment slanted(a, b);
+  const double n[2] = {-0.8, 0.6};
+  const Projection p = ProjectOn(slanted, 2.5 + 2 * n[0], 3 + 2 * n[1]);
+  EXPECT_NEAR(p.gap, 2.0, 1e-14);
+  EXPECT_NEAR(p.alpha, 0.5, 1e-14);
+}
+
+TEST(Segment, AlphaIsZeroAtP0OneAtP1AndLinearAlong) {
+  const double p0[2] = {-1, 2}, p1[2] = {3, 0};
+  const Segment s(p0, p1);
+  EXPECT_NEAR(ProjectOn(s, -1, 2).alpha, 0.0, 1e-15);
+  EXPECT_NEAR(ProjectOn(s, 3, 0).alpha, 1.0, 1e-15);
+  // Eq. 24: alpha = (P1 - P0) . (x - P0) / |P1 - P0|^2, independent of the offset along the normal.
+  const double x[2] = {0.5, 4.0};
+  const double expected = (4 * (x[0] + 1) + (-2) * (x[1] - 2)) / 20.0;
+  EXPECT_NEAR(ProjectOn(s, x[0], x[1]).alpha, expected, 1e-15);
+  EXPECT_NEAR(ProjectOn(s, -1 - 0.4, 2 + 0.2).alpha, -0.1, 1e-15);
+  EXPECT_NEAR(ProjectOn(s, 3 + 0.8, 0 - 0.4).alpha, 1.2, 1e-15);
+}
+
+TEST(Segment, InsideFlagUsesTheAlphaTolerance) {
+  const double p0[2] = {0, 0}, p1[2] = {10, 0};
+  const Segment s(p0, p1);
+  EXPECT_TRUE(ProjectOn(s, 5, -1).inside);
+  EXPECT_TRUE(ProjectOn(s, 0, -1).inside);
+  EXPECT_TRUE(ProjectOn(s, 10, -1).inside);
+  EXPECT_FALSE(ProjectOn(s, -0.1, -1).inside); // alpha = -0.01
+  EXPECT_FALSE(ProjectOn(s, 10.1, -1).inside); // alpha = 1.01
+  EXPECT_TRUE(ProjectOn(s, -0.1, -1, 0.02).inside);
+  EXPECT_TRUE(ProjectOn(s, 10.1, -1, 0.02).inside);
+  EXPECT_FALSE(ProjectOn(s, -0.3, -1, 0.02).inside);
+  EXPECT_FALSE(ProjectOn(s, 10.3, -1, 0.02).inside);
+}
+
+TEST(Segment, DistanceIsToTheFiniteSegment) {
+  const double p0[2] = {0, 0}, p1[2] = {2, 0};
+  const Segment s(p0, p1);
+  EXPECT_NEAR(DistanceTo(s, 1, 0.5), 0.5, 1e-15);
+  EXPECT_NEAR(DistanceTo(s, 1, -0.25), 0.25, 1e-15);
+  EXPECT_NEAR(DistanceTo(s, 5, 4), 5.0, 1e-15);   // beyond P1: distance to P1
+  EXPECT_NEAR(DistanceTo(s, -3, -4), 5.0, 1e-15); // before P0: distance to P0
+  EXPECT_NEAR(DistanceTo(s, 2, 0), 0.0, 1e-15);
+  double lo[2], hi[2];
+  const double a[2] = {3, -1}, b[2] = {1, 2};
+  Segment(a, b).Bounds(lo, hi);
+  EXPECT_EQ(lo[0], 1.0);
+  EXPECT_EQ(lo[1], -1.0);
+  EXPECT_EQ(hi[0], 3.0);
+  EXPECT_EQ(hi[1], 2.0);
+}
+
+TEST(Disc, GapAndNormalAreRadial) {
+  const double c[2] = {1, 2};
+  const Disc d(c, 0.5);
+  const Projection top = ProjectOn(d, 1, 3);
+  EXPECT_NEAR(top.gap, 0.5, 1e-15);
+  EXPECT_NEAR(top.normal[0], 0.0, 1e-15);
+  EXPECT_NEAR(top.normal[1], 1.0, 1e-15);
+  EXPECT_TRUE(top.inside);
+  const Projection pen = ProjectOn(d, 1.3, 2.4); // distance 0.5 from the centre: on the surface
+  EXPECT_NEAR(pen.gap, 0.0, 1e-15);
+  EXPECT_NEAR(pen.normal[0], 0.6, 1e-15);
+  EXPECT_NEAR(pen.normal[1], 0.8, 1e-15);
+  const Projection inside = ProjectOn(d, 1.0 - 0.3 * 0.6, 2.0 - 0.3 * 0.8);
+  EXPECT_NEAR(inside.gap, -0.2, 1e-15);
+  EXPECT_NEAR(inside.normal[0], -0.6, 1e-15);
+  EXPECT_NEAR(inside.normal[1], -0.8, 1e-15);
+  EXPECT_NEAR(DistanceTo(d, 1.0 - 0.3 * 0.6, 2.0 - 0.3 * 0.8), 0.2, 1e-15);
+  EXPECT_NEAR(DistanceTo(d, 4, 6), 4.5, 1e-15);
+  double lo[2], hi[2];
+  d.Bounds(lo, hi);
+  EXPECT_EQ(lo[0], 0.5);
+  EXPECT_EQ(lo[1], 1.5);
+  EXPECT_EQ(hi[0], 1.5);
+  EXPECT_EQ(hi[1], 2.5);
+}
+
+TEST(ShapeRegistry, ListsSegmentsArcsAndDiscs) {
+  EXPECT_EQ(ShapeRegistry().size(), 3u);
+  EXPECT_EQ(Shape("-obstacle_segments").numbers, 4);
+  EXPECT_EQ(Shape("-obstacle_arcs").numbers, 6);
+  EXPECT_EQ(Shape("-obstacle_discs").numbers, 3);
+  for (const ShapeType &shape : ShapeRegistry()) {
+    EXPECT_TRUE(shape.build) << shape.option;
+    EXPECT_GT(std::string(shape.help).size(), 0u) << shape.option;
+  }
+}
+
+TEST(ShapeRegistry, SegmentBuildsOneOrientedFacet) {
+  std::vector<std::unique_ptr<Facet>> facets;
+  const double v[4] = {0, 0, 0, 3}; // upwards: left normal is -x
+  EXPECT_EQ(Shape("-obstacle_segments").build(v, facets), "");
+  ASSERT_EQ(facets.size(), 1u);
+  const Projection p = ProjectOn(*facets[0], -0.5, 1);
+  EXPECT_NEAR(p.gap, 0.5, 1e-15);
+  EXPECT_NEAR(p.normal[0], -1.0, 1e-15);
+  EXPECT_NEAR(p.alpha, 1.0 / 3, 1e-15);
+}
+
+/// Builds an arc and checks its facets: NSEG chords with ends on the circle, contiguous, and normals pointing to
+/// the centre (sign +1) or away from it (sign -1).
+void CheckArc(double t0, double t1, int nseg, double sign) {
+  const double cx = 1, cy = -2, r = 3;
+  const double v[6] = {cx, cy, r, t0, t1, (double)nseg};
+  std::vector<std::unique_ptr<Facet>> facets;
+  ASSERT_EQ(Shape("-obstacle_arcs").build(v, facets), "");
+  ASSERT_EQ((int)facets.size(), nseg);
+  const double dt = (t1 - t0) * M_PI / 180 / nseg;
+  for (int k = 0; k < nseg; ++k) {
+    SCOPED_TRACE("facet " + std::to_string(k));
+    const double a = t0 * M_PI / 180 + k * dt, b = a + dt, m = 0.5 * (a + b);
+    const auto &s = dynamic_cast<const Segment &>(*facets[k]);
+    EXPECT_NEAR(s.Length(), 2 * r * std::sin(std::abs(dt) / 2), 1e-13);
+    // Ends on the circle, in order: the start of facet k is P0 (alpha 0), its end is P1 (alpha 1).
+    EXPECT_NEAR(ProjectOn(s, cx + r * std::cos(a), cy + r * std::sin(a)).alpha, 0.0, 1e-12);
+    EXPECT_NEAR(ProjectOn(s, cx + r * std::cos(b), cy + r * std::sin(b)).alpha, 1.0, 1e-12);
+    // The chord's normal is radial (through the centre), pointing inwards for counter-clockwise arcs.
+    const Projection p = ProjectOn(s, cx, cy);
+    EXPECT_NEAR(p.normal[0], -sign * std::cos(m), 1e-12);
+    EXPECT_NEAR(p.normal[1], -sign * std::sin(m), 1e-12);
+    EXPECT_NEAR(p.gap, sign * r * std::cos(std::abs(dt) / 2), 1e-12);
+  }
+}
+
+TEST(ShapeRegistry, CounterClockwiseArcNormalsPointToTheCentre) {
+  CheckArc(180, 360, 8, +1.0);
+}
+
+TEST(ShapeRegistry, ClockwiseArcNormalsPointAwayFromTheCentre) {
+  CheckArc(90, -45, 5, -1.0);
+}
+
+TEST(ShapeRegistry, DiscBuildsOneFacet) {
+  std::vector<std::unique_ptr<Facet>> facets;
+  const double v[3] = {0, 0, 2};
+  EXPECT_EQ(Shape("-obstacle_discs").build(v, facets), "");
+  ASSERT_EQ(facets.size(), 1u);
+  EXPECT_NEAR(ProjectOn(*facets[0], 0, -3).gap, 1.0, 1e-15);
+}
+
+TEST(ShapeRegistry, DegenerateItemsAreRejectedWithAReason) {
+  const struct {
+    const char *option;
+    std::vector<double> values;
+  } cases[] = {
+      {"-obstacle_segments", {1, 2, 1, 2}},
+      {"-obstacle_arcs", {0, 0, 0, 0, 90, 4}},
+      {"-obstacle_arcs", {0, 0, -1, 0, 90, 4}},
+      {"-obstacle_arcs", {0, 0, 1, 0, 90, 0}},
+      {"-obstacle_arcs", {0, 0, 1, 0, 90, -2}},
+      {"-obstacle_arcs", {0, 0, 1, 0, 90, 2.5}},
+      {"-obstacle_arcs", {0, 0, 1, 0, 90, NAN}},
+      {"-obstacle_arcs", {0, 0, 1, 30, 30, 4}},
+      {"-obstacle_discs", {0, 0, 0}},
+      {"-obstacle_discs", {0, 0, -2}},
+  };
+  for (const auto &c : cases) {
+    std::string item = c.option;
+    for (double x : c.values)
+      item += " " + std::to_string(x);
+    SCOPED_TRACE(item);
+    std::vector<std::unique_ptr<Facet>> facets;
+    EXPECT_NE(Shape(c.option).build(c.values.data(), facets), "");
+    EXPECT_TRUE(facets.empty());
+  }
+}
+
+TEST(ObstacleOptions, EveryShapeOptionContributesItsFacets) {
+  ScopedOptions options({{"-obstacle_segments", "0,0,1,0,1,0,2,1"},
+                         {"-obstacle_arcs", "0,0,5,180,360,6"},
+                         {"-obstacle_discs", "10,0,1"}});
+  Obstacle obstacle;
+  const double before = test::PetscMemoryInUse();
+  ASSERT_EQ(ReadObstacle(PETSC_COMM_SELF, obstacle), 0);
+  EXPECT_EQ(test::PetscMemoryInUse(), before);
+  ASSERT_EQ(obstacle.facets.size(), 2u + 6u + 1u);
+  EXPECT_NE(dynamic_cast<const Disc *>(obstacle.facets.back().get()), nullptr);
+}
+
+TEST(ObstacleOptions, BadItemsAreErrors) {
+  const struct {
+    const char *option, *value, *expected;
+  } cases[] = {
+      {"-obstacle_segments", "0,0,1", "multiple of 4"},  {"-obstacle_segments", "0,0,0,0", "zero length"},
+      {"-obstacle_segments", "0,0,1,nan", "not finite"}, {"-obstacle_arcs", "0,0,1,0,90,0.5", "segments"},
+      {"-obstacle_discs", "0,0,1,5,5,-1", "item 2"},
+  };
+  for (const auto &c : cases) {
+    SCOPED_TRACE(std::string(c.option) + " " + c.value);
+    ScopedOptions options({{c.option, c.value}});
+    ErrorCapture capture;
+    Obstacle obstacle;
+    EXPECT_NE(ReadObstacle(PETSC_COMM_SELF, obstacle), 0);
+    EXPECT_NE(capture.Message().find(c.expected), std::string::npos) << capture.Message();
+    EXPECT_NE(capture.Message().find(c.option), std::string::npos) << capture.Message();
+  }
+}
+
+} // namespace
+} // namespace signorini
