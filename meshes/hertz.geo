@@ -1,6 +1,7 @@
 // Hertz benchmark: the lower half of a cylinder of radius R = 8 (centre at the origin) whose lowest point (0,-R)
 // touches a rigid flat at y = -R. Plane strain; the load is a uniform traction on the flat top edge.
-// Physical groups: body (surface), top (loaded edge), contact (the curved edge), top_centre (point, u_x = 0).
+// Physical groups: body (surface), top (loaded edge), contact (the curved edge), top_centre and contact_point (the
+// points on the symmetry line, u_x = 0: with the first contact they hold every rigid-body motion).
 // Refined near the contact point; scale every size with -mesh_size_factor (or gmsh -clscale).
 R = 8;
 h_far = 0.8;
@@ -33,3 +34,4 @@ Physical Surface("body") = {1};
 Physical Curve("top") = {1, 2};
 Physical Curve("contact") = {3, 4};
 Physical Point("top_centre") = {1};
+Physical Point("contact_point") = {4};

@@ -27,7 +27,7 @@ PetscErrorCode ApplyDefaultCase() {
       {"-mesh_file", mesh},
       {"-material_E", "200"},
       {"-material_nu", "0.3"},
-      {"-bc_dirichlet", "top_centre:x"},
+      {"-bc_dirichlet", "top_centre:x,contact_point:x"},
       {"-bc_traction", "top:0:-0.625"},
       {"-obstacle_segments", "-12,-8,12,-8"},
       {"-contact_groups", "contact"},

@@ -46,8 +46,8 @@ std::string DescribeBadOptionValue(const std::string &mess) {
   return option + "'" + token + "' is invalid; expected " + expected;
 }
 
-PetscErrorCode Handler(MPI_Comm comm, int line, const char *func, const char *file, PetscErrorCode n,
-                       PetscErrorType p, const char *mess, void *) {
+PetscErrorCode Handler(MPI_Comm comm, int line, const char *func, const char *file, PetscErrorCode n, PetscErrorType p,
+                       const char *mess, void *) {
   if (p != PETSC_ERROR_INITIAL) return n;
   int mpi_up = 0, world_size = 1, comm_size = 1, rank = 0;
   MPI_Initialized(&mpi_up);
@@ -62,13 +62,18 @@ PetscErrorCode Handler(MPI_Comm comm, int line, const char *func, const char *fi
   if (option_value && mpi_up) MPI_Comm_rank(world, &rank), comm_size = world_size;
   const bool collective = comm_size == world_size;
   std::string message = mess ? mess : "";
-  while (!message.empty() && std::isspace((unsigned char)message.back())) message.pop_back();
-  if (option_value) message = DescribeBadOptionValue(message);
-  else if (options_code) message = "-options_file: " + message + "; expected a readable YAML or PETSc options file";
+  while (!message.empty() && std::isspace((unsigned char)message.back()))
+    message.pop_back();
+  if (option_value)
+    message = DescribeBadOptionValue(message);
+  else if (options_code)
+    message = "-options_file: " + message + "; expected a readable YAML or PETSc options file";
+  if (n == PETSC_ERR_ARG_UNKNOWN_TYPE) message += "; expected one of the types that -help lists";
   const char *text = message.c_str();
-  const bool user = options_code || n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_READ ||
-                    n == PETSC_ERR_FILE_WRITE || n == PETSC_ERR_FILE_UNEXPECTED || n == PETSC_ERR_ARG_OUTOFRANGE ||
-                    n == PETSC_ERR_NOT_CONVERGED || n == PETSC_ERR_CONV_FAILED || n == PETSC_ERR_ARG_WRONG;
+  const bool user = options_code || n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_ARG_UNKNOWN_TYPE ||
+                    n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_READ || n == PETSC_ERR_FILE_WRITE ||
+                    n == PETSC_ERR_FILE_UNEXPECTED || n == PETSC_ERR_ARG_OUTOFRANGE || n == PETSC_ERR_NOT_CONVERGED ||
+                    n == PETSC_ERR_CONV_FAILED || n == PETSC_ERR_ARG_WRONG;
   if (!collective || rank == 0) {
     if (n == PETSC_ERR_MEM)
       std::fprintf(stderr, "signorini: error: out of memory (%s)\n", text);

@@ -169,8 +169,10 @@ std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &me
   if (!f) return "cannot open mesh file '" + path + "'; expected a readable gmsh .msh or .geo file";
   char head[16] = {0};
   const std::size_t nread = std::fread(head, 1, sizeof(head) - 1, f);
+  const bool unreadable = std::ferror(f) != 0; // a directory opens but does not read
   std::fclose(f);
   const bool geo = EndsWith(path, ".geo");
+  if (unreadable) return "cannot read mesh file '" + path + "' (a directory?); expected a gmsh .msh or .geo file";
   if (nread == 0) return "mesh file '" + path + "' is empty; expected a gmsh .msh or .geo file";
   if (!geo && std::string(head).rfind("$MeshFormat", 0) != 0)
     return "mesh file '" + path + "' is not a gmsh mesh (no $MeshFormat header); expected a gmsh .msh file";
@@ -179,21 +181,37 @@ std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &me
   try {
     gmsh::initialize(0, nullptr, false);
     gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 1);
+    // Warnings reach the logger (not the terminal): the .msh 2 reader only warns about a duplicate node tag and
+    // keeps one of the nodes.
+    gmsh::option::setNumber("General.Verbosity", 2);
     if (geo) gmsh::option::setNumber("Mesh.MeshSizeFactor", size_factor);
+    gmsh::logger::start();
     gmsh::open(path);
-    if (geo) gmsh::model::mesh::generate(2);
-    error = ReadModel(path, mesh);
+    std::vector<std::string> log;
+    gmsh::logger::get(log);
+    gmsh::logger::stop();
+    const std::string duplicate = "Skipping duplicate node ";
+    for (const auto &line : log)
+      if (error.empty() && line.find(duplicate) != std::string::npos)
+        error = "mesh '" + path + "' has duplicate node tag " + line.substr(line.find(duplicate) + duplicate.size()) +
+                "; expected unique node tags";
+    if (error.empty() && geo) gmsh::model::mesh::generate(2);
+    if (error.empty()) error = ReadModel(path, mesh);
   } catch (const std::exception &e) {
-    error = "cannot read mesh file '" + path + "': " + LastGmshError(e.what());
+    error = "cannot read mesh file '" + path + "': " + LastGmshError(e.what()) +
+            "; expected a valid gmsh .msh or .geo file";
   } catch (...) {
-    error = "cannot read mesh file '" + path + "': " + LastGmshError("gmsh failed");
+    error = "cannot read mesh file '" + path + "': " + LastGmshError("gmsh failed") +
+            "; expected a valid gmsh .msh or .geo file";
   }
   try {
     gmsh::finalize();
   } catch (...) {
   }
-  if (error.empty()) error = CheckAndOrientCells(mesh);
+  if (error.empty()) {
+    error = CheckAndOrientCells(mesh);
+    if (!error.empty()) error = "mesh '" + path + "': " + error;
+  }
   return error;
 }
 
@@ -233,7 +251,7 @@ std::string CheckAndOrientCells(SerialMesh &mesh) {
     int first = 0;
     while (sign[first] != minority) ++first;
     std::ostringstream s;
-    s << "mesh has " << std::min(npos, nneg) << " inverted element(s) of " << nc << " (e.g. element "
+    s << std::min(npos, nneg) << " inverted element(s) of " << nc << " (e.g. element "
       << mesh.cell_tags[first] << "); expected all elements oriented alike";
     return s.str();
   }

@@ -130,7 +130,8 @@ PetscErrorCode Mesh::BuildSerialDM(DM *out) {
         const PetscInt edge = njoin == 1 ? join[0] : -1;
         PetscCall(DMPlexRestoreJoin(idm, 2, pts, &njoin, &join));
         PetscCheck(edge >= 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
-                   "a line element of physical curve '%s' is not an edge of any cell", group.name.c_str());
+                   "a line element of physical curve '%s' is not an edge of any cell; expected the lines of a "
+                   "physical curve to be cell edges", group.name.c_str());
         PetscCall(DMLabelSetValue(label, edge, 1));
       }
     }

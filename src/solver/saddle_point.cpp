@@ -57,6 +57,24 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords) {
     PetscCall(PCFieldSplitSetIS(pc, "u", dofs_->IsU()));
     PetscCall(PCFieldSplitSetIS(pc, "lambda", dofs_->IsLambda()));
   }
+  // A direct MUMPS factorisation detects null pivots (ICNTL(24)): a body that nothing holds yet is then an error
+  // instead of a solution with an arbitrary rigid motion.
+  PetscBool factor;
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, ""));
+  if (factor) {
+    MatSolverType type;
+    PetscCall(PCFactorGetMatSolverType(pc, &type));
+    PetscBool mumps = PETSC_FALSE;
+    if (type) PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &mumps));
+    if (mumps) {
+      PetscCall(PCFactorSetUpMatSolverType(pc));
+      PetscCall(PCFactorGetMatrix(pc, &mumps_factor_));
+      PetscCall(MatMumpsSetIcntl(mumps_factor_, 24, 1));
+      // A pivot below 1e-12 ||A|| is null: MUMPS's default (1e-5 eps ||A||) misses the rigid modes of 2D
+      // elasticity; -contact_mat_mumps_cntl_3 overrides.
+      PetscCall(MatMumpsSetCntl(mumps_factor_, 3, 1e-12));
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -85,6 +103,14 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations) {
   PetscCall(KSPSolve(ksp_, b_, x_));
   PetscCall(KSPGetConvergedReason(ksp_, &reason));
   PetscCall(KSPGetIterationNumber(ksp_, &krylov_iterations));
+  if (mumps_factor_) {
+    PetscInt null_pivots = 0;
+    PetscCall(MatMumpsGetInfog(mumps_factor_, 28, &null_pivots));
+    PetscCheck(null_pivots == 0, comm, PETSC_ERR_NOT_CONVERGED,
+               "the saddle-point system is singular (MUMPS found %" PetscInt_FMT " null pivot(s)): the body is not "
+               "held; add Dirichlet conditions (e.g. on a symmetry line) so that the initial contact and the supports "
+               "remove every rigid-body motion", null_pivots);
+  }
   PetscCheck(reason >= 0, comm, PETSC_ERR_NOT_CONVERGED,
              "the saddle-point solve failed (%s): the system is singular or the solver unsuitable; is the body held "
              "(Dirichlet conditions or enough active contact) and do the -contact_ solver options fit?",

@@ -50,6 +50,7 @@ private:
   VecH x_, b_, r_;
   KSPH ksp_;
   NullSpaceH near_null_;
+  Mat mumps_factor_ = nullptr; ///< the MUMPS factor of a direct solve (owned by the PC), for the null-pivot check
 };
 
 template <typename InsertK>

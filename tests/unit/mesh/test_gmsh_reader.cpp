@@ -188,7 +188,7 @@ TEST(ReadGmsh, RepositoryMeshes) {
   names.clear();
   for (const auto &g : hertz.groups)
     names.insert(g.name);
-  EXPECT_EQ(names, (std::set<std::string>{"top_centre", "top", "contact", "body"}));
+  EXPECT_EQ(names, (std::set<std::string>{"top_centre", "contact_point", "top", "contact", "body"}));
   const PhysicalGroup *centre = FindGroup(hertz, "top_centre");
   ASSERT_NE(centre, nullptr);
   EXPECT_EQ(centre->dim, 0);

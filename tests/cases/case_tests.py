@@ -1,0 +1,363 @@
+"""Case and verification tests of signorini, run by run_case.py (one function per test, registered by name).
+
+Each test gets a Runner (run_case.py): runner.run(args, label) runs the executable on runner.np ranks and returns the
+Result of the run; runner.expect_* record the checks. Integers (pairs, active-set iterations) are compared exactly;
+every floating-point tolerance is justified next to it by the physics or the arithmetic it stands for.
+"""
+import os
+
+import numpy as np
+
+TESTS = {}
+
+
+def test(name):
+    def register(function):
+        TESTS[name] = function
+        return function
+
+    return register
+
+
+def yaml_options(path):
+    """The (key, value) pairs of a flat options YAML file, in order (comments and blank lines skipped)."""
+    options = []
+    with open(path) as f:
+        for line in f:
+            line = line.split("#", 1)[0].strip()
+            if line:
+                key, _, value = line.partition(":")
+                options.append((key.strip(), value.strip()))
+    return options
+
+
+def options_args(runner, yml, drop=()):
+    """The options of a case file as command-line arguments, without the keys in drop."""
+    args = []
+    for key, value in yaml_options(runner.path(yml)):
+        if key not in drop:
+            args += ["-" + key, value]
+    return args
+
+
+def tributary(s):
+    """Tributary lengths of nodes at the sorted positions s along a straight contact edge: half of each adjacent
+    edge."""
+    w = np.zeros_like(s)
+    h = np.diff(s)
+    w[:-1] += 0.5 * h
+    w[1:] += 0.5 * h
+    return w
+
+
+def rate(h, e):
+    """Observed convergence rates between successive meshes."""
+    return np.log(e[:-1] / e[1:]) / np.log(h[:-1] / h[1:])
+
+
+def displacement(nodes):
+    return np.column_stack([nodes["u_x"], nodes["u_y"]])
+
+
+def check_same_mesh(runner, what, a, b):
+    """Both node tables list the same node tags at the same coordinates."""
+    runner.expect_true("%s: same node tags (%d)" % (what, len(a)),
+                       len(a) == len(b) and np.array_equal(a["node_tag"], b["node_tag"]))
+    # Coordinates come from the same mesh file (or the same gmsh run written in another format, %.16g in ASCII).
+    runner.expect_close("%s: node coordinates" % what, np.column_stack([b["x"], b["y"]]),
+                        np.column_stack([a["x"], a["y"]]), 0, 1e-14)
+
+
+# Hertz line contact (ARCHITECTURE.md, Johnson 1985 section 4.2): mesh size factors of meshes/hertz.geo and its
+# element size at the contact point.
+HERTZ_FACTORS = [4, 2, 1.4, 1]
+HERTZ_H_CONTACT = 0.02
+
+
+@test("hertz_refinement")
+def hertz_refinement(runner):
+    """Hertz cylinder on a flat: half-width and peak pressure converge to Johnson's values under mesh refinement."""
+    rows = []
+    for f in HERTZ_FACTORS:
+        r = runner.run(["-options_file", "options/hertz.yml", "-mesh_file", "meshes/hertz.geo", "-mesh_size_factor", f],
+                       "hertz factor %g" % f)
+        h = r.summary["hertz"]
+        P = h["P"]
+        # Equilibrium: the rigid flat carries the whole load P (round-off of a direct solve).
+        runner.expect_close("factor %g: contact force" % f, r.get("contact.contact_force"), [0, P], 1e-10, 1e-10 * P)
+        # The contact zone is resolved node by node: a_computed is half the summed tributary lengths of the active
+        # nodes, so it cannot be closer to a than the element size at the contact (whatever the solver).
+        h_c = HERTZ_H_CONTACT * f
+        runner.expect_close("factor %g: half-width a within the contact element size %g" % (f, h_c),
+                            h["a_computed"], h["a"], 0, h_c)
+        rows.append((f, abs(h["a_computed"] - h["a"]) / h["a"], abs(h["p0_computed"] - h["p0"]) / h["p0"],
+                     r.get("contact.active_pairs"), r.get("iterations.active_set"), r.get("mesh.nodes")))
+    print("  factor  nodes  active  iterations  a error %  p0 error %")
+    for f, ea, ep, act, its, n in rows:
+        print("  %6g %6d %7d %11d %10.3f %11.3f" % (f, n, act, its, 100 * ea, 100 * ep))
+    h = np.array([r[0] for r in rows])
+    for col, name in ((1, "a"), (2, "p0")):
+        e = np.array([r[col] for r in rows])
+        # The error decreases overall: a positive log-log slope over the sequence and the finest mesh better than the
+        # coarsest (successive values may cross: the half-width moves by whole elements).
+        slope = np.polyfit(np.log(h), np.log(e), 1)[0]
+        runner.expect_true("%s error decreases overall: log-log slope %.2f > 0, finest %.3f%% < coarsest %.3f%%" % (
+            name, slope, 100 * e[-1], 100 * e[0]), slope > 0 and e[-1] < e[0])
+        runner.expect_true("%s error on the finest mesh %.3f%% <= 2%%" % (name, 100 * e[-1]), e[-1] <= 0.02)
+
+
+@test("block_on_floor")
+def block_on_floor(runner):
+    """Block under uniform pressure on a rigid floor: every bottom node active, lambda_i = q w_i, the exact field."""
+    q, W = 2.0, 2.0
+    r = runner.run(["-options_file", "options/block_on_floor.yml"], "block_on_floor")
+    nodes = r.nodes()
+    bottom = nodes[nodes["y"] == 0.0]
+    bottom = bottom[np.argsort(bottom["x"])]
+    n = len(bottom)
+    runner.expect_true("bottom nodes found (%d)" % n, n >= 3)
+    # Uniform compression holds every bottom node on the floor; they all touch at the start, so the first active
+    # set is the solution and one solve settles it.
+    runner.expect_equal("candidate pairs", r.get("contact.pairs"), n)
+    runner.expect_equal("active pairs", r.get("contact.active_pairs"), n)
+    runner.expect_equal("active nodes", r.get("contact.active_nodes"), n)
+    runner.expect_equal("active-set iterations", r.get("iterations.active_set"), 1)
+    runner.expect_equal("active flags of the bottom nodes", int(bottom["active"].sum()), n)
+    runner.expect_equal("active nodes off the bottom", int(nodes["active"].sum()) - n, 0)
+    # The exact solution (uniform stress sigma_yy = -q) is linear, so P1/Q1 reproduce it and the consistent nodal
+    # forces of the pressure are q w_i: equal up to round-off (1e-10 leaves room for the conditioning of K).
+    w = tributary(bottom["x"])
+    runner.expect_close("lambda_i = q w_i", bottom["lambda"], q * w, 1e-10)
+    runner.expect_close("contact pressure = q", bottom["pressure"], np.full(n, q), 1e-10)
+    runner.expect_close("sum of lambda = q W", bottom["lambda"].sum(), q * W, 1e-10)
+    runner.expect_close("contact force", r.get("contact.contact_force"), [0, q * W], 1e-10, 1e-10 * q * W)
+    # Plane strain, sigma_xx = 0 (free right edge, frictionless floor), u_x = 0 on the left edge, u_y = 0 on the floor.
+    E, nu = r.get("material.E"), r.get("material.nu")
+    exact = np.column_stack([nu * (1 + nu) * q / E * nodes["x"], -(1 - nu * nu) * q / E * nodes["y"]])
+    runner.expect_close("displacement = exact linear field", displacement(nodes), exact, 0,
+                        1e-10 * np.abs(exact).max())
+
+
+@test("block_pulled_off")
+def block_pulled_off(runner):
+    """Block pulled off a floor it touches: no active pair, the same displacement as without any obstacle."""
+    r = runner.run(["-options_file", "options/block_pulled_off.yml"], "block_pulled_off")
+    no_obstacle = options_args(runner, "options/block_pulled_off.yml", drop=("obstacle_segments", "contact_groups"))
+    free = runner.run(no_obstacle, "block_pulled_off without obstacle")
+    nodes, ref = r.nodes(), free.nodes()
+    n_bottom = int((nodes["y"] == 0.0).sum())
+    # The clamped corner (0,0) has both components fixed and is no candidate; every other bottom node touches the
+    # floor at the start. The first solve finds them all in tension and releases them, the second one confirms.
+    runner.expect_equal("candidate pairs", r.get("contact.pairs"), n_bottom - 1)
+    runner.expect_equal("pairs released after the first solve", r.get("iterations.history.0.changed"), n_bottom - 1)
+    runner.expect_equal("active pairs", r.get("contact.active_pairs"), 0)
+    runner.expect_equal("active-set iterations", r.get("iterations.active_set"), 2)
+    runner.expect_equal("multipliers without obstacle", free.get("problem.multipliers"), 0)
+    runner.expect_close("lambda", nodes["lambda"], np.zeros(len(nodes)), 0, 0)
+    runner.expect_close("contact force", r.get("contact.contact_force"), [0, 0], 0, 0)
+    check_same_mesh(runner, "with and without obstacle", nodes, ref)
+    # Inactive multipliers are decoupled rows (lambda = 0), so both runs solve K u = f; only the elimination order
+    # differs: round-off of a stocky block (condition number of K ~ 1e3).
+    u_ref = displacement(ref)
+    runner.expect_close("displacement = displacement without obstacle", displacement(nodes), u_ref, 0,
+                        1e-12 * np.abs(u_ref).max())
+
+
+@test("block_in_corner")
+def block_in_corner(runner):
+    """Block pressed into an L-shaped corner of two segments: the corner node is active on both."""
+    q, W, H = 2.0, 2.0, 1.0
+    r = runner.run(["-options_file", "options/block_in_corner.yml"], "block_in_corner")
+    nodes = r.nodes()
+    on_floor, on_wall = nodes["y"] == 0.0, nodes["x"] == 0.0
+    corner = on_floor & on_wall
+    n = int((on_floor | on_wall).sum())
+    runner.expect_equal("corner nodes", int(corner.sum()), 1)
+    # Biaxial compression keeps every bottom node on the floor and every left node on the wall; the corner node
+    # (0,0) is on both, so there is one active pair more than active nodes. All touch at the start: one solve.
+    runner.expect_equal("active nodes", r.get("contact.active_nodes"), n)
+    runner.expect_equal("active pairs (corner node on both segments)", r.get("contact.active_pairs"), n + 1)
+    runner.expect_equal("active-set iterations", r.get("iterations.active_set"), 1)
+    runner.expect_equal("active flags", int(nodes["active"].sum()), n)
+    # The exact uniform stress field sigma_xx = sigma_yy = -q is linear: forces are q w up to round-off. The x force
+    # is carried by the wall alone (q H) and the y force by the floor alone (q W); without the corner node's pair on
+    # either segment its share q h/2 would be missing.
+    runner.expect_close("contact force (q H, q W)", r.get("contact.contact_force"), [q * H, q * W], 1e-10)
+    floor = nodes[on_floor][np.argsort(nodes[on_floor]["x"])]
+    wall = nodes[on_wall][np.argsort(nodes[on_wall]["y"])]
+    w_floor, w_wall = tributary(floor["x"]), tributary(wall["y"])
+    runner.expect_close("corner lambda = q (w_floor + w_wall)", nodes[corner]["lambda"][0],
+                        q * (w_floor[0] + w_wall[0]), 1e-10)
+    runner.expect_close("floor lambda_i = q w_i (corner excluded)", floor["lambda"][1:], q * w_floor[1:], 1e-10)
+    runner.expect_close("wall lambda_i = q w_i (corner excluded)", wall["lambda"][1:], q * w_wall[1:], 1e-10)
+    runner.expect_close("contact pressure = q", nodes[on_floor | on_wall]["pressure"], np.full(n, q), 1e-10)
+    E, nu = r.get("material.E"), r.get("material.nu")
+    eps = -(1 + nu) * (1 - 2 * nu) * q / E  # plane strain, equal biaxial compression
+    exact = np.column_stack([eps * nodes["x"], eps * nodes["y"]])
+    runner.expect_close("displacement = exact linear field", displacement(nodes), exact, 0,
+                        1e-10 * np.abs(exact).max())
+
+
+RANK_CASES = {"hertz": [], "beam_on_floor": ["-options_file", "options/beam_on_floor.yml"]}
+
+
+@test("rank_independence")
+def rank_independence(runner, case):
+    """The same case on 1 and 2 ranks: identical active set and iteration counts, equal displacements."""
+    one = runner.run(RANK_CASES[case], case, np_=1)
+    two = runner.run(RANK_CASES[case], case, np_=2)
+    for key in ("mesh.nodes", "contact.pairs", "contact.active_pairs", "contact.active_nodes",
+                "iterations.active_set", "iterations.solves", "iterations.load_steps"):
+        runner.expect_equal("%s on 2 ranks" % key, two.get(key), one.get(key))
+    a, b = one.nodes(), two.nodes()
+    check_same_mesh(runner, "1 and 2 ranks", a, b)
+    runner.expect_true("same active nodes", np.array_equal(a["active"], b["active"]))
+    # A direct solve in another elimination order: equal to round-off amplified by the conditioning of the
+    # saddle-point matrix; 1e-8 of the largest value is far above that and far below any physical difference.
+    runner.expect_close("displacement", displacement(b), displacement(a), 0, 1e-8 * np.abs(displacement(a)).max())
+    runner.expect_close("lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
+    # Pressures divide by tributary lengths summed over the ranks sharing a node.
+    runner.expect_close("contact pressure", b["pressure"], a["pressure"], 0, 1e-8 * np.abs(a["pressure"]).max())
+    runner.expect_close("contact length", two.get("contact.contact_length"), one.get("contact.contact_length"), 1e-8)
+    runner.expect_close("contact force", two.get("contact.contact_force"), one.get("contact.contact_force"), 1e-8,
+                        1e-8 * np.abs(one.get("contact.contact_force")).max())
+
+
+@test("solver_preset")
+def solver_preset(runner, preset):
+    """beam_on_floor with a solver preset gives the active set and contact force of mumps_cholesky."""
+    base = ["-options_file", "options/beam_on_floor.yml"]
+    ref = runner.run(base + ["-options_file", "options/solver/mumps_cholesky.yml"], "beam_on_floor mumps_cholesky")
+    # On two ranks the preset runs without the heap validation at every allocation (the leak check stays): it makes
+    # GAMG set-up about 50 times slower there (4 s -> 240 s); one rank keeps the full check.
+    r = runner.run(base + ["-options_file", "options/solver/%s.yml" % preset], "beam_on_floor %s" % preset,
+                   heap_check=runner.np == 1)
+    runner.expect_equal("active pairs", r.get("contact.active_pairs"), ref.get("contact.active_pairs"))
+    runner.expect_equal("active nodes", r.get("contact.active_nodes"), ref.get("contact.active_nodes"))
+    a, b = ref.nodes(), r.nodes()
+    runner.expect_true("same active nodes", np.array_equal(a["active"], b["active"]))
+    # The iterative presets solve to ksp_rtol 1e-10; the contact force then agrees to about that (K is regular).
+    f_ref = np.array(ref.get("contact.contact_force"))
+    runner.expect_close("contact force", r.get("contact.contact_force"), f_ref, 1e-8, 1e-8 * np.abs(f_ref).max())
+    print("  iterations: active set %d, Krylov %d (mumps_cholesky: %d, %d)" % (
+        r.get("iterations.active_set"), r.get("iterations.krylov"), ref.get("iterations.active_set"),
+        ref.get("iterations.krylov")))
+
+
+# Lame cylinder (options/lame_cylinder.yml): radii, internal pressure; size factors of meshes/lame*.geo.
+LAME_A, LAME_B, LAME_P = 1.0, 2.0, 1.0
+LAME_FACTORS = [0.5, 0.25, 0.125]
+
+# Quadrature: Dunavant's 7-point rule of degree 5 on triangles (barycentric coordinates, weights summing to 1) and
+# the 3 x 3 Gauss rule on quadrilaterals; both integrate the squared error of a smooth field well beyond O(h^2).
+_A1, _B1, _A2, _B2 = 0.059715871789770, 0.470142064105115, 0.797426985353087, 0.101286507323456
+TRI_POINTS = np.array([[1 / 3, 1 / 3, 1 / 3], [_A1, _B1, _B1], [_B1, _A1, _B1], [_B1, _B1, _A1], [_A2, _B2, _B2],
+                       [_B2, _A2, _B2], [_B2, _B2, _A2]])
+TRI_WEIGHTS = np.array([0.225] + [0.132394152788506] * 3 + [0.125939180544827] * 3)
+_G, _GW = np.array([-np.sqrt(0.6), 0, np.sqrt(0.6)]), np.array([5 / 9, 8 / 9, 5 / 9])
+QUAD_POINTS = np.array([(xi, eta) for xi in _G for eta in _G])
+QUAD_WEIGHTS = np.array([wx * wy for wx in _GW for wy in _GW])
+
+
+def lame_exact(x, E, nu):
+    """Plane-strain displacement of the Lame cylinder: u_r = (1 + nu)/E ((1 - 2 nu) A r + B / r) with
+    A = p a^2 / (b^2 - a^2), B = p a^2 b^2 / (b^2 - a^2) (sigma_rr = A - B/r^2, sigma_tt = A + B/r^2)."""
+    A = LAME_P * LAME_A ** 2 / (LAME_B ** 2 - LAME_A ** 2)
+    B = A * LAME_B ** 2
+    r = np.hypot(x[:, 0], x[:, 1])
+    ur = (1 + nu) / E * ((1 - 2 * nu) * A * r + B / r)
+    return x * (ur / r)[:, None]
+
+
+def l2_error(xyz, cells, u, exact):
+    """||u_h - u||_L2 over the mesh, u_h interpolated with the P1/Q1 shape functions of each cell."""
+    total = 0.0
+    for c in cells:
+        xe, ue = xyz[c], u[c]
+        if len(c) == 3:
+            N = TRI_POINTS
+            detJ = np.full(len(N), abs(np.cross(xe[1] - xe[0], xe[2] - xe[0])))  # twice the area
+            w = 0.5 * TRI_WEIGHTS
+        else:
+            xi, eta = QUAD_POINTS[:, 0], QUAD_POINTS[:, 1]
+            N = 0.25 * np.column_stack([(1 - xi) * (1 - eta), (1 + xi) * (1 - eta), (1 + xi) * (1 + eta),
+                                        (1 - xi) * (1 + eta)])
+            dxi = 0.25 * np.column_stack([-(1 - eta), 1 - eta, 1 + eta, -(1 + eta)])
+            deta = 0.25 * np.column_stack([-(1 - xi), -(1 + xi), 1 + xi, 1 - xi])
+            Jx, Jy = dxi @ xe, deta @ xe
+            detJ = np.abs(Jx[:, 0] * Jy[:, 1] - Jx[:, 1] * Jy[:, 0])
+            w = QUAD_WEIGHTS
+        d = N @ ue - exact(N @ xe)
+        total += np.sum(w * detJ * np.sum(d * d, axis=1))
+    return np.sqrt(total)
+
+
+@test("lame_convergence")
+def lame_convergence(runner, kind):
+    """Lame cylinder under internal pressure: the L2 displacement error of P1 (tri) or Q1 (quad) falls as h^2."""
+    mesh, cell_size = {"tri": ("meshes/lame.geo", 3), "quad": ("meshes/lame_quad.geo", 4)}[kind]
+    errors, sizes = [], []
+    for f in LAME_FACTORS:
+        r = runner.run(["-options_file", "options/lame_cylinder.yml", "-mesh_file", mesh, "-mesh_size_factor", f],
+                       "lame %s factor %g" % (kind, f))
+        xyz, cells, u = r.solution()
+        runner.expect_true("factor %g: %d cells, all with %d nodes" % (f, len(cells), cell_size),
+                           all(len(c) == cell_size for c in cells))
+        E, nu = r.get("material.E"), r.get("material.nu")
+        errors.append(l2_error(xyz, cells, u, lambda x: lame_exact(x, E, nu)))
+        sizes.append(f)
+        print("  factor %g: %d nodes, L2 error %.4e" % (f, len(xyz), errors[-1]))
+    rates = rate(np.array(sizes), np.array(errors))
+    # Linear elements converge at O(h^2) in L2 for a smooth solution, and so does the polygonal approximation of
+    # the arcs. Unstructured meshes do not refine exactly by the size factor, hence the +-0.2 band.
+    for i, p in enumerate(rates):
+        runner.expect_true("rate %g -> %g: %.3f in [1.8, 2.2]" % (sizes[i], sizes[i + 1], p), 1.8 <= p <= 2.2)
+
+
+MSH_VARIANTS = ["meshes/block.msh", "meshes/block_bin.msh", "meshes/block_v22.msh"]
+
+
+@test("msh_formats")
+def msh_formats(runner):
+    """The block mesh as gmsh 4.1 ASCII, 4.1 binary and 2.2 ASCII gives the same result."""
+    # A body force makes the field non-linear (the uniform-pressure solution alone would hide a misread cell).
+    results = [runner.run(["-options_file", "options/block_on_floor.yml", "-mesh_file", m, "-bc_body_force", "1,-1"],
+                          "block_on_floor %s" % os.path.basename(m)) for m in MSH_VARIANTS]
+    ref, ref_nodes = results[0], results[0].nodes()
+    for m, r in zip(MSH_VARIANTS[1:], results[1:]):
+        what = os.path.basename(m)
+        for key in ("mesh.nodes", "mesh.cells", "contact.pairs", "contact.active_pairs", "iterations.active_set"):
+            runner.expect_equal("%s: %s" % (what, key), r.get(key), ref.get(key))
+        nodes = r.nodes()
+        check_same_mesh(runner, what, ref_nodes, nodes)
+        # The same mesh up to the last digit of the ASCII coordinates: round-off.
+        u = displacement(ref_nodes)
+        runner.expect_close("%s: displacement" % what, displacement(nodes), u, 0, 1e-12 * np.abs(u).max())
+        runner.expect_close("%s: lambda" % what, nodes["lambda"], ref_nodes["lambda"], 0,
+                            1e-12 * np.abs(ref_nodes["lambda"]).max())
+
+
+@test("thickness")
+def thickness(runner):
+    """Plane stress: thickness 2 instead of 1 under the same pressure, the same displacement and twice the force."""
+    base = ["-options_file", "options/beam_on_floor.yml", "-material_plane", "stress"]
+    one = runner.run(base + ["-material_thickness", 1], "beam_on_floor plane stress t=1")
+    two = runner.run(base + ["-material_thickness", 2], "beam_on_floor plane stress t=2")
+    runner.expect_equal("plane", two.get("material.plane"), "stress")
+    runner.expect_true("contact happens (%d active pairs)" % one.get("contact.active_pairs"),
+                       one.get("contact.active_pairs") > 0)
+    for key in ("contact.active_pairs", "contact.active_nodes", "iterations.active_set"):
+        runner.expect_equal(key, two.get(key), one.get(key))
+    # Stiffness, load, multipliers and the complementarity weight all scale with t: the same problem up to round-off.
+    a, b = one.nodes(), two.nodes()
+    u = displacement(a)
+    runner.expect_close("displacement", displacement(b), u, 0, 1e-10 * np.abs(u).max())
+    runner.expect_close("lambda doubles", b["lambda"], 2 * a["lambda"], 0, 2e-10 * np.abs(a["lambda"]).max())
+    runner.expect_close("contact pressure unchanged", b["pressure"], a["pressure"], 0,
+                        1e-10 * np.abs(a["pressure"]).max())
+    f1 = np.array(one.get("contact.contact_force"))
+    runner.expect_close("contact force doubles", two.get("contact.contact_force"), 2 * f1, 1e-10,
+                        2e-10 * np.abs(f1).max())
+    f1 = np.array(one.get("contact.applied_force"))
+    runner.expect_close("applied force doubles", two.get("contact.applied_force"), 2 * f1, 1e-10,
+                        2e-10 * np.abs(f1).max())

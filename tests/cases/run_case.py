@@ -1,0 +1,205 @@
+#!/usr/bin/python3
+"""Runs one case or verification test of tests/cases: the signorini executable under mpiexec, then checks.
+
+Every run of the executable fails the test on a non-zero exit, on a PETSc error message, on an option that was set
+but not used, and on PETSc memory still allocated at PetscFinalize (-malloc_debug -malloc_dump); then its
+summary.json (and, where a test asks, nodes.csv or solution.h5) is checked against the test's expectations.
+
+    run_case.py --exe build/signorini --np 2 --source-dir . block_on_floor
+    run_case.py --list
+
+The tests themselves are in case_tests.py; a name may carry a parameter after a colon (solver_preset:mumps_lu).
+By hand, set the environment that ctest sets (SIGNORINI_TEST_ENV in tests/CMakeLists.txt: Open MPI as root, one
+thread per rank); `ctest -L cases` runs them all.
+Exit status 0 when every check passed, 1 when one failed, 2 on a usage error.
+"""
+import argparse
+import inspect
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+UNUSED_OPTION = re.compile(r"WARNING! option .* was set but not used|WARNING! There are options you set that were not "
+                           r"used|^Option left: ", re.MULTILINE)
+LEAKED_MEMORY = re.compile(r"^\[\s*\d+\]\s*\d+ bytes \S+\(\) at ", re.MULTILINE)
+PETSC_ERROR = re.compile(r"PETSC ERROR|signorini: error:")
+
+
+class CheckFailed(Exception):
+    """A run or an expectation failed; the message says which and by how much."""
+
+
+class Result:
+    """The files of one run: summary (the parsed summary.json), and on demand the node table and the HDF5 file."""
+
+    def __init__(self, label, directory, output):
+        self.label = label
+        self.dir = directory
+        self.output = output
+        with open(os.path.join(directory, "summary.json")) as f:
+            self.summary = json.load(f)
+
+    def get(self, path):
+        """A summary entry by dotted path, e.g. 'contact.active_pairs' or 'contact.contact_force.1'."""
+        value = self.summary
+        for key in path.split("."):
+            value = value[int(key)] if isinstance(value, list) else value[key]
+        return value
+
+    def nodes(self):
+        """nodes.csv as a structured array sorted by node_tag (columns node_tag,x,y,u_x,u_y,lambda,pressure,gap,
+        active)."""
+        table = np.genfromtxt(os.path.join(self.dir, "nodes.csv"), delimiter=",", names=True)
+        return np.sort(table, order="node_tag")
+
+    def solution(self, step=1):
+        """(coordinates N x 2, cells as a list of node-index arrays, displacement N x 2) from solution.h5."""
+        import h5py
+
+        with h5py.File(os.path.join(self.dir, "solution.h5"), "r") as f:
+            xyz = f["mesh/coordinates"][:, :2]
+            topo = f["mesh/topology"][()]
+            u = f["step_%06d/displacement" % step][:, :2]
+        if topo.ndim == 2:
+            cells = list(topo)
+        else:  # XDMF mixed topology: a type id (4 triangle, 5 quadrilateral) before each cell's nodes
+            cells, i = [], 0
+            while i < len(topo):
+                n = {4: 3, 5: 4}[int(topo[i])]
+                cells.append(topo[i + 1:i + 1 + n])
+                i += n + 1
+        return xyz, cells, u
+
+
+class Runner:
+    """Runs the executable in fresh output directories under one temporary directory and records the checks."""
+
+    def __init__(self, exe, mpiexec, np_, source_dir, workdir, verbose):
+        self.exe, self.mpiexec, self.np, self.source_dir = exe, mpiexec, np_, source_dir
+        self.workdir, self.verbose = workdir, verbose
+        self.failures = []
+        self.count = 0
+
+    def path(self, relative):
+        return os.path.join(self.source_dir, relative)
+
+    def run(self, args, label, np_=None, heap_check=True):
+        """Runs `mpiexec -n NP exe args -output_dir DIR -malloc_debug -malloc_dump` and returns its Result; raises
+        CheckFailed on a failed run (exit status, PETSc error, unused option, leaked memory). heap_check=False drops
+        -malloc_debug (the validation of the whole PETSc heap at every allocation) and keeps the leak check."""
+        np_ = np_ or self.np
+        self.count += 1
+        directory = os.path.join(self.workdir, "%02d_%s_np%d" % (self.count, re.sub(r"\W+", "_", label), np_))
+        cmd = [self.mpiexec, "-n", str(np_), self.exe] + [str(a) for a in args] + [
+            "-output_dir", directory] + (["-malloc_debug"] if heap_check else []) + ["-malloc_dump"]
+        start = time.time()
+        proc = subprocess.run(cmd, cwd=self.source_dir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        elapsed = time.time() - start
+        print("run %-40s np %d  %5.2f s: %s" % (label, np_, elapsed, " ".join(cmd)))
+        out = proc.stdout
+        if self.verbose:
+            print(out)
+        problems = []
+        if proc.returncode != 0:
+            problems.append("exit status %d" % proc.returncode)
+        if PETSC_ERROR.search(out):
+            problems.append("an error message in the output")
+        if UNUSED_OPTION.search(out):
+            problems.append("an option was set but not used")
+        if LEAKED_MEMORY.search(out):
+            problems.append("PETSc memory leaked (-malloc_dump)")
+        if not problems and not os.path.exists(os.path.join(directory, "summary.json")):
+            problems.append("no summary.json")
+        if problems:
+            raise CheckFailed("run '%s' failed (%s):\n  %s\n%s" % (label, "; ".join(problems), " ".join(cmd), out))
+        result = Result(label, directory, out)
+        self.expect_equal("%s: status" % label, result.get("status"), "converged")
+        return result
+
+    def record(self, ok, text):
+        print("  %s %s" % ("ok  " if ok else "FAIL", text))
+        if not ok:
+            self.failures.append(text)
+        return ok
+
+    def expect_equal(self, what, got, want):
+        """Exact comparison (integers, strings, flags)."""
+        return self.record(got == want, "%s: %r, expected %r" % (what, got, want))
+
+    def expect_close(self, what, got, want, rtol, atol=0.0):
+        """|got - want| <= rtol |want| + atol, elementwise for arrays; reports the worst entry."""
+        got, want = np.asarray(got, dtype=float), np.asarray(want, dtype=float)
+        if got.shape != want.shape:
+            return self.record(False, "%s: shape %s, expected %s" % (what, got.shape, want.shape))
+        err = np.abs(got - want)
+        bound = rtol * np.abs(want) + atol
+        ok = bool(np.all(err <= bound)) and bool(np.all(np.isfinite(got)))
+        i = int(np.argmax(err / np.maximum(bound, 1e-300))) if err.size else 0
+        g, w, e = (got.flat[i], want.flat[i], err.flat[i]) if err.size else (got, want, 0.0)
+        scale = abs(w) if abs(w) > 0 else 1.0
+        return self.record(ok, "%s: %.12g, expected %.12g (error %.3g, relative %.3g; rtol %g, atol %g%s)" % (
+            what, g, w, e, e / scale, rtol, atol, "" if got.size == 1 else ", worst of %d" % got.size))
+
+    def expect_true(self, what, ok):
+        return self.record(bool(ok), what)
+
+
+def main():
+    sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import case_tests
+
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("test", nargs="?", help="test name, NAME or NAME:PARAMETER")
+    parser.add_argument("--exe", default="build/signorini", help="the signorini executable")
+    parser.add_argument("--mpiexec", default=shutil.which("mpiexec") or "mpiexec")
+    parser.add_argument("--np", type=int, default=1, help="MPI ranks")
+    parser.add_argument("--source-dir", default=os.getcwd(), help="where relative mesh and options paths start")
+    parser.add_argument("--keep", action="store_true", help="keep the output directories even when the test passes")
+    parser.add_argument("--verbose", action="store_true", help="print the executable's output")
+    parser.add_argument("--list", action="store_true", help="list the tests and exit")
+    args = parser.parse_args()
+    if args.list:
+        for name, test in sorted(case_tests.TESTS.items()):
+            print("%-28s %s" % (name, (test.__doc__ or "").strip().splitlines()[0]))
+        return 0
+    if not args.test:
+        parser.error("a test name is required (--list shows them)")
+    name, _, param = args.test.partition(":")
+    if name not in case_tests.TESTS:
+        parser.error("unknown test '%s' (--list shows them)" % name)
+    wants_param = len(inspect.signature(case_tests.TESTS[name]).parameters) > 1
+    if wants_param != bool(param):
+        parser.error("test '%s' %s" % (name, "needs a parameter (NAME:PARAMETER)" if wants_param else
+                                       "takes no parameter"))
+    workdir = tempfile.mkdtemp(prefix="signorini_case_%s_np%d_" % (re.sub(r"\W+", "_", args.test), args.np))
+    runner = Runner(os.path.abspath(args.exe), args.mpiexec, args.np, os.path.abspath(args.source_dir), workdir,
+                    args.verbose)
+    start = time.time()
+    try:
+        case_tests.TESTS[name](runner, *([param] if param else []))
+    except CheckFailed as e:
+        runner.failures.append(str(e))
+        print("FAIL %s" % e)
+    elapsed = time.time() - start
+    if runner.failures:
+        print("%s (np %d): %d check(s) failed in %.1f s; outputs kept in %s" % (
+            args.test, args.np, len(runner.failures), elapsed, workdir))
+        return 1
+    print("%s (np %d): all checks passed in %.1f s" % (args.test, args.np, elapsed))
+    if args.keep:
+        print("outputs kept in %s" % workdir)
+    else:
+        shutil.rmtree(workdir, ignore_errors=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
