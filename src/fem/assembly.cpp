@@ -22,6 +22,14 @@ PetscErrorCode BuildDirichlet(const Mesh &mesh, const BoundaryConditions &bc, Di
   PetscFunctionReturn(0);
 }
 
+namespace {
+/// The element's values (dim per vertex) from a per-local-vertex array.
+void GatherElement(const double *u_local, const PetscInt *v, PetscInt nn, int dim, double *ue) {
+  for (PetscInt a = 0; a < nn; ++a)
+    for (int k = 0; k < dim; ++k) ue[a * dim + k] = u_local[v[a] * dim + k];
+}
+} // namespace
+
 bool Assembler::Geometry(PetscInt c, ElementGeometry &g, PetscInt &nn, const PetscInt *&vertices) const {
   const int dim = mesh_.Dim();
   vertices = mesh_.CellVertices(c, nn);
@@ -83,9 +91,9 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
     PetscInt nn;
     const PetscInt *v;
     Geometry(c, g, nn, v);
+    GatherElement(u_local, v, nn, dim, ue.data());
     for (PetscInt a = 0; a < nn; ++a)
       for (int k = 0; k < dim; ++k) {
-        ue[a * dim + k] = u_local[v[a] * dim + k];
         all[a * dim + k] = dofs_.Row(v[a], k);
         rows[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : all[a * dim + k];
       }
@@ -184,8 +192,7 @@ PetscErrorCode Assembler::CellResults(const double *u_local, std::vector<CellStr
     PetscInt nn;
     const PetscInt *v;
     Geometry(c, g, nn, v);
-    for (PetscInt a = 0; a < nn; ++a)
-      for (int k = 0; k < dim; ++k) ue[a * dim + k] = u_local[v[a] * dim + k];
+    GatherElement(u_local, v, nn, dim, ue.data());
     cells[c] = ElementStress(material_, g, ue.data());
   }
   PetscFunctionReturn(0);

@@ -109,13 +109,21 @@ PetscErrorCode OutputWriter::Open(const Mesh &mesh, const OutputOptions &opts) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode OutputWriter::GatherFields(const std::vector<Field> &fields, std::vector<std::vector<double>> &gathered,
+                                          PetscMPIInt &rank) const {
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(mesh_->Comm(), &rank));
+  gathered.resize(fields.size());
+  for (std::size_t f = 0; f < fields.size(); ++f) PetscCall(GatherToRoot(*mesh_, fields[f], gathered[f]));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode OutputWriter::WriteStep(PetscInt step, double t, const std::vector<Field> &fields) {
   PetscMPIInt rank;
+  std::vector<std::vector<double>> gathered;
   PetscFunctionBeginUser;
   if (!Enabled()) PetscFunctionReturn(0);
-  PetscCallMPI(MPI_Comm_rank(mesh_->Comm(), &rank));
-  std::vector<std::vector<double>> gathered(fields.size());
-  for (std::size_t f = 0; f < fields.size(); ++f) PetscCall(GatherToRoot(*mesh_, fields[f], gathered[f]));
+  PetscCall(GatherFields(fields, gathered, rank));
   std::string error;
   if (rank == 0) {
     const std::string path = Staging() + "/solution.h5";
@@ -218,11 +226,10 @@ PetscErrorCode OutputWriter::WriteXdmf() const {
 
 PetscErrorCode OutputWriter::WriteNodeTable(const std::vector<Field> &fields) {
   PetscMPIInt rank;
+  std::vector<std::vector<double>> gathered;
   PetscFunctionBeginUser;
   if (!Enabled()) PetscFunctionReturn(0);
-  PetscCallMPI(MPI_Comm_rank(mesh_->Comm(), &rank));
-  std::vector<std::vector<double>> gathered(fields.size());
-  for (std::size_t f = 0; f < fields.size(); ++f) PetscCall(GatherToRoot(*mesh_, fields[f], gathered[f]));
+  PetscCall(GatherFields(fields, gathered, rank));
   std::string error;
   if (rank == 0) {
     const SerialMesh &sm = mesh_->Serial();

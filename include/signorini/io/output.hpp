@@ -46,6 +46,9 @@ public:
 
 private:
   [[nodiscard]] PetscErrorCode WriteXdmf() const;
+  /// Gathers every field to rank 0 in file order; returns this rank's number. Collective.
+  [[nodiscard]] PetscErrorCode GatherFields(const std::vector<Field> &fields,
+                                            std::vector<std::vector<double>> &gathered, PetscMPIInt &rank) const;
   const Mesh *mesh_ = nullptr;
   OutputOptions opts_;
   struct StepInfo {
