@@ -1,0 +1,50 @@
+#!/usr/bin/env python3
+"""Command-line behaviour: -help lists every option of the README's tables with its default, a misspelled option is
+reported, the built-in default case equals options/hertz.yml."""
+import os
+import re
+import subprocess
+import sys
+
+EXE, SOURCE, TEST = sys.argv[1], sys.argv[2], sys.argv[3]
+
+
+def run(args):
+    proc = subprocess.run([EXE] + args, capture_output=True, text=True, timeout=300, cwd=SOURCE)
+    return proc.returncode, proc.stdout + proc.stderr
+
+
+def check(cond, message):
+    print(("ok   " if cond else "FAIL ") + message)
+    if not cond:
+        sys.exit(1)
+
+
+if TEST == "help":
+    rc, out = run(["-help"])
+    check(rc == 0, "-help exits 0")
+    with open(os.path.join(SOURCE, "README.md")) as f:
+        readme = f.read()
+    documented = set(re.findall(r"^\| `(-[a-z_]+)", readme, re.M))
+    check(len(documented) >= 30, f"README documents {len(documented)} options")
+    for option in sorted(documented):
+        if option.startswith("-contact_ksp") or option.startswith("-contact_pc") or option.endswith("_"):
+            continue
+        check(re.search(r"^\s+" + re.escape(option) + r"\b", out, re.M) is not None, f"-help lists {option}")
+    check("-contact_ksp_type <now preonly" in out, "-help shows the default saddle-point KSP (preonly)")
+    check("-contact_pc_type <now cholesky" in out, "-help shows the default PC (cholesky)")
+elif TEST == "misspelled":
+    rc, out = run(["-material_nuu", "0.3"])
+    check(rc == 0, "a misspelled option does not stop the run")
+    check("option -material_nuu 0.3 was set but not used" in out, "the misspelled option is reported")
+    rc, out = run(["-material_nuu", "0.3", "-options_left", "0"])
+    check("was set but not used" not in out, "-options_left 0 silences the report")
+elif TEST == "default_case":
+    rc1, out1 = run([])
+    rc2, out2 = run(["-options_file", "options/hertz.yml"])
+    strip = lambda s: [l for l in s.splitlines() if not l.strip().startswith("mesh ")]
+    check(rc1 == 0 and rc2 == 0, "both runs succeed")
+    check(strip(out1) == strip(out2), "the default case prints the same summary as options/hertz.yml")
+    check("Hertz (R = 8., P = 10.)" in out1, "the default case compares with Hertz")
+else:
+    sys.exit("unknown test " + TEST)
