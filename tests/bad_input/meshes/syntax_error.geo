@@ -1,0 +1,2 @@
+Point(1) = {0,0,0
+this is not geo

@@ -1,0 +1,350 @@
+#!/usr/bin/python3
+"""Runs one case of the catalogue of bad inputs: the signorini executable under mpiexec, expected to fail cleanly.
+
+A case passes when the run
+  - exits non-zero before the time limit (a run still going after it is a hang and is killed),
+  - prints exactly one line starting with "signorini: error:", on stderr, holding every expected substring (the
+    offending input and what was expected),
+  - prints no PETSc error message or stack trace and leaves no process behind,
+  - leaves no complete-looking output: no summary.json under its -output_dir, and where the case starts from an
+    earlier good run in that directory, every file of that run byte for byte and with its modification time.
+The signal cases interrupt a long run instead, once it reports the first active-set iteration of its third load step
+(the first two steps are written to DIR/incomplete by then), and expect a non-zero exit within a few seconds and no
+summary.json.
+
+    run_bad_input.py --exe build/signorini --np 2 material_E_zero
+    run_bad_input.py --exe build/signorini --np 1 --all
+    run_bad_input.py --list
+
+Exit status 0 when every check passed, 1 when one failed, 2 on a usage error.
+"""
+import argparse
+import hashlib
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+TIME_LIMIT = 60.0
+SIGNAL_EXIT_LIMIT = 10.0
+ERROR_PREFIX = "signorini: error:"
+FORBIDDEN = ("PETSC ERROR", "Caught signal", "Segmentation", "AddressSanitizer", "runtime error:", "terminate called")
+
+# The built-in Hertz case and the clamped beam, as good runs that a bad option then spoils.
+HERTZ = []
+BEAM = ["-options_file", "{root}/options/beam_on_floor.yml"]
+# The beam without its clamp and with no obstacle: nothing holds it.
+LOOSE_BEAM = ["-mesh_file", "{root}/meshes/beam.msh", "-material_E", "1000", "-material_nu", "0.3",
+              "-bc_pressure", "top:0.2"]
+
+
+def mesh(name):
+    return ["-mesh_file", "{meshes}/" + name]
+
+
+# name: (arguments, expected substrings of the error line, options). Options: previous = arguments of a good run
+# made first into the same -output_dir, which the bad run must leave untouched; signal = interrupt the run with it.
+CASES = {
+    # Mesh files.
+    "mesh_missing": (mesh("does_not_exist.msh"), ["does_not_exist.msh", "cannot open", "expected"], {}),
+    "mesh_empty": (mesh("empty.msh"), ["empty.msh", "is empty", "expected"], {}),
+    "mesh_not_gmsh": (mesh("not_gmsh.msh"), ["not_gmsh.msh", "$MeshFormat", "expected"], {}),
+    "mesh_truncated": (mesh("truncated.msh"), ["truncated.msh", "cannot read", "expected"], {}),
+    "mesh_geo_syntax": (mesh("syntax_error.geo"), ["syntax_error.geo", "syntax error", "expected"], {}),
+    "mesh_is_directory": (["-mesh_file", "{meshes}"], ["meshes'", "a directory", "expected"], {}),
+    "mesh_without_groups": (mesh("no_groups.msh") + ["-bc_dirichlet", "left:x:y"],
+                            ["'left'", "not in the mesh", "no physical groups"], {}),
+    "mesh_lines_only": (mesh("lines_only.msh"), ["lines_only.msh", "no triangles or quadrilaterals", "expected"], {}),
+    "mesh_tetrahedron": (mesh("tetrahedron.msh"), ["tetrahedron.msh", "3D elements", "2D"], {}),
+    "mesh_duplicate_nodes": (mesh("duplicate_nodes.msh"),
+                             ["duplicate_nodes.msh", "duplicate node tag 3", "expected unique"], {}),
+    "mesh_inverted_element": (mesh("inverted.msh"), ["inverted.msh", "inverted element", "element 2", "expected"],
+                              {}),
+    "mesh_zero_area_element": (mesh("zero_area.msh"), ["zero_area.msh", "element 3 has zero area", "expected"], {}),
+    "mesh_bowtie_quad": (mesh("bowtie.msh"), ["bowtie.msh", "element 1 is not convex", "expected"], {}),
+    "mesh_curve_not_edges": (mesh("curve_not_edge.msh") + ["-bc_traction", "diagonal:0:1"],
+                             ["'diagonal'", "not an edge", "expected"], {}),
+    "mesh_size_factor_zero": (["-mesh_size_factor", "0"], ["-mesh_size_factor", "expected a positive"], {}),
+    "mesh_partitioner_bogus": (["-mesh_partitioner", "bogus"], ["-mesh_partitioner", "'bogus'", "expected metis"], {}),
+    # Material.
+    "material_E_zero": (["-material_E", "0"], ["-material_E", "expected", "> 0"], {}),
+    "material_E_negative": (["-material_E", "-200"], ["-material_E -200", "expected", "> 0"], {}),
+    "material_E_nan": (["-material_E", "nan"], ["-material_E nan", "expected a finite"], {}),
+    "material_E_not_a_number": (["-material_E", "abc"], ["-material_E abc", "'abc'", "expected a real number"], {}),
+    "material_nu_half": (["-material_nu", "0.5"], ["-material_nu 0.5", "expected", "(-1, 0.5)"], {}),
+    "material_nu_minus_one": (["-material_nu", "-1"], ["-material_nu -1", "expected", "(-1, 0.5)"], {}),
+    "material_nu_inf": (["-material_nu", "inf"], ["-material_nu inf", "expected"], {}),
+    "material_thickness_zero": (["-material_thickness", "0"], ["-material_thickness", "expected", "> 0"], {}),
+    "material_thickness_minus_inf": (["-material_thickness", "-inf"], ["-material_thickness -inf", "expected"], {}),
+    "material_model_unknown": (["-material_model", "neo"], ["-material_model", "neo", "linear svk"], {}),
+    # Obstacles.
+    "obstacle_segment_zero_length": (["-obstacle_segments", "1,-8,1,-8"],
+                                     ["-obstacle_segments item 1", "zero length"], {}),
+    "obstacle_segments_count": (["-obstacle_segments", "-12,-8,12"],
+                                ["-obstacle_segments", "3 number(s)", "expected a multiple of 4"], {}),
+    "obstacle_segments_nan": (["-obstacle_segments", "-12,-8,nan,-8"],
+                              ["-obstacle_segments value 3", "expected finite"], {}),
+    "obstacle_segments_not_a_number": (["-obstacle_segments", "-12,-8,x,-8"],
+                                       ["-obstacle_segments -12,-8,x,-8", "'x'", "expected a real number"], {}),
+    "obstacle_disc_radius_zero": (["-obstacle_segments", "-12,-8,12,-8", "-obstacle_discs", "0,-20,0"],
+                                  ["-obstacle_discs item 1", "radius", "expected > 0"], {}),
+    "obstacle_disc_radius_negative": (["-obstacle_discs", "0,-20,-1"],
+                                      ["-obstacle_discs item 1", "radius -1", "expected > 0"], {}),
+    "obstacle_arc_no_segments": (["-obstacle_arcs", "0,0,20,200,340,0"],
+                                 ["-obstacle_arcs item 1", "0.000000 segments", "expected a whole number"], {}),
+    "obstacle_arc_count": (["-obstacle_arcs", "0,0,20,200,340"],
+                           ["-obstacle_arcs", "5 number(s)", "expected a multiple of 6"], {}),
+    "obstacle_arc_radius_nan": (["-obstacle_arcs", "0,0,nan,200,340,8"],
+                                ["-obstacle_arcs value 3", "expected finite"], {}),
+    # Boundary conditions and loads.
+    "bc_traction_one_value": (["-bc_traction", "top:1"], ["-bc_traction 'top:1'", "1 value(s)", "expected 2"], {}),
+    "bc_traction_not_numbers": (["-bc_traction", "top:a:b"], ["-bc_traction 'top:a:b'", "'a'", "expected a finite"],
+                                {}),
+    "bc_dirichlet_component_z": (["-bc_dirichlet", "top:z"], ["-bc_dirichlet 'top:z'", "'z'", "expected x or y"], {}),
+    "bc_dirichlet_no_component": (["-bc_dirichlet", "top_centre"], ["-bc_dirichlet 'top_centre'", "expected GROUP"],
+                                  {}),
+    "bc_pressure_nan": (["-bc_pressure", "top:nan"], ["-bc_pressure 'top:nan'", "'nan'", "expected a finite"], {}),
+    "bc_body_force_three_values": (["-bc_body_force", "1,2,3"], ["-bc_body_force", "3 value(s)", "expected 2"], {}),
+    "bc_body_force_not_a_number": (["-bc_body_force", "1,x"], ["-bc_body_force 1,x", "'x'", "expected a real"], {}),
+    "bc_unknown_group": (["-bc_traction", "lid:0:-1"], ["'lid'", "not in the mesh", "the mesh has:", "top_centre"], {}),
+    "bc_traction_on_surface": (["-bc_traction", "body:0:-1"], ["'body'", "dimension 2", "expected a physical curve"],
+                               {}),
+    "contact_unknown_group": (["-contact_groups", "bottom"], ["'bottom'", "not in the mesh"], {}),
+    # Solver options.
+    "contact_max_it_zero": (["-contact_max_it", "0"], ["-contact_max_it 0", "expected >= 1"], {}),
+    "contact_monitor_not_a_bool": (["-contact_monitor", "maybe"], ["-contact_monitor maybe", "expected true or false"],
+                                   {}),
+    "contact_ksp_type_unknown": (["-contact_ksp_type", "bogus"], ["KSP type bogus", "expected one of"], {}),
+    "load_steps_zero": (["-load_steps", "0"], ["-load_steps 0", "expected >= 1"], {}),
+    "load_steps_not_an_integer": (["-load_steps", "1.5"], ["-load_steps 1.5", "expected an integer"], {}),
+    # Options files.
+    "options_file_missing": (["-options_file", "{here}/options/does_not_exist.yml"],
+                             ["-options_file", "does_not_exist.yml", "expected"], {}),
+    "options_file_bad_yaml": (["-options_file", "{here}/options/bad_options.yml"],
+                              ["-options_file", "YAML", "expected"], {}),
+    "options_file_bad_syntax": (["-options_file", "{here}/options/bad_options.txt"],
+                                ["-options_file", "bad_options.txt line 3", "expected"], {}),
+    # Failures of the solve, after the output directory was opened.
+    "singular_system": (LOOSE_BEAM, ["singular", "not held", "add Dirichlet"], {"previous": BEAM}),
+    "active_set_max_it": (["-contact_max_it", "1"], ["did not converge", "-contact_max_it"], {"previous": HERTZ}),
+    "newton_diverges": (BEAM + ["-material_model", "svk", "-newton_max_it", "1", "-load_max_cuts", "0",
+                                "-bc_pressure", "top:50"], ["did not converge", "-load_max_cuts"], {"previous": BEAM}),
+    # Output directories.
+    "output_dir_under_file": (["-output_dir", "{file}/out"], ["-output_dir", "a_file/out", "expected a writable"],
+                              {}),
+    "output_dir_is_file": (["-output_dir", "{file}"], ["-output_dir", "a_file", "expected a writable"], {}),
+    # Interruptions: 20 load steps of the Hertz case keep it busy for seconds after its third step begins.
+    "sigterm": (["-load_steps", "20", "-contact_monitor"], [], {"signal": signal.SIGTERM}),
+    "sigint": (["-load_steps", "20", "-contact_monitor"], [], {"signal": signal.SIGINT}),
+}
+
+
+class CheckFailed(Exception):
+    """The run did not fail the way the case expects; the message says how."""
+
+
+def expand(args, paths):
+    return [a.format(**paths) for a in args]
+
+
+def snapshot(directory):
+    """Every file under directory except the staging directory: path -> (size, mtime, sha256)."""
+    files = {}
+    for base, dirs, names in os.walk(directory):
+        dirs[:] = [d for d in dirs if not (base == directory and d == "incomplete")]
+        for name in names:
+            path = os.path.join(base, name)
+            with open(path, "rb") as f:
+                digest = hashlib.sha256(f.read()).hexdigest()
+            st = os.stat(path)
+            files[os.path.relpath(path, directory)] = (st.st_size, st.st_mtime_ns, digest)
+    return files
+
+
+def summaries(directory):
+    found = []
+    for base, _, names in os.walk(directory):
+        found += [os.path.join(base, n) for n in names if n == "summary.json"]
+    return found
+
+
+def environment():
+    env = dict(os.environ)
+    # After a rank exits non-zero, mpiexec waits odls_base_sigkill_timeout (1 s) twice before it returns, even when
+    # every rank is gone already; the messages are written by then, so do not wait.
+    env.setdefault("OMPI_MCA_odls_base_sigkill_timeout", "0")
+    return env
+
+
+def reap(proc):
+    """Kills whatever is left of the run's process group; returns True when something was left."""
+    deadline = time.monotonic() + 2.0
+    while time.monotonic() < deadline:
+        try:
+            os.killpg(proc.pid, 0)
+        except ProcessLookupError:
+            return False
+        time.sleep(0.05)
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        return False
+    return True
+
+
+def run_failing(cmd, env):
+    """Runs cmd in its own process group; returns (exit status, stdout, stderr, seconds)."""
+    start = time.monotonic()
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=ROOT,
+                            start_new_session=True)
+    try:
+        out, err = proc.communicate(timeout=TIME_LIMIT)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        out, err = proc.communicate()
+        raise CheckFailed(f"still running after {TIME_LIMIT:.0f} s (a hang); stderr:\n{err[-2000:]}")
+    seconds = time.monotonic() - start
+    if reap(proc):
+        raise CheckFailed("mpiexec returned but left processes of the run behind")
+    return proc.returncode, out, err, seconds
+
+
+def run_interrupted(cmd, env, sig):
+    """Starts cmd, waits for load step 3 to begin, sends sig; returns (status, stdout, stderr, seconds)."""
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=ROOT,
+                            start_new_session=True)
+    lines = []
+    try:
+        deadline = time.monotonic() + TIME_LIMIT
+        while time.monotonic() < deadline:
+            line = proc.stdout.readline()
+            if not line:
+                raise CheckFailed("the run ended before load step 3:\n" + "".join(lines) + proc.stderr.read())
+            lines.append(line)
+            if "step 3 (" in line:
+                break
+        else:
+            raise CheckFailed(f"no load step 3 within {TIME_LIMIT:.0f} s")
+        # SIGTERM as `kill PID` sends it, to mpiexec alone; SIGINT as Ctrl-C sends it, to the whole process group.
+        start = time.monotonic()
+        if sig == signal.SIGINT:
+            os.killpg(proc.pid, sig)
+        else:
+            proc.send_signal(sig)
+        try:
+            out, err = proc.communicate(timeout=SIGNAL_EXIT_LIMIT)
+        except subprocess.TimeoutExpired:
+            raise CheckFailed(f"still running {SIGNAL_EXIT_LIMIT:.0f} s after {signal.Signals(sig).name}")
+        seconds = time.monotonic() - start
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.communicate()
+    if reap(proc):
+        raise CheckFailed(f"processes of the run outlived {signal.Signals(sig).name}")
+    return proc.returncode, "".join(lines) + out, err, seconds
+
+
+def check_case(name, exe, mpiexec, np_, work, env, verbose):
+    args, expected, opts = CASES[name]
+    out_dir = os.path.join(work, "out")
+    a_file = os.path.join(work, "a_file")
+    with open(a_file, "w") as f:
+        f.write("a regular file, not a directory\n")
+    paths = {"root": ROOT, "here": HERE, "meshes": os.path.join(HERE, "meshes"), "out": out_dir, "file": a_file}
+    launch = [mpiexec, "-n", str(np_), exe]
+
+    before = None
+    if "previous" in opts:
+        status, out, err, _ = run_failing(launch + expand(opts["previous"], paths) + ["-output_dir", out_dir], env)
+        if status != 0 or not os.path.exists(os.path.join(out_dir, "summary.json")):
+            raise CheckFailed(f"the good run before the bad one failed (status {status}):\n{err}")
+        before = snapshot(out_dir)
+
+    cmd = launch + expand(args, paths)
+    if "-output_dir" not in args:
+        cmd += ["-output_dir", out_dir]
+    if "signal" in opts:
+        status, out, err, seconds = run_interrupted(cmd, env, opts["signal"])
+    else:
+        status, out, err, seconds = run_failing(cmd, env)
+    if verbose:
+        print(f"$ {' '.join(cmd)}\n--- status {status} after {seconds:.2f} s\n--- stdout\n{out}--- stderr\n{err}")
+
+    problems = []
+    if status == 0:
+        problems.append("exit status 0; expected a failure")
+    for text, stream in ((out, "stdout"), (err, "stderr")):
+        for bad in FORBIDDEN:
+            if bad in text:
+                problems.append(f"{stream} holds '{bad}'")
+    error_lines = [line for line in err.splitlines() if line.startswith(ERROR_PREFIX)]
+    if "signal" not in opts:
+        if any(line.startswith(ERROR_PREFIX) for line in out.splitlines()):
+            problems.append("the error message went to stdout")
+        if len(error_lines) != 1:
+            problems.append(f"{len(error_lines)} lines start with '{ERROR_PREFIX}' on stderr; expected exactly 1")
+        for line in error_lines[:1]:
+            for want in expected:
+                if want not in line:
+                    problems.append(f"the error line lacks '{want}'")
+    if "signal" in opts and not os.path.isdir(os.path.join(out_dir, "incomplete")):
+        problems.append("no incomplete/ in the output directory: the run was not interrupted while writing")
+    if before is None:
+        for path in summaries(out_dir):
+            problems.append(f"{os.path.relpath(path, work)} exists after the failed run")
+    else:
+        after = snapshot(out_dir)
+        if after != before:
+            changed = sorted(k for k in set(before) | set(after) if before.get(k) != after.get(k))
+            problems.append(f"the earlier good output changed: {', '.join(changed)}")
+        if os.path.exists(os.path.join(out_dir, "incomplete", "summary.json")):
+            problems.append("incomplete/summary.json exists after the failed run")
+    if problems:
+        raise CheckFailed("; ".join(problems) + f"\n--- stdout\n{out[-3000:]}--- stderr\n{err[-3000:]}")
+    return error_lines[0] if error_lines else f"exit status {status}", seconds
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("cases", nargs="*", help="case names (see --list)")
+    parser.add_argument("--exe", default=os.path.join(ROOT, "build", "signorini"), help="the signorini executable")
+    parser.add_argument("--mpiexec", default=shutil.which("mpiexec") or "mpiexec")
+    parser.add_argument("--np", type=int, default=1, help="MPI ranks")
+    parser.add_argument("--all", action="store_true", help="run every case")
+    parser.add_argument("--keep", action="store_true", help="keep the work directories")
+    parser.add_argument("--verbose", action="store_true", help="print each run's command and output")
+    parser.add_argument("--list", action="store_true", help="list the case names and exit")
+    args = parser.parse_args()
+    if args.list:
+        print("\n".join(CASES))
+        return 0
+    names = list(CASES) if args.all else args.cases
+    unknown = [n for n in names if n not in CASES]
+    if not names or unknown:
+        parser.print_usage(sys.stderr)
+        print(f"unknown case(s): {', '.join(unknown)}" if unknown else "no case given", file=sys.stderr)
+        return 2
+    exe = os.path.abspath(args.exe)
+    env = environment()
+    failed = 0
+    for name in names:
+        work = tempfile.mkdtemp(prefix=f"signorini_bad_{name}_np{args.np}_")
+        try:
+            line, seconds = check_case(name, exe, args.mpiexec, args.np, work, env, args.verbose)
+            print(f"PASS {name} (np {args.np}, {seconds:.1f} s): {line}")
+            if not args.keep:
+                shutil.rmtree(work, ignore_errors=True)
+        except CheckFailed as e:
+            failed += 1
+            print(f"FAIL {name} (np {args.np}): {e}\n(work directory kept: {work})")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
