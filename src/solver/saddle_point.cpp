@@ -50,6 +50,7 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords) {
   PetscCall(VecRestoreArray(xyz, &a));
   PetscCall(MatNullSpaceCreateRigidBody(xyz, near_null_.out()));
   PetscCall(PetscObjectCompose((PetscObject)dofs_->IsU(), "nearnullspace", (PetscObject)near_null_.get()));
+  if (dofs_->GlobalLambda() == 0) PetscCall(MatSetNearNullSpace(A_, near_null_));
   PetscCall(KSPSetFromOptions(ksp_));
   PetscBool fieldsplit;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));

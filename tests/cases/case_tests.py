@@ -361,3 +361,49 @@ def thickness(runner):
     f1 = np.array(one.get("contact.applied_force"))
     runner.expect_close("applied force doubles", two.get("contact.applied_force"), 2 * f1, 1e-10,
                         2e-10 * np.abs(f1).max())
+
+
+@test("elastic_gamg")
+def elastic_gamg(runner):
+    """Linear elasticity without contact by CG + GAMG with the rigid-body near-null space: the direct solution, and
+    few iterations (without the near-null space GAMG needs about ten times more on this slender beam)."""
+    base = ["-mesh_file", "meshes/cantilever.msh", "-material_E", "1e5", "-bc_dirichlet", "left:x:y",
+            "-bc_traction", "right:0:-1"]
+    ref = runner.run(base, "cantilever direct")
+    r = runner.run(base + ["-contact_ksp_type", "cg", "-contact_pc_type", "gamg"], "cantilever cg gamg",
+                   heap_check=False)
+    a, b = ref.nodes(), r.nodes()
+    runner.expect_close("displacement", displacement(b), displacement(a), 0, 1e-7 * np.abs(displacement(a)).max())
+    runner.expect_true("CG + GAMG in fewer than 60 iterations (%d)" % r.get("iterations.krylov"),
+                       r.get("iterations.krylov") < 60)
+
+
+@test("search_radius")
+def search_radius(runner):
+    """The bin search finds the same pairs that matter as pairing every node with every facet: the default search
+    radius and an infinite one give the same active set and solution on a case with many facets (an arc)."""
+    # The floor in four collinear pieces, a cup (arc, body inside) 0.3 below the cylinder and a disc far away.
+    base = ["-options_file", "options/hertz.yml",
+            "-obstacle_segments", "-12,-8,-3,-8,-3,-8,-0.2,-8,-0.2,-8,0.3,-8,0.3,-8,12,-8",
+            "-obstacle_arcs", "0,0,8.3,-120,-60,24", "-obstacle_discs", "6,-9.5,0.2"]
+    ref = runner.run(base + ["-contact_search_radius", "1e6"], "hertz all pairs")
+    r = runner.run(base, "hertz bin search")
+    runner.expect_true("all-pairs run has more pairs (%d > %d)" % (ref.get("contact.pairs"), r.get("contact.pairs")),
+                       ref.get("contact.pairs") > r.get("contact.pairs"))
+    for key in ("contact.active_pairs", "contact.active_nodes", "iterations.active_set"):
+        runner.expect_equal(key, r.get(key), ref.get(key))
+    a, b = ref.nodes(), r.nodes()
+    runner.expect_true("same active nodes", np.array_equal(a["active"], b["active"]))
+    runner.expect_close("displacement", displacement(b), displacement(a), 0, 1e-10 * np.abs(displacement(a)).max())
+
+
+@test("svk_rank_independence")
+def svk_rank_independence(runner):
+    """St. Venant-Kirchhoff with contact and load steps on 1 and 2 ranks: the same iterations and solution."""
+    args = ["-options_file", "options/beam_on_floor.yml", "-material_model", "svk", "-load_steps", "2"]
+    one = runner.run(args, "beam svk", np_=1)
+    two = runner.run(args, "beam svk", np_=2)
+    for key in ("contact.active_pairs", "iterations.active_set", "iterations.load_steps"):
+        runner.expect_equal("%s on 2 ranks" % key, two.get(key), one.get(key))
+    a, b = one.nodes(), two.nodes()
+    runner.expect_close("displacement", displacement(b), displacement(a), 0, 1e-8 * np.abs(displacement(a)).max())

@@ -69,6 +69,8 @@ PetscErrorCode SaddlePointSystem::Create(const DofMap &dofs, const std::vector<C
   PetscCall(MatCreate(comm, A_.out()));
   PetscCall(MatSetType(A_, MATAIJ));
   PetscCall(MatSetSizes(A_, dofs.OwnedRows(), dofs.OwnedRows(), dofs.GlobalRows(), dofs.GlobalRows()));
+  // Without multipliers the matrix is K alone: blocked by node, so that AMG on the whole matrix sees the blocks.
+  if (dofs.GlobalLambda() == 0) PetscCall(MatSetBlockSize(A_, dofs.Dim()));
   PetscCall(MatPreallocatorPreallocate(P, PETSC_TRUE, A_));
   PetscCall(MatSetOption(A_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PetscCall(MatSetOption(A_, MAT_SYMMETRIC, PETSC_TRUE));
