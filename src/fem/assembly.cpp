@@ -128,6 +128,39 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::AddStiffnessTimes(const double *u_local, const double *v_local, Vec f) const {
+  const int dim = mesh_.Dim();
+  std::array<PetscInt, MAX_EDOF> rows;
+  std::array<double, MAX_EDOF * MAX_EDOF> Ke;
+  std::array<double, MAX_EDOF> fe, ue, ve, kv;
+  PetscFunctionBeginUser;
+  for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
+    PetscInt nn;
+    const PetscInt *v = mesh_.CellVertices(c, nn);
+    GatherElement(v_local, v, nn, dim, ve.data());
+    bool any = false;
+    for (PetscInt i = 0; i < nn * dim; ++i) any = any || ve[i] != 0;
+    if (!any) continue;
+    ElementGeometry g;
+    Geometry(c, g, nn, v);
+    GatherElement(u_local, v, nn, dim, ue.data());
+    ElementTangentAndForce(material_, g, ue.data(), Ke.data(), fe.data());
+    for (PetscInt i = 0; i < nn * dim; ++i) {
+      kv[i] = 0;
+      for (PetscInt j = 0; j < nn * dim; ++j) kv[i] += Ke[i * nn * dim + j] * ve[j];
+    }
+    // Free rows only (VecSetValues does not skip negative indices).
+    PetscInt n = 0;
+    for (PetscInt a = 0; a < nn; ++a)
+      for (int k = 0; k < dim; ++k)
+        if (!dirichlet_.fixed[v[a] * dim + k]) rows[n] = dofs_.Row(v[a], k), kv[n++] = kv[a * dim + k];
+    PetscCall(VecSetValues(f, n, rows.data(), kv.data(), ADD_VALUES));
+  }
+  PetscCall(VecAssemblyBegin(f));
+  PetscCall(VecAssemblyEnd(f));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::AssembleLoads(const BoundaryConditions &bc, double factor, Vec f) const {
   const int dim = mesh_.Dim();
   const double t = material_.thickness;

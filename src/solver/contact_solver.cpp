@@ -82,6 +82,7 @@ PetscErrorCode ContactSolver::Setup() {
   PetscCall(VecDuplicate(u_, du_.out()));
   PetscCall(VecDuplicate(u_, fext_.out()));
   PetscCall(VecDuplicate(u_, fint_.out()));
+  PetscCall(VecDuplicate(u_, fdir_.out()));
   PetscCall(PetscObjectSetName((PetscObject)u_.get(), "displacement"));
   std::vector<PetscInt> from(mesh_.NumLocalVertices() * dim);
   for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
@@ -156,6 +157,21 @@ PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double
   PetscFunctionReturn(0);
 }
 
+void ContactSolver::DropParallelPairs(std::vector<char> &next) const {
+  // Two active pairs of one node with (nearly) the same normal, e.g. at the joint of collinear segments, are the
+  // same constraint twice and would make the saddle-point matrix singular: the pair of the later facet is dropped.
+  // Pairs are sorted by node, so a node's pairs are adjacent.
+  const double cos_parallel = std::cos(M_PI / 180.0);
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    if (!next[p]) continue;
+    for (std::size_t q = p + 1; q < pairs_.size() && pairs_[q].vertex == pairs_[p].vertex; ++q) {
+      double dot = 0;
+      for (int d = 0; d < 3; ++d) dot += normals_[p][d] * normals_[q][d];
+      if (next[q] && dot > cos_parallel) next[q] = 0;
+    }
+  }
+}
+
 PetscErrorCode ContactSolver::ActiveSetHash(const std::vector<char> &active, unsigned long long &h) const {
   unsigned long long mine = 0;
   PetscFunctionBeginUser;
@@ -194,16 +210,27 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
   double last_solve_time = 0;
   PetscFunctionBeginUser;
   ok = false;
-  PetscCall(SetDirichlet(factor));
+  // The increment of the prescribed displacements enters through the first solve of the step (its Dirichlet rows
+  // and the coupling K_fd du_d of the free rows), not by moving the boundary nodes alone, which could invert the
+  // cells next to them under large prescribed displacements.
+  const int dim = mesh_.Dim();
+  std::vector<double> delta(u_local_.size(), 0.0), u_eval(u_local_.size());
+  for (std::size_t i = 0; i < delta.size(); ++i)
+    if (dirichlet_.fixed[i]) delta[i] = factor * dirichlet_.value[i] - u_local_[i];
   PetscCall(VecZeroEntries(fext_));
   PetscCall(assembler_->AssembleLoads(bc_, factor, fext_));
   for (PetscInt it = 0;; ++it) {
     double rnorm, rscale;
+    bool moving = false;
+    for (std::size_t i = 0; i < delta.size(); ++i) moving = moving || delta[i] != 0;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &moving, 1, MPI_CXX_BOOL, MPI_LOR, comm));
     {
       ScopedTimer t(stats_.time_assembly);
       PetscCall(PetscLogEventBegin(EV_ASSEMBLY, 0, 0, 0, 0));
-      EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_local_.data(), states_,
-                    rows_, normals_);
+      // Gaps with the prescribed displacements in place (the constraint rows hold only the free components).
+      for (std::size_t i = 0; i < u_eval.size(); ++i) u_eval[i] = u_local_[i] + delta[i];
+      EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_eval.data(), states_, rows_,
+                    normals_);
       PetscCall(Residual(lambda_, rnorm, rscale));
       PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
     }
@@ -225,6 +252,9 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
           next[p] = first ? (states_[p].inside && states_[p].gap <= contact_.touch_tol) : active_[p];
         else
           next[p] = NextActive(states_[p], contact_.c, force_tol, activate_tol);
+      }
+      DropParallelPairs(next);
+      for (std::size_t p = 0; p < pairs_.size(); ++p) {
         counts[0] += next[p];
         counts[1] += next[p] != active_[p];
         if (active_[p]) mins[0] = std::min(mins[0], lambda_[p]);
@@ -242,7 +272,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
       stats_.history.push_back(rec);
       PetscCall(Monitor(rec));
     }
-    if (it > 0 && gcounts[1] == 0 && residual_ok) {
+    if (it > 0 && gcounts[1] == 0 && residual_ok && !moving) {
       stats_.reason = large ? "CONVERGED_ACTIVE_SET_AND_RESIDUAL" : "CONVERGED_ACTIVE_SET_UNCHANGED";
       ok = true;
       break;
@@ -285,10 +315,18 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
       PetscCall(VecGetArrayRead(fint_, &fi));
       PetscCall(VecGetArrayRead(fext_, &fe));
       for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) b[i] = fe[i] - fi[i];
+      if (moving) {
+        PetscCall(VecZeroEntries(fdir_));
+        PetscCall(assembler_->AddStiffnessTimes(u_local_.data(), delta.data(), fdir_));
+        const PetscScalar *fd;
+        PetscCall(VecGetArrayRead(fdir_, &fd));
+        for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) b[i] -= fd[i];
+        PetscCall(VecRestoreArrayRead(fdir_, &fd));
+      }
       for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
         if (mesh_.Owned(v))
-          for (int k = 0; k < mesh_.Dim(); ++k)
-            if (dirichlet_.fixed[v * mesh_.Dim() + k]) b[dofs_.LocalOffset(v, k)] = 0;
+          for (int k = 0; k < dim; ++k)
+            if (dirichlet_.fixed[v * dim + k]) b[dofs_.LocalOffset(v, k)] = kscale_ * delta[v * dim + k];
       for (std::size_t p = 0; p < pairs_.size(); ++p) b[dofs_.OwnedU() + p] = active_[p] ? states_[p].gap : 0.0;
       PetscCall(VecRestoreArrayRead(fint_, &fi));
       PetscCall(VecRestoreArrayRead(fext_, &fe));
@@ -307,7 +345,11 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     stats_.solves++;
     stats_.active_set_iterations++;
     stats_.krylov_iterations += krylov;
-    PetscCall(UpdateSolution(rnorm));
+    double step;
+    PetscCall(UpdateSolution(rnorm, step));
+    // What a shortened step left of the prescribed increment comes in the next solve; a full step lands exactly.
+    for (double &d : delta) d *= 1.0 - step;
+    if (step == 1.0) PetscCall(SetDirichlet(factor));
   }
   PetscFunctionReturn(0);
 }
@@ -316,7 +358,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
 
 namespace signorini {
 
-PetscErrorCode ContactSolver::UpdateSolution(double r0) {
+PetscErrorCode ContactSolver::UpdateSolution(double r0, double &step) {
   const bool large = material_.model == MaterialModel::SVK;
   const PetscInt nu = dofs_.OwnedU();
   std::vector<double> new_lambda(pairs_.size());
@@ -366,6 +408,7 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0) {
     s = std::max(0.1 * s, s * g0 / (g0 - g));
   }
   lambda_ = new_lambda;
+  step = s;
   PetscFunctionReturn(0);
 }
 

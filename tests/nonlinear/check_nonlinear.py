@@ -79,5 +79,21 @@ elif TEST == "hertz_small":
         a, b = s_svk["hertz"][key], s_lin["hertz"][key]
         check(abs(a - b) / b < 0.01, f"hertz {key}: svk {a:.6g} vs linear {b:.6g}")
     check(s_svk["contact"]["active_pairs"] > 0, "svk run has contact")
+elif TEST == "sliding":
+    # A block pressed 0.01 into a floor and dragged 1.5 along it by its top edge (svk, 5 steps): on a floor of two
+    # collinear segments joined at x = 1 the bottom nodes slide from the first segment onto the second. The result
+    # must be that of a floor made of one segment (the search radius covers the sliding distance).
+    args = ["-mesh_file", "meshes/block.msh", "-material_model", "svk", "-material_E", "1000", "-bc_dirichlet",
+            "top:x=1.5:y=-0.01", "-contact_groups", "bottom", "-load_steps", "5", "-contact_search_radius", "2"]
+    s2, n2 = run(args + ["-obstacle_segments", "-5,0,1,0,1,0,7,0"])
+    s1, n1 = run(args + ["-obstacle_segments", "-5,0,7,0"])
+    check(s2["contact"]["active_nodes"] == s1["contact"]["active_nodes"] == 20,
+          f"every bottom node in contact after sliding ({s2['contact']['active_nodes']}, {s1['contact']['active_nodes']})")
+    crossed = sum(1 for r in n2.values() if float(r["y"]) == 0 and float(r["x"]) < 1 < float(r["x"]) + float(r["u_x"]))
+    check(crossed >= 3, f"{crossed} bottom nodes slid across the joint")
+    worst = max(abs(float(n2[t][c]) - float(n1[t][c])) for t in n1 for c in ("u_x", "u_y"))
+    check(worst < 1e-8, f"two-segment floor equals the one-segment floor (max difference {worst:.2e})")
+    f1, f2 = s1["contact"]["contact_force"][1], s2["contact"]["contact_force"][1]
+    check(abs(f2 - f1) < 1e-8 * abs(f1), f"contact force {f2:.8g} vs {f1:.8g}")
 else:
     sys.exit("unknown test " + TEST)

@@ -35,6 +35,9 @@ public:
   /// per local vertex. Returns through min_J the smallest det F over the cells (svk). Collective.
   [[nodiscard]] PetscErrorCode Assemble(const double *u_local, Mat A, double dirichlet_diag, Vec fint,
                                         double *min_J) const;
+  /// Adds K(u) v to the free rows of f, for v nonzero on Dirichlet dofs only (the coupling of a prescribed
+  /// displacement increment into the free rows). u_local, v_local: dim values per local vertex. Collective.
+  [[nodiscard]] PetscErrorCode AddStiffnessTimes(const double *u_local, const double *v_local, Vec f) const;
   /// Adds the external loads (tractions, pressures, point forces, body force) scaled by factor to f. Collective.
   [[nodiscard]] PetscErrorCode AssembleLoads(const BoundaryConditions &bc, double factor, Vec f) const;
   /// Cell strain, stress and von Mises at u. Local cells.

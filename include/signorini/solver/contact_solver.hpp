@@ -75,9 +75,10 @@ private:
   [[nodiscard]] PetscErrorCode Residual(const std::vector<double> &lambda, double &norm, double &scale,
                                         const PetscScalar *direction = nullptr, double *dot = nullptr);
   [[nodiscard]] PetscErrorCode SetDirichlet(double factor);
-  [[nodiscard]] PetscErrorCode UpdateSolution(double residual_before);
+  [[nodiscard]] PetscErrorCode UpdateSolution(double residual_before, double &step);
   [[nodiscard]] PetscErrorCode LoadStep(PetscInt step, double factor, bool first, bool &ok);
   [[nodiscard]] PetscErrorCode Monitor(const IterationRecord &r) const;
+  void DropParallelPairs(std::vector<char> &next) const;
   [[nodiscard]] PetscErrorCode ActiveSetHash(const std::vector<char> &active, unsigned long long &h) const;
 
   const Mesh &mesh_;
@@ -95,7 +96,7 @@ private:
   DofMap dofs_;
   std::unique_ptr<Assembler> assembler_;
   SaddlePointSystem system_;
-  VecH u_, du_, fext_, fint_, u_seq_;
+  VecH u_, du_, fext_, fint_, fdir_, u_seq_;
   VecScatter scatter_ = nullptr;
   std::vector<double> u_local_, lambda_;
   double kscale_ = 1;
