@@ -47,6 +47,8 @@ PetscErrorCode HelpKsp(MPI_Comm comm) {
   PetscCall(KSPCreate(comm, ksp.out()));
   PetscCall(SetDefaultSolver(ksp));
   PetscCall(KSPSetFromOptions(ksp));
+  SaddlePointOptions opts;
+  PetscCall(ReadSaddlePointOptions(comm, opts));
   PetscFunctionReturn(0);
 }
 

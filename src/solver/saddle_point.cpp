@@ -1,6 +1,7 @@
 // Pattern, constraint rows, KSP set-up and solve of the saddle-point system.
 #include "signorini/solver/saddle_point.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace signorini {
@@ -31,7 +32,18 @@ PetscErrorCode SetDefaultSolver(KSP ksp) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords) {
+PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Saddle-point system", "signorini");
+  PetscCall(PetscOptionsBool("-contact_reuse_factorization",
+                             "Factor once and follow active-set changes through MUMPS's Schur complement on the "
+                             "multipliers (linear material with a MUMPS LU/Cholesky solver; default on there)",
+                             "", opts.reuse_factorization, &opts.reuse_factorization, &opts.reuse_set));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bool constant_k) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   PC pc;
   PetscFunctionBeginUser;
@@ -76,6 +88,69 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords) {
       PetscCall(MatMumpsSetCntl(mumps_factor_, 3, 1e-12));
     }
   }
+  SaddlePointOptions opts;
+  PetscCall(ReadSaddlePointOptions(comm, opts));
+  const bool possible = constant_k && mumps_factor_;
+  PetscCheck(!(opts.reuse_set && opts.reuse_factorization && !possible), comm, PETSC_ERR_USER_INPUT,
+             "-contact_reuse_factorization needs a constant stiffness (material_model linear) and a MUMPS LU or "
+             "Cholesky solver (-contact_pc_type lu|cholesky -contact_pc_factor_mat_solver_type mumps)");
+  reuse_ = possible && opts.reuse_factorization && dofs_->GlobalLambda() > 0;
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu_));
+  if (reuse_) {
+    // The Schur complement on every multiplier row, centralised on rank 0 (what PETSc's MUMPS interface supports in
+    // parallel): rank 0 lists all of them, in global order.
+    PetscMPIInt size, rank;
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    std::vector<PetscInt> mine(dofs_->OwnedLambda()), all;
+    for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) mine[p] = dofs_->LambdaRow(p);
+    PetscMPIInt n = (PetscMPIInt)mine.size();
+    std::vector<PetscMPIInt> counts(size), displs(size, 0);
+    PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
+    if (rank == 0) {
+      for (PetscMPIInt r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+      all.resize(dofs_->GlobalLambda());
+    }
+    PetscCallMPI(MPI_Gatherv(mine.data(), n, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT, 0, comm));
+    schur_rows_ = all;
+    PetscCall(MatCreateVecs(A_, diag_.out(), nullptr));
+    PetscCall(VecCreateMPI(comm, dofs_->OwnedLambda(), PETSC_DECIDE, diag_lambda_.out()));
+    PetscCall(VecScatterCreateToZero(diag_lambda_, &to_root_, diag_root_.out()));
+    active_.assign(dofs_->OwnedLambda(), 0);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<ConstraintRow> &rows) {
+  PetscFunctionBeginUser;
+  for (const ConstraintRow &row : rows) {
+    PetscScalar v[9];
+    for (PetscInt i = 0; i < row.ncols; ++i)
+      for (PetscInt j = 0; j < row.ncols; ++j) v[i * row.ncols + j] = aug_ * row.coef[i] * row.coef[j];
+    PetscCall(MatSetValues(A_, row.ncols, row.cols, row.ncols, row.cols, v, ADD_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(A_, MAT_FLUSH_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(A_, MAT_FLUSH_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::MultiplierDiagonal(std::vector<PetscScalar> &d) {
+  PetscFunctionBeginUser;
+  PetscCall(MatGetDiagonal(A_, diag_));
+  const PetscScalar *a;
+  PetscScalar *dl;
+  PetscCall(VecGetArrayRead(diag_, &a));
+  PetscCall(VecGetArray(diag_lambda_, &dl));
+  for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) dl[p] = a[dofs_->OwnedU() + p];
+  PetscCall(VecRestoreArray(diag_lambda_, &dl));
+  PetscCall(VecRestoreArrayRead(diag_, &a));
+  PetscCall(VecScatterBegin(to_root_, diag_lambda_, diag_root_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(to_root_, diag_lambda_, diag_root_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscInt m;
+  PetscCall(VecGetLocalSize(diag_root_, &m));
+  PetscCall(VecGetArrayRead(diag_root_, &a));
+  d.assign(a, a + m);
+  PetscCall(VecRestoreArrayRead(diag_root_, &a));
   PetscFunctionReturn(0);
 }
 
@@ -85,27 +160,43 @@ PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<ConstraintRow
   PetscFunctionBeginUser;
   for (std::size_t p = 0; p < rows.size(); ++p) {
     const PetscInt r = dofs_->LambdaRow((PetscInt)p);
-    const PetscScalar *v = active[p] ? rows[p].coef : zeros;
+    const PetscScalar *v = active[p] || reuse_ ? rows[p].coef : zeros;
     PetscCall(MatSetValues(A_, 1, &r, rows[p].ncols, rows[p].cols, v, INSERT_VALUES));
     PetscCall(MatSetValues(A_, rows[p].ncols, rows[p].cols, 1, &r, v, INSERT_VALUES));
-    PetscCall(MatSetValue(A_, r, r, active[p] ? 0.0 : inactive_diag, INSERT_VALUES));
+    PetscCall(MatSetValue(A_, r, r, active[p] ? 0.0 : reuse_ ? 1.0 / aug_ : inactive_diag, INSERT_VALUES));
   }
+  if (reuse_) active_ = active;
   PetscCall(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations) {
+PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &residual) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   KSPConvergedReason reason;
   PetscReal bnorm, rnorm;
   PetscFunctionBeginUser;
   PetscCall(VecZeroEntries(x_));
-  PetscCall(KSPSolve(ksp_, b_, x_));
-  PetscCall(KSPGetConvergedReason(ksp_, &reason));
-  PetscCall(KSPGetIterationNumber(ksp_, &krylov_iterations));
-  if (mumps_factor_) {
-    PetscInt null_pivots = 0;
+  PetscInt null_pivots = 0;
+  if (reuse_) {
+    std::vector<PetscScalar> d;
+    PetscCall(MultiplierDiagonal(d));
+    if (!factored_) PetscCall(mumps_schur_.Factor(A_, schur_rows_, !lu_));
+    factored_ = true;
+    null_pivots = mumps_schur_.NullPivots();
+    PetscCheck(null_pivots == 0, comm, PETSC_ERR_NOT_CONVERGED,
+               "the saddle-point system is singular (MUMPS found %" PetscInt_FMT " null pivot(s)): the body is not "
+               "held; add Dirichlet conditions (e.g. on a symmetry line) or candidate contact nodes so that every "
+               "rigid-body motion is removed", null_pivots);
+    PetscCall(mumps_schur_.Solve(d, b_, x_));
+    reason = KSP_CONVERGED_ITS;
+    krylov_iterations = 1;
+  } else {
+    PetscCall(KSPSolve(ksp_, b_, x_));
+    PetscCall(KSPGetConvergedReason(ksp_, &reason));
+    PetscCall(KSPGetIterationNumber(ksp_, &krylov_iterations));
+  }
+  if (mumps_factor_ && !reuse_) {
     PetscCall(MatMumpsGetInfog(mumps_factor_, 28, &null_pivots));
     PetscCheck(null_pivots == 0, comm, PETSC_ERR_NOT_CONVERGED,
                "the saddle-point system is singular (MUMPS found %" PetscInt_FMT " null pivot(s)): the body is not "
@@ -125,6 +216,20 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations) {
   PetscCheck(finite && rnorm <= 1e-6 * bnorm + 1e-300, comm, PETSC_ERR_NOT_CONVERGED,
              "the saddle-point system is singular (relative residual %g after the solve): the body is not held; add "
              "Dirichlet conditions or check that the obstacle touches it", finite ? (double)(rnorm / bnorm) : -1.0);
+  residual = rnorm;
+  if (reuse_) {
+    // Augmented form: an active row holds lambda - r g (g: its right-hand side), an inactive one r B du.
+    PetscScalar *x;
+    const PetscScalar *b;
+    PetscCall(VecGetArray(x_, &x));
+    PetscCall(VecGetArrayRead(b_, &b));
+    for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) {
+      const PetscInt i = dofs_->OwnedU() + p;
+      x[i] = active_[p] ? x[i] + aug_ * b[i] : 0.0;
+    }
+    PetscCall(VecRestoreArrayRead(b_, &b));
+    PetscCall(VecRestoreArray(x_, &x));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -121,6 +121,11 @@ CASES = {
                                    {}),
     "contact_ksp_type_unknown": (["-contact_ksp_type", "bogus"], ["KSP type bogus", "expected one of"], {}),
     "load_steps_zero": (["-load_steps", "0"], ["-load_steps 0", "expected >= 1"], {}),
+    "reuse_factorization_svk": (["-material_model", "svk", "-contact_reuse_factorization", "true"],
+                                ["-contact_reuse_factorization", "constant stiffness"], {}),
+    "reuse_factorization_iterative": (["-options_file", "{root}/options/solver/fieldsplit_hypre.yml",
+                                       "-contact_reuse_factorization", "true"],
+                                      ["-contact_reuse_factorization", "MUMPS LU or Cholesky"], {}),
     "load_steps_not_an_integer": (["-load_steps", "1.5"], ["-load_steps 1.5", "expected an integer"], {}),
     # Options files.
     "options_file_missing": (["-options_file", "{here}/options/does_not_exist.yml"],

@@ -5,6 +5,7 @@ Result of the run; runner.expect_* record the checks. Integers (pairs, active-se
 every floating-point tolerance is justified next to it by the physics or the arithmetic it stands for.
 """
 import os
+import re
 
 import numpy as np
 
@@ -221,6 +222,38 @@ def rank_independence(runner, case):
     runner.expect_close("contact length", two.get("contact.contact_length"), one.get("contact.contact_length"), 1e-8)
     runner.expect_close("contact force", two.get("contact.contact_force"), one.get("contact.contact_force"), 1e-8,
                         1e-8 * np.abs(one.get("contact.contact_force")).max())
+
+
+def log_event_count(output, event):
+    """The count of an event in the -log_view table of a run (summed over the stages), or 0."""
+    return sum(int(m.group(1)) for m in re.finditer(r"^%s\s+(\d+)\s" % re.escape(event), output, re.M))
+
+
+@test("reuse_factorization")
+def reuse_factorization(runner, preset):
+    """Hertz (49k dofs, two load steps) with the factorisation kept across active sets and load steps (MUMPS Schur
+    complement on the multipliers, the default for a linear material) against a refactorisation at every solve: the
+    same iterations and active set, equal solutions, and exactly one sparse factorisation instead of one per solve."""
+    base = ["-options_file", "options/hertz.yml", "-mesh_file", "meshes/hertz.geo", "-mesh_size_factor", "0.5",
+            "-load_steps", "2", "-options_file", "options/solver/%s.yml" % preset, "-log_view"]
+    kept = runner.run(base, "hertz keep factorisation")
+    fresh = runner.run(base + ["-contact_reuse_factorization", "false"], "hertz refactorise")
+    for key in ("contact.active_pairs", "contact.active_nodes", "iterations.active_set", "iterations.solves"):
+        runner.expect_equal(key, kept.get(key), fresh.get(key))
+    solves = fresh.get("iterations.solves")
+    runner.expect_true("several solves (%d)" % solves, solves > 2)
+    numeric = "MatCholFctrNum" if preset == "mumps_cholesky" else "MatLUFactorNum"
+    runner.expect_equal("refactorising run: numeric factorisations", log_event_count(fresh.output, numeric), solves)
+    runner.expect_equal("kept: MUMPS factorisations", log_event_count(kept.output, "SigMumpsFactor"), 1)
+    runner.expect_equal("kept: PETSc factorisations", log_event_count(kept.output, numeric), 0)
+    runner.expect_equal("kept: solves", log_event_count(kept.output, "SigMumpsSolve"), solves)
+    a, b = fresh.nodes(), kept.nodes()
+    runner.expect_true("same active nodes", np.array_equal(a["active"], b["active"]))
+    # Two direct solves of the same system, one through the augmented form and a Schur complement: round-off
+    # amplified by the conditioning; 1e-8 of the largest value is far above it and far below any physical difference.
+    runner.expect_close("displacement", displacement(b), displacement(a), 0, 1e-8 * np.abs(displacement(a)).max())
+    runner.expect_close("lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
+    runner.expect_close("peak pressure", kept.get("hertz.p0_computed"), fresh.get("hertz.p0_computed"), 1e-8)
 
 
 @test("solver_preset")

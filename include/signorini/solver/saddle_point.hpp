@@ -2,10 +2,20 @@
 // nonzero pattern, and its KSP (options prefix -contact_). B holds the contact normals of the active pairs
 // (B = -C in the seed's notation, so that lambda >= 0 is a compressive force); an inactive pair has a zero row in B
 // and a nonzero D entry, which gives lambda = 0 without changing the pattern. Knows nothing about geometry.
+//
+// Reuse of the factorisation (-contact_reuse_factorization, linear material with a MUMPS LU/Cholesky solver): the
+// augmented form [K + r B_C^T B_C, -B_C^T; -B_C, D] keeps every candidate row C in B, with D = 0 on active rows and
+// 1/r on inactive ones. Eliminating the inactive multipliers (mu_I = r B_I du) gives back K on the displacement
+// block, and the active multipliers come out as lambda_A - r g_A; Solve() returns lambda_A. Only D changes with
+// the active set, so MUMPS factors the matrix once with the Schur complement S = D - B_C (K + r B_C^T B_C)^-1
+// B_C^T on the multipliers (MumpsSchur), and an active-set change costs a dense m x m factorisation of S
+// (m candidates) and one pair of triangular solves. K + r B_C^T B_C is regular when the candidates hold the body,
+// even if K alone is not (a body held only by contact).
 #pragma once
 
 #include "signorini/core/handle.hpp"
 #include "signorini/fem/dof_map.hpp"
+#include "signorini/solver/mumps_schur.hpp"
 
 #include <vector>
 
@@ -22,43 +32,77 @@ struct ConstraintRow {
 /// tolerances rtol 1e-10); options given by the user override it at KSPSetFromOptions.
 [[nodiscard]] PetscErrorCode SetDefaultSolver(KSP ksp);
 
+/// Options of the saddle-point system: -contact_reuse_factorization (set tells whether the user gave it).
+struct SaddlePointOptions {
+  PetscBool reuse_factorization = PETSC_TRUE;
+  PetscBool reuse_set = PETSC_FALSE;
+};
+[[nodiscard]] PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts);
+
 class SaddlePointSystem {
 public:
   /// Creates the matrix with the pattern of K (inserted by insert_k), the constraint rows and the multiplier diagonal,
   /// the vectors and the KSP. coords: dim values per owned vertex, in dof order (for the rigid-body near-null space
-  /// of the "u" block). Collective.
+  /// of the "u" block). constant_k: K never changes (linear material), so that the factorisation may be kept
+  /// (-contact_reuse_factorization); kscale: the stiffness scale, the weight of the augmentation. Collective.
   template <typename InsertK>
   [[nodiscard]] PetscErrorCode Create(const DofMap &dofs, const std::vector<ConstraintRow> &rows,
-                                      const std::vector<double> &coords, InsertK insert_k);
+                                      const std::vector<double> &coords, bool constant_k, double kscale,
+                                      InsertK insert_k);
   Mat A() const { return A_; }
   Vec Solution() const { return x_; }
   Vec Rhs() const { return b_; }
   KSP Ksp() const { return ksp_; }
 
-  /// Writes the constraint rows: active rows get their coefficients (in both B and B^T) and D = 0, inactive rows
-  /// zeros and D = inactive_diag. Ends with a final assembly of A. Collective.
+  /// Whether the factorisation is kept across active sets (the augmented form below). Then the caller adds
+  /// AddAugmentation() after every assembly of K.
+  bool ReusesFactorization() const { return reuse_; }
+  /// Adds r B_C^T B_C over every candidate row to the displacement block (ADD_VALUES, flush assembly).
+  [[nodiscard]] PetscErrorCode AddAugmentation(const std::vector<ConstraintRow> &rows);
+  /// Writes the constraint rows. Plain form: active rows get their coefficients (in both B and B^T) and D = 0,
+  /// inactive rows zeros and D = inactive_diag. Augmented form: every row keeps its coefficients, D = 0 on active
+  /// rows and 1/r on inactive ones. Ends with a final assembly of A. Collective.
   [[nodiscard]] PetscErrorCode SetConstraints(const std::vector<ConstraintRow> &rows, const std::vector<char> &active,
                                               double inactive_diag);
-  /// Solves A x = b; a failed or inaccurate solve is an error naming the likely cause. Collective.
-  [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations);
+  /// Solves A x = b; a failed or inaccurate solve is an error naming the likely cause. On return the multiplier
+  /// rows of the solution hold the contact multipliers lambda in both forms. residual: ||b - A x||. Collective.
+  [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual);
 
 private:
   [[nodiscard]] PetscErrorCode CreatePattern(const std::vector<ConstraintRow> &rows, Mat P) const;
-  [[nodiscard]] PetscErrorCode SetupKsp(const std::vector<double> &coords);
+  [[nodiscard]] PetscErrorCode SetupKsp(const std::vector<double> &coords, bool constant_k);
+  /// Reuse mode: the multiplier diagonal D of A on rank 0, in the order of schur_rows_. Collective.
+  [[nodiscard]] PetscErrorCode MultiplierDiagonal(std::vector<PetscScalar> &d);
   const DofMap *dofs_ = nullptr;
+  bool reuse_ = false, factored_ = false;
+  PetscBool lu_ = PETSC_FALSE; ///< the PC is LU (the mumps_lu preset): the reuse mode factors with LU too
+  double aug_ = 1; ///< augmentation weight r (the stiffness scale)
+  std::vector<char> active_;          ///< owned multiplier rows active in the current system (reuse mode)
+  std::vector<PetscInt> schur_rows_;  ///< rank 0: every multiplier row, in global order
+  MumpsSchur mumps_schur_;
+  VecH diag_, diag_lambda_, diag_root_;
+  VecScatter to_root_ = nullptr;      ///< multiplier diagonal to rank 0
   MatH A_;
   VecH x_, b_, r_;
   KSPH ksp_;
   NullSpaceH near_null_;
   Mat mumps_factor_ = nullptr; ///< the MUMPS factor of a direct solve (owned by the PC), for the null-pivot check
+
+public:
+  SaddlePointSystem() = default;
+  SaddlePointSystem(const SaddlePointSystem &) = delete;
+  SaddlePointSystem &operator=(const SaddlePointSystem &) = delete;
+  ~SaddlePointSystem() { (void)VecScatterDestroy(&to_root_); }
 };
 
 template <typename InsertK>
 PetscErrorCode SaddlePointSystem::Create(const DofMap &dofs, const std::vector<ConstraintRow> &rows,
-                                         const std::vector<double> &coords, InsertK insert_k) {
+                                         const std::vector<double> &coords, bool constant_k, double kscale,
+                                         InsertK insert_k) {
   MPI_Comm comm = PetscObjectComm((PetscObject)dofs.IsU());
   PetscFunctionBeginUser;
   dofs_ = &dofs;
+  aug_ = kscale;
   MatH P;
   PetscCall(MatCreate(comm, P.out()));
   PetscCall(MatSetType(P, MATPREALLOCATOR));
@@ -78,7 +122,7 @@ PetscErrorCode SaddlePointSystem::Create(const DofMap &dofs, const std::vector<C
   PetscCall(PetscObjectSetName((PetscObject)A_.get(), "saddle_point"));
   PetscCall(MatCreateVecs(A_, x_.out(), b_.out()));
   PetscCall(VecDuplicate(b_, r_.out()));
-  PetscCall(SetupKsp(coords));
+  PetscCall(SetupKsp(coords, constant_k));
   PetscFunctionReturn(0);
 }
 

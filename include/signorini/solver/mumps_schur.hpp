@@ -1,0 +1,52 @@
+// A direct solver for a symmetric matrix [A11 A12; A21 D] whose last block D (the multipliers) is diagonal and
+// changes between solves while the rest stays fixed. MUMPS (called directly: PETSc 3.18's interface solves with a
+// Schur complement only on one rank) factors the matrix once with the Schur complement S0 = D0 - A21 A11^-1 A12 on
+// the multiplier rows, centralised on rank 0. A solve with another diagonal D uses S = S0 + (D - D0), factored
+// densely (LAPACK LDL^T) on rank 0 when D changes: MUMPS condenses the right-hand side onto the multipliers, rank 0
+// solves with S, MUMPS expands the solution. LU instead of LDL^T on request (the mumps_lu preset). The ordering and the analysis are MUMPS's defaults (ICNTL(7) = 7,
+// sequential analysis), with null-pivot detection (ICNTL(24)) so that a singular A11 is reported.
+#pragma once
+
+#include "signorini/core/handle.hpp"
+
+#include <dmumps_c.h>
+
+#include <vector>
+
+namespace signorini {
+
+class MumpsSchur {
+public:
+  MumpsSchur() = default;
+  MumpsSchur(const MumpsSchur &) = delete;
+  MumpsSchur &operator=(const MumpsSchur &) = delete;
+  ~MumpsSchur();
+
+  /// Analyses and factors A (parallel AIJ, symmetric; its values now are the ones factored) with the Schur
+  /// complement on the global rows `schur_rows` (given on rank 0 only, the order of D in Solve). symmetric: LDL^T
+  /// (MUMPS SYM = 2, LAPACK sytrf for S) or LU (SYM = 0, getrf). Collective.
+  [[nodiscard]] PetscErrorCode Factor(Mat A, const std::vector<PetscInt> &schur_rows, bool symmetric);
+  /// Solves with the factored matrix whose multiplier diagonal is replaced by d (rank 0, Schur order). Collective.
+  [[nodiscard]] PetscErrorCode Solve(const std::vector<PetscScalar> &d, Vec b, Vec x);
+  /// Null pivots MUMPS met in A11 (INFOG(28)).
+  PetscInt NullPivots() const { return null_pivots_; }
+
+private:
+  [[nodiscard]] PetscErrorCode Call(int job, const char *phase);
+  [[nodiscard]] PetscErrorCode FactorSchur(const std::vector<PetscScalar> &d);
+
+  DMUMPS_STRUC_C id_{};
+  bool initialised_ = false;
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  PetscMPIInt rank_ = 0;
+  PetscInt null_pivots_ = 0;
+  std::vector<MUMPS_INT> irn_, jcn_, listvar_;
+  std::vector<double> val_;
+  std::vector<double> schur_raw_, s0_, d0_, s_, d_factored_, redrhs_, work_;
+  std::vector<PetscBLASInt> ipiv_;
+  bool s_factored_ = false, symmetric_ = true;
+  VecScatter to_root_ = nullptr;
+  VecH root_; ///< the whole right-hand side / solution on rank 0
+};
+
+} // namespace signorini

@@ -1,0 +1,227 @@
+// MUMPS with a Schur complement on the multipliers: one factorisation, then solves with a changing diagonal D.
+#include "signorini/solver/mumps_schur.hpp"
+
+#include <petscblaslapack.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace signorini {
+
+#define ICNTL(I) icntl[(I)-1]
+#define CNTL(I) cntl[(I)-1]
+#define INFOG(I) infog[(I)-1]
+
+namespace {
+PetscLogEvent EV_ANALYSIS = 0, EV_FACTOR = 0, EV_SCHUR = 0, EV_SOLVE = 0;
+PetscErrorCode RegisterEvents() {
+  PetscClassId id;
+  PetscFunctionBeginUser;
+  if (EV_ANALYSIS) PetscFunctionReturn(0);
+  PetscCall(PetscClassIdRegister("signorini MUMPS-Schur", &id));
+  PetscCall(PetscLogEventRegister("SigMumpsAnalysis", id, &EV_ANALYSIS));
+  PetscCall(PetscLogEventRegister("SigMumpsFactor", id, &EV_FACTOR));
+  PetscCall(PetscLogEventRegister("SigSchurFactor", id, &EV_SCHUR));
+  PetscCall(PetscLogEventRegister("SigMumpsSolve", id, &EV_SOLVE));
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+MumpsSchur::~MumpsSchur() {
+  if (initialised_) {
+    id_.job = -2;
+    dmumps_c(&id_);
+  }
+  (void)VecScatterDestroy(&to_root_);
+}
+
+PetscErrorCode MumpsSchur::Call(int job, const char *phase) {
+  PetscFunctionBeginUser;
+  id_.job = job;
+  dmumps_c(&id_);
+  // INFOG is the same on every rank, so every rank takes the same branch.
+  PetscCheck(id_.INFOG(1) >= 0, comm_, PETSC_ERR_LIB,
+             "MUMPS failed in the %s of the saddle-point system: INFOG(1) = %d, INFOG(2) = %d (see the MUMPS users' "
+             "guide; -8/-9/-17/-20: out of workspace, -10: the matrix is singular)",
+             phase, (int)id_.INFOG(1), (int)id_.INFOG(2));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows, bool symmetric) {
+  PetscInt rstart, rend, N;
+  PetscFunctionBeginUser;
+  PetscCall(RegisterEvents());
+  symmetric_ = symmetric;
+  PetscCall(PetscObjectGetComm((PetscObject)A, &comm_));
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
+  PetscCall(MatGetOwnershipRange(A, &rstart, &rend));
+  PetscCall(MatGetSize(A, &N, nullptr));
+  // The owned rows, 1-based; for LDL^T their upper triangle only (MUMPS sums duplicate entries of a symmetric matrix).
+  irn_.clear(), jcn_.clear(), val_.clear();
+  for (PetscInt i = rstart; i < rend; ++i) {
+    PetscInt ncols;
+    const PetscInt *cols;
+    const PetscScalar *vals;
+    PetscCall(MatGetRow(A, i, &ncols, &cols, &vals));
+    for (PetscInt k = 0; k < ncols; ++k)
+      if (cols[k] >= i || !symmetric) {
+        irn_.push_back((MUMPS_INT)(i + 1));
+        jcn_.push_back((MUMPS_INT)(cols[k] + 1));
+        val_.push_back(vals[k]);
+      }
+    PetscCall(MatRestoreRow(A, i, &ncols, &cols, &vals));
+  }
+  const PetscInt m = rank_ == 0 ? (PetscInt)schur_rows.size() : 0;
+  PetscInt m_all = m;
+  PetscCallMPI(MPI_Bcast(&m_all, 1, MPIU_INT, 0, comm_));
+  listvar_.resize(m);
+  for (PetscInt i = 0; i < m; ++i) listvar_[i] = (MUMPS_INT)(schur_rows[i] + 1);
+  schur_raw_.assign((std::size_t)m * m, 0.0);
+
+  id_.comm_fortran = (MUMPS_INT)MPI_Comm_c2f(comm_);
+  id_.par = 1;
+  id_.sym = symmetric ? 2 : 0; // general symmetric: the saddle-point matrix is indefinite
+  id_.job = -1;
+  dmumps_c(&id_);
+  initialised_ = true;
+  PetscCheck(id_.INFOG(1) >= 0, comm_, PETSC_ERR_LIB, "MUMPS initialisation failed: INFOG(1) = %d",
+             (int)id_.INFOG(1));
+  id_.ICNTL(1) = -1; // errors are reported through INFOG
+  id_.ICNTL(2) = -1;
+  id_.ICNTL(3) = -1;
+  id_.ICNTL(4) = 0;
+  id_.ICNTL(18) = 3; // distributed assembled matrix
+  // Schur complement in MUMPS's distributed layout on a 1 x 1 process grid: the whole (complete) matrix on rank 0.
+  // (The centralised layout, ICNTL(19) = 1, gave wrong Schur complements for the larger Hertz meshes with MUMPS 5.5.)
+  id_.ICNTL(19) = 3;
+  id_.nprow = 1, id_.npcol = 1, id_.mblock = 64, id_.nblock = 64;
+  id_.ICNTL(24) = 1; // null-pivot detection
+  id_.CNTL(3) = 1e-12;
+  id_.n = (MUMPS_INT)N;
+  id_.nnz_loc = (MUMPS_INT8)val_.size();
+  id_.irn_loc = irn_.data();
+  id_.jcn_loc = jcn_.data();
+  id_.a_loc = val_.data();
+  id_.size_schur = (MUMPS_INT)m_all;
+  id_.listvar_schur = listvar_.data();
+  id_.schur = schur_raw_.data();
+  id_.schur_lld = (MUMPS_INT)m_all;
+  PetscCall(PetscLogEventBegin(EV_ANALYSIS, 0, 0, 0, 0));
+  PetscCall(Call(1, "analysis"));
+  PetscCall(PetscLogEventEnd(EV_ANALYSIS, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(EV_FACTOR, 0, 0, 0, 0));
+  PetscCall(Call(2, "factorisation"));
+  PetscCall(PetscLogEventEnd(EV_FACTOR, 0, 0, 0, 0));
+  null_pivots_ = id_.INFOG(28);
+
+  // The Schur complement is complete for ICNTL(19) = 3; should a MUMPS version return only one triangle (the other
+  // then stays zero), the full matrix is rebuilt from the filled one.
+  s0_.assign((std::size_t)m * m, 0.0);
+  double lower = 0, upper = 0;
+  for (PetscInt j = 0; j < m; ++j)
+    for (PetscInt i = 0; i < m; ++i)
+      if (i != j) (i > j ? lower : upper) += std::abs(schur_raw_[i + j * m]);
+  const bool use_lower = lower >= upper;
+  for (PetscInt j = 0; j < m; ++j)
+    for (PetscInt i = 0; i < m; ++i) {
+      const PetscInt hi = std::max(i, j), lo = std::min(i, j);
+      s0_[i + j * m] = use_lower ? schur_raw_[hi + lo * m] : schur_raw_[lo + hi * m];
+    }
+  schur_raw_.clear();
+  schur_raw_.shrink_to_fit();
+  // D0: the multiplier diagonal that went into S0.
+  d0_.assign(m, 0.0);
+  {
+    std::vector<PetscScalar> mine(rend - rstart, 0.0);
+    for (std::size_t k = 0; k < val_.size(); ++k)
+      if (irn_[k] == jcn_[k]) mine[irn_[k] - 1 - rstart] += val_[k];
+    VecH dist, root;
+    PetscCall(VecCreateMPIWithArray(comm_, 1, rend - rstart, N, mine.data(), dist.out()));
+    PetscCall(VecScatterCreateToZero(dist, &to_root_, root_.out()));
+    PetscCall(VecScatterBegin(to_root_, dist, root_, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(to_root_, dist, root_, INSERT_VALUES, SCATTER_FORWARD));
+    const PetscScalar *r;
+    PetscCall(VecGetArrayRead(root_, &r));
+    for (PetscInt i = 0; i < m; ++i) d0_[i] = r[schur_rows[i]];
+    PetscCall(VecRestoreArrayRead(root_, &r));
+  }
+  // The matrix values are no longer needed (no refactorisation).
+  irn_.clear(), jcn_.clear(), val_.clear();
+  irn_.shrink_to_fit(), jcn_.shrink_to_fit(), val_.shrink_to_fit();
+  redrhs_.assign(m, 0.0);
+  s_factored_ = false;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::FactorSchur(const std::vector<PetscScalar> &d) {
+  const PetscInt m = (PetscInt)d0_.size();
+  int info = 0;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(EV_SCHUR, 0, 0, 0, 0));
+  if (rank_ == 0 && m > 0 && !(s_factored_ && d == d_factored_)) {
+    s_ = s0_;
+    for (PetscInt i = 0; i < m; ++i) s_[i + i * m] += d[i] - d0_[i];
+    PetscBLASInt n, lwork = -1, binfo;
+    PetscCall(PetscBLASIntCast(m, &n));
+    ipiv_.resize(m);
+    double query;
+    if (symmetric_) {
+      LAPACKsytrf_("L", &n, s_.data(), &n, ipiv_.data(), &query, &lwork, &binfo);
+      lwork = std::max<PetscBLASInt>(1, (PetscBLASInt)query);
+      work_.resize(lwork);
+      LAPACKsytrf_("L", &n, s_.data(), &n, ipiv_.data(), work_.data(), &lwork, &binfo);
+    } else {
+      LAPACKgetrf_(&n, &n, s_.data(), &n, ipiv_.data(), &binfo);
+    }
+    info = (int)binfo;
+    d_factored_ = d;
+  }
+  PetscCallMPI(MPI_Bcast(&info, 1, MPI_INT, 0, comm_));
+  PetscCall(PetscLogEventEnd(EV_SCHUR, 0, 0, 0, 0));
+  PetscCheck(info == 0, comm_, PETSC_ERR_NOT_CONVERGED,
+             "the saddle-point system is singular (zero pivot %d in the Schur complement on the multipliers): the "
+             "body is not held, or two active constraints coincide; add Dirichlet conditions or check that the "
+             "obstacle touches it", (int)info);
+  s_factored_ = true;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::Solve(const std::vector<PetscScalar> &d, Vec b, Vec x) {
+  const PetscInt m = (PetscInt)d0_.size();
+  PetscFunctionBeginUser;
+  PetscCall(FactorSchur(d));
+  PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
+  PetscCall(VecScatterBegin(to_root_, b, root_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(to_root_, b, root_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscScalar *r;
+  PetscCall(VecGetArray(root_, &r));
+  id_.rhs = r;
+  id_.nrhs = 1;
+  id_.lrhs = id_.n;
+  id_.redrhs = redrhs_.data();
+  id_.lredrhs = (MUMPS_INT)std::max<PetscInt>(1, m);
+  id_.ICNTL(20) = 0; // dense right-hand side on the host
+  id_.ICNTL(21) = 0; // solution on the host
+  // Condensation onto the multipliers, their dense solve on rank 0, expansion.
+  id_.ICNTL(26) = 1;
+  PetscCall(Call(3, "solve (condensation)"));
+  if (rank_ == 0 && m > 0) {
+    PetscBLASInt n, one = 1, info;
+    PetscCall(PetscBLASIntCast(m, &n));
+    if (symmetric_) LAPACKsytrs_("L", &n, &one, s_.data(), &n, ipiv_.data(), redrhs_.data(), &n, &info);
+    else LAPACKgetrs_("N", &n, &one, s_.data(), &n, ipiv_.data(), redrhs_.data(), &n, &info);
+    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK solve with the Schur complement failed: info %d",
+               (int)info);
+  }
+  id_.ICNTL(26) = 2;
+  PetscCall(Call(3, "solve (expansion)"));
+  if (rank_ == 0)
+    for (PetscInt i = 0; i < m; ++i) r[listvar_[i] - 1] = redrhs_[i];
+  PetscCall(VecRestoreArray(root_, &r));
+  PetscCall(VecScatterBegin(to_root_, root_, x, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(to_root_, root_, x, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini
