@@ -31,8 +31,8 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
                              opts.alpha_tol, &opts.alpha_tol, nullptr));
   PetscCall(PetscOptionsReal("-contact_complementarity_c", "Weight c of the gap in the rule lambda - c g > 0 "
                              "(default E x thickness)", "", opts.c, &opts.c, nullptr));
-  PetscCall(PetscOptionsReal("-contact_activation_fraction", "Activate only pairs penetrating deeper than this "
-                             "fraction of the deepest penetration (0: all)", "", opts.activation_fraction,
+  PetscCall(PetscOptionsReal("-contact_activation_fraction", "In the first update of a load step, activate only "
+                             "pairs penetrating deeper than this fraction of the deepest penetration (0: all)", "", opts.activation_fraction,
                              &opts.activation_fraction, nullptr));
   PetscCall(PetscOptionsInt("-contact_max_it", "Maximum active-set iterations per load step", "", opts.max_it,
                             &opts.max_it, nullptr));

@@ -261,7 +261,10 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
       for (std::size_t p = 0; p < pairs_.size(); ++p)
         if (!active_[p] && states_[p].inside) deepest = std::max(deepest, -states_[p].gap);
       PetscCallMPI(MPI_Allreduce(&deepest, &gdeepest, 1, MPI_DOUBLE, MPI_MAX, comm));
-      const double activate_tol = std::max(force_tol, contact_.c * contact_.activation_fraction * gdeepest);
+      // It damps the first update of a load step only, the overshoot after the solve with the initial (touching or
+      // previous) set; later updates activate every penetrating pair, so that the last pairs are not held back.
+      const double frac = it == 1 ? contact_.activation_fraction : 0.0;
+      const double activate_tol = std::max(force_tol, contact_.c * frac * gdeepest);
       for (std::size_t p = 0; p < pairs_.size(); ++p) {
         states_[p].lambda = lambda_[p];
         states_[p].active = active_[p];
