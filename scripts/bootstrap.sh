@@ -12,7 +12,7 @@ case "${1:-}" in
   *) echo "usage: scripts/bootstrap.sh [--test]" >&2; exit 2 ;;
 esac
 
-packages=(petsc-dev libmumps-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libmetis-dev gmsh libgmsh-dev
+packages=(petsc-dev libmumps-dev liblapack-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libmetis-dev gmsh libgmsh-dev
           libopenblas0-serial cmake pkg-config g++ make libgtest-dev
           python3 python3-numpy python3-h5py python3-matplotlib)
 missing=()

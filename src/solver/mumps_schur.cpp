@@ -97,6 +97,27 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   id_.nprow = 1, id_.npcol = 1, id_.mblock = 64, id_.nblock = 64;
   id_.ICNTL(24) = 1; // null-pivot detection
   id_.CNTL(3) = 1e-12;
+  // The user's MUMPS controls under the solver's prefix (-contact_mat_mumps_icntl_<k>, -contact_mat_mumps_cntl_<k>),
+  // as PETSc's interface reads them, except the ones this class relies on (input/Schur/right-hand-side layout).
+  for (int k = 1; k <= 60; ++k) {
+    char name[64];
+    PetscInt v;
+    PetscBool set;
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-mat_mumps_icntl_%d", k));
+    PetscCall(PetscOptionsGetInt(nullptr, "contact_", name, &v, &set));
+    if (!set) continue;
+    PetscCheck(k != 18 && k != 19 && k != 20 && k != 21 && k != 26, comm_, PETSC_ERR_USER_INPUT,
+               "-contact_mat_mumps_icntl_%d cannot be set with -contact_reuse_factorization (the solver sets it)", k);
+    id_.ICNTL(k) = (MUMPS_INT)v;
+  }
+  for (int k = 1; k <= 15; ++k) {
+    char name[64];
+    PetscReal v;
+    PetscBool set;
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-mat_mumps_cntl_%d", k));
+    PetscCall(PetscOptionsGetReal(nullptr, "contact_", name, &v, &set));
+    if (set) id_.CNTL(k) = v;
+  }
   id_.n = (MUMPS_INT)N;
   id_.nnz_loc = (MUMPS_INT8)val_.size();
   id_.irn_loc = irn_.data();

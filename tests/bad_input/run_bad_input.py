@@ -123,6 +123,8 @@ CASES = {
     "load_steps_zero": (["-load_steps", "0"], ["-load_steps 0", "expected >= 1"], {}),
     "reuse_factorization_svk": (["-material_model", "svk", "-contact_reuse_factorization", "true"],
                                 ["-contact_reuse_factorization", "constant stiffness"], {}),
+    "reuse_factorization_mumps_layout": (["-contact_mat_mumps_icntl_19", "1"],
+                                         ["-contact_mat_mumps_icntl_19", "cannot be set"], {}),
     "reuse_factorization_iterative": (["-options_file", "{root}/options/solver/fieldsplit_hypre.yml",
                                        "-contact_reuse_factorization", "true"],
                                       ["-contact_reuse_factorization", "MUMPS LU or Cholesky"], {}),

@@ -4,7 +4,8 @@
 // the multiplier rows, centralised on rank 0. A solve with another diagonal D uses S = S0 + (D - D0), factored
 // densely (LAPACK LDL^T) on rank 0 when D changes: MUMPS condenses the right-hand side onto the multipliers, rank 0
 // solves with S, MUMPS expands the solution. LU instead of LDL^T on request (the mumps_lu preset). The ordering and the analysis are MUMPS's defaults (ICNTL(7) = 7,
-// sequential analysis), with null-pivot detection (ICNTL(24)) so that a singular A11 is reported.
+// sequential analysis), with null-pivot detection (ICNTL(24)) so that a singular A11 is reported; the options
+// -contact_mat_mumps_icntl_<k> and -contact_mat_mumps_cntl_<k> override them as for PETSc's interface.
 #pragma once
 
 #include "signorini/core/handle.hpp"
