@@ -426,6 +426,21 @@ def plots(rows, outdir):
     except ImportError:
         print("benchmark: matplotlib missing, no plots", file=sys.stderr)
         return []
+    def style_axes(ax, title, ylabel):
+        ax.set_title(title, fontsize=9)
+        ax.set_xlabel("displacement dofs", fontsize=8)
+        ax.set_ylabel(ylabel, fontsize=8)
+        ax.grid(True, which="both", lw=0.3)
+        ax.tick_params(labelsize=7)
+        ax.legend(fontsize=6)
+
+    def save_figure(fig, outdir, name):
+        fig.tight_layout()
+        path = os.path.join(outdir, name)
+        fig.savefig(path, dpi=80)
+        plt.close(fig)
+        return path
+
     fams = [f for f in ["hertz", "beam", "svk"] if any(r["family"] == f and r["status"] == "ok" for r in rows)]
     if not fams:
         return []
@@ -457,18 +472,9 @@ def plots(rows, outdir):
             if ref:
                 y0 = min(ref)
                 ax.loglog([x0, x1], [y0, y0 * (x1 / x0)], color="0.7", lw=0.8, label="O(n)")
-        ax.set_title({"hertz": "2D Hertz", "beam": "beam on floor (regular K)", "svk": "Hertz, svk, 3 load steps"}[fam],
-                     fontsize=9)
-        ax.set_xlabel("displacement dofs", fontsize=8)
-        ax.set_ylabel("contact solve time [s]", fontsize=8)
-        ax.grid(True, which="both", lw=0.3)
-        ax.tick_params(labelsize=7)
-        ax.legend(fontsize=6)
-    fig.tight_layout()
-    p = os.path.join(outdir, "bench_time.png")
-    fig.savefig(p, dpi=80)
-    plt.close(fig)
-    written.append(p)
+        style_axes(ax, {"hertz": "2D Hertz", "beam": "beam on floor (regular K)",
+                        "svk": "Hertz, svk, 3 load steps"}[fam], "contact solve time [s]")
+    written.append(save_figure(fig, outdir, "bench_time.png"))
 
     # Active-set iterations vs dofs.
     fig, axes = plt.subplots(1, len(fams), figsize=(5.2 * len(fams), 3.8), squeeze=False)
@@ -481,18 +487,9 @@ def plots(rows, outdir):
         if fam != "svk":
             ax.axhline(10, color="r", lw=0.8, ls=":", label="target 10")
         ax.set_ylim(bottom=0)
-        ax.set_title({"hertz": "2D Hertz", "beam": "beam on floor", "svk": "Hertz, svk, 3 load steps"}[fam],
-                     fontsize=9)
-        ax.set_xlabel("displacement dofs", fontsize=8)
-        ax.set_ylabel("active-set iterations", fontsize=8)
-        ax.grid(True, which="both", lw=0.3)
-        ax.tick_params(labelsize=7)
-        ax.legend(fontsize=6)
-    fig.tight_layout()
-    p = os.path.join(outdir, "bench_iterations.png")
-    fig.savefig(p, dpi=80)
-    plt.close(fig)
-    written.append(p)
+        style_axes(ax, {"hertz": "2D Hertz", "beam": "beam on floor", "svk": "Hertz, svk, 3 load steps"}[fam],
+                   "active-set iterations")
+    written.append(save_figure(fig, outdir, "bench_iterations.png"))
 
     # Phases of the default preset on hertz, 1 rank.
     rr = sorted([r for r in rows if r["family"] == "hertz" and r["preset"] == DEFAULT_PRESET and int(r["ranks"]) == 1
@@ -500,7 +497,7 @@ def plots(rows, outdir):
     if rr:
         fig, ax = plt.subplots(figsize=(6, 3.8))
         parts = [("t_mesh", "mesh"), ("t_setup", "setup"), ("t_assembly", "assembly"),
-                 ("t_pc_setup", "factorisation (PCSetUp)"), ("t_solve", "solves"), ("t_output", "output")]
+                 ("t_pc_setup", "factorisations"), ("t_solve", "solves"), ("t_output", "output")]
         bottom = [0.0] * len(rr)
         labels = ["%.0fk" % (r["dofs"] / 1e3) for r in rr]
         for i, (k, name) in enumerate(parts):
@@ -511,11 +508,7 @@ def plots(rows, outdir):
         ax.set_xlabel("displacement dofs (Hertz, %s, 1 rank)" % DEFAULT_PRESET, fontsize=8)
         ax.tick_params(labelsize=7)
         ax.legend(fontsize=6, loc="lower left")
-        fig.tight_layout()
-        p = os.path.join(outdir, "bench_breakdown.png")
-        fig.savefig(p, dpi=80)
-        plt.close(fig)
-        written.append(p)
+        written.append(save_figure(fig, outdir, "bench_breakdown.png"))
     return written
 
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace signorini {
 
@@ -47,7 +48,8 @@ PetscErrorCode MumpsSchur::Call(int job, const char *phase) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows, bool symmetric) {
+PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows, const std::vector<PetscScalar> &d0,
+                                  bool symmetric) {
   PetscInt rstart, rend, N;
   PetscFunctionBeginUser;
   PetscCall(RegisterEvents());
@@ -99,23 +101,20 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   id_.CNTL(3) = 1e-12;
   // The user's MUMPS controls under the solver's prefix (-contact_mat_mumps_icntl_<k>, -contact_mat_mumps_cntl_<k>),
   // as PETSc's interface reads them, except the ones this class relies on (input/Schur/right-hand-side layout).
+  const auto control = [](const char *array, int k) { return "-mat_mumps_" + std::string(array) + "_" + std::to_string(k); };
   for (int k = 1; k <= 60; ++k) {
-    char name[64];
     PetscInt v;
     PetscBool set;
-    PetscCall(PetscSNPrintf(name, sizeof(name), "-mat_mumps_icntl_%d", k));
-    PetscCall(PetscOptionsGetInt(nullptr, "contact_", name, &v, &set));
+    PetscCall(PetscOptionsGetInt(nullptr, "contact_", control("icntl", k).c_str(), &v, &set));
     if (!set) continue;
     PetscCheck(k != 18 && k != 19 && k != 20 && k != 21 && k != 26, comm_, PETSC_ERR_USER_INPUT,
                "-contact_mat_mumps_icntl_%d cannot be set with -contact_reuse_factorization (the solver sets it)", k);
     id_.ICNTL(k) = (MUMPS_INT)v;
   }
   for (int k = 1; k <= 15; ++k) {
-    char name[64];
     PetscReal v;
     PetscBool set;
-    PetscCall(PetscSNPrintf(name, sizeof(name), "-mat_mumps_cntl_%d", k));
-    PetscCall(PetscOptionsGetReal(nullptr, "contact_", name, &v, &set));
+    PetscCall(PetscOptionsGetReal(nullptr, "contact_", control("cntl", k).c_str(), &v, &set));
     if (set) id_.CNTL(k) = v;
   }
   id_.n = (MUMPS_INT)N;
@@ -150,21 +149,11 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
     }
   schur_raw_.clear();
   schur_raw_.shrink_to_fit();
-  // D0: the multiplier diagonal that went into S0.
-  d0_.assign(m, 0.0);
+  d0_ = d0;
   {
-    std::vector<PetscScalar> mine(rend - rstart, 0.0);
-    for (std::size_t k = 0; k < val_.size(); ++k)
-      if (irn_[k] == jcn_[k]) mine[irn_[k] - 1 - rstart] += val_[k];
-    VecH dist, root;
-    PetscCall(VecCreateMPIWithArray(comm_, 1, rend - rstart, N, mine.data(), dist.out()));
-    PetscCall(VecScatterCreateToZero(dist, &to_root_, root_.out()));
-    PetscCall(VecScatterBegin(to_root_, dist, root_, INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(VecScatterEnd(to_root_, dist, root_, INSERT_VALUES, SCATTER_FORWARD));
-    const PetscScalar *r;
-    PetscCall(VecGetArrayRead(root_, &r));
-    for (PetscInt i = 0; i < m; ++i) d0_[i] = r[schur_rows[i]];
-    PetscCall(VecRestoreArrayRead(root_, &r));
+    VecH layout;
+    PetscCall(MatCreateVecs(A, layout.out(), nullptr));
+    PetscCall(VecScatterCreateToZero(layout, &to_root_, root_.out()));
   }
   // The matrix values are no longer needed (no refactorisation).
   irn_.clear(), jcn_.clear(), val_.clear();

@@ -1,7 +1,6 @@
 // Pattern, constraint rows, KSP set-up and solve of the saddle-point system.
 #include "signorini/solver/saddle_point.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 namespace signorini {
@@ -113,7 +112,6 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
     }
     PetscCallMPI(MPI_Gatherv(mine.data(), n, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT, 0, comm));
     schur_rows_ = all;
-    PetscCall(MatCreateVecs(A_, diag_.out(), nullptr));
     PetscCall(VecCreateMPI(comm, dofs_->OwnedLambda(), PETSC_DECIDE, diag_lambda_.out()));
     PetscCall(VecScatterCreateToZero(diag_lambda_, &to_root_, diag_root_.out()));
     active_.assign(dofs_->OwnedLambda(), 0);
@@ -136,14 +134,12 @@ PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<ConstraintRo
 
 PetscErrorCode SaddlePointSystem::MultiplierDiagonal(std::vector<PetscScalar> &d) {
   PetscFunctionBeginUser;
-  PetscCall(MatGetDiagonal(A_, diag_));
-  const PetscScalar *a;
+  // The values SetConstraints wrote: 0 on active rows, 1/r on inactive ones.
   PetscScalar *dl;
-  PetscCall(VecGetArrayRead(diag_, &a));
+  const PetscScalar *a;
   PetscCall(VecGetArray(diag_lambda_, &dl));
-  for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) dl[p] = a[dofs_->OwnedU() + p];
+  for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) dl[p] = active_[p] ? 0.0 : 1.0 / aug_;
   PetscCall(VecRestoreArray(diag_lambda_, &dl));
-  PetscCall(VecRestoreArrayRead(diag_, &a));
   PetscCall(VecScatterBegin(to_root_, diag_lambda_, diag_root_, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(to_root_, diag_lambda_, diag_root_, INSERT_VALUES, SCATTER_FORWARD));
   PetscInt m;
@@ -181,7 +177,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
   if (reuse_) {
     std::vector<PetscScalar> d;
     PetscCall(MultiplierDiagonal(d));
-    if (!factored_) PetscCall(mumps_schur_.Factor(A_, schur_rows_, !lu_));
+    if (!factored_) PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_));
     factored_ = true;
     null_pivots = mumps_schur_.NullPivots();
     PetscCheck(null_pivots == 0, comm, PETSC_ERR_NOT_CONVERGED,

@@ -24,9 +24,10 @@ public:
   ~MumpsSchur();
 
   /// Analyses and factors A (parallel AIJ, symmetric; its values now are the ones factored) with the Schur
-  /// complement on the global rows `schur_rows` (given on rank 0 only, the order of D in Solve). symmetric: LDL^T
-  /// (MUMPS SYM = 2, LAPACK sytrf for S) or LU (SYM = 0, getrf). Collective.
-  [[nodiscard]] PetscErrorCode Factor(Mat A, const std::vector<PetscInt> &schur_rows, bool symmetric);
+  /// complement on the global rows `schur_rows`; d0: A's diagonal on those rows (both on rank 0 only, in the order of
+  /// D in Solve). symmetric: LDL^T (MUMPS SYM = 2, LAPACK sytrf for S) or LU (SYM = 0, getrf). Collective.
+  [[nodiscard]] PetscErrorCode Factor(Mat A, const std::vector<PetscInt> &schur_rows,
+                                      const std::vector<PetscScalar> &d0, bool symmetric);
   /// Solves with the factored matrix whose multiplier diagonal is replaced by d (rank 0, Schur order). Collective.
   [[nodiscard]] PetscErrorCode Solve(const std::vector<PetscScalar> &d, Vec b, Vec x);
   /// Null pivots MUMPS met in A11 (INFOG(28)).

@@ -71,7 +71,8 @@ public:
 private:
   [[nodiscard]] PetscErrorCode CreatePattern(const std::vector<ConstraintRow> &rows, Mat P) const;
   [[nodiscard]] PetscErrorCode SetupKsp(const std::vector<double> &coords, bool constant_k);
-  /// Reuse mode: the multiplier diagonal D of A on rank 0, in the order of schur_rows_. Collective.
+  /// Reuse mode: the multiplier diagonal D of A (from the active flags) on rank 0, in the order of schur_rows_.
+  /// Collective.
   [[nodiscard]] PetscErrorCode MultiplierDiagonal(std::vector<PetscScalar> &d);
   const DofMap *dofs_ = nullptr;
   bool reuse_ = false, factored_ = false;
@@ -80,7 +81,7 @@ private:
   std::vector<char> active_;          ///< owned multiplier rows active in the current system (reuse mode)
   std::vector<PetscInt> schur_rows_;  ///< rank 0: every multiplier row, in global order
   MumpsSchur mumps_schur_;
-  VecH diag_, diag_lambda_, diag_root_;
+  VecH diag_lambda_, diag_root_;
   VecScatter to_root_ = nullptr;      ///< multiplier diagonal to rank 0
   MatH A_;
   VecH x_, b_, r_;
