@@ -71,7 +71,21 @@ std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &s
   const auto vec3 = [](const std::array<double, 3> &v) { return std::vector<double>{v[0], v[1]}; };
   JsonWriter j;
   j.BeginObject();
-  j.String("status", "converged").String("reason", st.reason);
+  const Certificate &cert = solver.GetCertificate();
+  j.String("status", cert.Satisfied() ? "converged" : "not_converged").String("reason", st.reason);
+  j.BeginObject("certificate")
+      .Bool("satisfied", cert.Satisfied())
+      .Number("max_penetration", cert.max_penetration)
+      .Number("gap_tol", cert.gap_tol)
+      .Number("min_active_lambda", cert.min_active_lambda)
+      .Number("max_inactive_lambda", cert.max_inactive_lambda)
+      .Number("lambda_tol", cert.lambda_tol)
+      .Number("complementarity", cert.complementarity)
+      .Number("complementarity_tol", cert.complementarity_tol)
+      .Number("equilibrium", cert.equilibrium)
+      .Number("equilibrium_tol", cert.equilibrium_tol)
+      .Integer("changes", cert.changes)
+      .EndObject();
   j.BeginObject("mesh")
       .String("file", info.mesh_file)
       .Integer("nodes", solver.GetMesh().NumGlobalNodes())
@@ -95,7 +109,8 @@ std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &s
       .Integer("solves", st.solves)
       .Integer("krylov", st.krylov_iterations)
       .Integer("load_steps", st.steps)
-      .Integer("step_cuts", st.cuts);
+      .Integer("step_cuts", st.cuts)
+      .Integer("stabilised_solves", st.stabilised_solves);
   j.BeginArray("history");
   for (const auto &r : st.history)
     j.BeginObject()

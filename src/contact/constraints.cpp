@@ -16,7 +16,8 @@ void EvaluatePairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOpti
     const double *X = mesh.X(pair.vertex), *u = &u_local[pair.vertex * dim];
     double x[3] = {0, 0, 0};
     for (int d = 0; d < dim; ++d) x[d] = X[d] + u[d];
-    const Projection proj = obstacle.facets[pair.facet]->Project(x, opts.alpha_tol);
+    const Facet &facet = *obstacle.facets[pair.facet];
+    const Projection proj = facet.Project(x, opts.alpha_tol);
     states[p].inside = proj.inside;
     if (large_deformation) {
       states[p].gap = proj.gap;
@@ -26,6 +27,24 @@ void EvaluatePairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOpti
       for (int d = 0; d < dim; ++d) g += pair.n0[d] * u[d];
       states[p].gap = g;
       for (int d = 0; d < 3; ++d) normals[p][d] = pair.n0[d];
+    }
+    // The zone in which the gap counts. Linear material: fixed in the reference configuration with the linearised
+    // gap (zone0), so the constraints are fixed. svk: the current projection, or a node that went through the facet
+    // on the straight path X -> x (the gap, linear along the path for a flat facet, changes sign at
+    // t = g0 / (g0 - g); the crossing point must lie on the finite facet), or that started behind it in its strip.
+    const double g = states[p].gap;
+    states[p].entered = false;
+    states[p].crossing = 0;
+    if (!large_deformation) {
+      states[p].inside = pair.zone0;
+    } else if (pair.g0 >= 0 && g < 0) {
+      const double t = pair.g0 / (pair.g0 - g);
+      double c[3] = {0, 0, 0};
+      for (int d = 0; d < dim; ++d) c[d] = X[d] + t * u[d];
+      states[p].entered = facet.Project(c, opts.alpha_tol).inside;
+      states[p].crossing = t;
+    } else {
+      states[p].entered = pair.g0 < 0 && pair.inside0 && g < 0;
     }
     ConstraintRow &row = rows[p];
     row.ncols = 0;

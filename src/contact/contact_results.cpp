@@ -38,7 +38,7 @@ PetscErrorCode ComputeContactResults(ContactSolver &solver, const Material &mate
       maxes[3] = std::max(maxes[3], -st.lambda);
     }
     for (int k = 0; k < dim; ++k) local[k] += st.lambda * normals[p][k];
-    maxes[1] = std::max(maxes[1], -st.gap);
+    if (st.InZone()) maxes[1] = std::max(maxes[1], -st.gap);
     maxes[2] = std::max(maxes[2], std::abs(st.lambda * st.gap));
   }
   for (PetscInt v = 0; v < nv; ++v) {

@@ -136,18 +136,31 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
     if (all_fixed) candidate[v] = 0;
   }
   pairs.clear();
+  std::vector<double> distance;
   const FacetBins bins(obstacle, opts.search_radius);
   for (PetscInt v = 0; v < nv; ++v) {
     if (!candidate[v] || !mesh.Owned(v)) continue;
     const auto *near = bins.Find(mesh.X(v));
     if (!near) continue;
+    const std::size_t first = pairs.size();
     for (PetscInt f : *near) {
       const Facet &facet = *obstacle.facets[f];
       if (facet.Distance(mesh.X(v)) > opts.search_radius) continue;
       const Projection p = facet.Project(mesh.X(v), opts.alpha_tol);
-      ContactPair pair{v, f, {p.normal[0], p.normal[1], p.normal[2]}, p.gap, p.inside};
+      ContactPair pair{v, f, {p.normal[0], p.normal[1], p.normal[2]}, p.gap, p.inside, p.inside};
       pairs.push_back(pair);
+      distance.push_back(facet.Distance(mesh.X(v)));
     }
+    // A node over the wedge of a convex joint projects onto none of its facets: the nearest one (the first at a
+    // tie, both meeting at the joint) is its own.
+    bool any = false;
+    for (std::size_t p = first; p < pairs.size(); ++p) any = any || pairs[p].inside0;
+    std::size_t nearest = first;
+    for (std::size_t p = first; p < pairs.size(); ++p)
+      if (distance[p] < distance[nearest] - 1e-12 * opts.search_radius ||
+          (distance[p] <= distance[nearest] + 1e-12 * opts.search_radius && pairs[p].facet < pairs[nearest].facet))
+        nearest = p;
+    if (!any && nearest < pairs.size()) pairs[nearest].zone0 = true;
   }
   std::sort(pairs.begin(), pairs.end(), [&](const ContactPair &a, const ContactPair &b) {
     const PetscInt oa = mesh.VertexOriginal(a.vertex), ob = mesh.VertexOriginal(b.vertex);

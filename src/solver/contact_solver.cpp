@@ -93,7 +93,12 @@ PetscErrorCode ContactSolver::Setup() {
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, (PetscInt)from.size(), u_seq_.out()));
   PetscCall(VecScatterCreate(u_, is_from, u_seq_, nullptr, &scatter_));
   lambda_.assign(pairs_.size(), 0.0);
-  active_.assign(pairs_.size(), 0);
+  mult_.assign(pairs_.size(), 0.0);
+  active_set_.Reset(pairs_.size());
+  keys_.resize(pairs_.size());
+  for (std::size_t p = 0; p < pairs_.size(); ++p)
+    keys_[p] = {pairs_[p].vertex, mesh_.VertexOriginal(pairs_[p].vertex), pairs_[p].facet};
+  PetscCall(rigid_.Setup(mesh_, dirichlet_.fixed));
   (void)comm;
   PetscFunctionReturn(0);
 }
@@ -158,36 +163,6 @@ PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double
   PetscFunctionReturn(0);
 }
 
-void ContactSolver::DropParallelPairs(std::vector<char> &next) const {
-  // Two active pairs of one node with (nearly) the same normal, e.g. at the joint of collinear segments, are the
-  // same constraint twice and would make the saddle-point matrix singular: the pair of the later facet is dropped.
-  // Pairs are sorted by node, so a node's pairs are adjacent.
-  const double cos_parallel = std::cos(M_PI / 180.0);
-  for (std::size_t p = 0; p < pairs_.size(); ++p) {
-    if (!next[p]) continue;
-    for (std::size_t q = p + 1; q < pairs_.size() && pairs_[q].vertex == pairs_[p].vertex; ++q) {
-      double dot = 0;
-      for (int d = 0; d < 3; ++d) dot += normals_[p][d] * normals_[q][d];
-      if (next[q] && dot > cos_parallel) next[q] = 0;
-    }
-  }
-}
-
-PetscErrorCode ContactSolver::ActiveSetHash(const std::vector<char> &active, unsigned long long &h) const {
-  unsigned long long mine = 0;
-  PetscFunctionBeginUser;
-  for (std::size_t p = 0; p < pairs_.size(); ++p)
-    if (active[p]) {
-      unsigned long long z = (unsigned long long)mesh_.VertexOriginal(pairs_[p].vertex) * 1000003ULL +
-                             (unsigned long long)pairs_[p].facet + 0x9E3779B97F4A7C15ULL;
-      z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-      z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-      mine += z ^ (z >> 31);
-    }
-  PetscCallMPI(MPI_Allreduce(&mine, &h, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, mesh_.Comm()));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode ContactSolver::Monitor(const IterationRecord &r) const {
   PetscFunctionBeginUser;
   if (contact_.monitor)
@@ -204,11 +179,10 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
   MPI_Comm comm = mesh_.Comm();
   const bool large = material_.model == MaterialModel::SVK;
   const PetscInt max_it = large ? std::max(opts_.newton_max_it, contact_.max_it) : contact_.max_it;
-  const double force_tol = contact_.c * contact_.gap_tol;
-  std::vector<unsigned long long> seen;
   std::vector<char> next(pairs_.size());
   PetscInt krylov = 0;
   double last_solve_time = 0, solve_residual = 0;
+  bool stabilised = false; // the last solve carried the stabilisation springs (the active set did not hold the body)
   PetscFunctionBeginUser;
   ok = false;
   // The increment of the prescribed displacements enters through the first solve of the step (its Dirichlet rows
@@ -220,6 +194,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     if (dirichlet_.fixed[i]) delta[i] = factor * dirichlet_.value[i] - u_local_[i];
   PetscCall(VecZeroEntries(fext_));
   PetscCall(assembler_->AssembleLoads(bc_, factor, fext_));
+  active_set_.BeginStep();
   for (PetscInt it = 0;; ++it) {
     double rnorm, rscale;
     bool moving = false;
@@ -232,70 +207,64 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
       for (std::size_t i = 0; i < u_eval.size(); ++i) u_eval[i] = u_local_[i] + delta[i];
       EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_eval.data(), states_, rows_,
                     normals_);
-      if (large || it == 0) {
+      if (large || it == 0 || stabilised) {
         PetscCall(Residual(lambda_, rnorm, rscale));
       } else {
-        // Linear material after a solve: K du was solved for exactly (to the solve's residual), so F_int = f + B^T
-        // lambda on the free rows, without a pass over the cells; the monitor shows the solve's residual. The
-        // final state gets a full residual evaluation (Solve).
+        // Linear material after a solve: K du was solved for exactly (to the solve's residual), so F_int = f + B^T x
+        // on the free rows (x: the solved multipliers), without a pass over the cells; the monitor shows the
+        // solve's residual. A state that may be the solution gets a full residual evaluation below.
         PetscScalar *fi;
         const PetscScalar *fe;
         PetscCall(VecGetArray(fint_, &fi));
         PetscCall(VecGetArrayRead(fext_, &fe));
         for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) fi[i] = fe[i];
         for (std::size_t p = 0; p < pairs_.size(); ++p)
-          for (int k = 0; k < dim; ++k) fi[dofs_.LocalOffset(pairs_[p].vertex, k)] += lambda_[p] * normals_[p][k];
+          for (int k = 0; k < dim; ++k) fi[dofs_.LocalOffset(pairs_[p].vertex, k)] += mult_[p] * normals_[p][k];
         PetscCall(VecRestoreArrayRead(fext_, &fe));
         PetscCall(VecRestoreArray(fint_, &fi));
         rnorm = solve_residual;
+        rscale = 0;
       }
       PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
     }
-    // Active-set update (seed 4.1): first the pairs touching at the start, then the complementarity rule.
-    PetscInt counts[2] = {0, 0};
-    double mins[2] = {INFINITY, INFINITY};
+    // Active-set update: first the pairs touching at the start, then the complementarity rule (ActiveSet).
+    PetscInt changes = 0;
     {
       ScopedTimer t(stats_.time_active_set);
-      // Activation threshold: the deepest penetration of an inactive pair times -contact_activation_fraction.
-      double deepest = 0, gdeepest;
-      for (std::size_t p = 0; p < pairs_.size(); ++p)
-        if (!active_[p] && states_[p].inside) deepest = std::max(deepest, -states_[p].gap);
-      PetscCallMPI(MPI_Allreduce(&deepest, &gdeepest, 1, MPI_DOUBLE, MPI_MAX, comm));
-      // It damps the first update of a load step only, the overshoot after the solve with the initial (touching or
-      // previous) set; later updates activate every penetrating pair, so that the last pairs are not held back.
-      const double frac = it == 1 ? contact_.activation_fraction : 0.0;
-      const double activate_tol = std::max(force_tol, contact_.c * frac * gdeepest);
       for (std::size_t p = 0; p < pairs_.size(); ++p) {
         states_[p].lambda = lambda_[p];
-        states_[p].active = active_[p];
-        if (it == 0)
-          next[p] = first ? (states_[p].inside && states_[p].gap <= contact_.touch_tol) : active_[p];
-        else
-          next[p] = NextActive(states_[p], contact_.c, force_tol, activate_tol);
+        states_[p].active = active_set_.Flags()[p];
       }
-      DropParallelPairs(next);
-      for (std::size_t p = 0; p < pairs_.size(); ++p) {
-        counts[0] += next[p];
-        counts[1] += next[p] != active_[p];
-        if (active_[p]) mins[0] = std::min(mins[0], lambda_[p]);
-        mins[1] = std::min(mins[1], states_[p].gap);
-      }
+      if (it == 0) active_set_.First(states_, first, keys_, normals_, next);
+      else PetscCall(active_set_.Next(states_, it, keys_, normals_, next, changes));
     }
-    PetscInt gcounts[2];
-    double gmins[2];
-    PetscCallMPI(MPI_Allreduce(counts, gcounts, 2, MPIU_INT, MPI_SUM, comm));
-    PetscCallMPI(MPI_Allreduce(mins, gmins, 2, MPI_DOUBLE, MPI_MIN, comm));
-    const bool residual_ok = !large || rnorm <= opts_.newton_rtol * rscale + opts_.newton_atol;
-    IterationRecord rec{step,   it, gcounts[0], gcounts[1], krylov, factor, std::isfinite(gmins[0]) ? gmins[0] : 0.0,
-                        std::max(0.0, std::isfinite(gmins[1]) ? -gmins[1] : 0.0), rnorm, last_solve_time};
     if (it > 0) {
-      stats_.history.push_back(rec);
-      PetscCall(Monitor(rec));
-    }
-    if (it > 0 && gcounts[1] == 0 && residual_ok && !moving) {
-      stats_.reason = large ? "CONVERGED_ACTIVE_SET_AND_RESIDUAL" : "CONVERGED_ACTIVE_SET_UNCHANGED";
-      ok = true;
-      break;
+      PetscCall(RecordIteration(step, it, factor, next, changes, krylov, rnorm, last_solve_time));
+      // A state that may be the solution: certified, or the loop goes on (svk: Newton; linear: one more solve
+      // corrects an equilibrium residual left by an inexact solver) or stops with the violated condition.
+      if (changes == 0 && !moving && !stabilised) {
+        if (!large) PetscCall(Residual(lambda_, rnorm, rscale));
+        const double tol = opts_.newton_rtol * rscale + opts_.newton_atol;
+        if (rnorm <= tol || !large) {
+          Certificate cert;
+          PetscCall(active_set_.Certify(states_, keys_, normals_, rnorm, tol, cert));
+          if (cert.Satisfied()) {
+            stats_.reason = large ? "CONVERGED_ACTIVE_SET_AND_RESIDUAL" : "CONVERGED_ACTIVE_SET_UNCHANGED";
+            ok = true;
+            break;
+          }
+          if (cert.equilibrium <= cert.equilibrium_tol) {
+            stats_.reason = "DIVERGED_CERTIFICATE";
+            stats_.violation = cert.Violation();
+            break;
+          }
+        }
+      }
+      if (stabilised && changes == 0) {
+        // The springs let the body move along the rigid motions its active set leaves free, and no pair closed.
+        stats_.reason = "DIVERGED_NOT_HELD";
+        break;
+      }
     }
     if (!std::isfinite(rnorm)) {
       stats_.reason = "DIVERGED_NONINVERTIBLE_DEFORMATION";
@@ -305,17 +274,16 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
       stats_.reason = "DIVERGED_MAX_IT";
       break;
     }
-    unsigned long long h;
-    PetscCall(ActiveSetHash(next, h));
-    if (gcounts[1] > 0 && it > 0) {
-      const auto repeats = std::count(seen.begin(), seen.end(), h);
-      if (repeats >= (large ? 3 : 1)) {
-        stats_.reason = "DIVERGED_CYCLING";
-        break;
-      }
+    bool cycling;
+    PetscCall(active_set_.Seen(next, keys_, large ? 3 : 1, cycling));
+    if (cycling && changes > 0 && it > 0) {
+      stats_.reason = "DIVERGED_CYCLING";
+      break;
     }
-    seen.push_back(h);
-    active_ = next;
+    active_set_.Set(next);
+    bool held;
+    PetscCall(rigid_.Held(keys_, normals_, next, held));
+    stabilised = !held;
 
     {
       ScopedTimer t(stats_.time_assembly);
@@ -328,7 +296,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
         if (system_.ReusesFactorization()) PetscCall(system_.AddAugmentation(rows_));
         k_assembled_ = true;
       }
-      PetscCall(system_.SetConstraints(rows_, active_, -1.0 / kscale_));
+      PetscCall(system_.SetConstraints(rows_, next, -1.0 / kscale_, stabilised ? STABILISATION * kscale_ : 0.0));
       // Right-hand side: f - F_int on free rows, 0 on Dirichlet rows, the current gap on active multiplier rows.
       PetscScalar *b;
       const PetscScalar *fi, *fe;
@@ -348,7 +316,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
         if (mesh_.Owned(v))
           for (int k = 0; k < dim; ++k)
             if (dirichlet_.fixed[v * dim + k]) b[dofs_.LocalOffset(v, k)] = kscale_ * delta[v * dim + k];
-      for (std::size_t p = 0; p < pairs_.size(); ++p) b[dofs_.OwnedU() + p] = active_[p] ? states_[p].gap : 0.0;
+      for (std::size_t p = 0; p < pairs_.size(); ++p) b[dofs_.OwnedU() + p] = next[p] ? states_[p].gap : 0.0;
       PetscCall(VecRestoreArrayRead(fint_, &fi));
       PetscCall(VecRestoreArrayRead(fext_, &fe));
       PetscCall(VecRestoreArray(system_.Rhs(), &b));
@@ -366,12 +334,34 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     stats_.solves++;
     stats_.active_set_iterations++;
     stats_.krylov_iterations += krylov;
-    double step;
-    PetscCall(UpdateSolution(rnorm, step));
+    stats_.stabilised_solves += stabilised;
+    double step_length;
+    PetscCall(UpdateSolution(rnorm, step_length));
     // What a shortened step left of the prescribed increment comes in the next solve; a full step lands exactly.
-    for (double &d : delta) d *= 1.0 - step;
-    if (step == 1.0) PetscCall(SetDirichlet(factor));
+    for (double &d : delta) d *= 1.0 - step_length;
+    if (step_length == 1.0) PetscCall(SetDirichlet(factor));
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::RecordIteration(PetscInt step, PetscInt it, double factor, const std::vector<char> &next,
+                                              PetscInt changes, PetscInt krylov, double rnorm, double solve_time) {
+  // Active pairs of the next solve; min lambda over the current active set; deepest penetration in a pair's zone.
+  PetscInt count = 0, gcount;
+  double m[2] = {INFINITY, 0}, gm[2];
+  PetscFunctionBeginUser;
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    count += next[p];
+    if (states_[p].active) m[0] = std::min(m[0], lambda_[p]);
+    if (states_[p].InZone()) m[1] = std::max(m[1], -states_[p].gap);
+  }
+  m[0] = -m[0];
+  PetscCallMPI(MPI_Allreduce(&count, &gcount, 1, MPIU_INT, MPI_SUM, mesh_.Comm()));
+  PetscCallMPI(MPI_Allreduce(m, gm, 2, MPI_DOUBLE, MPI_MAX, mesh_.Comm()));
+  const IterationRecord rec{step, it, gcount, changes, krylov, factor, std::isfinite(gm[0]) ? -gm[0] : 0.0,
+                            gm[1], rnorm, solve_time};
+  stats_.history.push_back(rec);
+  PetscCall(Monitor(rec));
   PetscFunctionReturn(0);
 }
 
@@ -383,10 +373,12 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0, double &step) {
   const bool large = material_.model == MaterialModel::SVK;
   const PetscInt nu = dofs_.OwnedU();
   std::vector<double> new_lambda(pairs_.size());
+  const std::vector<char> &active = active_set_.Flags();
   PetscFunctionBeginUser;
   const PetscScalar *x;
   PetscCall(VecGetArrayRead(system_.Solution(), &x));
-  for (std::size_t p = 0; p < pairs_.size(); ++p) new_lambda[p] = x[nu + p];
+  // The solved multipliers: contact forces on active rows, stabilisation springs on inactive ones.
+  for (std::size_t p = 0; p < pairs_.size(); ++p) mult_[p] = x[nu + p], new_lambda[p] = active[p] ? x[nu + p] : 0.0;
   PetscCall(VecRestoreArrayRead(system_.Solution(), &x));
   PetscCall(VecCopy(u_, du_));
   // Step length: halved while det F <= 0 somewhere (always); with -newton_linesearch, the line search of Crisfield
@@ -441,7 +433,7 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
   PetscCall(VecDuplicate(u_, u_saved.out()));
   PetscCall(VecCopy(u_, u_saved));
   std::vector<double> lambda_saved = lambda_;
-  std::vector<char> active_saved = active_;
+  std::vector<char> active_saved = active_set_.Flags();
   double t = 0, dt = 1.0 / opts_.load_steps;
   PetscInt step = 0;
   while (t < 1.0 - 1e-12) {
@@ -457,17 +449,23 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
       stats_.steps = step;
       PetscCall(VecCopy(u_, u_saved));
       lambda_saved = lambda_;
-      active_saved = active_;
+      active_saved = active_set_.Flags();
       PetscCall(step_done(step, t));
       continue;
     }
     const std::string &why = stats_.reason;
-    const char *what = why == "DIVERGED_CYCLING" ? "the active set cycles (an earlier active set came back)"
-                       : why == "DIVERGED_NONINVERTIBLE_DEFORMATION"
-                           ? "the deformation became non-invertible (det F <= 0)"
-                           : "the active-set/Newton loop reached its iteration limit (-contact_max_it, -newton_max_it)";
-    PetscCheck(large && stats_.cuts < opts_.max_cuts, comm, PETSC_ERR_NOT_CONVERGED,
-               "the contact solve did not converge at load factor %g: %s%s", t_try, what,
+    const std::string what =
+        why == "DIVERGED_CYCLING"                     ? "the active set cycles (an earlier active set came back)"
+        : why == "DIVERGED_NONINVERTIBLE_DEFORMATION" ? "the deformation became non-invertible (det F <= 0)"
+        : why == "DIVERGED_NOT_HELD"
+            ? "the body is not held: along a rigid-body motion that the supports and the active contact leave free, "
+              "the load moves it away from every obstacle (add Dirichlet conditions, or check the obstacle's position "
+              "and orientation and -contact_search_radius)"
+        : why == "DIVERGED_CERTIFICATE"
+            ? "the state is not a contact solution (" + stats_.violation + ") and the active-set rule cannot change it"
+            : "the active-set/Newton loop reached its iteration limit (-contact_max_it, -newton_max_it)";
+    PetscCheck(large && stats_.cuts < opts_.max_cuts && why != "DIVERGED_NOT_HELD", comm, PETSC_ERR_NOT_CONVERGED,
+               "the contact solve did not converge at load factor %g: %s: %s%s", t_try, why.c_str(), what.c_str(),
                large ? "; no more load-step cuts allowed (-load_max_cuts)" : "");
     stats_.cuts++;
     dt *= 0.5;
@@ -476,14 +474,19 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     PetscCall(VecCopy(u_saved, u_));
     PetscCall(UpdateLocal());
     lambda_ = lambda_saved;
-    active_ = active_saved;
+    active_set_.Set(active_saved);
   }
-  // Final state of the pairs for the results.
+  // Final state of the pairs for the results, and its certificate.
   EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_local_.data(), states_, rows_,
                 normals_);
-  for (std::size_t p = 0; p < pairs_.size(); ++p) states_[p].lambda = lambda_[p], states_[p].active = active_[p];
+  for (std::size_t p = 0; p < pairs_.size(); ++p)
+    states_[p].lambda = lambda_[p], states_[p].active = active_set_.Flags()[p];
   double rnorm, rscale;
   PetscCall(Residual(lambda_, rnorm, rscale));
+  PetscCall(active_set_.Certify(states_, keys_, normals_, rnorm, opts_.newton_rtol * rscale + opts_.newton_atol,
+                                certificate_));
+  PetscCheck(certificate_.Satisfied(), comm, PETSC_ERR_NOT_CONVERGED,
+             "the final state is not a contact solution: %s", certificate_.Violation().c_str());
   PetscFunctionReturn(0);
 }
 

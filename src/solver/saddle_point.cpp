@@ -134,11 +134,11 @@ PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<ConstraintRo
 
 PetscErrorCode SaddlePointSystem::MultiplierDiagonal(std::vector<PetscScalar> &d) {
   PetscFunctionBeginUser;
-  // The values SetConstraints wrote: 0 on active rows, 1/r on inactive ones.
+  // The values SetConstraints wrote.
   PetscScalar *dl;
   const PetscScalar *a;
   PetscCall(VecGetArray(diag_lambda_, &dl));
-  for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) dl[p] = active_[p] ? 0.0 : 1.0 / aug_;
+  for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) dl[p] = active_[p] ? 0.0 : InactiveDiagonal(0.0);
   PetscCall(VecRestoreArray(diag_lambda_, &dl));
   PetscCall(VecScatterBegin(to_root_, diag_lambda_, diag_root_, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(to_root_, diag_lambda_, diag_root_, INSERT_VALUES, SCATTER_FORWARD));
@@ -151,20 +151,33 @@ PetscErrorCode SaddlePointSystem::MultiplierDiagonal(std::vector<PetscScalar> &d
 }
 
 PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<ConstraintRow> &rows,
-                                                 const std::vector<char> &active, double inactive_diag) {
+                                                 const std::vector<char> &active, double inactive_diag,
+                                                 double stabilisation) {
   const PetscScalar zeros[3] = {0, 0, 0};
   PetscFunctionBeginUser;
+  PetscCheck(stabilisation >= 0 && stabilisation < aug_, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ARG_OUTOFRANGE,
+             "stabilisation weight %g outside [0, %g)", stabilisation, aug_);
+  stab_ = stabilisation;
   for (std::size_t p = 0; p < rows.size(); ++p) {
     const PetscInt r = dofs_->LambdaRow((PetscInt)p);
-    const PetscScalar *v = active[p] || reuse_ ? rows[p].coef : zeros;
+    const bool keep = active[p] || reuse_ || stab_ > 0;
+    const PetscScalar *v = keep ? rows[p].coef : zeros;
     PetscCall(MatSetValues(A_, 1, &r, rows[p].ncols, rows[p].cols, v, INSERT_VALUES));
     PetscCall(MatSetValues(A_, rows[p].ncols, rows[p].cols, 1, &r, v, INSERT_VALUES));
-    PetscCall(MatSetValue(A_, r, r, active[p] ? 0.0 : reuse_ ? 1.0 / aug_ : inactive_diag, INSERT_VALUES));
+    PetscCall(MatSetValue(A_, r, r, active[p] ? 0.0 : InactiveDiagonal(inactive_diag), INSERT_VALUES));
   }
-  if (reuse_) active_ = active;
+  active_ = active;
   PetscCall(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
+}
+
+double SaddlePointSystem::InactiveDiagonal(double plain) const {
+  // Eliminating an inactive row -B_i du + D mu_i = 0 adds (r - 1/D) B_i^T B_i (augmented form) or -B_i^T B_i / D
+  // (plain form, row kept) to the displacement block: the spring stab_ B_i^T B_i, or nothing in the augmented form
+  // without stabilisation.
+  if (reuse_) return 1.0 / (aug_ - stab_);
+  return stab_ > 0 ? -1.0 / stab_ : plain;
 }
 
 PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &residual) {
@@ -214,14 +227,15 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
              "Dirichlet conditions or check that the obstacle touches it", finite ? (double)(rnorm / bnorm) : -1.0);
   residual = rnorm;
   if (reuse_) {
-    // Augmented form: an active row holds lambda - r g (g: its right-hand side), an inactive one r B du.
+    // Augmented form: an active row holds lambda - r g (g: its right-hand side), an inactive one (r - s) B du; the
+    // latter becomes the spring force -s B du of the plain form (0 without stabilisation).
     PetscScalar *x;
     const PetscScalar *b;
     PetscCall(VecGetArray(x_, &x));
     PetscCall(VecGetArrayRead(b_, &b));
     for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) {
       const PetscInt i = dofs_->OwnedU() + p;
-      x[i] = active_[p] ? x[i] + aug_ * b[i] : 0.0;
+      x[i] = active_[p] ? x[i] + aug_ * b[i] : -stab_ * x[i] / (aug_ - stab_);
     }
     PetscCall(VecRestoreArrayRead(b_, &b));
     PetscCall(VecRestoreArray(x_, &x));

@@ -1,25 +1,126 @@
-// The active-set rule (seed section 4.2.5) written as the primal-dual complementarity test: with the sign
-// convention g >= 0, lambda >= 0, lambda g = 0, a pair is active when lambda - c g > 0.
+// The active-set policy in one place: the activation rule (seed section 4.2.5 written as the primal-dual
+// complementarity test lambda - c g > 0, with the sign convention g >= 0, lambda >= 0, lambda g = 0), the zone in
+// which a pair's gap counts, the damping of the first update (-contact_activation_fraction), the first (touching)
+// set, the pruning of parallel pairs of one node, cycle detection, and the convergence certificate.
 #pragma once
+
+#include <petscsys.h>
+
+#include <array>
+#include <string>
+#include <vector>
 
 namespace signorini {
 
 /// State of one pair after a solve.
 struct PairState {
-  double lambda = 0;   ///< multiplier (normal contact force, >= 0 compressive)
-  double gap = 0;      ///< current gap (< 0 penetration)
-  bool inside = false; ///< the node projects onto the facet (0 <= alpha <= 1, seed Eq. 27)
-  bool active = false; ///< active in the solve that produced lambda
+  double lambda = 0;    ///< multiplier (normal contact force, >= 0 compressive)
+  double gap = 0;       ///< current gap (< 0 penetration): linearised (linear material) or current (svk)
+  bool inside = false;  ///< svk: the current position projects onto the facet (0 <= alpha <= 1, seed Eq. 27);
+                        ///< linear: the pair's reference zone (ContactPair::zone0)
+  bool entered = false; ///< the straight path X -> x crossed the finite facet from its open side (g0 >= 0 > g),
+                        ///< or the node started behind the facet within its strip (g0 < 0, X projects onto it)
+  bool active = false;  ///< active in the solve that produced lambda
+  double crossing = 0;  ///< where the path X -> x crossed the facet (0..1), when entered
+  /// The pair's gap counts: the node is over the facet now, or went (or started) through it.
+  bool InZone() const { return inside || entered; }
 };
 
-/// Whether the pair is active in the next solve. Only a pair whose node projects onto its facet can be active. An
-/// active pair stays active while lambda - c g > -tol (its multiplier is compressive); an inactive pair becomes
-/// active when it penetrates, lambda - c g > activate_tol (>= tol). c > 0 converts a gap to a force; the tolerances
-/// are forces.
+/// Whether the pair is active in the next solve. Only a pair in its zone can be active. An active pair stays
+/// active while lambda - c g > -tol (its multiplier is compressive); an inactive pair becomes active when it
+/// penetrates, lambda - c g > activate_tol (>= tol). c > 0 converts a gap to a force; the tolerances are forces.
 inline bool NextActive(const PairState &s, double c, double tol, double activate_tol) {
   const double score = s.lambda - c * s.gap;
-  return s.inside && (s.active ? score > -tol : score > activate_tol);
+  return s.InZone() && (s.active ? score > -tol : score > activate_tol);
 }
 inline bool NextActive(const PairState &s, double c, double tol) { return NextActive(s, c, tol, tol); }
+
+/// Identity of a pair: its local vertex (pairs of one vertex are adjacent), the vertex's number in the mesh file
+/// and the facet (both partition-independent).
+struct PairKey {
+  PetscInt vertex, original, facet;
+};
+
+/// Two active pairs of one node with normals within 1 degree, e.g. at the joint of collinear segments, are the same
+/// constraint twice and would make the saddle-point matrix singular: the later pair is dropped.
+void DropParallelPairs(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
+                       std::vector<char> &next);
+
+/// The set of the next solve: NextActive for each pair (activate_tol for the inactive ones), then, per node, among
+/// the pairs it would newly activate: if the node went through a facet on its path X -> x, only the facet it
+/// crossed first (at a tie, e.g. through the joint of two facets, the deeper penetration) is activated, not the
+/// facets whose infinite strip the displaced node happens to lie in; a node at a concave corner gets its second
+/// facet in a later iteration, once the first holds it. Then parallel pairs are pruned. keys: pairs of one node
+/// are adjacent.
+void ProposeSet(const std::vector<PairState> &states, double c, double tol, double activate_tol,
+                const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
+                std::vector<char> &next);
+
+/// The discrete Signorini conditions at a state, checked over every candidate pair; the residuals and the
+/// thresholds they are held to. Satisfied() is the only way the loop reports convergence.
+struct Certificate {
+  double max_penetration = 0;     ///< max -g over the pairs in their zone (0 when none penetrates)
+  double gap_tol = 0;             ///< -contact_gap_tol
+  double min_active_lambda = 0;   ///< min lambda over the active pairs (0 when none)
+  double lambda_tol = 0;          ///< c gap_tol: a multiplier above -lambda_tol counts as compressive
+  double max_inactive_lambda = 0; ///< max |lambda| over the inactive pairs
+  double complementarity = 0;     ///< max |lambda g| over the pairs
+  double complementarity_tol = 0; ///< gap_tol max(lambda) (lambda_tol when no multiplier is larger)
+  double equilibrium = 0;         ///< ||F_int - f - B^T lambda|| on the free rows
+  double equilibrium_tol = 0;     ///< -newton_rtol (||F_int|| + ||f||) + -newton_atol
+  PetscInt changes = 0;           ///< pairs the undamped rule would switch (the active set must be unchanged)
+  PetscInt active = 0;            ///< active pairs
+  bool Satisfied() const;
+  /// The first condition that fails, as a phrase for an error message; empty when satisfied.
+  std::string Violation() const;
+};
+
+/// The policy's parameters (from the -contact_ options).
+struct ActiveSetParams {
+  double c = 1;                   ///< -contact_complementarity_c
+  double gap_tol = 0;             ///< -contact_gap_tol
+  double touch_tol = 0;           ///< -contact_touch_tol
+  double activation_fraction = 0; ///< -contact_activation_fraction
+  double ForceTol() const { return c * gap_tol; }
+};
+
+/// The active set of the owned pairs and its history within a load step. Collective methods take the
+/// communicator given at construction.
+class ActiveSet {
+public:
+  ActiveSet(MPI_Comm comm, const ActiveSetParams &params) : comm_(comm), params_(params) {}
+  void Reset(std::size_t npairs) { active_.assign(npairs, 0); }
+  const std::vector<char> &Flags() const { return active_; }
+  void Set(const std::vector<char> &flags) { active_ = flags; }
+  /// Starts a load step: forgets the sets seen in the previous one.
+  void BeginStep() { seen_.clear(); }
+
+  /// The set of the first solve of a load step: in the first step the pairs in their zone whose gap is within
+  /// -contact_touch_tol, later the converged set of the previous step.
+  void First(const std::vector<PairState> &states, bool first_step, const std::vector<PairKey> &keys,
+             const std::vector<std::array<double, 3>> &normals, std::vector<char> &next) const;
+  /// The set of the next solve after iteration `it` (>= 1) of a load step. In iteration 1 only the pairs
+  /// penetrating deeper than -contact_activation_fraction times the deepest penetration of an inactive pair are
+  /// activated (the deepest always is), later every penetrating pair; parallel pairs are pruned. changes: global
+  /// number of switched pairs. Collective.
+  [[nodiscard]] PetscErrorCode Next(const std::vector<PairState> &states, PetscInt it, const std::vector<PairKey> &keys,
+                                    const std::vector<std::array<double, 3>> &normals, std::vector<char> &next,
+                                    PetscInt &changes) const;
+  /// Records `next` and tells whether it came back: an earlier set of this load step (`repeats` times before).
+  /// Collective.
+  [[nodiscard]] PetscErrorCode Seen(const std::vector<char> &next, const std::vector<PairKey> &keys, int repeats,
+                                    bool &cycling);
+  /// The certificate of a state: states hold the gaps, multipliers and active flags of the current set;
+  /// equilibrium and its tolerance come from the caller's residual. Collective.
+  [[nodiscard]] PetscErrorCode Certify(const std::vector<PairState> &states, const std::vector<PairKey> &keys,
+                                       const std::vector<std::array<double, 3>> &normals, double equilibrium,
+                                       double equilibrium_tol, Certificate &cert) const;
+
+private:
+  MPI_Comm comm_;
+  ActiveSetParams params_;
+  std::vector<char> active_;
+  std::vector<unsigned long long> seen_;
+};
 
 } // namespace signorini

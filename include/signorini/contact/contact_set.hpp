@@ -36,6 +36,9 @@ struct ContactPair {
   double n0[3];       ///< normal at the reference position
   double g0;          ///< initial gap (Eq. 8 with the sign of ARCHITECTURE.md: >= 0 open)
   bool inside0;       ///< projects inside the facet initially
+  bool zone0;         ///< the facet is one of the node's own in the reference configuration: X projects onto it,
+                      ///< or onto none of the node's facets and this one is the nearest (a node over the wedge of a
+                      ///< convex joint); the zone of the linear material
 };
 
 /// Finds the candidate pairs of the owned candidate nodes whose every component is not fixed (fixed[v*dim+k] != 0

@@ -6,6 +6,7 @@
 #include "signorini/contact/active_set.hpp"
 #include "signorini/contact/constraints.hpp"
 #include "signorini/contact/contact_set.hpp"
+#include "signorini/contact/rigid_modes.hpp"
 #include "signorini/fem/assembly.hpp"
 #include "signorini/solver/saddle_point.hpp"
 
@@ -38,15 +39,23 @@ struct IterationRecord {
 struct SolveStats {
   double time_assembly = 0, time_active_set = 0, time_solve = 0;
   PetscInt solves = 0, active_set_iterations = 0, krylov_iterations = 0, steps = 0, cuts = 0;
+  PetscInt stabilised_solves = 0; ///< solves with the stabilisation springs (the active set did not hold the body)
   std::vector<IterationRecord> history;
   std::string reason;
+  std::string violation; ///< the certificate's failed condition, with reason DIVERGED_CERTIFICATE
 };
 
 class ContactSolver {
 public:
   ContactSolver(const Mesh &mesh, const Material &material, const BoundaryConditions &bc, const Obstacle &obstacle,
                 const ContactOptions &contact, const SolverOptions &solver)
-      : mesh_(mesh), material_(material), bc_(bc), obstacle_(obstacle), contact_(contact), opts_(solver) {}
+      : mesh_(mesh), material_(material), bc_(bc), obstacle_(obstacle), contact_(contact), opts_(solver),
+        active_set_(mesh.Comm(), {contact.c, contact.gap_tol, contact.touch_tol, contact.activation_fraction}) {}
+
+  /// Weight of the springs on the normals of the inactive pairs, relative to the stiffness scale, in the solves
+  /// whose active set leaves a rigid-body motion free (RigidModes). They pull the increment towards the previous
+  /// iterate, so they vanish at convergence, and the final solve of a load step is always made without them.
+  static constexpr double STABILISATION = 1e-6;
 
   /// Dirichlet data, candidate pairs, numbering, the saddle-point system and its KSP. Collective.
   [[nodiscard]] PetscErrorCode Setup();
@@ -63,6 +72,8 @@ public:
   const std::vector<char> &Candidates() const { return candidate_; }
   const std::vector<double> &ULocal() const { return u_local_; }
   const SolveStats &Stats() const { return stats_; }
+  /// The certificate of the final state (Solve).
+  const Certificate &GetCertificate() const { return certificate_; }
   SaddlePointSystem &System() { return system_; }
   /// External load and internal force at the converged state (displacement rows of the saddle-point layout).
   Vec Fext() const { return fext_; }
@@ -78,8 +89,8 @@ private:
   [[nodiscard]] PetscErrorCode UpdateSolution(double residual_before, double &step);
   [[nodiscard]] PetscErrorCode LoadStep(PetscInt step, double factor, bool first, bool &ok);
   [[nodiscard]] PetscErrorCode Monitor(const IterationRecord &r) const;
-  void DropParallelPairs(std::vector<char> &next) const;
-  [[nodiscard]] PetscErrorCode ActiveSetHash(const std::vector<char> &active, unsigned long long &h) const;
+  [[nodiscard]] PetscErrorCode RecordIteration(PetscInt step, PetscInt it, double factor, const std::vector<char> &next,
+                                               PetscInt changes, PetscInt krylov, double rnorm, double solve_time);
 
   const Mesh &mesh_;
   const Material &material_;
@@ -89,7 +100,11 @@ private:
   const SolverOptions &opts_;
   DirichletData dirichlet_;
   std::vector<ContactPair> pairs_;
-  std::vector<char> candidate_, active_;
+  std::vector<char> candidate_;
+  std::vector<PairKey> keys_;
+  ActiveSet active_set_;
+  RigidModes rigid_;
+  Certificate certificate_;
   std::vector<PairState> states_;
   std::vector<ConstraintRow> rows_;
   std::vector<std::array<double, 3>> normals_;
@@ -98,7 +113,7 @@ private:
   SaddlePointSystem system_;
   VecH u_, du_, fext_, fint_, fdir_, u_seq_;
   VecScatter scatter_ = nullptr;
-  std::vector<double> u_local_, lambda_;
+  std::vector<double> u_local_, lambda_, mult_; ///< mult_: the solved multipliers (springs on inactive rows)
   double kscale_ = 1;
   bool k_assembled_ = false;
   SolveStats stats_;

@@ -61,11 +61,14 @@ public:
   [[nodiscard]] PetscErrorCode AddAugmentation(const std::vector<ConstraintRow> &rows);
   /// Writes the constraint rows. Plain form: active rows get their coefficients (in both B and B^T) and D = 0,
   /// inactive rows zeros and D = inactive_diag. Augmented form: every row keeps its coefficients, D = 0 on active
-  /// rows and 1/r on inactive ones. Ends with a final assembly of A. Collective.
+  /// rows and 1/r on inactive ones. stabilisation s > 0 (s < r) adds a spring s B_i^T B_i on the normal of every
+  /// inactive pair to the displacement block (plain form: the row kept with D = -1/s; augmented: D = 1/(r - s)), for a
+  /// body that the active set does not hold. Ends with a final assembly of A. Collective.
   [[nodiscard]] PetscErrorCode SetConstraints(const std::vector<ConstraintRow> &rows, const std::vector<char> &active,
-                                              double inactive_diag);
+                                              double inactive_diag, double stabilisation = 0);
   /// Solves A x = b; a failed or inaccurate solve is an error naming the likely cause. On return the multiplier
-  /// rows of the solution hold the contact multipliers lambda in both forms. residual: ||b - A x||. Collective.
+  /// rows of the solution hold, in both forms, the contact multipliers lambda on active rows and the spring forces
+  /// -s B du on inactive ones (0 without stabilisation), so that F_int(u + du) = f + B^T x on the free rows. residual: ||b - A x||. Collective.
   [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual);
 
 private:
@@ -74,11 +77,14 @@ private:
   /// Reuse mode: the multiplier diagonal D of A (from the active flags) on rank 0, in the order of schur_rows_.
   /// Collective.
   [[nodiscard]] PetscErrorCode MultiplierDiagonal(std::vector<PetscScalar> &d);
+  /// D on an inactive row (plain: the value of the plain form without stabilisation).
+  double InactiveDiagonal(double plain) const;
   const DofMap *dofs_ = nullptr;
   bool reuse_ = false, factored_ = false;
   PetscBool lu_ = PETSC_FALSE; ///< the PC is LU (the mumps_lu preset): the reuse mode factors with LU too
-  double aug_ = 1; ///< augmentation weight r (the stiffness scale)
-  std::vector<char> active_;          ///< owned multiplier rows active in the current system (reuse mode)
+  double aug_ = 1;  ///< augmentation weight r (the stiffness scale)
+  double stab_ = 0; ///< stabilisation spring s of the current system (0: none)
+  std::vector<char> active_;          ///< owned multiplier rows active in the current system
   std::vector<PetscInt> schur_rows_;  ///< rank 0: every multiplier row, in global order
   MumpsSchur mumps_schur_;
   VecH diag_lambda_, diag_root_;

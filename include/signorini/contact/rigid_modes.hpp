@@ -1,0 +1,37 @@
+// Which rigid-body motions the supports and a set of active contact constraints leave free: the Gram matrix
+// G = sum_r m_r m_r^T of the constraint rows applied to the rigid modes (d translations and d(d-1)/2 rotations
+// about the body's centre, scaled by its size) is singular exactly when some rigid motion violates no constraint.
+#pragma once
+
+#include "signorini/contact/active_set.hpp"
+#include "signorini/mesh/mesh.hpp"
+
+#include <array>
+#include <vector>
+
+namespace signorini {
+
+/// The values of the rigid modes (3 in 2D, 6 in 3D) at x, in direction dir: mode j contributes dir . m_j(x), where
+/// m_j(x) is a unit translation or a rotation (x - centre) / size about a coordinate axis. Returns the mode count.
+int RigidModeRow(int dim, const double *x, const double *centre, double size, const double *dir, double *row);
+
+/// Smallest eigenvalue of the symmetric n x n matrix a (row major, n <= 6) relative to its largest one (1 when a
+/// is zero: no information, treated as singular by the caller through its own count), by Jacobi rotations.
+double RelativeSmallestEigenvalue(int n, const double *a);
+
+class RigidModes {
+public:
+  /// Accumulates the Dirichlet rows (fixed[v*dim+k] marks a fixed dof) of the owned vertices. Collective.
+  [[nodiscard]] PetscErrorCode Setup(const Mesh &mesh, const std::vector<char> &fixed);
+  /// Whether the Dirichlet rows and the active pairs (normals at their vertices) hold every rigid mode. Collective.
+  [[nodiscard]] PetscErrorCode Held(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
+                                    const std::vector<char> &active, bool &held) const;
+
+private:
+  const Mesh *mesh_ = nullptr;
+  int nmodes_ = 3;
+  double centre_[3] = {0, 0, 0}, size_ = 1;
+  std::array<double, 36> g_dirichlet_{};
+};
+
+} // namespace signorini

@@ -1,0 +1,153 @@
+// The active-set policy: first set, activation with damping, parallel pairs, cycle detection, certificate.
+#include "signorini/contact/active_set.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace signorini {
+
+void DropParallelPairs(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
+                       std::vector<char> &next) {
+  const double cos_parallel = std::cos(M_PI / 180.0);
+  for (std::size_t p = 0; p < keys.size(); ++p) {
+    if (!next[p]) continue;
+    for (std::size_t q = p + 1; q < keys.size() && keys[q].vertex == keys[p].vertex; ++q) {
+      double dot = 0;
+      for (int d = 0; d < 3; ++d) dot += normals[p][d] * normals[q][d];
+      if (next[q] && dot > cos_parallel) next[q] = 0;
+    }
+  }
+}
+
+void ProposeSet(const std::vector<PairState> &states, double c, double tol, double activate_tol,
+                const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
+                std::vector<char> &next) {
+  next.resize(states.size());
+  for (std::size_t p = 0; p < states.size(); ++p) next[p] = NextActive(states[p], c, tol, activate_tol);
+  for (std::size_t a = 0; a < states.size();) {
+    std::size_t b = a;
+    while (b < states.size() && keys[b].vertex == keys[a].vertex) ++b;
+    // The node's pairs are [a, b): the first crossed of its newly activated entered pairs.
+    std::size_t first = b;
+    for (std::size_t p = a; p < b; ++p) {
+      if (!next[p] || states[p].active || !states[p].entered) continue;
+      if (first == b || states[p].crossing < states[first].crossing - 1e-9 ||
+          (states[p].crossing <= states[first].crossing + 1e-9 && states[p].gap < states[first].gap))
+        first = p;
+    }
+    if (first != b)
+      for (std::size_t p = a; p < b; ++p)
+        if (next[p] && !states[p].active && p != first) next[p] = 0;
+    a = b;
+  }
+  DropParallelPairs(keys, normals, next);
+}
+
+bool Certificate::Satisfied() const { return Violation().empty(); }
+
+std::string Certificate::Violation() const {
+  char text[256] = "";
+  if (!(max_penetration <= gap_tol))
+    std::snprintf(text, sizeof(text), "a node penetrates the obstacle by %g (-contact_gap_tol %g)", max_penetration,
+                  gap_tol);
+  else if (!(min_active_lambda >= -lambda_tol))
+    std::snprintf(text, sizeof(text), "an active pair carries a tensile multiplier %g (tolerance %g)",
+                  min_active_lambda, lambda_tol);
+  else if (!(max_inactive_lambda <= lambda_tol))
+    std::snprintf(text, sizeof(text), "an inactive pair carries a multiplier %g", max_inactive_lambda);
+  else if (!(complementarity <= complementarity_tol))
+    std::snprintf(text, sizeof(text), "complementarity max |lambda g| = %g exceeds %g", complementarity,
+                  complementarity_tol);
+  else if (!(equilibrium <= equilibrium_tol))
+    std::snprintf(text, sizeof(text), "the equilibrium residual %g exceeds %g (-newton_rtol, -newton_atol)",
+                  equilibrium, equilibrium_tol);
+  else if (changes != 0)
+    std::snprintf(text, sizeof(text), "the active-set rule would still switch %" PetscInt_FMT " pair(s)", changes);
+  return text;
+}
+
+void ActiveSet::First(const std::vector<PairState> &states, bool first_step, const std::vector<PairKey> &keys,
+                      const std::vector<std::array<double, 3>> &normals, std::vector<char> &next) const {
+  next.resize(states.size());
+  for (std::size_t p = 0; p < states.size(); ++p)
+    next[p] = first_step ? (states[p].InZone() && states[p].gap <= params_.touch_tol) : active_[p];
+  DropParallelPairs(keys, normals, next);
+}
+
+PetscErrorCode ActiveSet::Next(const std::vector<PairState> &states, PetscInt it, const std::vector<PairKey> &keys,
+                               const std::vector<std::array<double, 3>> &normals, std::vector<char> &next,
+                               PetscInt &changes) const {
+  PetscFunctionBeginUser;
+  // Activation threshold of the first update: the deepest penetration of an inactive pair times the fraction. It
+  // damps the overshoot after the solve with the initial (touching or previous) set; later updates activate every
+  // penetrating pair, so that the last pairs are not held back. The deepest pair always qualifies.
+  double deepest = 0, gdeepest;
+  for (std::size_t p = 0; p < states.size(); ++p)
+    if (!active_[p] && states[p].InZone()) deepest = std::max(deepest, -states[p].gap);
+  PetscCallMPI(MPI_Allreduce(&deepest, &gdeepest, 1, MPI_DOUBLE, MPI_MAX, comm_));
+  const double frac = it == 1 ? params_.activation_fraction : 0.0;
+  const double tol = params_.ForceTol(), activate_tol = std::max(tol, params_.c * frac * gdeepest);
+  std::vector<PairState> current = states;
+  for (std::size_t p = 0; p < states.size(); ++p) current[p].active = active_[p];
+  ProposeSet(current, params_.c, tol, activate_tol, keys, normals, next);
+  PetscInt mine = 0;
+  for (std::size_t p = 0; p < states.size(); ++p) mine += next[p] != active_[p];
+  PetscCallMPI(MPI_Allreduce(&mine, &changes, 1, MPIU_INT, MPI_SUM, comm_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ActiveSet::Seen(const std::vector<char> &next, const std::vector<PairKey> &keys, int repeats,
+                               bool &cycling) {
+  // An order-independent hash of the set (a sum of mixed keys), the same on every partition.
+  unsigned long long mine = 0, h;
+  PetscFunctionBeginUser;
+  for (std::size_t p = 0; p < keys.size(); ++p)
+    if (next[p]) {
+      unsigned long long z = (unsigned long long)keys[p].original * 1000003ULL + (unsigned long long)keys[p].facet +
+                             0x9E3779B97F4A7C15ULL;
+      z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+      z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+      mine += z ^ (z >> 31);
+    }
+  PetscCallMPI(MPI_Allreduce(&mine, &h, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm_));
+  cycling = std::count(seen_.begin(), seen_.end(), h) >= repeats;
+  seen_.push_back(h);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ActiveSet::Certify(const std::vector<PairState> &states, const std::vector<PairKey> &keys,
+                                  const std::vector<std::array<double, 3>> &normals, double equilibrium,
+                                  double equilibrium_tol, Certificate &cert) const {
+  // Local maxima: penetration, -min active lambda, max |inactive lambda|, max |lambda g|, max lambda.
+  double m[5] = {0, -INFINITY, 0, 0, 0}, g[5];
+  PetscInt counts[2] = {0, 0}, gcounts[2];
+  PetscFunctionBeginUser;
+  std::vector<char> next;
+  for (std::size_t p = 0; p < states.size(); ++p) {
+    const PairState &s = states[p];
+    if (s.InZone()) m[0] = std::max(m[0], -s.gap);
+    if (s.active) m[1] = std::max(m[1], -s.lambda), counts[1]++;
+    else m[2] = std::max(m[2], std::abs(s.lambda));
+    m[3] = std::max(m[3], std::abs(s.lambda * s.gap));
+    m[4] = std::max(m[4], s.lambda);
+  }
+  ProposeSet(states, params_.c, params_.ForceTol(), params_.ForceTol(), keys, normals, next);
+  for (std::size_t p = 0; p < states.size(); ++p) counts[0] += next[p] != (char)states[p].active;
+  PetscCallMPI(MPI_Allreduce(m, g, 5, MPI_DOUBLE, MPI_MAX, comm_));
+  PetscCallMPI(MPI_Allreduce(counts, gcounts, 2, MPIU_INT, MPI_SUM, comm_));
+  cert.max_penetration = std::max(0.0, g[0]);
+  cert.gap_tol = params_.gap_tol;
+  cert.min_active_lambda = gcounts[1] ? -g[1] : 0.0;
+  cert.lambda_tol = params_.ForceTol();
+  cert.max_inactive_lambda = g[2];
+  cert.complementarity = g[3];
+  cert.complementarity_tol = params_.gap_tol * std::max(g[4], cert.lambda_tol);
+  cert.equilibrium = equilibrium;
+  cert.equilibrium_tol = equilibrium_tol;
+  cert.changes = gcounts[0];
+  cert.active = gcounts[1];
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini
