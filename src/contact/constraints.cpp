@@ -30,21 +30,22 @@ void EvaluatePairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOpti
     }
     // The zone in which the gap counts. Linear material: fixed in the reference configuration with the linearised
     // gap (zone0), so the constraints are fixed. svk: the current projection, or a node that went through the facet
-    // on the straight path X -> x (the gap, linear along the path for a flat facet, changes sign at
-    // t = g0 / (g0 - g); the crossing point must lie on the finite facet), or that started behind it in its strip.
+    // on the straight path X -> x from an open start (the gap, linear along the path for a flat facet, changes sign at
+    // t = g0 / (g0 - g); the crossing point must lie on the finite facet), or that started behind it in its strip;
+    // a node touching at the start (|g0| <= -contact_touch_tol) has only its current projection.
     const double g = states[p].gap;
     states[p].entered = false;
     states[p].crossing = 0;
     if (!large_deformation) {
       states[p].inside = pair.zone0;
-    } else if (pair.g0 >= 0 && g < 0) {
+    } else if (pair.g0 > opts.touch_tol && g < 0) {
       const double t = pair.g0 / (pair.g0 - g);
       double c[3] = {0, 0, 0};
       for (int d = 0; d < dim; ++d) c[d] = X[d] + t * u[d];
       states[p].entered = facet.Project(c, opts.alpha_tol).inside;
       states[p].crossing = t;
     } else {
-      states[p].entered = pair.g0 < 0 && pair.inside0 && g < 0;
+      states[p].entered = pair.g0 < -opts.touch_tol && pair.inside0 && g < 0;
     }
     ConstraintRow &row = rows[p];
     row.ncols = 0;

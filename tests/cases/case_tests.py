@@ -441,3 +441,154 @@ def svk_rank_independence(runner):
         runner.expect_equal("%s on 2 ranks" % key, two.get(key), one.get(key))
     a, b = one.nodes(), two.nodes()
     runner.expect_close("displacement", displacement(b), displacement(a), 0, 1e-8 * np.abs(displacement(a)).max())
+
+
+# Nonlinear (St. Venant-Kirchhoff) cases, on the same harness (leaks, PETSc errors, unused options, certificate).
+def node_at(nodes, x, y):
+    """Displacement (u_x, u_y) of the node nearest to (x, y)."""
+    i = int(np.argmin((nodes["x"] - x) ** 2 + (nodes["y"] - y) ** 2))
+    return float(nodes["u_x"][i]), float(nodes["u_y"][i])
+
+
+@test("nonlinear_cantilever")
+def nonlinear_cantilever(runner):
+    """Large-deflection cantilever (svk) against Bisshopp & Drucker (1945)."""
+    # Bisshopp & Drucker (1945), Quart. Appl. Math. 3(3): cantilever with an end load, P L^2/(E I) = 1: vertical tip
+    # deflection 0.30172 L, horizontal 0.05643 L. Q1 elements are slightly stiff in bending (shear locking, about
+    # 0.5 % on this mesh of 160 x 8): 1.5 % bounds the discretisation error, not the theory.
+    r = runner.run(["-options_file", "options/cantilever_large.yml"], "cantilever")
+    ux, uy = node_at(r.nodes(), 10.0, 0.25)
+    runner.expect_close("tip deflection / L", -uy / 10, 0.30172, 0.015)
+    runner.expect_close("tip shortening / L", -ux / 10, 0.05643, 0.03)
+    runner.expect_equal("load steps", r.get("iterations.load_steps"), 4)
+
+
+@test("nonlinear_quadratic")
+def nonlinear_quadratic(runner):
+    """Newton with the consistent tangent converges quadratically in every load step."""
+    # Order p = log(r_n/r_n-1) / log(r_n-1/r_n-2) on the last three residuals above the round-off floor (1e-10 of
+    # the step's first residual): linear convergence gives p close to 1, Newton about 2.
+    r = runner.run(["-options_file", "options/cantilever_large.yml", "-load_steps", "8"], "cantilever 8 steps")
+    history = r.get("iterations.history")
+    for step in sorted({h["step"] for h in history}):
+        res = [h["residual"] for h in history if h["step"] == step]
+        res = [x for x in res if x > 1e-10 * res[0]]
+        if not runner.expect_true("step %d: %d iterations above round-off (>= 3)" % (step, len(res)), len(res) >= 3):
+            continue
+        p = np.log(res[-1] / res[-2]) / np.log(res[-2] / res[-3])
+        runner.expect_true("step %d: observed order %.2f >= 1.5" % (step, p), p >= 1.5)
+
+
+@test("nonlinear_small_load")
+def nonlinear_small_load(runner):
+    """As the load tends to zero, svk and linear elasticity agree."""
+    args = ["-options_file", "options/cantilever_large.yml", "-bc_traction", "right:0:-2.0833333333333e-6",
+            "-load_steps", "1"]
+    a = np.array(node_at(runner.run(args, "svk small load").nodes(), 10, 0.25))
+    b = np.array(node_at(runner.run(args + ["-material_model", "linear"], "linear small load").nodes(), 10, 0.25))
+    # The geometric nonlinearity is of the order of the load relative to E: below 1e-6 at this load.
+    runner.expect_close("svk vs linear tip displacement", a, b, 0, 1e-6 * np.linalg.norm(b))
+
+
+@test("nonlinear_hertz_small")
+def nonlinear_hertz_small(runner):
+    """Hertz at a 100 times smaller load: svk and linear half-width and peak pressure agree within 1 %."""
+    args = ["-bc_traction", "top:0:-0.00625", "-report_hertz", "8,0.1"]
+    svk = runner.run(args + ["-material_model", "svk"], "hertz svk")
+    lin = runner.run(args, "hertz linear")
+    for key in ("a_computed", "p0_computed"):
+        runner.expect_close("hertz %s svk vs linear" % key, svk.get("hertz." + key), lin.get("hertz." + key), 0.01)
+    runner.expect_true("svk run has contact", svk.get("contact.active_pairs") > 0)
+
+
+@test("nonlinear_sliding")
+def nonlinear_sliding(runner):
+    """svk block dragged across the joint of two collinear floor segments: the same as a one-segment floor."""
+    # Pressed 0.01 into the floor and dragged 1.5 along it by its top edge in 5 steps; the search radius covers the
+    # sliding distance.
+    args = ["-mesh_file", "meshes/block.msh", "-material_model", "svk", "-material_E", "1000", "-bc_dirichlet",
+            "top:x=1.5:y=-0.01", "-contact_groups", "bottom", "-load_steps", "5", "-contact_search_radius", "2"]
+    two = runner.run(args + ["-obstacle_segments", "-5,0,1,0,1,0,7,0"], "two-segment floor")
+    one = runner.run(args + ["-obstacle_segments", "-5,0,7,0"], "one-segment floor")
+    runner.expect_equal("active nodes, two segments", two.get("contact.active_nodes"), 20)
+    runner.expect_equal("active nodes, one segment", one.get("contact.active_nodes"), 20)
+    n2, n1 = two.nodes(), one.nodes()
+    crossed = int(np.sum((n2["y"] == 0) & (n2["x"] < 1) & (n2["x"] + n2["u_x"] > 1)))
+    runner.expect_true("%d bottom nodes slid across the joint (>= 3)" % crossed, crossed >= 3)
+    # Both floors are the same line: the converged states agree to the Newton tolerance.
+    runner.expect_close("two-segment floor = one-segment floor", displacement(n2), displacement(n1), 0, 1e-8)
+    runner.expect_close("contact force", two.get("contact.contact_force.1"), one.get("contact.contact_force.1"), 1e-8)
+
+
+def arc_segments(cx, cy, radius, theta0, theta1, n):
+    """The segments X0,Y0,X1,Y1,... of -obstacle_arcs CX,CY,R,THETA0,THETA1,N, as -obstacle_segments text."""
+    t = np.radians(theta0 + (theta1 - theta0) * np.arange(n + 1) / n)
+    x, y = cx + radius * np.cos(t), cy + radius * np.sin(t)
+    return ",".join("%.17g,%.17g,%.17g,%.17g" % (x[k], y[k], x[k + 1], y[k + 1]) for k in range(n))
+
+
+def expect_balance(runner, r, what):
+    """Contact force + reactions + applied load = 0 to round-off (1e-10 of the load)."""
+    total = np.array(r.get("contact.contact_force")) + np.array(r.get("contact.reaction_force")) + \
+        np.array(r.get("contact.applied_force"))
+    load = np.linalg.norm(r.get("contact.applied_force"))
+    runner.expect_close("%s: contact force + reactions + load" % what, total, [0, 0], 0, 1e-10 * load)
+
+
+@test("plate_on_arc")
+def plate_on_arc(runner):
+    """Clamped plate over a convex 30-segment arc: a first step far through the arc still ends on the arc."""
+    arc = runner.run(["-options_file", "options/plate_on_arc.yml"], "plate on arc")
+    # The first solve (no active pair) sends the free end tens of units through the arc; the activation must find
+    # the facets the nodes went through.
+    first = arc.get("iterations.history.0.max_penetration")
+    runner.expect_true("first solve penetrates deeply (%.3g > 10)" % first, first > 10)
+    runner.expect_true("at least 5 active nodes (%d)" % arc.get("contact.active_nodes"),
+                       arc.get("contact.active_nodes") >= 5)
+    expect_balance(runner, arc, "arcs")
+    segments = runner.run(["-options_file", "options/plate_on_arc.yml", "-obstacle_arcs", "",
+                           "-obstacle_segments", arc_segments(4.5, -4.1, 4, 150, 30, 30)], "plate on 30 segments")
+    runs = [segments] + [runner.run(["-options_file", "options/plate_on_arc.yml", "-contact_activation_fraction", f],
+                                    "plate on arc, activation fraction %s" % f) for f in ("0", "0.9")]
+    ref_nodes = arc.nodes()
+    for r in runs:
+        nodes = r.nodes()
+        runner.expect_equal("%s: active pairs" % r.label, r.get("contact.active_pairs"), arc.get("contact.active_pairs"))
+        runner.expect_equal("%s: active flags" % r.label, list(nodes["active"]), list(ref_nodes["active"]))
+        expect_balance(runner, r, r.label)
+        # The same active set gives the same linear system: equal to round-off (1e-10 of the largest value).
+        u = displacement(ref_nodes)
+        runner.expect_close("%s: displacement" % r.label, displacement(nodes), u, 0, 1e-10 * np.abs(u).max())
+        runner.expect_close("%s: lambda" % r.label, nodes["lambda"], ref_nodes["lambda"], 0,
+                            1e-10 * np.abs(ref_nodes["lambda"]).max())
+
+
+@test("block_in_notch")
+def block_in_notch(runner):
+    """Block held by contact alone in a three-wall notch: converges, and equals the same block held at one node."""
+    free = runner.run(["-options_file", "options/block_in_notch.yml"], "block in notch")
+    runner.expect_true("stabilised solves while the active set did not hold the block (%d)" %
+                       free.get("iterations.stabilised_solves"), free.get("iterations.stabilised_solves") >= 1)
+    expect_balance(runner, free, "unsupported block")
+    runner.expect_close("no reactions", free.get("contact.reaction_force"), [0, 0], 0, 0)
+    nodes = free.nodes()
+    # Contact on all three walls: the left side (x = 0), the floor (y = -0.05) and the inclined wall through (1, -0.05).
+    x, y = nodes["x"] + nodes["u_x"], nodes["y"] + nodes["u_y"]
+    active = nodes["active"] == 1
+    runner.expect_true("active on the left wall", np.any(active & (np.abs(x) < 1e-9)))
+    runner.expect_true("active on the floor", np.any(active & (np.abs(y + 0.05) < 1e-9) & (x < 1 - 1e-6)))
+    runner.expect_true("active on the inclined wall", np.any(active & (np.abs(y - x + 1.05) < 1e-9) & (x > 1 - 1e-9)))
+    # The same block with its top-left corner held where the contact solution puts it: the anchor carries no load,
+    # so the state is the same (1e-10 of the largest value), whatever the stabilisation did on the way.
+    corner = nodes[(nodes["x"] == 0) & (nodes["y"] == 1)]
+    ux, uy = float(corner["u_x"][0]), float(corner["u_y"][0])
+    held = runner.run(["-options_file", "options/block_in_notch.yml", "-bc_dirichlet",
+                       "anchor:x=%.17g:y=%.17g" % (ux, uy)], "block in notch, anchored")
+    ref = held.nodes()
+    runner.expect_equal("anchored: no stabilised solve", held.get("iterations.stabilised_solves"), 0)
+    runner.expect_equal("active flags", list(nodes["active"]), list(ref["active"]))
+    u = displacement(ref)
+    runner.expect_close("displacement = anchored", displacement(nodes), u, 0, 1e-10 * np.abs(u).max())
+    runner.expect_close("lambda = anchored", nodes["lambda"], ref["lambda"], 0, 1e-10 * np.abs(ref["lambda"]).max())
+    runner.expect_close("anchor reaction", held.get("contact.reaction_force"), [0, 0], 0,
+                        1e-10 * np.linalg.norm(held.get("contact.applied_force")))

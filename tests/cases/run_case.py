@@ -120,8 +120,24 @@ class Runner:
         if problems:
             raise CheckFailed("run '%s' failed (%s):\n  %s\n%s" % (label, "; ".join(problems), " ".join(cmd), out))
         result = Result(label, directory, out)
-        self.expect_equal("%s: status" % label, result.get("status"), "converged")
+        self.expect_certificate(result)
         return result
+
+    def expect_certificate(self, result):
+        """The state is a contact solution: the status comes from the certificate, and each residual of the
+        certificate is within its threshold (the thresholds are the program's, from -contact_gap_tol, c and
+        -newton_rtol/-newton_atol); the summary's penetration agrees with the certificate's."""
+        label, c = result.label, result.get("certificate")
+        self.expect_equal("%s: status" % label, result.get("status"), "converged")
+        self.expect_equal("%s: certificate satisfied" % label, c["satisfied"], True)
+        for what, value, bound in (("max penetration", c["max_penetration"], c["gap_tol"]),
+                                   ("-min active lambda", -c["min_active_lambda"], c["lambda_tol"]),
+                                   ("max inactive |lambda|", c["max_inactive_lambda"], c["lambda_tol"]),
+                                   ("complementarity", c["complementarity"], c["complementarity_tol"]),
+                                   ("equilibrium residual", c["equilibrium"], c["equilibrium_tol"]),
+                                   ("summary max penetration", result.get("contact.max_penetration"), c["gap_tol"])):
+            self.expect_true("%s: certificate %s %.3g <= %.3g" % (label, what, value, bound), value <= bound)
+        self.expect_equal("%s: certificate changes" % label, c["changes"], 0)
 
     def record(self, ok, text):
         print("  %s %s" % ("ok  " if ok else "FAIL", text))

@@ -18,8 +18,9 @@ struct PairState {
   double gap = 0;       ///< current gap (< 0 penetration): linearised (linear material) or current (svk)
   bool inside = false;  ///< svk: the current position projects onto the facet (0 <= alpha <= 1, seed Eq. 27);
                         ///< linear: the pair's reference zone (ContactPair::zone0)
-  bool entered = false; ///< the straight path X -> x crossed the finite facet from its open side (g0 >= 0 > g),
-                        ///< or the node started behind the facet within its strip (g0 < 0, X projects onto it)
+  bool entered = false; ///< svk: the straight path X -> x crossed the finite facet from its open side
+                        ///< (g0 > touch_tol, g < 0), or the node started behind the facet within its strip
+                        ///< (g0 < -touch_tol, X projects onto it)
   bool active = false;  ///< active in the solve that produced lambda
   double crossing = 0;  ///< where the path X -> x crossed the facet (0..1), when entered
   /// The pair's gap counts: the node is over the facet now, or went (or started) through it.
