@@ -31,7 +31,7 @@ PetscErrorCode ComputeContactResults(ContactSolver &solver, const Material &mate
     const PetscInt v = pairs[p].vertex;
     const PairState &st = states[p];
     nodes.lambda[v] += st.lambda;
-    nodes.gap[v] = std::isnan(nodes.gap[v]) ? st.gap : std::min(nodes.gap[v], st.gap);
+    if (st.InZone()) nodes.gap[v] = std::isnan(nodes.gap[v]) ? st.gap : std::min(nodes.gap[v], st.gap);
     if (st.active) {
       nodes.active[v] = 1;
       counts[2]++;

@@ -147,6 +147,12 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
       const Facet &facet = *obstacle.facets[f];
       if (facet.Distance(mesh.X(v)) > opts.search_radius) continue;
       const Projection p = facet.Project(mesh.X(v), opts.alpha_tol);
+      // A pair whose normal lies in the node's fixed components has an empty constraint row: the supports already
+      // hold the node in that direction.
+      double free2 = 0;
+      for (int k = 0; k < dim; ++k)
+        if (!fixed[v * dim + k]) free2 += p.normal[k] * p.normal[k];
+      if (free2 < 1e-12) continue;
       ContactPair pair{v, f, {p.normal[0], p.normal[1], p.normal[2]}, p.gap, p.inside, p.inside};
       pairs.push_back(pair);
       distance.push_back(facet.Distance(mesh.X(v)));

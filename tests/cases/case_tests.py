@@ -592,3 +592,67 @@ def block_in_notch(runner):
     runner.expect_close("lambda = anchored", nodes["lambda"], ref["lambda"], 0, 1e-10 * np.abs(ref["lambda"]).max())
     runner.expect_close("anchor reaction", held.get("contact.reaction_force"), [0, 0], 0,
                         1e-10 * np.linalg.norm(held.get("contact.applied_force")))
+
+
+def random_case(rng):
+    """Options of a random small contact problem: a unit block (notch_block.msh) or the 2 x 1 mixed block
+    (block.msh), linear or svk, supported on its left side or held only by contact, a random top traction, and a
+    floor or a disc (which may start penetrating the block) with an optional left wall and inclined wall."""
+    mesh, W = [("meshes/notch_block.msh", 1.0), ("meshes/block.msh", 2.0)][rng.integers(2)]
+    E = 10 ** rng.uniform(2, 4)
+    args = ["-mesh_file", mesh, "-material_E", "%.6g" % E, "-material_nu", "%.3f" % rng.uniform(0, 0.45),
+            "-contact_groups", "bottom,left,right"]
+    if rng.random() < 0.3:
+        args += ["-material_model", "svk"]
+    if rng.random() < 0.4:
+        args += ["-bc_dirichlet", "left:x"]
+    q = E * 10 ** rng.uniform(-4, -2)
+    args += ["-bc_traction", "top:%.6g:%.6g" % (q * rng.uniform(-0.3, 0.3), -q)]
+    floor = rng.uniform(-0.01, 0.05)  # negative: the block starts penetrating the floor
+    disc = rng.random() < 0.3  # a disc under the block instead of the flat floor
+    segments = [] if disc else [-0.5, -floor, W + 0.5, -floor]
+    if rng.random() < 0.6:
+        segments += [0, 2, 0, -0.5]  # a wall that the left side touches
+    if rng.random() < 0.4:
+        x0 = W * rng.uniform(0.6, 1.2)
+        segments += [x0, -floor, x0 + 1, -floor + rng.uniform(0.3, 1.5)]  # an inclined wall rising to the right
+    if segments:
+        args += ["-obstacle_segments", ",".join("%.6g" % v for v in segments)]
+    if disc:
+        args += ["-obstacle_discs", "%.6g,%.6g,%.6g" % (W * rng.uniform(0.3, 0.7), -floor - 1.0, 1.0)]
+    return args
+
+
+@test("random_cases")
+def random_cases(runner):
+    """Property test over 50 random small cases: every exit 0 is a certified contact state, checked again from the
+    node table; every failure is one clean error line and no output, never a hang."""
+    rng = np.random.default_rng(20261123)
+    outcomes = {"converged": 0, "refused": 0}
+    for seed in range(50):
+        args = random_case(rng)
+        status, out, r = runner.run_any(args, "random %d" % seed, timeout=60)
+        label = "seed %d (%s)" % (seed, " ".join(args))
+        if r is None:
+            outcomes["refused"] += 1
+            errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
+            runner.expect_true("%s: exit %d with one error line (%d)" % (label, status, len(errors)),
+                               status != 0 and len(errors) == 1 and "PETSC ERROR" not in out)
+            continue
+        outcomes["converged"] += 1
+        runner.expect_certificate(r)
+        # Independently of the certificate: no node in a pair's zone behind the obstacle beyond the gap tolerance,
+        # no tensile multiplier beyond its tolerance, balance of forces.
+        c, nodes = r.get("certificate"), r.nodes()
+        gaps = nodes["gap"][~np.isnan(nodes["gap"])]
+        runner.expect_true("%s: node gaps >= -gap_tol" % label, gaps.size == 0 or gaps.min() >= -c["gap_tol"])
+        runner.expect_true("%s: node multipliers >= -tol" % label, nodes["lambda"].min() >= -c["lambda_tol"])
+        total = np.array(r.get("contact.contact_force")) + np.array(r.get("contact.reaction_force")) + \
+            np.array(r.get("contact.applied_force"))
+        runner.expect_true("%s: force balance %.2g" % (label, np.linalg.norm(total)),
+                           np.linalg.norm(total) <= 1e-8 * np.linalg.norm(r.get("contact.applied_force")))
+    print("  outcomes: %s" % outcomes)
+    # Not a vacuous pass: a good part of the cases converge (many others are refused rightly: a horizontal load on a
+    # frictionless floor without a wall moves the block away for ever).
+    runner.expect_true("at least 15 of 50 random cases converge (%d)" % outcomes["converged"],
+                       outcomes["converged"] >= 15)

@@ -139,6 +139,23 @@ class Runner:
             self.expect_true("%s: certificate %s %.3g <= %.3g" % (label, what, value, bound), value <= bound)
         self.expect_equal("%s: certificate changes" % label, c["changes"], 0)
 
+    def run_any(self, args, label, timeout):
+        """Runs like run() but accepts a failure: returns (exit status, output, Result or None). A run still going
+        after timeout seconds is a hang and fails the test."""
+        self.count += 1
+        directory = os.path.join(self.workdir, "%02d_%s_np%d" % (self.count, re.sub(r"\W+", "_", label), self.np))
+        cmd = [self.mpiexec, "-n", str(self.np), self.exe] + [str(a) for a in args] + ["-output_dir", directory,
+                                                                                       "-malloc_dump"]
+        try:
+            proc = subprocess.run(cmd, cwd=self.source_dir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                  text=True, timeout=timeout)
+        except subprocess.TimeoutExpired:
+            raise CheckFailed("run '%s' hangs (still going after %g s):\n  %s" % (label, timeout, " ".join(cmd)))
+        if self.verbose:
+            print(proc.stdout)
+        ok = proc.returncode == 0 and os.path.exists(os.path.join(directory, "summary.json"))
+        return proc.returncode, proc.stdout, Result(label, directory, proc.stdout) if ok else None
+
     def record(self, ok, text):
         print("  %s %s" % ("ok  " if ok else "FAIL", text))
         if not ok:

@@ -18,7 +18,8 @@ struct ContactSummary {
   double max_displacement = 0, strain_energy = 0;
 };
 
-/// Per local vertex: summed multiplier, pressure lambda / (w t), smallest gap (NaN where the node has no pair),
+/// Per local vertex: summed multiplier, pressure lambda / (w t), smallest gap over its pairs in their zone (NaN
+/// where there is none),
 /// active flag. Collective.
 struct NodeContact {
   std::vector<double> lambda, pressure, gap, active;
