@@ -110,7 +110,8 @@ std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &s
       .Integer("krylov", st.krylov_iterations)
       .Integer("load_steps", st.steps)
       .Integer("step_cuts", st.cuts)
-      .Integer("stabilised_solves", st.stabilised_solves);
+      .Integer("stabilised_solves", st.stabilised_solves)
+      .Integer("repairings", st.repairings);
   j.BeginArray("history");
   for (const auto &r : st.history)
     j.BeginObject()

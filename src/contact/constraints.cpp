@@ -30,7 +30,7 @@ void EvaluatePairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOpti
     }
     // The zone in which the gap counts. Linear material: fixed in the reference configuration with the linearised
     // gap (zone0), so the constraints are fixed. svk: the current projection, or a node that went through the facet
-    // on the straight path X -> x from an open start (the gap, linear along the path for a flat facet, changes sign at
+    // on the straight path X -> x (X: where the pair was found) from an open start (the gap, linear along the path for a flat facet, changes sign at
     // t = g0 / (g0 - g); the crossing point must lie on the finite facet), or that started behind it in its strip;
     // a node touching at the start (|g0| <= -contact_touch_tol) has only its current projection.
     const double g = states[p].gap;
@@ -41,7 +41,7 @@ void EvaluatePairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOpti
     } else if (pair.g0 > opts.touch_tol && g < 0) {
       const double t = pair.g0 / (pair.g0 - g);
       double c[3] = {0, 0, 0};
-      for (int d = 0; d < dim; ++d) c[d] = X[d] + t * u[d];
+      for (int d = 0; d < dim; ++d) c[d] = pair.x0[d] + t * (x[d] - pair.x0[d]);
       states[p].entered = facet.Project(c, opts.alpha_tol).inside;
       states[p].crossing = t;
     } else {

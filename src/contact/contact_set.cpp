@@ -114,7 +114,7 @@ private:
 
 PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
                                 const std::vector<char> &fixed, std::vector<ContactPair> &pairs,
-                                std::vector<char> &candidate) {
+                                std::vector<char> &candidate, const double *u_local) {
   const int dim = mesh.Dim();
   const PetscInt nv = mesh.NumLocalVertices();
   PetscFunctionBeginUser;
@@ -140,22 +140,24 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
   const FacetBins bins(obstacle, opts.search_radius);
   for (PetscInt v = 0; v < nv; ++v) {
     if (!candidate[v] || !mesh.Owned(v)) continue;
-    const auto *near = bins.Find(mesh.X(v));
+    double x[3] = {0, 0, 0};
+    for (int k = 0; k < dim; ++k) x[k] = mesh.X(v)[k] + (u_local ? u_local[v * dim + k] : 0.0);
+    const auto *near = bins.Find(x);
     if (!near) continue;
     const std::size_t first = pairs.size();
     for (PetscInt f : *near) {
       const Facet &facet = *obstacle.facets[f];
-      if (facet.Distance(mesh.X(v)) > opts.search_radius) continue;
-      const Projection p = facet.Project(mesh.X(v), opts.alpha_tol);
+      if (facet.Distance(x) > opts.search_radius) continue;
+      const Projection p = facet.Project(x, opts.alpha_tol);
       // A pair whose normal lies in the node's fixed components has an empty constraint row: the supports already
       // hold the node in that direction.
       double free2 = 0;
       for (int k = 0; k < dim; ++k)
         if (!fixed[v * dim + k]) free2 += p.normal[k] * p.normal[k];
       if (free2 < 1e-12) continue;
-      ContactPair pair{v, f, {p.normal[0], p.normal[1], p.normal[2]}, p.gap, p.inside, p.inside};
+      ContactPair pair{v, f, {p.normal[0], p.normal[1], p.normal[2]}, p.gap, p.inside, p.inside, {x[0], x[1], x[2]}};
       pairs.push_back(pair);
-      distance.push_back(facet.Distance(mesh.X(v)));
+      distance.push_back(facet.Distance(x));
     }
     // A node over the wedge of a convex joint projects onto none of its facets: the nearest one (the first at a
     // tie, both meeting at the joint) is its own.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace signorini {
 
@@ -67,19 +68,32 @@ PetscErrorCode ContactSolver::Setup() {
   assembler_ = std::make_unique<Assembler>(mesh_, material_, dofs_, dirichlet_);
   PetscCall(assembler_->CheckCells());
   PetscCall(assembler_->StiffnessScale(kscale_));
+  u_local_.assign(mesh_.NumLocalVertices() * dim, 0.0);
+  paired_at_ = u_local_;
+  PetscCall(CreateSystem());
+  lambda_.assign(pairs_.size(), 0.0);
+  mult_.assign(pairs_.size(), 0.0);
+  active_set_.Reset(pairs_.size());
+  PetscCall(rigid_.Setup(mesh_, dirichlet_.fixed));
+  (void)comm;
+  PetscFunctionReturn(0);
+}
 
+PetscErrorCode ContactSolver::CreateSystem() {
+  const int dim = mesh_.Dim();
+  PetscFunctionBeginUser;
   // Coordinates of the owned vertices in dof order, for the rigid-body modes.
   std::vector<double> coords(dofs_.OwnedU());
   for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
     if (mesh_.Owned(v))
       for (int k = 0; k < dim; ++k) coords[dofs_.LocalOffset(v, k)] = mesh_.X(v)[k];
-  u_local_.assign(mesh_.NumLocalVertices() * dim, 0.0);
   EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, false, u_local_.data(), states_, rows_,
                 normals_);
-  PetscCall(system_.Create(dofs_, rows_, coords, material_.model != MaterialModel::SVK, kscale_,
-                           [&](Mat P) { return assembler_->InsertPattern(P); }));
-
-  PetscCall(MatCreateVecs(system_.A(), u_.out(), nullptr));
+  system_ = std::make_unique<SaddlePointSystem>();
+  PetscCall(system_->Create(dofs_, rows_, coords, material_.model != MaterialModel::SVK, kscale_,
+                            [&](Mat P) { return assembler_->InsertPattern(P); }));
+  k_assembled_ = false;
+  PetscCall(MatCreateVecs(system_->A(), u_.out(), nullptr));
   PetscCall(VecDuplicate(u_, du_.out()));
   PetscCall(VecDuplicate(u_, fext_.out()));
   PetscCall(VecDuplicate(u_, fint_.out()));
@@ -91,15 +105,90 @@ PetscErrorCode ContactSolver::Setup() {
   ISH is_from;
   PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)from.size(), from.data(), PETSC_COPY_VALUES, is_from.out()));
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, (PetscInt)from.size(), u_seq_.out()));
+  PetscCall(VecScatterDestroy(&scatter_));
   PetscCall(VecScatterCreate(u_, is_from, u_seq_, nullptr, &scatter_));
-  lambda_.assign(pairs_.size(), 0.0);
-  mult_.assign(pairs_.size(), 0.0);
-  active_set_.Reset(pairs_.size());
   keys_.resize(pairs_.size());
   for (std::size_t p = 0; p < pairs_.size(); ++p)
     keys_[p] = {pairs_[p].vertex, mesh_.VertexOriginal(pairs_[p].vertex), pairs_[p].facet};
-  PetscCall(rigid_.Setup(mesh_, dirichlet_.fixed));
-  (void)comm;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::Repair(const std::vector<double> &u_eval, bool force, bool &rebuilt) {
+  const int dim = mesh_.Dim();
+  PetscFunctionBeginUser;
+  rebuilt = false;
+  // Search again when a candidate node has moved more than half the search radius since the last search (or at the
+  // start of a load step): the pairs then cover every facet within half the radius of every node.
+  double moved = 0;
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    if (candidate_[v]) {
+      double d2 = 0;
+      for (int k = 0; k < dim; ++k) d2 += std::pow(u_eval[v * dim + k] - paired_at_[v * dim + k], 2);
+      moved = std::max(moved, std::sqrt(d2));
+    }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &moved, 1, MPI_DOUBLE, MPI_MAX, mesh_.Comm()));
+  if (!force && moved <= 0.5 * contact_.search_radius) PetscFunctionReturn(0);
+  std::vector<ContactPair> pairs;
+  std::vector<char> candidate;
+  PetscCall(FindContactPairs(mesh_, obstacle_, contact_, dirichlet_.fixed, pairs, candidate, u_eval.data()));
+  paired_at_ = u_eval;
+  bool same = pairs.size() == pairs_.size();
+  for (std::size_t p = 0; same && p < pairs.size(); ++p)
+    same = pairs[p].vertex == pairs_[p].vertex && pairs[p].facet == pairs_[p].facet;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_CXX_BOOL, MPI_LAND, mesh_.Comm()));
+  if (same) {
+    // The same pairs: keep their multipliers and active flags; only the start of the path moves.
+    for (std::size_t p = 0; p < pairs.size(); ++p) pairs_[p] = pairs[p];
+    PetscFunctionReturn(0);
+  }
+  // New pairs: carry the multiplier and the active flag of every pair that persists, then a new pattern.
+  std::map<std::pair<PetscInt, PetscInt>, std::size_t> old;
+  for (std::size_t p = 0; p < pairs_.size(); ++p) old[{pairs_[p].vertex, pairs_[p].facet}] = p;
+  std::vector<double> lambda(pairs.size(), 0.0), mult(pairs.size(), 0.0);
+  std::vector<char> active(pairs.size(), 0);
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const auto it = old.find({pairs[p].vertex, pairs[p].facet});
+    if (it == old.end()) continue;
+    lambda[p] = lambda_[it->second], mult[p] = mult_[it->second], active[p] = active_set_.Flags()[it->second];
+  }
+  PetscCall(AdoptPairs(std::move(pairs), lambda, mult, active));
+  stats_.repairings++;
+  rebuilt = true;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::AdoptPairs(std::vector<ContactPair> pairs, const std::vector<double> &lambda,
+                                         const std::vector<double> &mult, const std::vector<char> &active) {
+  PetscFunctionBeginUser;
+  std::vector<double> u_owned;
+  PetscCall(OwnedDisplacement(u_owned));
+  pairs_ = std::move(pairs);
+  PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size()));
+  PetscCall(CreateSystem());
+  PetscCall(SetOwnedDisplacement(u_owned));
+  lambda_ = lambda, mult_ = mult;
+  active_set_.Reset(pairs_.size());
+  active_set_.Set(active);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::OwnedDisplacement(std::vector<double> &u) const {
+  const PetscScalar *a;
+  PetscFunctionBeginUser;
+  // The displacement rows come first on every rank, in an order that does not depend on the pairs.
+  PetscCall(VecGetArrayRead(u_, &a));
+  u.assign(a, a + dofs_.OwnedU());
+  PetscCall(VecRestoreArrayRead(u_, &a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::SetOwnedDisplacement(const std::vector<double> &u) {
+  PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(u_, &a));
+  std::copy(u.begin(), u.end(), a);
+  PetscCall(VecRestoreArray(u_, &a));
+  PetscCall(UpdateLocal());
   PetscFunctionReturn(0);
 }
 
@@ -205,6 +294,16 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
       PetscCall(PetscLogEventBegin(EV_ASSEMBLY, 0, 0, 0, 0));
       // Gaps with the prescribed displacements in place (the constraint rows hold only the free components).
       for (std::size_t i = 0; i < u_eval.size(); ++i) u_eval[i] = u_local_[i] + delta[i];
+      if (large) {
+        // svk: pairs from the current configuration (new pairs mean a new pattern and a new analysis).
+        bool rebuilt;
+        PetscCall(Repair(u_eval, it == 0, rebuilt));
+        if (rebuilt) {
+          next.assign(pairs_.size(), 0);
+          PetscCall(VecZeroEntries(fext_));
+          PetscCall(assembler_->AssembleLoads(bc_, factor, fext_));
+        }
+      }
       EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_eval.data(), states_, rows_,
                     normals_);
       if (large || it == 0 || stabilised) {
@@ -289,18 +388,18 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
       ScopedTimer t(stats_.time_assembly);
       PetscCall(PetscLogEventBegin(EV_ASSEMBLY, 0, 0, 0, 0));
       if (large || !k_assembled_) {
-        PetscCall(MatZeroEntries(system_.A()));
-        PetscCall(assembler_->Assemble(u_local_.data(), system_.A(), kscale_, nullptr, nullptr));
-        PetscCall(MatAssemblyBegin(system_.A(), MAT_FLUSH_ASSEMBLY));
-        PetscCall(MatAssemblyEnd(system_.A(), MAT_FLUSH_ASSEMBLY));
-        if (system_.ReusesFactorization()) PetscCall(system_.AddAugmentation(rows_));
+        PetscCall(MatZeroEntries(system_->A()));
+        PetscCall(assembler_->Assemble(u_local_.data(), system_->A(), kscale_, nullptr, nullptr));
+        PetscCall(MatAssemblyBegin(system_->A(), MAT_FLUSH_ASSEMBLY));
+        PetscCall(MatAssemblyEnd(system_->A(), MAT_FLUSH_ASSEMBLY));
+        if (system_->ReusesFactorization()) PetscCall(system_->AddAugmentation(rows_));
         k_assembled_ = true;
       }
-      PetscCall(system_.SetConstraints(rows_, next, -1.0 / kscale_, stabilised ? STABILISATION * kscale_ : 0.0));
+      PetscCall(system_->SetConstraints(rows_, next, -1.0 / kscale_, stabilised ? STABILISATION * kscale_ : 0.0));
       // Right-hand side: f - F_int on free rows, 0 on Dirichlet rows, the current gap on active multiplier rows.
       PetscScalar *b;
       const PetscScalar *fi, *fe;
-      PetscCall(VecGetArray(system_.Rhs(), &b));
+      PetscCall(VecGetArray(system_->Rhs(), &b));
       PetscCall(VecGetArrayRead(fint_, &fi));
       PetscCall(VecGetArrayRead(fext_, &fe));
       for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) b[i] = fe[i] - fi[i];
@@ -319,14 +418,14 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
       for (std::size_t p = 0; p < pairs_.size(); ++p) b[dofs_.OwnedU() + p] = next[p] ? states_[p].gap : 0.0;
       PetscCall(VecRestoreArrayRead(fint_, &fi));
       PetscCall(VecRestoreArrayRead(fext_, &fe));
-      PetscCall(VecRestoreArray(system_.Rhs(), &b));
+      PetscCall(VecRestoreArray(system_->Rhs(), &b));
       PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
     }
     {
       ScopedTimer t(stats_.time_solve);
       const double t0 = MPI_Wtime();
       PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
-      PetscCall(system_.Solve(krylov, solve_residual));
+      PetscCall(system_->Solve(krylov, solve_residual));
       PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
       const double dt = MPI_Wtime() - t0;
       PetscCallMPI(MPI_Allreduce(&dt, &last_solve_time, 1, MPI_DOUBLE, MPI_MAX, comm));
@@ -376,18 +475,18 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0, double &step) {
   const std::vector<char> &active = active_set_.Flags();
   PetscFunctionBeginUser;
   const PetscScalar *x;
-  PetscCall(VecGetArrayRead(system_.Solution(), &x));
+  PetscCall(VecGetArrayRead(system_->Solution(), &x));
   // The solved multipliers: contact forces on active rows, stabilisation springs on inactive ones.
   for (std::size_t p = 0; p < pairs_.size(); ++p) mult_[p] = x[nu + p], new_lambda[p] = active[p] ? x[nu + p] : 0.0;
-  PetscCall(VecRestoreArrayRead(system_.Solution(), &x));
+  PetscCall(VecRestoreArrayRead(system_->Solution(), &x));
   PetscCall(VecCopy(u_, du_));
   // Step length: halved while det F <= 0 somewhere (always); with -newton_linesearch, the line search of Crisfield
   // along du on g(s) = du . R(u + s du, lambda): g(0) = -du.K du < 0, a full step is kept unless it overshoots
   // (g(1) > 0.8 |g(0)|), then the secant step; at most 8 trials.
   const PetscScalar *dx;
-  PetscCall(VecGetArrayRead(system_.Solution(), &dx));
+  PetscCall(VecGetArrayRead(system_->Solution(), &dx));
   std::vector<double> dir(dx, dx + nu);
-  PetscCall(VecRestoreArrayRead(system_.Solution(), &dx));
+  PetscCall(VecRestoreArrayRead(system_->Solution(), &dx));
   double g0 = 0;
   if (large && opts_.line_search) {
     double r, scale;
@@ -429,10 +528,10 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
   MPI_Comm comm = mesh_.Comm();
   const bool large = material_.model == MaterialModel::SVK;
   PetscFunctionBeginUser;
-  VecH u_saved;
-  PetscCall(VecDuplicate(u_, u_saved.out()));
-  PetscCall(VecCopy(u_, u_saved));
-  std::vector<double> lambda_saved = lambda_;
+  std::vector<double> u_saved;
+  PetscCall(OwnedDisplacement(u_saved));
+  std::vector<ContactPair> pairs_saved = pairs_;
+  std::vector<double> lambda_saved = lambda_, mult_saved = mult_;
   std::vector<char> active_saved = active_set_.Flags();
   double t = 0, dt = 1.0 / opts_.load_steps;
   PetscInt step = 0;
@@ -447,7 +546,9 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
       t = t_try;
       ++step;
       stats_.steps = step;
-      PetscCall(VecCopy(u_, u_saved));
+      PetscCall(OwnedDisplacement(u_saved));
+      pairs_saved = pairs_;
+      mult_saved = mult_;
       lambda_saved = lambda_;
       active_saved = active_set_.Flags();
       PetscCall(step_done(step, t));
@@ -471,9 +572,15 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     dt *= 0.5;
     PetscCall(PetscPrintf(comm, "Load step at factor %g failed (%s); cutting the increment to %g\n", t_try,
                           why.c_str(), dt));
-    PetscCall(VecCopy(u_saved, u_));
-    PetscCall(UpdateLocal());
+    PetscCall(SetOwnedDisplacement(u_saved));
+    if (pairs_.size() != pairs_saved.size() ||
+        !std::equal(pairs_.begin(), pairs_.end(), pairs_saved.begin(), [](const ContactPair &a, const ContactPair &b) {
+          return a.vertex == b.vertex && a.facet == b.facet;
+        }))
+      PetscCall(AdoptPairs(pairs_saved, lambda_saved, mult_saved, active_saved));
+    pairs_ = pairs_saved;
     lambda_ = lambda_saved;
+    mult_ = mult_saved;
     active_set_.Set(active_saved);
   }
   // Final state of the pairs for the results, and its certificate.

@@ -656,3 +656,25 @@ def random_cases(runner):
     # frictionless floor without a wall moves the block away for ever).
     runner.expect_true("at least 15 of 50 random cases converge (%d)" % outcomes["converged"],
                        outcomes["converged"] >= 15)
+
+
+@test("nonlinear_sliding_repair")
+def nonlinear_sliding_repair(runner):
+    """svk block dragged 1.5 along a floor of 24 short collinear segments with the default search radius (0.22,
+    less than the 0.3 it slides per load step): the pairs follow the current configuration, and the state equals
+    that of a one-segment floor with a radius covering the path."""
+    args = ["-mesh_file", "meshes/block.msh", "-material_model", "svk", "-material_E", "1000", "-bc_dirichlet",
+            "top:x=1.5:y=-0.01", "-contact_groups", "bottom", "-load_steps", "5"]
+    floor = ",".join("%g,0,%g,0" % (-1 + 0.25 * k, -0.75 + 0.25 * k) for k in range(24))
+    short = runner.run(args + ["-obstacle_segments", floor], "24-segment floor, default radius")
+    one = runner.run(args + ["-obstacle_segments", "-5,0,7,0", "-contact_search_radius", "2"],
+                     "one-segment floor, radius 2")
+    runner.expect_true("the pairs were searched again (%d)" % short.get("iterations.repairings"),
+                       short.get("iterations.repairings") >= 1)
+    runner.expect_equal("active nodes", short.get("contact.active_nodes"), one.get("contact.active_nodes"))
+    runner.expect_equal("every bottom node in contact", one.get("contact.active_nodes"), 20)
+    a, b = short.nodes(), one.nodes()
+    # Both floors are the same line: the converged states agree to the Newton tolerance.
+    runner.expect_close("24-segment floor = one-segment floor", displacement(a), displacement(b), 0, 1e-8)
+    runner.expect_close("contact force", short.get("contact.contact_force.1"), one.get("contact.contact_force.1"),
+                        1e-8)

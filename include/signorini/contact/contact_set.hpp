@@ -34,19 +34,22 @@ struct ContactPair {
   PetscInt vertex;    ///< local vertex
   PetscInt facet;     ///< index into Obstacle::facets
   double n0[3];       ///< normal at the reference position
-  double g0;          ///< initial gap (Eq. 8 with the sign of ARCHITECTURE.md: >= 0 open)
-  bool inside0;       ///< projects inside the facet initially
+  double g0;          ///< gap where the pair was found (Eq. 8 with the sign of ARCHITECTURE.md: >= 0 open)
+  bool inside0;       ///< projects inside the facet where the pair was found
+  double x0[3];       ///< position of the node when the pair was found (the reference, or the current position of
+                      ///< an svk re-pairing), the start of the path X -> x of the activation rule
   bool zone0;         ///< the facet is one of the node's own in the reference configuration: X projects onto it,
                       ///< or onto none of the node's facets and this one is the nearest (a node over the wedge of a
                       ///< convex joint); the zone of the linear material
 };
 
 /// Finds the candidate pairs of the owned candidate nodes whose every component is not fixed (fixed[v*dim+k] != 0
-/// marks a Dirichlet dof). Pairs are sorted by (node in file order, facet) so that every partition finds the same
-/// pairs. Collective.
+/// marks a Dirichlet dof), at the positions X + u_local (u_local: dim values per local vertex; null: the reference
+/// configuration). Pairs are sorted by (node in file order, facet) so that every partition finds the same pairs.
+/// Collective.
 [[nodiscard]] PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
                                               const std::vector<char> &fixed, std::vector<ContactPair> &pairs,
-                                              std::vector<char> &candidate);
+                                              std::vector<char> &candidate, const double *u_local = nullptr);
 
 /// Tributary length of every local candidate vertex: half of each adjacent boundary edge whose both ends are
 /// candidates (summed over ranks). Collective.

@@ -39,6 +39,7 @@ struct IterationRecord {
 struct SolveStats {
   double time_assembly = 0, time_active_set = 0, time_solve = 0;
   PetscInt solves = 0, active_set_iterations = 0, krylov_iterations = 0, steps = 0, cuts = 0;
+  PetscInt repairings = 0;        ///< svk: pair searches that changed the pairs (each rebuilds the pattern)
   PetscInt stabilised_solves = 0; ///< solves with the stabilisation springs (the active set did not hold the body)
   std::vector<IterationRecord> history;
   std::string reason;
@@ -74,13 +75,23 @@ public:
   const SolveStats &Stats() const { return stats_; }
   /// The certificate of the final state (Solve).
   const Certificate &GetCertificate() const { return certificate_; }
-  SaddlePointSystem &System() { return system_; }
+  SaddlePointSystem &System() { return *system_; }
   /// External load and internal force at the converged state (displacement rows of the saddle-point layout).
   Vec Fext() const { return fext_; }
   Vec Fint() const { return fint_; }
   double StiffnessScale() const { return kscale_; }
 
 private:
+  /// The saddle-point system, its vectors and the pair keys for the current pairs. Collective.
+  [[nodiscard]] PetscErrorCode CreateSystem();
+  /// svk: searches the pairs again at the current configuration u_eval (force, or when a candidate moved more than
+  /// half the search radius since the last search); new pairs rebuild the system (rebuilt). Collective.
+  [[nodiscard]] PetscErrorCode Repair(const std::vector<double> &u_eval, bool force, bool &rebuilt);
+  /// Takes new pairs (with their multipliers and active flags), keeping the displacement. Collective.
+  [[nodiscard]] PetscErrorCode AdoptPairs(std::vector<ContactPair> pairs, const std::vector<double> &lambda,
+                                          const std::vector<double> &mult, const std::vector<char> &active);
+  [[nodiscard]] PetscErrorCode OwnedDisplacement(std::vector<double> &u) const;
+  [[nodiscard]] PetscErrorCode SetOwnedDisplacement(const std::vector<double> &u);
   [[nodiscard]] PetscErrorCode UpdateLocal();
   /// Norm of R(u, lambda) = F_int - f - B^T lambda on the free rows, a force scale, and optionally direction . R.
   [[nodiscard]] PetscErrorCode Residual(const std::vector<double> &lambda, double &norm, double &scale,
@@ -110,7 +121,8 @@ private:
   std::vector<std::array<double, 3>> normals_;
   DofMap dofs_;
   std::unique_ptr<Assembler> assembler_;
-  SaddlePointSystem system_;
+  std::unique_ptr<SaddlePointSystem> system_;
+  std::vector<double> paired_at_; ///< displacement (per local vertex dof) at the last pair search
   VecH u_, du_, fext_, fint_, fdir_, u_seq_;
   VecScatter scatter_ = nullptr;
   std::vector<double> u_local_, lambda_, mult_; ///< mult_: the solved multipliers (springs on inactive rows)

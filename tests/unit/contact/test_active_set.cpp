@@ -1,5 +1,8 @@
 // The active-set rule NextActive on hand-built pair states.
 #include "signorini/contact/active_set.hpp"
+#include "signorini/contact/rigid_modes.hpp"
+
+#include <cmath>
 
 #include <gtest/gtest.h>
 
@@ -81,6 +84,96 @@ TEST(ActiveSet, ActivationToleranceOnlyDelaysActivation) {
   // The three-argument form uses one tolerance for both.
   const PairState s = State(false, true, -10 * TOL / C, 0.0);
   EXPECT_EQ(NextActive(s, C, TOL), NextActive(s, C, TOL, TOL));
+}
+
+} // namespace
+} // namespace signorini
+
+namespace signorini {
+namespace {
+
+std::vector<PairKey> Keys(std::initializer_list<PetscInt> vertices) {
+  std::vector<PairKey> keys;
+  PetscInt facet = 0;
+  for (PetscInt v : vertices) keys.push_back({v, v, facet++});
+  return keys;
+}
+
+TEST(ProposeSet, NodeThroughAFacetIsActivatedOnTheFacetItCrossedFirst) {
+  // One node, three facets: it crossed facet 1 (t = 0.3) and facet 2 (t = 0.7) and lies in the strip of facet 0.
+  std::vector<PairState> s(3);
+  for (auto &x : s) x.gap = -1.0;
+  s[0].inside = true;
+  s[1].entered = true, s[1].crossing = 0.3;
+  s[2].entered = true, s[2].crossing = 0.7;
+  const std::vector<std::array<double, 3>> n = {{{0, 1, 0}}, {{0.1, 1, 0}}, {{-0.1, 1, 0}}};
+  std::vector<char> next;
+  ProposeSet(s, C, TOL, TOL, Keys({0, 0, 0}), n, next);
+  EXPECT_EQ(next, (std::vector<char>{0, 1, 0}));
+}
+
+TEST(ProposeSet, TieAtAJointKeepsTheDeeperPenetration) {
+  std::vector<PairState> s(2);
+  s[0].entered = s[1].entered = true;
+  s[0].crossing = s[1].crossing = 0.5;
+  s[0].gap = -0.1, s[1].gap = -0.2;
+  const std::vector<std::array<double, 3>> n = {{{0.1, 1, 0}}, {{-0.1, 1, 0}}};
+  std::vector<char> next;
+  ProposeSet(s, C, TOL, TOL, Keys({0, 0}), n, next);
+  EXPECT_EQ(next, (std::vector<char>{0, 1}));
+}
+
+TEST(ProposeSet, ConcaveCornerKeepsBothFacets) {
+  // Both pairs of the corner node in their zone (no path crossing): both penetrating pairs are activated.
+  std::vector<PairState> s(2);
+  s[0].inside = s[1].inside = true;
+  s[0].gap = s[1].gap = -1e-3;
+  const std::vector<std::array<double, 3>> n = {{{1, 0, 0}}, {{0, 1, 0}}};
+  std::vector<char> next;
+  ProposeSet(s, C, TOL, TOL, Keys({0, 0}), n, next);
+  EXPECT_EQ(next, (std::vector<char>{1, 1}));
+}
+
+TEST(ProposeSet, ParallelPairsOfOneNodeCountOnce) {
+  std::vector<PairState> s(3);
+  for (auto &x : s) x.inside = true, x.gap = -1e-3;
+  const std::vector<std::array<double, 3>> n = {{{0, 1, 0}}, {{0, 1, 0}}, {{0, 1, 0}}};
+  std::vector<char> next;
+  ProposeSet(s, C, TOL, TOL, Keys({0, 0, 1}), n, next);
+  EXPECT_EQ(next, (std::vector<char>{1, 0, 1}));
+}
+
+TEST(Certificate, NamesTheFirstViolatedCondition) {
+  Certificate c;
+  c.gap_tol = 1e-9, c.lambda_tol = 1e-6, c.complementarity_tol = 1e-9, c.equilibrium_tol = 1e-8;
+  EXPECT_TRUE(c.Satisfied());
+  c.max_penetration = 1e-3;
+  EXPECT_NE(c.Violation().find("penetrates"), std::string::npos);
+  c.max_penetration = 0, c.min_active_lambda = -1;
+  EXPECT_NE(c.Violation().find("tensile"), std::string::npos);
+  c.min_active_lambda = 0, c.equilibrium = 1;
+  EXPECT_NE(c.Violation().find("equilibrium"), std::string::npos);
+  c.equilibrium = 0, c.changes = 2;
+  EXPECT_NE(c.Violation().find("switch"), std::string::npos);
+  c.changes = 0, c.equilibrium = NAN;
+  EXPECT_FALSE(c.Satisfied());
+}
+
+TEST(RigidModes, FloorAloneLeavesTheHorizontalTranslationFree) {
+  const double centre[2] = {0.5, 0.5}, up[2] = {0, 1}, right[2] = {1, 0};
+  double g[9] = {0}, row[3];
+  for (double x : {0.0, 0.5, 1.0}) {
+    const double X[2] = {x, 0};
+    ASSERT_EQ(RigidModeRow(2, X, centre, 1.0, up, row), 3);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) g[i * 3 + j] += row[i] * row[j];
+  }
+  EXPECT_LT(RelativeSmallestEigenvalue(3, g), 1e-12);
+  const double X[2] = {0, 0.5};
+  RigidModeRow(2, X, centre, 1.0, right, row);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) g[i * 3 + j] += row[i] * row[j];
+  EXPECT_GT(RelativeSmallestEigenvalue(3, g), 1e-3);
 }
 
 } // namespace
