@@ -10,6 +10,9 @@
 
 namespace signorini {
 
+/// Upper bound of -contact_max_it: an active set that needs more iterations is cycling, not converging.
+constexpr PetscInt CONTACT_MAX_IT_LIMIT = 10000;
+
 /// Contact options (prefix -contact_), read by ReadContactOptions.
 struct ContactOptions {
   std::vector<std::string> groups; ///< -contact_groups: physical groups of candidate nodes (default: whole boundary)
@@ -26,7 +29,7 @@ struct ContactOptions {
 };
 
 /// Reads and validates the -contact_ options; negative defaults are filled from the body's size and stiffness
-/// (length scale L, stiffness scale k). Collective.
+/// (length scale L, stiffness scale k), and the ranges of the tolerances are relative to them (README). Collective.
 [[nodiscard]] PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOptions &opts);
 
 /// One candidate pair, stored on the rank that owns its node.
