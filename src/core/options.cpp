@@ -121,10 +121,14 @@ PetscErrorCode OptionsStringList(PetscOptionItems *PetscOptionsObject, const cha
   PetscCheck(!raw.empty(), comm, PETSC_ERR_USER_INPUT,
              "%s is given without a value, which would leave %s; expected %s", name, empty_means, expected);
   items = Split(raw, ',');
-  for (std::size_t i = 0; i < items.size(); ++i)
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    // Blanks around an item are layout ("0,2, 0,0" in an options file), as PETSc's own list readers take them.
+    const auto first = items[i].find_first_not_of(" \t"), last = items[i].find_last_not_of(" \t");
+    items[i] = first == std::string::npos ? "" : items[i].substr(first, last - first + 1);
     PetscCheck(!items[i].empty(), comm, PETSC_ERR_USER_INPUT,
                "%s %s has an empty item %zu (an empty list would leave %s); expected %s", name, raw.c_str(), i + 1,
                empty_means, expected);
+  }
   PetscFunctionReturn(0);
 }
 

@@ -111,7 +111,7 @@ TEST(OptionsInt, OverflowOutOfRangeAndNonIntegersRepeatTheValueAsWritten) {
 TEST(OptionsRealList, ReadsEveryItemStrictly) {
   std::vector<double> values;
   PetscBool set = PETSC_FALSE;
-  ScopedOptions options({{"-test_list", "1,-2.5e1,.5"}});
+  ScopedOptions options({{"-test_list", "1, -2.5e1,.5 "}});
   EXPECT_EQ(ReadList(values, &set), 0);
   EXPECT_TRUE(set);
   EXPECT_EQ(values, (std::vector<double>{1, -25, 0.5}));
@@ -123,6 +123,7 @@ TEST(OptionsRealList, EmptyListsEmptyItemsAndBadNumbersAreErrors) {
   } cases[] = {{"", "-test_list is given without a value, which would leave no obstacle"},
                {",", "-test_list , has an empty item 1"},
                {"1,,2", "-test_list 1,,2 has an empty item 2"},
+               {"1, ,2", "-test_list 1, ,2 has an empty item 2"},
                {"1,0x10", "-test_list 1,0x10: value 2 '0x10' is invalid"},
                {"1,inf", "-test_list 1,inf: value 2 'inf' is invalid"}};
   for (const auto &c : cases) {
