@@ -1,25 +1,25 @@
 // Printed summary, summary.json and the Hertz comparison.
 #include "signorini/app/report.hpp"
 
+#include "signorini/core/options.hpp"
 #include "signorini/io/json.hpp"
 
 #include <cmath>
+#include <vector>
 
 namespace signorini {
 
 PetscErrorCode ReadReportOptions(MPI_Comm comm, HertzReport &hertz) {
-  PetscReal v[2];
-  PetscInt n = 2;
+  std::vector<double> v;
   PetscBool set = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Report", "signorini");
-  PetscCall(PetscOptionsRealArray("-report_hertz", "Compare with Hertz line contact: cylinder radius R, load P per "
-                                  "unit thickness (R,P)", "", v, &n, &set));
+  PetscCall(OptionsRealList(PetscOptionsObject, "-report_hertz", "Compare with Hertz line contact: cylinder radius R, "
+                            "load P per unit thickness (R,P)", "no comparison", "R,P", v, &set));
   PetscOptionsEnd();
   if (!set) PetscFunctionReturn(0);
-  PetscCheck(n == 2 && std::isfinite(v[0]) && std::isfinite(v[1]) && v[0] > 0 && v[1] > 0, comm,
-             PETSC_ERR_USER_INPUT, "-report_hertz expects two positive numbers R,P (cylinder radius, load per unit "
-             "thickness)");
+  PetscCheck(v.size() == 2 && v[0] > 0 && v[1] > 0, comm, PETSC_ERR_USER_INPUT,
+             "-report_hertz expects two positive numbers R,P (cylinder radius, load per unit thickness)");
   hertz.enabled = true;
   hertz.R = v[0];
   hertz.P = v[1];

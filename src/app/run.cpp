@@ -163,6 +163,7 @@ PetscErrorCode Run() {
 
   double L = 1;
   PetscCall(BodyDiagonal(mesh, L));
+  PetscCall(CheckLoadScale(comm, bc, L, material.E, material.thickness));
   PetscCall(ReadContactOptions(comm, L, material.E * material.thickness, contact));
   OutputWriter output;
   PetscCall(output.Open(mesh, output_opts));

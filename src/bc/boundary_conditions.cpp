@@ -1,32 +1,13 @@
 // Parsing of the boundary-condition and load options.
 #include "signorini/bc/boundary_conditions.hpp"
 
+#include "signorini/core/options.hpp"
 #include "signorini/core/parse.hpp"
 
 #include <cmath>
 
+
 namespace signorini {
-
-namespace {
-
-constexpr PetscInt MAX_ENTRIES = 256;
-
-PetscErrorCode ReadEntries(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, std::vector<std::string> &entries) {
-  char *values[MAX_ENTRIES];
-  PetscInt n = MAX_ENTRIES;
-  PetscBool set = PETSC_FALSE;
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsStringArray(name, help, "", values, &n, &set));
-  entries.clear();
-  if (set)
-    for (PetscInt i = 0; i < n; ++i) {
-      entries.emplace_back(values[i]);
-      PetscCall(PetscFree(values[i]));
-    }
-  PetscFunctionReturn(0);
-}
-
-} // namespace
 
 std::string ParseDirichlet(const std::string &entry, int dim, std::vector<DirichletSpec> &out) {
   const auto fields = Split(entry, ':');
@@ -73,17 +54,21 @@ std::string ParseLoad(const std::string &entry, int count, const char *what, Loa
 
 PetscErrorCode ReadBoundaryConditions(MPI_Comm comm, int dim, BoundaryConditions &bc) {
   std::vector<std::string> dirichlet, traction, pressure, point_force;
-  PetscReal body[MAX_ENTRIES];
-  PetscInt nbody = MAX_ENTRIES;
+  std::vector<double> body;
   PetscBool body_set = PETSC_FALSE;
+  const char *nothing = "no condition of this kind";
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Boundary conditions and loads", "signorini");
-  PetscCall(ReadEntries(PetscOptionsObject, "-bc_dirichlet", "Prescribed displacements GROUP:x=VALUE:y=VALUE,... (value defaults to 0)",
-                        dirichlet));
-  PetscCall(ReadEntries(PetscOptionsObject, "-bc_traction", "Tractions GROUP:TX:TY,... on physical curves (force per area)", traction));
-  PetscCall(ReadEntries(PetscOptionsObject, "-bc_pressure", "Pressures GROUP:P,... on physical curves, along the inward normal", pressure));
-  PetscCall(ReadEntries(PetscOptionsObject, "-bc_point_force", "Point forces GROUP:FX:FY,... on every node of the group", point_force));
-  PetscCall(PetscOptionsRealArray("-bc_body_force", "Body force per unit volume BX,BY", "", body, &nbody, &body_set));
+  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_dirichlet", "Prescribed displacements GROUP:x=VALUE:y=VALUE,... "
+                              "(value defaults to 0)", nothing, "GROUP:COMPONENT[=VALUE] items", dirichlet));
+  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_traction", "Tractions GROUP:TX:TY,... on physical curves (force "
+                              "per area)", nothing, "GROUP:TX:TY items", traction));
+  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_pressure", "Pressures GROUP:P,... on physical curves, along the "
+                              "inward normal", nothing, "GROUP:P items", pressure));
+  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_point_force", "Point forces GROUP:FX:FY,... on every node of "
+                              "the group", nothing, "GROUP:FX:FY items", point_force));
+  PetscCall(OptionsRealList(PetscOptionsObject, "-bc_body_force", "Body force per unit volume BX,BY", nothing, "BX,BY",
+                            body, &body_set));
   PetscOptionsEnd();
 
   bc = BoundaryConditions{};
@@ -109,13 +94,42 @@ PetscErrorCode ReadBoundaryConditions(MPI_Comm comm, int dim, BoundaryConditions
     }
   PetscCheck(error.empty(), comm, PETSC_ERR_USER_INPUT, "%s", error.c_str());
   if (body_set) {
-    PetscCheck(nbody == dim, comm, PETSC_ERR_USER_INPUT,
-               "-bc_body_force has %" PetscInt_FMT " value(s); expected %d (BX,BY)", nbody, dim);
-    for (PetscInt i = 0; i < nbody; ++i)
-      PetscCheck(std::isfinite(body[i]), comm, PETSC_ERR_USER_INPUT,
-                 "-bc_body_force value %" PetscInt_FMT " is not finite; expected finite numbers", i);
-    bc.body_force.assign(body, body + nbody);
+    PetscCheck((int)body.size() == dim, comm, PETSC_ERR_USER_INPUT,
+               "-bc_body_force has %zu value(s); expected %d (BX,BY)", body.size(), dim);
+    bc.body_force = body;
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckLoadScale(MPI_Comm comm, const BoundaryConditions &bc, double L, double E, double t) {
+  struct Limit {
+    const char *option;
+    std::string group;
+    double value, limit;
+    const char *scale;
+  };
+  std::vector<Limit> limits;
+  const struct {
+    const char *option;
+    const std::vector<LoadSpec> &loads;
+    double limit;
+    const char *scale;
+  } kinds[] = {{"-bc_traction", bc.traction, E, "E"},
+               {"-bc_pressure", bc.pressure, E, "E"},
+               {"-bc_point_force", bc.point_force, E * t * L, "E x thickness x body diagonal"}};
+  for (const auto &k : kinds)
+    for (const auto &l : k.loads)
+      for (double v : l.value) limits.push_back({k.option, "group '" + l.group + "' ", v, k.limit, k.scale});
+  for (double v : bc.body_force) limits.push_back({"-bc_body_force", "", v, E / L, "E / body diagonal"});
+  for (const auto &d : bc.dirichlet)
+    limits.push_back({"-bc_dirichlet", "group '" + d.group + "' ", d.value, L, "body diagonal"});
+  PetscFunctionBeginUser;
+  for (const auto &l : limits)
+    PetscCheck(std::abs(l.value) <= LOAD_SCALE_MAX * l.limit, comm, PETSC_ERR_USER_INPUT,
+               "%s %svalue %s is out of scale with the problem; expected |value| <= %s (%s x %s, %s = %s), beyond "
+               "which the discrete system overflows", l.option, l.group.c_str(), FormatNumber(l.value).c_str(),
+               FormatNumber(LOAD_SCALE_MAX * l.limit).c_str(), FormatNumber(LOAD_SCALE_MAX).c_str(), l.scale, l.scale,
+               FormatNumber(l.limit).c_str());
   PetscFunctionReturn(0);
 }
 

@@ -137,12 +137,12 @@ PetscErrorCode ActiveSet::Certify(const std::vector<PairState> &states, const st
   PetscCallMPI(MPI_Allreduce(m, g, 5, MPI_DOUBLE, MPI_MAX, comm_));
   PetscCallMPI(MPI_Allreduce(counts, gcounts, 2, MPIU_INT, MPI_SUM, comm_));
   cert.max_penetration = std::max(0.0, g[0]);
-  cert.gap_tol = params_.gap_tol;
+  cert.gap_tol = params_.GapTol();
   cert.min_active_lambda = gcounts[1] ? -g[1] : 0.0;
   cert.lambda_tol = params_.ForceTol();
   cert.max_inactive_lambda = g[2];
   cert.complementarity = g[3];
-  cert.complementarity_tol = params_.gap_tol * std::max(g[4], cert.lambda_tol);
+  cert.complementarity_tol = params_.GapTol() * std::max(g[4], cert.lambda_tol);
   cert.equilibrium = equilibrium;
   cert.equilibrium_tol = equilibrium_tol;
   cert.changes = gcounts[0];

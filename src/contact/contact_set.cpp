@@ -1,7 +1,7 @@
 // Contact options, the spatial search for candidate pairs, initial gaps and tributary lengths.
 #include "signorini/contact/contact_set.hpp"
 
-#include "signorini/core/parse.hpp"
+#include "signorini/core/options.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,60 +10,40 @@
 namespace signorini {
 
 PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOptions &opts) {
-  char *groups[64];
-  PetscInt ngroups = 64;
-  PetscBool set = PETSC_FALSE;
+  // Ranges (README): a penetration or touching gap beyond 1e-3 of the body's size is a visibly wrong state, alpha
+  // beyond 1e-2 projects a node off its facet, a radius beyond 1e5 diagonals pairs everything anyway (and keeps the
+  // bin search finite), and c far from E t makes lambda - c g compare numbers of unrelated magnitudes.
+  const RealRange radius{0, 1e5, true, false, L, "body diagonal"}, gap{0, 1e-3, false, false, L, "body diagonal"};
+  const RealRange alpha{0, 1e-2}, fraction{0, 1, false, true}, c{1e-6, 1e6, false, false, k, "E x thickness"};
   PetscFunctionBeginUser;
+  opts.length = L;
   opts.search_radius = 0.1 * L;
   opts.touch_tol = 1e-8 * L;
   opts.gap_tol = 1e-9 * L;
   opts.c = k;
   PetscOptionsBegin(comm, nullptr, "Contact options", "signorini");
-  PetscCall(PetscOptionsStringArray("-contact_groups", "Physical groups of candidate nodes (default: whole boundary)",
-                                    "", groups, &ngroups, &set));
-  PetscCall(PetscOptionsReal("-contact_search_radius", "Pair a node with the facets within this distance (default "
-                             "0.1 x body diagonal)", "", opts.search_radius, &opts.search_radius, nullptr));
-  PetscCall(PetscOptionsReal("-contact_touch_tol", "Initial gap that counts as touching (default 1e-8 x diagonal)", "",
-                             opts.touch_tol, &opts.touch_tol, nullptr));
-  PetscCall(PetscOptionsReal("-contact_gap_tol", "Penetration tolerance of the active-set rule (default 1e-9 x "
-                             "diagonal)", "", opts.gap_tol, &opts.gap_tol, nullptr));
-  PetscCall(PetscOptionsReal("-contact_alpha_tol", "Tolerance on the projection parameter alpha in [0,1]", "",
-                             opts.alpha_tol, &opts.alpha_tol, nullptr));
-  PetscCall(PetscOptionsReal("-contact_complementarity_c", "Weight c of the gap in the rule lambda - c g > 0 "
-                             "(default E x thickness)", "", opts.c, &opts.c, nullptr));
-  PetscCall(PetscOptionsReal("-contact_activation_fraction", "In the first update of a load step, activate only "
-                             "pairs penetrating deeper than this fraction of the deepest penetration (0: all)", "", opts.activation_fraction,
-                             &opts.activation_fraction, nullptr));
-  PetscCall(PetscOptionsInt("-contact_max_it", "Maximum active-set iterations per load step", "", opts.max_it,
-                            &opts.max_it, nullptr));
+  PetscCall(OptionsStringList(PetscOptionsObject, "-contact_groups", "Physical groups of candidate nodes (default: "
+                              "whole boundary)", "no candidate nodes", "physical group names", opts.groups));
+  PetscCall(OptionsReal(PetscOptionsObject, "-contact_search_radius", "Pair a node with the facets within this "
+                        "distance (default 0.1 x body diagonal)", radius, opts.search_radius));
+  PetscCall(OptionsReal(PetscOptionsObject, "-contact_touch_tol", "Initial gap that counts as touching (default 1e-8 "
+                        "x diagonal)", gap, opts.touch_tol));
+  PetscCall(OptionsReal(PetscOptionsObject, "-contact_gap_tol", "Penetration tolerance of the active-set rule "
+                        "(default 1e-9 x diagonal)", gap, opts.gap_tol));
+  PetscCall(OptionsReal(PetscOptionsObject, "-contact_alpha_tol", "Tolerance on the projection parameter alpha in "
+                        "[0,1]", alpha, opts.alpha_tol));
+  PetscCall(OptionsReal(PetscOptionsObject, "-contact_complementarity_c", "Weight c of the gap in the rule lambda - "
+                        "c g > 0 (default E x thickness)", c, opts.c));
+  PetscCall(OptionsReal(PetscOptionsObject, "-contact_activation_fraction", "In the first update of a load step, "
+                        "activate only pairs penetrating deeper than this fraction of the deepest penetration (0: all)",
+                        fraction, opts.activation_fraction));
+  PetscCall(OptionsInt(PetscOptionsObject, "-contact_max_it", "Maximum active-set iterations per load step", 1,
+                       CONTACT_MAX_IT_LIMIT, opts.max_it));
   PetscCall(PetscOptionsBool("-contact_monitor", "Print one line per active-set iteration", "", opts.monitor,
                              &opts.monitor, nullptr));
   PetscCall(PetscOptionsBool("-contact_converged_reason", "Print why the active-set loop stopped", "",
                              opts.converged_reason, &opts.converged_reason, nullptr));
   PetscOptionsEnd();
-  opts.groups.clear();
-  if (set)
-    for (PetscInt i = 0; i < ngroups; ++i) {
-      opts.groups.emplace_back(groups[i]);
-      PetscCall(PetscFree(groups[i]));
-    }
-  const struct {
-    const char *name;
-    double value;
-    bool zero_ok;
-  } positive[] = {{"-contact_search_radius", opts.search_radius, false},
-                  {"-contact_touch_tol", opts.touch_tol, true},
-                  {"-contact_gap_tol", opts.gap_tol, true},
-                  {"-contact_alpha_tol", opts.alpha_tol, true},
-                  {"-contact_complementarity_c", opts.c, false}};
-  for (const auto &p : positive)
-    PetscCheck(std::isfinite(p.value) && (p.value > 0 || (p.zero_ok && p.value == 0)), comm, PETSC_ERR_USER_INPUT,
-               "%s %g is invalid; expected a finite number %s 0", p.name, p.value, p.zero_ok ? ">=" : ">");
-  PetscCheck(std::isfinite(opts.activation_fraction) && opts.activation_fraction >= 0 && opts.activation_fraction < 1,
-             comm, PETSC_ERR_USER_INPUT, "-contact_activation_fraction %g is invalid; expected a number in [0, 1)",
-             opts.activation_fraction);
-  PetscCheck(opts.max_it >= 1, comm, PETSC_ERR_USER_INPUT, "-contact_max_it %" PetscInt_FMT " is invalid; expected >= 1",
-             opts.max_it);
   PetscFunctionReturn(0);
 }
 

@@ -1,8 +1,11 @@
 // Reading and validating the material options.
 #include "signorini/fem/material.hpp"
 
-#include <cmath>
-#include <cstring>
+#include "signorini/core/options.hpp"
+#include "signorini/core/parse.hpp"
+
+#include <limits>
+#include <string>
 
 namespace signorini {
 
@@ -10,24 +13,32 @@ PetscErrorCode ReadMaterialOptions(MPI_Comm comm, Material &m) {
   const char *models[] = {"linear", "svk"};
   const char *planes[] = {"strain", "stress"};
   PetscInt model = m.model == MaterialModel::SVK ? 1 : 0, plane = m.plane_stress ? 1 : 0;
+  const RealRange positive{0, std::numeric_limits<double>::infinity(), true, true};
+  const std::string scale = "; E x thickness in [" + FormatNumber(STIFFNESS_SCALE_MIN) + ", " +
+                            FormatNumber(STIFFNESS_SCALE_MAX) + "]";
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Material options", "signorini");
+  PetscCall(OptionsRequireValue(PetscOptionsObject, "-material_model", "linear or svk"));
   PetscCall(PetscOptionsEList("-material_model", "linear (small strain) or svk (St. Venant-Kirchhoff, Green-Lagrange)",
                               "", models, 2, models[model], &model, nullptr));
-  PetscCall(PetscOptionsReal("-material_E", "Young's modulus", "", m.E, &m.E, nullptr));
-  PetscCall(PetscOptionsReal("-material_nu", "Poisson's ratio", "", m.nu, &m.nu, nullptr));
+  PetscCall(OptionsReal(PetscOptionsObject, "-material_E", ("Young's modulus" + scale).c_str(), positive, m.E));
+  PetscCall(OptionsReal(PetscOptionsObject, "-material_nu", "Poisson's ratio", {-1, 0.5, true, true}, m.nu));
+  PetscCall(OptionsRequireValue(PetscOptionsObject, "-material_plane", "strain or stress"));
   PetscCall(PetscOptionsEList("-material_plane", "2D assumption: strain or stress", "", planes, 2, planes[plane],
                               &plane, nullptr));
-  PetscCall(PetscOptionsReal("-material_thickness", "Out-of-plane thickness", "", m.thickness, &m.thickness, nullptr));
+  PetscCall(OptionsReal(PetscOptionsObject, "-material_thickness", ("Out-of-plane thickness" + scale).c_str(),
+                        positive, m.thickness));
   PetscOptionsEnd();
   m.model = model == 1 ? MaterialModel::SVK : MaterialModel::LINEAR;
   m.plane_stress = plane == 1;
-  PetscCheck(std::isfinite(m.E) && m.E > 0, comm, PETSC_ERR_USER_INPUT,
-             "-material_E %g is invalid; expected a finite Young's modulus > 0", m.E);
-  PetscCheck(std::isfinite(m.nu) && m.nu > -1.0 && m.nu < 0.5, comm, PETSC_ERR_USER_INPUT,
-             "-material_nu %g is invalid; expected a Poisson's ratio in (-1, 0.5)", m.nu);
-  PetscCheck(std::isfinite(m.thickness) && m.thickness > 0, comm, PETSC_ERR_USER_INPUT,
-             "-material_thickness %g is invalid; expected a finite thickness > 0", m.thickness);
+  // E t is the scale of the stiffness and 1 / (E t) that of the multipliers' diagonal: outside these bounds the
+  // discrete system is numerically singular (the Hertz case fails at E t = 2e-8) or overflows.
+  const double k = m.E * m.thickness;
+  PetscCheck(k >= STIFFNESS_SCALE_MIN && k <= STIFFNESS_SCALE_MAX, comm, PETSC_ERR_USER_INPUT,
+             "-material_E %s with -material_thickness %s gives a stiffness scale E x thickness of %s; expected it in "
+             "[%s, %s], outside which the discrete system is numerically singular or overflows (rescale the units)",
+             FormatNumber(m.E).c_str(), FormatNumber(m.thickness).c_str(), FormatNumber(k).c_str(),
+             FormatNumber(STIFFNESS_SCALE_MIN).c_str(), FormatNumber(STIFFNESS_SCALE_MAX).c_str());
   PetscFunctionReturn(0);
 }
 

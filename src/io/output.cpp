@@ -2,6 +2,7 @@
 #include "signorini/io/output.hpp"
 
 #include "signorini/core/errors.hpp"
+#include "signorini/core/options.hpp"
 
 #include <hdf5.h>
 
@@ -16,14 +17,11 @@ namespace signorini {
 namespace fs = std::filesystem;
 
 PetscErrorCode ReadOutputOptions(MPI_Comm comm, OutputOptions &opts) {
-  char dir[PETSC_MAX_PATH_LEN] = "";
   PetscFunctionBeginUser;
-  PetscCall(PetscStrncpy(dir, opts.dir.c_str(), sizeof(dir)));
   PetscOptionsBegin(comm, nullptr, "Output", "signorini");
-  PetscCall(PetscOptionsString("-output_dir", "Directory for solution.h5/.xdmf, nodes.csv and summary.json (default: "
-                               "no files)", "", dir, dir, sizeof(dir), nullptr));
+  PetscCall(OptionsString(PetscOptionsObject, "-output_dir", "Directory for solution.h5/.xdmf, nodes.csv and "
+                          "summary.json (default: no files)", "a directory path", opts.dir));
   PetscOptionsEnd();
-  opts.dir = dir;
   PetscFunctionReturn(0);
 }
 

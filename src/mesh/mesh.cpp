@@ -2,6 +2,7 @@
 #include "signorini/mesh/mesh.hpp"
 
 #include "signorini/core/errors.hpp"
+#include "signorini/core/options.hpp"
 #include "signorini/core/parse.hpp"
 
 #include <metis.h>
@@ -42,24 +43,21 @@ PetscErrorCode BroadcastGroups(MPI_Comm comm, const SerialMesh &serial, std::vec
 
 } // namespace
 
+/// Bounds of -mesh_size_factor: 1e-3 already multiplies the element count of a .geo by a million.
+constexpr double MESH_SIZE_FACTOR_MIN = 1e-3, MESH_SIZE_FACTOR_MAX = 1e3;
+
 PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, MeshOptions &opts) {
-  char file[PETSC_MAX_PATH_LEN], part[64];
   PetscFunctionBeginUser;
-  PetscCall(PetscStrncpy(file, default_file.c_str(), sizeof(file)));
-  PetscCall(PetscStrncpy(part, opts.partitioner.c_str(), sizeof(part)));
+  opts.file = default_file;
   PetscOptionsBegin(comm, nullptr, "Mesh options", "signorini");
-  PetscCall(PetscOptionsString("-mesh_file", "gmsh mesh (.msh 2.2/4.1) or geometry (.geo, meshed in-process)", "",
-                               file, file, sizeof(file), nullptr));
-  PetscCall(PetscOptionsReal("-mesh_size_factor", "Mesh size factor applied when meshing a .geo file", "",
-                             opts.size_factor, &opts.size_factor, nullptr));
-  PetscCall(PetscOptionsString("-mesh_partitioner", "Partitioner: metis, ptscotch or simple", "", part, part,
-                               sizeof(part), nullptr));
+  PetscCall(OptionsString(PetscOptionsObject, "-mesh_file", "gmsh mesh (.msh 2.2/4.1) or geometry (.geo, meshed "
+                          "in-process)", "a .msh or .geo path", opts.file));
+  PetscCall(OptionsReal(PetscOptionsObject, "-mesh_size_factor", "Mesh size factor applied when meshing a .geo file",
+                        {MESH_SIZE_FACTOR_MIN, MESH_SIZE_FACTOR_MAX}, opts.size_factor));
+  PetscCall(OptionsString(PetscOptionsObject, "-mesh_partitioner", "Partitioner: metis, ptscotch or simple",
+                          "metis, ptscotch or simple", opts.partitioner));
   PetscOptionsEnd();
-  opts.file = file;
-  opts.partitioner = part;
   PetscCheck(!opts.file.empty(), comm, PETSC_ERR_USER_INPUT, "-mesh_file is empty; expected a .msh or .geo path");
-  PetscCheck(opts.size_factor > 0 && std::isfinite(opts.size_factor), comm, PETSC_ERR_USER_INPUT,
-             "-mesh_size_factor %g is invalid; expected a positive number", (double)opts.size_factor);
   PetscCheck(opts.partitioner == "metis" || opts.partitioner == "ptscotch" || opts.partitioner == "simple", comm,
              PETSC_ERR_USER_INPUT, "-mesh_partitioner '%s' is unknown; expected metis, ptscotch or simple",
              opts.partitioner.c_str());

@@ -1,18 +1,24 @@
 // Circle arcs as polylines: centre, radius, start and end angle (degrees), number of segments.
 #include "signorini/obstacles/obstacle.hpp"
 
+#include "signorini/core/parse.hpp"
+
 #include <cmath>
 
 namespace signorini {
+
+/// Segments of one arc: more would only cost memory and search time (a million segments resolve any radius).
+constexpr double MAX_ARC_SEGMENTS = 1e6;
 
 ShapeType ArcsShape() {
   return {"-obstacle_arcs",
           "Arcs CX,CY,R,THETA0,THETA1,NSEG,... in degrees; counter-clockwise (THETA1 > THETA0) puts the body inside", 6,
           [](const double *v, std::vector<std::unique_ptr<Facet>> &out) -> std::string {
             const double r = v[2], t0 = v[3] * M_PI / 180, t1 = v[4] * M_PI / 180;
-            if (r <= 0) return "has radius " + std::to_string(r) + " (expected > 0)";
-            if (v[5] < 1 || v[5] != std::floor(v[5]) || v[5] > 1e7)
-              return "has " + std::to_string(v[5]) + " segments (expected a whole number >= 1)";
+            if (r <= 0) return "has radius " + FormatNumber(r) + " (expected > 0)";
+            if (v[5] < 1 || v[5] != std::floor(v[5]) || v[5] > MAX_ARC_SEGMENTS)
+              return "has " + FormatNumber(v[5]) + " segments (expected a whole number in [1, " +
+                     FormatNumber(MAX_ARC_SEGMENTS) + "])";
             if (t0 == t1) return "has equal start and end angles";
             const int n = (int)v[5];
             for (int k = 0; k < n; ++k) {

@@ -1,6 +1,8 @@
 // A rigid disc with the body outside it: exact gap |x - c| - r and radial normal.
 #include "signorini/obstacles/obstacle.hpp"
 
+#include "signorini/core/parse.hpp"
+
 #include <cmath>
 #include <sstream>
 
@@ -34,7 +36,7 @@ std::string Disc::Describe() const {
 ShapeType DiscsShape() {
   return {"-obstacle_discs", "Rigid discs CX,CY,R,... (the body is outside)", 3,
           [](const double *v, std::vector<std::unique_ptr<Facet>> &out) -> std::string {
-            if (v[2] <= 0) return "has radius " + std::to_string(v[2]) + " (expected > 0)";
+            if (v[2] <= 0) return "has radius " + FormatNumber(v[2]) + " (expected > 0)";
             out.push_back(std::make_unique<Disc>(v, v[2]));
             return "";
           }};

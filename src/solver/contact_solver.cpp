@@ -1,6 +1,8 @@
 // The load-step / active-set / Newton loop.
 #include "signorini/solver/contact_solver.hpp"
 
+#include "signorini/core/options.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -23,31 +25,24 @@ private:
 } // namespace
 
 PetscErrorCode ReadSolverOptions(MPI_Comm comm, SolverOptions &opts) {
+  // Ranges (README): a relative residual above 1e-4 or an absolute one above 1e-6 (force units) would accept a
+  // visibly unconverged state; the counts are bounded so that a typo cannot start a run that never ends.
+  const RealRange rtol{0, SolverOptions::NEWTON_RTOL_MAX, true, false}, atol{0, SolverOptions::NEWTON_ATOL_MAX};
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Load stepping and Newton-Raphson", "signorini");
-  PetscCall(PetscOptionsInt("-load_steps", "Number of load increments", "", opts.load_steps, &opts.load_steps,
-                            nullptr));
-  PetscCall(PetscOptionsInt("-load_max_cuts", "Halvings allowed for a failed load increment", "", opts.max_cuts,
-                            &opts.max_cuts, nullptr));
-  PetscCall(PetscOptionsInt("-newton_max_it", "Newton/active-set iterations per load step (svk)", "",
-                            opts.newton_max_it, &opts.newton_max_it, nullptr));
-  PetscCall(PetscOptionsReal("-newton_rtol", "Residual tolerance relative to the force scale", "", opts.newton_rtol,
-                             &opts.newton_rtol, nullptr));
-  PetscCall(PetscOptionsReal("-newton_atol", "Absolute residual tolerance", "", opts.newton_atol, &opts.newton_atol,
-                             nullptr));
+  PetscCall(OptionsInt(PetscOptionsObject, "-load_steps", "Number of load increments", 1, SolverOptions::LOAD_STEPS_MAX,
+                       opts.load_steps));
+  PetscCall(OptionsInt(PetscOptionsObject, "-load_max_cuts", "Halvings allowed for a failed load increment", 0,
+                       SolverOptions::LOAD_MAX_CUTS_MAX, opts.max_cuts));
+  PetscCall(OptionsInt(PetscOptionsObject, "-newton_max_it", "Newton/active-set iterations per load step (svk)", 1,
+                       SolverOptions::NEWTON_MAX_IT_MAX, opts.newton_max_it));
+  PetscCall(OptionsReal(PetscOptionsObject, "-newton_rtol", "Residual tolerance relative to the force scale", rtol,
+                        opts.newton_rtol));
+  PetscCall(OptionsReal(PetscOptionsObject, "-newton_atol", "Absolute residual tolerance (force units)", atol,
+                        opts.newton_atol));
   PetscCall(PetscOptionsBool("-newton_linesearch", "Line search on du.R(u + s du) (det F <= 0 always halves the step)", "",
                              opts.line_search, &opts.line_search, nullptr));
   PetscOptionsEnd();
-  PetscCheck(opts.load_steps >= 1, comm, PETSC_ERR_USER_INPUT,
-             "-load_steps %" PetscInt_FMT " is invalid; expected >= 1", opts.load_steps);
-  PetscCheck(opts.max_cuts >= 0, comm, PETSC_ERR_USER_INPUT,
-             "-load_max_cuts %" PetscInt_FMT " is invalid; expected >= 0", opts.max_cuts);
-  PetscCheck(opts.newton_max_it >= 1, comm, PETSC_ERR_USER_INPUT,
-             "-newton_max_it %" PetscInt_FMT " is invalid; expected >= 1", opts.newton_max_it);
-  PetscCheck(std::isfinite(opts.newton_rtol) && opts.newton_rtol > 0, comm, PETSC_ERR_USER_INPUT,
-             "-newton_rtol %g is invalid; expected > 0", opts.newton_rtol);
-  PetscCheck(std::isfinite(opts.newton_atol) && opts.newton_atol >= 0, comm, PETSC_ERR_USER_INPUT,
-             "-newton_atol %g is invalid; expected >= 0", opts.newton_atol);
   PetscFunctionReturn(0);
 }
 

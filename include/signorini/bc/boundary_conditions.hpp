@@ -33,6 +33,16 @@ struct BoundaryConditions {
 /// later, when the conditions are applied). Collective.
 [[nodiscard]] PetscErrorCode ReadBoundaryConditions(MPI_Comm comm, int dim, BoundaryConditions &bc);
 
+/// Largest ratio of a load or prescribed displacement to the problem's scale (a strain-like number): beyond it the
+/// displacements exceed the default gap tolerance (1e-9 x diagonal) by 1e15, so rounding decides the active set, and
+/// far beyond it the system overflows.
+constexpr double LOAD_SCALE_MAX = 1e6;
+
+/// Refuses loads and prescribed displacements out of scale with the body (diagonal L) and the material (Young's
+/// modulus E, thickness t): |traction|, |pressure| <= LOAD_SCALE_MAX E; |point force| <= LOAD_SCALE_MAX E t L;
+/// |body force| <= LOAD_SCALE_MAX E / L; |prescribed displacement| <= LOAD_SCALE_MAX L. Collective.
+[[nodiscard]] PetscErrorCode CheckLoadScale(MPI_Comm comm, const BoundaryConditions &bc, double L, double E, double t);
+
 /// Parses one Dirichlet entry "GROUP:x=0:y=-0.1" (components x, y, z, or several letters such as xy sharing one
 /// value; the value defaults to 0). Returns an empty string on success, else what is wrong.
 std::string ParseDirichlet(const std::string &entry, int dim, std::vector<DirichletSpec> &out);

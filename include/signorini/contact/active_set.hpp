@@ -82,7 +82,10 @@ struct ActiveSetParams {
   double gap_tol = 0;             ///< -contact_gap_tol
   double touch_tol = 0;           ///< -contact_touch_tol
   double activation_fraction = 0; ///< -contact_activation_fraction
-  double ForceTol() const { return c * gap_tol; }
+  double length = 1;              ///< the body's diagonal
+  /// The gap tolerance, at least the round-off of gaps computed from coordinates of size `length` (1e-13 of it).
+  double GapTol() const { return gap_tol > 1e-13 * length ? gap_tol : 1e-13 * length; }
+  double ForceTol() const { return c * GapTol(); }
 };
 
 /// The active set of the owned pairs and its history within a load step. Collective methods take the

@@ -10,9 +10,13 @@
 
 namespace signorini {
 
+/// Upper bound of -contact_max_it: an active set that needs more iterations is cycling, not converging.
+constexpr PetscInt CONTACT_MAX_IT_LIMIT = 10000;
+
 /// Contact options (prefix -contact_), read by ReadContactOptions.
 struct ContactOptions {
   std::vector<std::string> groups; ///< -contact_groups: physical groups of candidate nodes (default: whole boundary)
+  double length = 1;               ///< the body's diagonal (the length scale of the tolerances)
   double search_radius = -1;       ///< -contact_search_radius: pair a node with facets closer than this
   double touch_tol = -1;           ///< -contact_touch_tol: initial gap counted as touching (first active set)
   double gap_tol = -1;             ///< -contact_gap_tol: penetration tolerance of the active-set rule
@@ -26,21 +30,21 @@ struct ContactOptions {
 };
 
 /// Reads and validates the -contact_ options; negative defaults are filled from the body's size and stiffness
-/// (length scale L, stiffness scale k). Collective.
+/// (length scale L, stiffness scale k), and the ranges of the tolerances are relative to them (README). Collective.
 [[nodiscard]] PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOptions &opts);
 
 /// One candidate pair, stored on the rank that owns its node.
 struct ContactPair {
   PetscInt vertex;    ///< local vertex
   PetscInt facet;     ///< index into Obstacle::facets
-  double n0[3];       ///< normal at the reference position
+  double n0[3];       ///< normal where the pair was found
   double g0;          ///< gap where the pair was found (Eq. 8 with the sign of ARCHITECTURE.md: >= 0 open)
   bool inside0;       ///< projects inside the facet where the pair was found
-  double x0[3];       ///< position of the node when the pair was found (the reference, or the current position of
-                      ///< an svk re-pairing), the start of the path X -> x of the activation rule
   bool zone0;         ///< the facet is one of the node's own in the reference configuration: X projects onto it,
                       ///< or onto none of the node's facets and this one is the nearest (a node over the wedge of a
                       ///< convex joint); the zone of the linear material
+  double x0[3];       ///< position of the node when the pair was found (the reference, or the current position of
+                      ///< an svk re-pairing), the start of the path X -> x of the activation rule
 };
 
 /// Finds the candidate pairs of the owned candidate nodes whose every component is not fixed (fixed[v*dim+k] != 0

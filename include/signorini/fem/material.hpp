@@ -7,6 +7,10 @@
 
 namespace signorini {
 
+/// Bounds of the stiffness scale E x thickness (absolute): outside them the saddle-point system, with entries of order
+/// E t and 1 / (E t), is numerically singular or overflows.
+constexpr double STIFFNESS_SCALE_MIN = 1e-6, STIFFNESS_SCALE_MAX = 1e24;
+
 enum class MaterialModel { LINEAR, SVK };
 
 /// Isotropic elastic material in 2D (plane strain or plane stress) or 3D.
@@ -29,7 +33,8 @@ struct Material {
   const char *ModelName() const { return model == MaterialModel::SVK ? "svk" : "linear"; }
 };
 
-/// Reads and validates the -material_ options. Collective.
+/// Reads and validates the -material_ options (E and thickness > 0 with E t in [STIFFNESS_SCALE_MIN,
+/// STIFFNESS_SCALE_MAX], nu in (-1, 0.5)). Collective.
 [[nodiscard]] PetscErrorCode ReadMaterialOptions(MPI_Comm comm, Material &m);
 
 } // namespace signorini

@@ -18,11 +18,15 @@
 namespace signorini {
 
 struct SolverOptions {
-  PetscInt load_steps = 1;    ///< -load_steps
-  PetscInt max_cuts = 5;      ///< -load_max_cuts: halvings of a failed load increment
-  PetscInt newton_max_it = 30; ///< -newton_max_it (svk): iterations per load step
-  double newton_rtol = 1e-9;  ///< -newton_rtol: residual relative to the load scale
-  double newton_atol = 1e-12; ///< -newton_atol
+  /// Upper bounds of the counts and tolerances (README): no typo starts a run that never ends or accepts a wrong state.
+  static constexpr PetscInt LOAD_STEPS_MAX = 10000, LOAD_MAX_CUTS_MAX = 30, NEWTON_MAX_IT_MAX = 1000;
+  static constexpr double NEWTON_RTOL_MAX = 1e-4, NEWTON_ATOL_MAX = 1e-6;
+
+  PetscInt load_steps = 1;    ///< -load_steps, in [1, LOAD_STEPS_MAX]
+  PetscInt max_cuts = 5;      ///< -load_max_cuts: halvings of a failed load increment, in [0, LOAD_MAX_CUTS_MAX]
+  PetscInt newton_max_it = 30; ///< -newton_max_it (svk): iterations per load step, in [1, NEWTON_MAX_IT_MAX]
+  double newton_rtol = 1e-9;  ///< -newton_rtol: residual relative to the load scale, in (0, NEWTON_RTOL_MAX]
+  double newton_atol = 1e-12; ///< -newton_atol: absolute residual (force units), in [0, NEWTON_ATOL_MAX]
   PetscBool line_search = PETSC_FALSE; ///< -newton_linesearch (Crisfield's line search; det F <= 0 always backtracks)
 };
 
@@ -51,7 +55,8 @@ public:
   ContactSolver(const Mesh &mesh, const Material &material, const BoundaryConditions &bc, const Obstacle &obstacle,
                 const ContactOptions &contact, const SolverOptions &solver)
       : mesh_(mesh), material_(material), bc_(bc), obstacle_(obstacle), contact_(contact), opts_(solver),
-        active_set_(mesh.Comm(), {contact.c, contact.gap_tol, contact.touch_tol, contact.activation_fraction}) {}
+        active_set_(mesh.Comm(),
+                    {contact.c, contact.gap_tol, contact.touch_tol, contact.activation_fraction, contact.length}) {}
 
   /// Weight of the springs on the normals of the inactive pairs, relative to the stiffness scale, in the solves
   /// whose active set leaves a rigid-body motion free (RigidModes). They pull the increment towards the previous

@@ -59,7 +59,7 @@ TEST(MaterialOptions, NearlyIncompressibleAndAuxeticLimitsInsideTheRangeAreAccep
 }
 
 TEST(MaterialOptions, BadYoungsModulusIsRejected) {
-  for (const char *E : {"0", "-5", "nan", "inf"}) {
+  for (const char *E : {"0", "-5", "nan", "inf", "0x10", "", "1e-300", "1e300"}) {
     SCOPED_TRACE(E);
     Material m;
     std::string message;
@@ -79,7 +79,7 @@ TEST(MaterialOptions, PoissonRatioOutsideTheOpenIntervalIsRejected) {
 }
 
 TEST(MaterialOptions, BadThicknessIsRejected) {
-  for (const char *t : {"0", "-1", "nan", "inf"}) {
+  for (const char *t : {"0", "-1", "nan", "inf", "", "1e-300"}) {
     SCOPED_TRACE(t);
     Material m;
     std::string message;
@@ -88,10 +88,28 @@ TEST(MaterialOptions, BadThicknessIsRejected) {
   }
 }
 
+TEST(MaterialOptions, StiffnessScaleNamesBothInputsAndItsBounds) {
+  ScopedOptions options({{"-material_E", "1e-4"}, {"-material_thickness", "1e-3"}});
+  ErrorCapture capture;
+  Material m;
+  EXPECT_NE(ReadMaterialOptions(PETSC_COMM_SELF, m), 0);
+  for (const char *want : {"-material_E 0.0001", "-material_thickness 0.001", "1e-07", "[1e-06, 1e+24]"})
+    EXPECT_NE(capture.Message().find(want), std::string::npos) << capture.Message();
+}
+
+TEST(MaterialOptions, StiffnessScaleBoundsAreAccepted) {
+  for (const auto &[E, t] : {std::pair<const char *, const char *>{"1e-6", "1"}, {"1e12", "1e12"}}) {
+    ScopedOptions options({{"-material_E", E}, {"-material_thickness", t}});
+    Material m;
+    EXPECT_EQ(ReadMaterialOptions(PETSC_COMM_SELF, m), 0) << E << " " << t;
+  }
+}
+
 TEST(MaterialOptions, UnknownModelOrPlaneAndNonNumbersAreRejected) {
   Material m;
   EXPECT_NE(ReadWith("-material_model", "neohookean", m), 0);
   EXPECT_NE(ReadWith("-material_plane", "shell", m), 0);
+  EXPECT_NE(ReadWith("-material_model", "", m), 0);
   EXPECT_NE(ReadWith("-material_E", "2e11Pa", m), 0);
 }
 

@@ -244,8 +244,9 @@ TEST(ObstacleOptions, BadItemsAreErrors) {
     const char *option, *value, *expected;
   } cases[] = {
       {"-obstacle_segments", "0,0,1", "multiple of 4"},  {"-obstacle_segments", "0,0,0,0", "zero length"},
-      {"-obstacle_segments", "0,0,1,nan", "not finite"}, {"-obstacle_arcs", "0,0,1,0,90,0.5", "segments"},
-      {"-obstacle_discs", "0,0,1,5,5,-1", "item 2"},
+      {"-obstacle_segments", "0,0,1,nan", "value 4 'nan'"}, {"-obstacle_arcs", "0,0,1,0,90,0.5", "segments"},
+      {"-obstacle_discs", "0,0,1,5,5,-1", "item 2"},    {"-obstacle_discs", "0x10,0,1", "value 1 '0x10'"},
+      {"-obstacle_segments", "", "no obstacle"},
   };
   for (const auto &c : cases) {
     SCOPED_TRACE(std::string(c.option) + " " + c.value);

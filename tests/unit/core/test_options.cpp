@@ -1,0 +1,138 @@
+// Strict option readers: empty values, hexadecimal, overflow and out-of-range values are errors naming the option.
+#include "signorini/core/options.hpp"
+
+#include "petsc_helpers.hpp"
+
+#include <gtest/gtest.h>
+
+namespace signorini {
+namespace {
+
+using test::ErrorCapture;
+using test::ScopedOptions;
+
+const RealRange GAP{0, 1e-3, false, false, 20, "body diagonal"};
+
+PetscErrorCode ReadReal(double &value, PetscBool *set = nullptr) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_SELF, nullptr, "test", "");
+  PetscCall(OptionsReal(PetscOptionsObject, "-test_gap", "gap", GAP, value, set));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ReadInt(PetscInt &value) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_SELF, nullptr, "test", "");
+  PetscCall(OptionsInt(PetscOptionsObject, "-test_steps", "steps", 1, 10000, value));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ReadList(std::vector<double> &values, PetscBool *set) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_SELF, nullptr, "test", "");
+  PetscCall(OptionsRealList(PetscOptionsObject, "-test_list", "list", "no obstacle", "X,Y", values, set));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+/// Runs read with option name set to value; returns the error message ("" when it succeeded).
+template <class Read> std::string MessageOf(const char *name, const char *value, Read read) {
+  ScopedOptions options({{name, value}});
+  ErrorCapture capture;
+  const PetscErrorCode ierr = read();
+  EXPECT_EQ(ierr != 0, !capture.Message().empty()) << capture.Message();
+  return capture.Message();
+}
+
+TEST(RealRange, DescribesItsBoundsRelativeAndAbsolute) {
+  EXPECT_EQ(GAP.Relative(), "[0, 0.001] x body diagonal");
+  EXPECT_EQ(GAP.Absolute(), "[0, 0.02] ([0, 0.001] x body diagonal, body diagonal 20)");
+  EXPECT_EQ((RealRange{0, 1, false, true}).Absolute(), "[0, 1)");
+  EXPECT_TRUE(GAP.Contains(0.02));
+  EXPECT_FALSE(GAP.Contains(0.0201));
+  EXPECT_FALSE((RealRange{0, 1, true, true}).Contains(0));
+}
+
+TEST(OptionsReal, ReadsValuesInsideTheRangeAndLeavesTheDefaultWhenUnset) {
+  double value = 1e-9;
+  PetscBool set = PETSC_TRUE;
+  EXPECT_EQ(ReadReal(value, &set), 0);
+  EXPECT_EQ(value, 1e-9);
+  EXPECT_FALSE(set);
+  ScopedOptions options({{"-test_gap", "2e-2"}});
+  const double before = test::PetscMemoryInUse();
+  EXPECT_EQ(ReadReal(value, &set), 0);
+  EXPECT_EQ(test::PetscMemoryInUse(), before);
+  EXPECT_EQ(value, 0.02);
+  EXPECT_TRUE(set);
+}
+
+TEST(OptionsReal, EmptyHexNonFiniteAndOutOfRangeValuesAreErrorsNamingOptionValueAndRange) {
+  const struct {
+    const char *value, *expected;
+  } cases[] = {{"", "-test_gap is given without a value"},
+               {"0x10", "-test_gap 0x10 is invalid"},
+               {"nan", "-test_gap nan is invalid"},
+               {"1e400", "-test_gap 1e400 is invalid"},
+               {"1e300", "-test_gap 1e300 is out of range"},
+               {"-1e-12", "-test_gap -1e-12 is out of range"}};
+  for (const auto &c : cases) {
+    double value = 1e-9;
+    const std::string message = MessageOf("-test_gap", c.value, [&] { return ReadReal(value); });
+    EXPECT_NE(message.find(c.expected), std::string::npos) << message;
+    EXPECT_NE(message.find("[0, 0.02] ([0, 0.001] x body diagonal, body diagonal 20)"), std::string::npos) << message;
+    EXPECT_EQ(value, 1e-9);
+  }
+}
+
+TEST(OptionsInt, ReadsIntegersExactlyInsideTheRange) {
+  PetscInt value = 1;
+  ScopedOptions options({{"-test_steps", "10000"}});
+  EXPECT_EQ(ReadInt(value), 0);
+  EXPECT_EQ(value, 10000);
+}
+
+TEST(OptionsInt, OverflowOutOfRangeAndNonIntegersRepeatTheValueAsWritten) {
+  for (const char *text : {"99999999999999999999", "1000000000", "10001", "0", "-1", "1.5", "1e3", "0x10"}) {
+    PetscInt value = 1;
+    const std::string message = MessageOf("-test_steps", text, [&] { return ReadInt(value); });
+    EXPECT_NE(message.find(std::string("-test_steps ") + text + " is invalid; expected an integer in [1, 10000]"),
+              std::string::npos)
+        << message;
+    EXPECT_EQ(value, 1);
+  }
+  PetscInt value = 1;
+  EXPECT_NE(MessageOf("-test_steps", "", [&] { return ReadInt(value); }).find("-test_steps is given without a value"),
+            std::string::npos);
+}
+
+TEST(OptionsRealList, ReadsEveryItemStrictly) {
+  std::vector<double> values;
+  PetscBool set = PETSC_FALSE;
+  ScopedOptions options({{"-test_list", "1, -2.5e1,.5 "}});
+  EXPECT_EQ(ReadList(values, &set), 0);
+  EXPECT_TRUE(set);
+  EXPECT_EQ(values, (std::vector<double>{1, -25, 0.5}));
+}
+
+TEST(OptionsRealList, EmptyListsEmptyItemsAndBadNumbersAreErrors) {
+  const struct {
+    const char *value, *expected;
+  } cases[] = {{"", "-test_list is given without a value, which would leave no obstacle"},
+               {",", "-test_list , has an empty item 1"},
+               {"1,,2", "-test_list 1,,2 has an empty item 2"},
+               {"1, ,2", "-test_list 1, ,2 has an empty item 2"},
+               {"1,0x10", "-test_list 1,0x10: value 2 '0x10' is invalid"},
+               {"1,inf", "-test_list 1,inf: value 2 'inf' is invalid"}};
+  for (const auto &c : cases) {
+    std::vector<double> values;
+    PetscBool set;
+    const std::string message = MessageOf("-test_list", c.value, [&] { return ReadList(values, &set); });
+    EXPECT_NE(message.find(c.expected), std::string::npos) << message;
+  }
+}
+
+} // namespace
+} // namespace signorini
