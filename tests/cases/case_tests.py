@@ -199,7 +199,9 @@ def block_in_corner(runner):
                         1e-10 * np.abs(exact).max())
 
 
-RANK_CASES = {"hertz": [], "beam_on_floor": ["-options_file", "options/beam_on_floor.yml"]}
+RANK_CASES = {"hertz": [], "beam_on_floor": ["-options_file", "options/beam_on_floor.yml"],
+              "plate_on_arc": ["-options_file", "options/plate_on_arc.yml"],
+              "block_in_notch": ["-options_file", "options/block_in_notch.yml"]}
 
 
 @test("rank_independence")
@@ -546,8 +548,8 @@ def plate_on_arc(runner):
     runner.expect_true("at least 5 active nodes (%d)" % arc.get("contact.active_nodes"),
                        arc.get("contact.active_nodes") >= 5)
     expect_balance(runner, arc, "arcs")
-    segments = runner.run(["-options_file", "options/plate_on_arc.yml", "-obstacle_arcs", "",
-                           "-obstacle_segments", arc_segments(4.5, -4.1, 4, 150, 30, 30)], "plate on 30 segments")
+    segments = runner.run(options_args(runner, "options/plate_on_arc.yml", drop=("obstacle_arcs",)) +
+                          ["-obstacle_segments", arc_segments(4.5, -4.1, 4, 150, 30, 30)], "plate on 30 segments")
     runs = [segments] + [runner.run(["-options_file", "options/plate_on_arc.yml", "-contact_activation_fraction", f],
                                     "plate on arc, activation fraction %s" % f) for f in ("0", "0.9")]
     ref_nodes = arc.nodes()
