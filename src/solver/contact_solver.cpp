@@ -267,6 +267,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
   PetscInt krylov = 0;
   double last_solve_time = 0, solve_residual = 0;
   bool stabilised = false; // the last solve carried the stabilisation springs (the active set did not hold the body)
+  std::vector<double> gap_before; // the gaps before the last stabilised solve
   PetscFunctionBeginUser;
   ok = false;
   // The increment of the prescribed displacements enters through the first solve of the step (its Dirichlet rows
@@ -295,6 +296,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
         PetscCall(Repair(u_eval, it == 0, rebuilt));
         if (rebuilt) {
           next.assign(pairs_.size(), 0);
+          gap_before.clear();
           PetscCall(VecZeroEntries(fext_));
           PetscCall(assembler_->AssembleLoads(bc_, factor, fext_));
         }
@@ -354,10 +356,24 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
           }
         }
       }
-      if (stabilised && changes == 0) {
-        // The springs let the body move along the rigid motions its active set leaves free, and no pair closed.
-        stats_.reason = "DIVERGED_NOT_HELD";
-        break;
+      if (stabilised && changes == 0 && gap_before.size() == pairs_.size()) {
+        // The springs let the body move along the rigid motions its active set leaves free, and no pair closed. If
+        // some pair came nearer, the step is extended (a line search along the increment) to twice the distance at
+        // which the nearest such pair would close, so that the next update activates it; if none did, the load
+        // moves the body away from every obstacle.
+        double reach = INFINITY;
+        for (std::size_t p = 0; p < pairs_.size(); ++p) {
+          const double closing = gap_before[p] - states_[p].gap;
+          if (states_[p].InZone() && closing > 1e-12 * contact_.length && states_[p].gap > 0)
+            reach = std::min(reach, states_[p].gap / closing);
+        }
+        PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &reach, 1, MPI_DOUBLE, MPI_MIN, comm));
+        if (!std::isfinite(reach) || reach > 1e12) {
+          stats_.reason = "DIVERGED_NOT_HELD";
+          break;
+        }
+        PetscCall(ExtendStep(1 + 2 * reach));
+        continue;
       }
     }
     if (!std::isfinite(rnorm)) {
@@ -391,6 +407,10 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
         k_assembled_ = true;
       }
       PetscCall(system_->SetConstraints(rows_, next, -1.0 / kscale_, stabilised ? STABILISATION * kscale_ : 0.0));
+      if (stabilised) {
+        gap_before.resize(pairs_.size());
+        for (std::size_t p = 0; p < pairs_.size(); ++p) gap_before[p] = states_[p].gap;
+      }
       // Right-hand side: f - F_int on free rows, 0 on Dirichlet rows, the current gap on active multiplier rows.
       PetscScalar *b;
       const PetscScalar *fi, *fe;
@@ -435,6 +455,20 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     for (double &d : delta) d *= 1.0 - step_length;
     if (step_length == 1.0) PetscCall(SetDirichlet(factor));
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::ExtendStep(double extra) {
+  const PetscScalar *x;
+  PetscScalar *u;
+  PetscFunctionBeginUser;
+  // u += extra du, du: the displacement part of the last solution (zero on the Dirichlet rows after a full step).
+  PetscCall(VecGetArrayRead(system_->Solution(), &x));
+  PetscCall(VecGetArray(u_, &u));
+  for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) u[i] += extra * x[i];
+  PetscCall(VecRestoreArray(u_, &u));
+  PetscCall(VecRestoreArrayRead(system_->Solution(), &x));
+  PetscCall(UpdateLocal());
   PetscFunctionReturn(0);
 }
 

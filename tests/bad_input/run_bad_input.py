@@ -190,6 +190,9 @@ CASES = {
                                 ["-options_file", "bad_options.txt line 3", "expected"], {}),
     # Failures of the solve, after the output directory was opened.
     "singular_system": (LOOSE_BEAM, ["singular", "not held", "add Dirichlet"], {"previous": BEAM}),
+    # Held by contact alone, but pulled up out of the notch: no active set can hold it.
+    "pulled_out_of_notch": (["-options_file", "{root}/options/block_in_notch.yml", "-bc_traction", "top:0:1"],
+                            ["DIVERGED_NOT_HELD", "not held", "away from every obstacle"], {}),
     "active_set_max_it": (["-contact_max_it", "1"], ["did not converge", "-contact_max_it"], {"previous": HERTZ}),
     "newton_diverges": (BEAM + ["-material_model", "svk", "-newton_max_it", "1", "-load_max_cuts", "0",
                                 "-bc_pressure", "top:50"], ["did not converge", "-load_max_cuts"], {"previous": BEAM}),

@@ -58,10 +58,11 @@ public:
         active_set_(mesh.Comm(),
                     {contact.c, contact.gap_tol, contact.touch_tol, contact.activation_fraction, contact.length}) {}
 
-  /// Weight of the springs on the normals of the inactive pairs, relative to the stiffness scale, in the solves
-  /// whose active set leaves a rigid-body motion free (RigidModes). They pull the increment towards the previous
-  /// iterate, so they vanish at convergence, and the final solve of a load step is always made without them.
-  static constexpr double STABILISATION = 1e-6;
+  /// Initial weight of the springs on the normals of the inactive pairs, relative to the stiffness scale, in the
+  /// solves whose active set leaves a rigid-body motion free (RigidModes). They pull the increment towards the
+  /// previous iterate, so they vanish at convergence, and the final solve of a load step is always made without
+  /// them. When a stabilised solve closes no pair but brings some nearer, its step is extended past the nearest.
+  static constexpr double STABILISATION = 1e-4;
 
   /// Dirichlet data, candidate pairs, numbering, the saddle-point system and its KSP. Collective.
   [[nodiscard]] PetscErrorCode Setup();
@@ -98,6 +99,8 @@ private:
   [[nodiscard]] PetscErrorCode OwnedDisplacement(std::vector<double> &u) const;
   [[nodiscard]] PetscErrorCode SetOwnedDisplacement(const std::vector<double> &u);
   [[nodiscard]] PetscErrorCode UpdateLocal();
+  /// Adds extra times the displacement part of the last solution to u. Collective.
+  [[nodiscard]] PetscErrorCode ExtendStep(double extra);
   /// Norm of R(u, lambda) = F_int - f - B^T lambda on the free rows, a force scale, and optionally direction . R.
   [[nodiscard]] PetscErrorCode Residual(const std::vector<double> &lambda, double &norm, double &scale,
                                         const PetscScalar *direction = nullptr, double *dot = nullptr);
