@@ -529,12 +529,13 @@ def arc_segments(cx, cy, radius, theta0, theta1, n):
     return ",".join("%.17g,%.17g,%.17g,%.17g" % (x[k], y[k], x[k + 1], y[k + 1]) for k in range(n))
 
 
-def expect_balance(runner, r, what):
-    """Contact force + reactions + applied load = 0 to round-off (1e-10 of the load)."""
+def expect_balance(runner, r, what, atol=None):
+    """Contact force + reactions + applied load = 0 to round-off (1e-10 of the load unless atol is given)."""
     total = np.array(r.get("contact.contact_force")) + np.array(r.get("contact.reaction_force")) + \
         np.array(r.get("contact.applied_force"))
     load = np.linalg.norm(r.get("contact.applied_force"))
-    runner.expect_close("%s: contact force + reactions + load" % what, total, [0, 0], 0, 1e-10 * load)
+    runner.expect_close("%s: contact force + reactions + load" % what, total, [0, 0], 0,
+                        1e-10 * load if atol is None else atol)
 
 
 @test("plate_on_arc")
@@ -598,7 +599,9 @@ def block_in_notch(runner):
     # floor is reached, and the state is again certified (Runner.run) and balanced.
     small = runner.run(["-options_file", "options/block_in_notch.yml", "-bc_traction", "top:0:-1e-6"],
                        "block in notch, small load")
-    expect_balance(runner, small, "small load")
+    # The forces are K u with u dominated by the rigid drop onto the floor (0.05), so their round-off is of order
+    # 1e-16 E |u| per entry, not relative to the tiny load: 1e-12 E max|u| bounds it (5e-5 of the load here).
+    expect_balance(runner, small, "small load", 1e-12 * small.get("material.E") * small.get("solution.max_displacement"))
     runner.expect_true("small load: the block rests on the floor",
                        np.any((small.nodes()["active"] == 1) & (small.nodes()["y"] == 0)))
 
