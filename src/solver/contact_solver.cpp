@@ -260,201 +260,219 @@ PetscErrorCode ContactSolver::Monitor(const IterationRecord &r) const {
 }
 
 PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first, bool &ok) {
-  MPI_Comm comm = mesh_.Comm();
   const bool large = material_.model == MaterialModel::SVK;
-  const PetscInt max_it = large ? std::max(opts_.newton_max_it, contact_.max_it) : contact_.max_it;
-  std::vector<char> next(pairs_.size());
-  PetscInt krylov = 0;
-  double last_solve_time = 0, solve_residual = 0;
-  bool stabilised = false; // the last solve carried the stabilisation springs (the active set did not hold the body)
-  std::vector<double> gap_before; // the gaps before the last stabilised solve
+  StepState st{step, factor, first, large};
   PetscFunctionBeginUser;
   ok = false;
   // The increment of the prescribed displacements enters through the first solve of the step (its Dirichlet rows
   // and the coupling K_fd du_d of the free rows), not by moving the boundary nodes alone, which could invert the
   // cells next to them under large prescribed displacements.
-  const int dim = mesh_.Dim();
-  std::vector<double> delta(u_local_.size(), 0.0), u_eval(u_local_.size());
-  for (std::size_t i = 0; i < delta.size(); ++i)
-    if (dirichlet_.fixed[i]) delta[i] = factor * dirichlet_.value[i] - u_local_[i];
+  st.delta.assign(u_local_.size(), 0.0);
+  st.u_eval.resize(u_local_.size());
+  st.next.assign(pairs_.size(), 0);
+  for (std::size_t i = 0; i < st.delta.size(); ++i)
+    if (dirichlet_.fixed[i]) st.delta[i] = factor * dirichlet_.value[i] - u_local_[i];
   PetscCall(VecZeroEntries(fext_));
   PetscCall(assembler_->AssembleLoads(bc_, factor, fext_));
   active_set_.BeginStep();
   for (PetscInt it = 0;; ++it) {
-    double rnorm, rscale;
-    bool moving = false;
-    for (std::size_t i = 0; i < delta.size(); ++i) moving = moving || delta[i] != 0;
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &moving, 1, MPI_CXX_BOOL, MPI_LOR, comm));
-    {
-      ScopedTimer t(stats_.time_assembly);
-      PetscCall(PetscLogEventBegin(EV_ASSEMBLY, 0, 0, 0, 0));
-      // Gaps with the prescribed displacements in place (the constraint rows hold only the free components).
-      for (std::size_t i = 0; i < u_eval.size(); ++i) u_eval[i] = u_local_[i] + delta[i];
-      if (large) {
-        // svk: pairs from the current configuration (new pairs mean a new pattern and a new analysis).
-        bool rebuilt;
-        PetscCall(Repair(u_eval, it == 0, rebuilt));
-        if (rebuilt) {
-          next.assign(pairs_.size(), 0);
-          gap_before.clear();
-          PetscCall(VecZeroEntries(fext_));
-          PetscCall(assembler_->AssembleLoads(bc_, factor, fext_));
-        }
-      }
-      EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_eval.data(), states_, rows_,
-                    normals_);
-      if (large || it == 0 || stabilised) {
-        PetscCall(Residual(lambda_, rnorm, rscale));
-      } else {
-        // Linear material after a solve: K du was solved for exactly (to the solve's residual), so F_int = f + B^T x
-        // on the free rows (x: the solved multipliers), without a pass over the cells; the monitor shows the
-        // solve's residual. A state that may be the solution gets a full residual evaluation below.
-        PetscScalar *fi;
-        const PetscScalar *fe;
-        PetscCall(VecGetArray(fint_, &fi));
-        PetscCall(VecGetArrayRead(fext_, &fe));
-        for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) fi[i] = fe[i];
-        for (std::size_t p = 0; p < pairs_.size(); ++p)
-          for (int k = 0; k < dim; ++k) fi[dofs_.LocalOffset(pairs_[p].vertex, k)] += mult_[p] * normals_[p][k];
-        PetscCall(VecRestoreArrayRead(fext_, &fe));
-        PetscCall(VecRestoreArray(fint_, &fi));
-        rnorm = solve_residual;
-        rscale = 0;
-      }
-      PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
-    }
-    // Active-set update: first the pairs touching at the start, then the complementarity rule (ActiveSet).
     PetscInt changes = 0;
+    PetscCall(EvaluateIterate(st, it));
     {
+      // Active-set update: first the pairs touching at the start, then the complementarity rule (ActiveSet).
       ScopedTimer t(stats_.time_active_set);
       for (std::size_t p = 0; p < pairs_.size(); ++p) {
         states_[p].lambda = lambda_[p];
         states_[p].active = active_set_.Flags()[p];
       }
-      if (it == 0) active_set_.First(states_, first, keys_, normals_, next);
-      else PetscCall(active_set_.Next(states_, it, keys_, normals_, next, changes));
+      if (it == 0) active_set_.First(states_, first, keys_, normals_, st.next);
+      else PetscCall(active_set_.Next(states_, it, keys_, normals_, st.next, changes));
     }
-    if (it > 0) {
-      PetscCall(RecordIteration(step, it, factor, next, changes, krylov, rnorm, last_solve_time));
-      // A state that may be the solution: certified, or the loop goes on (svk: Newton; linear: one more solve
-      // corrects an equilibrium residual left by an inexact solver) or stops with the violated condition.
-      if (changes == 0 && !moving && !stabilised) {
-        if (!large) PetscCall(Residual(lambda_, rnorm, rscale));
-        const double tol = opts_.newton_rtol * rscale + opts_.newton_atol;
-        if (rnorm <= tol || !large) {
-          Certificate cert;
-          PetscCall(active_set_.Certify(states_, keys_, normals_, rnorm, tol, cert));
-          if (cert.Satisfied()) {
-            stats_.reason = large ? "CONVERGED_ACTIVE_SET_AND_RESIDUAL" : "CONVERGED_ACTIVE_SET_UNCHANGED";
-            ok = true;
-            break;
-          }
-          if (cert.equilibrium <= cert.equilibrium_tol) {
-            stats_.reason = "DIVERGED_CERTIFICATE";
-            stats_.violation = cert.Violation();
-            break;
-          }
-        }
-      }
-      if (stabilised && changes == 0 && gap_before.size() == pairs_.size()) {
-        // The springs let the body move along the rigid motions its active set leaves free, and no pair closed. If
-        // some pair came nearer, the step is extended (a line search along the increment) to twice the distance at
-        // which the nearest such pair would close, so that the next update activates it; if none did, the load
-        // moves the body away from every obstacle.
-        double reach = INFINITY;
-        for (std::size_t p = 0; p < pairs_.size(); ++p) {
-          const double closing = gap_before[p] - states_[p].gap;
-          if (states_[p].InZone() && closing > 1e-12 * contact_.length && states_[p].gap > 0)
-            reach = std::min(reach, states_[p].gap / closing);
-        }
-        PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &reach, 1, MPI_DOUBLE, MPI_MIN, comm));
-        if (!std::isfinite(reach) || reach > 1e12) {
-          stats_.reason = "DIVERGED_NOT_HELD";
-          break;
-        }
-        PetscCall(ExtendStep(1 + 2 * reach));
-        continue;
-      }
-    }
-    if (!std::isfinite(rnorm)) {
-      stats_.reason = "DIVERGED_NONINVERTIBLE_DEFORMATION";
-      break;
-    }
-    if (it >= max_it) {
-      stats_.reason = "DIVERGED_MAX_IT";
-      break;
-    }
-    bool cycling;
-    PetscCall(active_set_.Seen(next, keys_, large ? 3 : 1, cycling));
-    if (cycling && changes > 0 && it > 0) {
-      stats_.reason = "DIVERGED_CYCLING";
-      break;
-    }
-    active_set_.Set(next);
+    Outcome outcome;
+    PetscCall(StepControl(st, it, changes, outcome));
+    if (outcome == Outcome::CONVERGED) ok = true;
+    if (outcome == Outcome::CONVERGED || outcome == Outcome::STOP) break;
+    if (outcome == Outcome::EXTENDED) continue;
+    active_set_.Set(st.next);
     bool held;
-    PetscCall(rigid_.Held(keys_, normals_, next, held));
-    stabilised = !held;
-
-    {
-      ScopedTimer t(stats_.time_assembly);
-      PetscCall(PetscLogEventBegin(EV_ASSEMBLY, 0, 0, 0, 0));
-      if (large || !k_assembled_) {
-        PetscCall(MatZeroEntries(system_->A()));
-        PetscCall(assembler_->Assemble(u_local_.data(), system_->A(), kscale_, nullptr, nullptr));
-        PetscCall(MatAssemblyBegin(system_->A(), MAT_FLUSH_ASSEMBLY));
-        PetscCall(MatAssemblyEnd(system_->A(), MAT_FLUSH_ASSEMBLY));
-        if (system_->ReusesFactorization()) PetscCall(system_->AddAugmentation(rows_));
-        k_assembled_ = true;
-      }
-      PetscCall(system_->SetConstraints(rows_, next, -1.0 / kscale_, stabilised ? STABILISATION * kscale_ : 0.0));
-      if (stabilised) {
-        gap_before.resize(pairs_.size());
-        for (std::size_t p = 0; p < pairs_.size(); ++p) gap_before[p] = states_[p].gap;
-      }
-      // Right-hand side: f - F_int on free rows, 0 on Dirichlet rows, the current gap on active multiplier rows.
-      PetscScalar *b;
-      const PetscScalar *fi, *fe;
-      PetscCall(VecGetArray(system_->Rhs(), &b));
-      PetscCall(VecGetArrayRead(fint_, &fi));
-      PetscCall(VecGetArrayRead(fext_, &fe));
-      for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) b[i] = fe[i] - fi[i];
-      if (moving) {
-        PetscCall(VecZeroEntries(fdir_));
-        PetscCall(assembler_->AddStiffnessTimes(u_local_.data(), delta.data(), fdir_));
-        const PetscScalar *fd;
-        PetscCall(VecGetArrayRead(fdir_, &fd));
-        for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) b[i] -= fd[i];
-        PetscCall(VecRestoreArrayRead(fdir_, &fd));
-      }
-      for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
-        if (mesh_.Owned(v))
-          for (int k = 0; k < dim; ++k)
-            if (dirichlet_.fixed[v * dim + k]) b[dofs_.LocalOffset(v, k)] = kscale_ * delta[v * dim + k];
-      for (std::size_t p = 0; p < pairs_.size(); ++p) b[dofs_.OwnedU() + p] = next[p] ? states_[p].gap : 0.0;
-      PetscCall(VecRestoreArrayRead(fint_, &fi));
-      PetscCall(VecRestoreArrayRead(fext_, &fe));
-      PetscCall(VecRestoreArray(system_->Rhs(), &b));
-      PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
-    }
-    {
-      ScopedTimer t(stats_.time_solve);
-      const double t0 = MPI_Wtime();
-      PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
-      PetscCall(system_->Solve(krylov, solve_residual));
-      PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
-      const double dt = MPI_Wtime() - t0;
-      PetscCallMPI(MPI_Allreduce(&dt, &last_solve_time, 1, MPI_DOUBLE, MPI_MAX, comm));
-    }
-    stats_.solves++;
-    stats_.active_set_iterations++;
-    stats_.krylov_iterations += krylov;
-    stats_.stabilised_solves += stabilised;
-    double step_length;
-    PetscCall(UpdateSolution(rnorm, step_length));
-    // What a shortened step left of the prescribed increment comes in the next solve; a full step lands exactly.
-    for (double &d : delta) d *= 1.0 - step_length;
-    if (step_length == 1.0) PetscCall(SetDirichlet(factor));
+    PetscCall(rigid_.Held(keys_, normals_, st.next, held));
+    st.stabilised = !held;
+    PetscCall(AssembleSystem(st));
+    PetscCall(SolveAndUpdate(st));
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
+  ScopedTimer t(stats_.time_assembly);
+  const int dim = mesh_.Dim();
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(EV_ASSEMBLY, 0, 0, 0, 0));
+  st.moving = false;
+  for (double d : st.delta) st.moving = st.moving || d != 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &st.moving, 1, MPI_CXX_BOOL, MPI_LOR, mesh_.Comm()));
+  // Gaps with the prescribed displacements in place (the constraint rows hold only the free components).
+  for (std::size_t i = 0; i < st.u_eval.size(); ++i) st.u_eval[i] = u_local_[i] + st.delta[i];
+  if (st.large) {
+    // svk: pairs from the current configuration (new pairs mean a new pattern and a new analysis).
+    bool rebuilt;
+    PetscCall(Repair(st.u_eval, it == 0, rebuilt));
+    if (rebuilt) {
+      st.next.assign(pairs_.size(), 0);
+      st.gap_before.clear();
+      PetscCall(VecZeroEntries(fext_));
+      PetscCall(assembler_->AssembleLoads(bc_, st.factor, fext_));
+    }
+  }
+  EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, st.large, st.u_eval.data(), states_,
+                rows_, normals_);
+  if (st.large || it == 0 || st.stabilised) {
+    PetscCall(Residual(lambda_, st.rnorm, st.rscale));
+  } else {
+    // Linear material after a solve: K du was solved for exactly (to the solve's residual), so F_int = f + B^T x on
+    // the free rows (x: the solved multipliers), without a pass over the cells; the monitor shows the solve's
+    // residual. A state that may be the solution gets a full residual evaluation (StepControl).
+    PetscScalar *fi;
+    const PetscScalar *fe;
+    PetscCall(VecGetArray(fint_, &fi));
+    PetscCall(VecGetArrayRead(fext_, &fe));
+    for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) fi[i] = fe[i];
+    for (std::size_t p = 0; p < pairs_.size(); ++p)
+      for (int k = 0; k < dim; ++k) fi[dofs_.LocalOffset(pairs_[p].vertex, k)] += mult_[p] * normals_[p][k];
+    PetscCall(VecRestoreArrayRead(fext_, &fe));
+    PetscCall(VecRestoreArray(fint_, &fi));
+    st.rnorm = st.solve_residual;
+    st.rscale = 0;
+  }
+  PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt changes, Outcome &outcome) {
+  PetscFunctionBeginUser;
+  outcome = Outcome::SOLVE;
+  if (it > 0) {
+    PetscCall(RecordIteration(st.step, it, st.factor, st.next, changes, st.krylov, st.rnorm, st.last_solve_time));
+    // A state that may be the solution: certified, or the loop goes on (svk: Newton; linear: one more solve corrects
+    // an equilibrium residual left by an inexact solver) or stops with the violated condition.
+    if (changes == 0 && !st.moving && !st.stabilised) {
+      if (!st.large) PetscCall(Residual(lambda_, st.rnorm, st.rscale));
+      const double tol = opts_.newton_rtol * st.rscale + opts_.newton_atol;
+      if (st.rnorm <= tol || !st.large) {
+        Certificate cert;
+        PetscCall(active_set_.Certify(states_, keys_, normals_, st.rnorm, tol, cert));
+        if (cert.Satisfied()) {
+          stats_.reason = st.large ? "CONVERGED_ACTIVE_SET_AND_RESIDUAL" : "CONVERGED_ACTIVE_SET_UNCHANGED";
+          outcome = Outcome::CONVERGED;
+          PetscFunctionReturn(0);
+        }
+        if (cert.equilibrium <= cert.equilibrium_tol) {
+          stats_.reason = "DIVERGED_CERTIFICATE";
+          stats_.violation = cert.Violation();
+          outcome = Outcome::STOP;
+          PetscFunctionReturn(0);
+        }
+      }
+    }
+    if (st.stabilised && changes == 0 && st.gap_before.size() == pairs_.size()) {
+      // The springs let the body move along the rigid motions its active set leaves free, and no pair closed. If
+      // some pair came nearer, the step is extended (a line search along the increment) to twice the distance at
+      // which the nearest such pair would close, so that the next update activates it; if none did, the load moves
+      // the body away from every obstacle.
+      double reach = INFINITY;
+      for (std::size_t p = 0; p < pairs_.size(); ++p) {
+        const double closing = st.gap_before[p] - states_[p].gap;
+        if (states_[p].InZone() && closing > 1e-12 * contact_.length && states_[p].gap > 0)
+          reach = std::min(reach, states_[p].gap / closing);
+      }
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &reach, 1, MPI_DOUBLE, MPI_MIN, mesh_.Comm()));
+      if (!std::isfinite(reach) || reach > 1e12) {
+        stats_.reason = "DIVERGED_NOT_HELD";
+        outcome = Outcome::STOP;
+      } else {
+        PetscCall(ExtendStep(1 + 2 * reach));
+        outcome = Outcome::EXTENDED;
+      }
+      PetscFunctionReturn(0);
+    }
+  }
+  const PetscInt max_it = st.large ? std::max(opts_.newton_max_it, contact_.max_it) : contact_.max_it;
+  bool cycling = false;
+  if (std::isfinite(st.rnorm) && it < max_it)
+    PetscCall(active_set_.Seen(st.next, keys_, st.large ? 3 : 1, cycling));
+  if (!std::isfinite(st.rnorm)) stats_.reason = "DIVERGED_NONINVERTIBLE_DEFORMATION";
+  else if (it >= max_it) stats_.reason = "DIVERGED_MAX_IT";
+  else if (cycling && changes > 0 && it > 0) stats_.reason = "DIVERGED_CYCLING";
+  else PetscFunctionReturn(0);
+  outcome = Outcome::STOP;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
+  ScopedTimer t(stats_.time_assembly);
+  const int dim = mesh_.Dim();
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(EV_ASSEMBLY, 0, 0, 0, 0));
+  if (st.large || !k_assembled_) {
+    PetscCall(MatZeroEntries(system_->A()));
+    PetscCall(assembler_->Assemble(u_local_.data(), system_->A(), kscale_, nullptr, nullptr));
+    PetscCall(MatAssemblyBegin(system_->A(), MAT_FLUSH_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(system_->A(), MAT_FLUSH_ASSEMBLY));
+    if (system_->ReusesFactorization()) PetscCall(system_->AddAugmentation(rows_));
+    k_assembled_ = true;
+  }
+  PetscCall(system_->SetConstraints(rows_, st.next, -1.0 / kscale_, st.stabilised ? STABILISATION * kscale_ : 0.0));
+  if (st.stabilised) {
+    st.gap_before.resize(pairs_.size());
+    for (std::size_t p = 0; p < pairs_.size(); ++p) st.gap_before[p] = states_[p].gap;
+  }
+  // Right-hand side: f - F_int on free rows, 0 on Dirichlet rows, the current gap on active multiplier rows.
+  PetscScalar *b;
+  const PetscScalar *fi, *fe;
+  PetscCall(VecGetArray(system_->Rhs(), &b));
+  PetscCall(VecGetArrayRead(fint_, &fi));
+  PetscCall(VecGetArrayRead(fext_, &fe));
+  for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) b[i] = fe[i] - fi[i];
+  if (st.moving) {
+    PetscCall(VecZeroEntries(fdir_));
+    PetscCall(assembler_->AddStiffnessTimes(u_local_.data(), st.delta.data(), fdir_));
+    const PetscScalar *fd;
+    PetscCall(VecGetArrayRead(fdir_, &fd));
+    for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) b[i] -= fd[i];
+    PetscCall(VecRestoreArrayRead(fdir_, &fd));
+  }
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    if (mesh_.Owned(v))
+      for (int k = 0; k < dim; ++k)
+        if (dirichlet_.fixed[v * dim + k]) b[dofs_.LocalOffset(v, k)] = kscale_ * st.delta[v * dim + k];
+  for (std::size_t p = 0; p < pairs_.size(); ++p) b[dofs_.OwnedU() + p] = st.next[p] ? states_[p].gap : 0.0;
+  PetscCall(VecRestoreArrayRead(fint_, &fi));
+  PetscCall(VecRestoreArrayRead(fext_, &fe));
+  PetscCall(VecRestoreArray(system_->Rhs(), &b));
+  PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
+  PetscFunctionBeginUser;
+  {
+    ScopedTimer t(stats_.time_solve);
+    const double t0 = MPI_Wtime();
+    PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
+    PetscCall(system_->Solve(st.krylov, st.solve_residual));
+    PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
+    const double dt = MPI_Wtime() - t0;
+    PetscCallMPI(MPI_Allreduce(&dt, &st.last_solve_time, 1, MPI_DOUBLE, MPI_MAX, mesh_.Comm()));
+  }
+  stats_.solves++;
+  stats_.active_set_iterations++;
+  stats_.krylov_iterations += st.krylov;
+  stats_.stabilised_solves += st.stabilised;
+  double step_length;
+  PetscCall(UpdateSolution(st.rnorm, step_length));
+  // What a shortened step left of the prescribed increment comes in the next solve; a full step lands exactly.
+  for (double &d : st.delta) d *= 1.0 - step_length;
+  if (step_length == 1.0) PetscCall(SetDirichlet(st.factor));
   PetscFunctionReturn(0);
 }
 

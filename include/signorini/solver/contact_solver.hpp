@@ -106,7 +106,28 @@ private:
                                         const PetscScalar *direction = nullptr, double *dot = nullptr);
   [[nodiscard]] PetscErrorCode SetDirichlet(double factor);
   [[nodiscard]] PetscErrorCode UpdateSolution(double residual_before, double &step);
+  /// What runs per load step (LoadStep) and per active-set/Newton iteration within it: EvaluateIterate (pairs at the
+  /// current iterate, the residual), the active-set update (ActiveSet), StepControl (certificate, stabilisation
+  /// step extension, stopping reasons), AssembleSystem (K when it changes, constraint rows, right-hand side) and
+  /// SolveAndUpdate (the saddle-point solve, the Newton update with its step length).
+  struct StepState {
+    PetscInt step;
+    double factor;
+    bool first, large;
+    std::vector<double> delta, u_eval; ///< prescribed-displacement increment still to apply; u + delta
+    std::vector<char> next;            ///< the active set of the next solve
+    PetscInt krylov = 0;
+    double last_solve_time = 0, solve_residual = 0, rnorm = 0, rscale = 0;
+    bool moving = false;     ///< some prescribed displacement is still to apply
+    bool stabilised = false; ///< the last solve carried the stabilisation springs
+    std::vector<double> gap_before; ///< the gaps before the last stabilised solve
+  };
+  enum class Outcome { SOLVE, EXTENDED, CONVERGED, STOP };
   [[nodiscard]] PetscErrorCode LoadStep(PetscInt step, double factor, bool first, bool &ok);
+  [[nodiscard]] PetscErrorCode EvaluateIterate(StepState &st, PetscInt it);
+  [[nodiscard]] PetscErrorCode StepControl(StepState &st, PetscInt it, PetscInt changes, Outcome &outcome);
+  [[nodiscard]] PetscErrorCode AssembleSystem(StepState &st);
+  [[nodiscard]] PetscErrorCode SolveAndUpdate(StepState &st);
   [[nodiscard]] PetscErrorCode Monitor(const IterationRecord &r) const;
   [[nodiscard]] PetscErrorCode RecordIteration(PetscInt step, PetscInt it, double factor, const std::vector<char> &next,
                                                PetscInt changes, PetscInt krylov, double rnorm, double solve_time);
