@@ -357,7 +357,7 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt c
     // an equilibrium residual left by an inexact solver) or stops with the violated condition.
     if (changes == 0 && !st.moving && !st.stabilised) {
       if (!st.large) PetscCall(Residual(lambda_, st.rnorm, st.rscale));
-      const double tol = opts_.newton_rtol * st.rscale + opts_.newton_atol;
+      const double tol = EquilibriumTol(st.rscale);
       if (st.rnorm <= tol || !st.large) {
         Certificate cert;
         PetscCall(active_set_.Certify(states_, keys_, normals_, st.rnorm, tol, cert));
@@ -474,6 +474,12 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
   for (double &d : st.delta) d *= 1.0 - step_length;
   if (step_length == 1.0) PetscCall(SetDirichlet(st.factor));
   PetscFunctionReturn(0);
+}
+
+double ContactSolver::EquilibriumTol(double scale) const {
+  // The absolute part may not exceed 1e-6 of the force scale: an absolute tolerance as large as a small load would
+  // otherwise accept any state.
+  return opts_.newton_rtol * scale + std::min(opts_.newton_atol, 1e-6 * scale);
 }
 
 PetscErrorCode ContactSolver::ExtendStep(double extra) {
@@ -637,7 +643,7 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     states_[p].lambda = lambda_[p], states_[p].active = active_set_.Flags()[p];
   double rnorm, rscale;
   PetscCall(Residual(lambda_, rnorm, rscale));
-  PetscCall(active_set_.Certify(states_, keys_, normals_, rnorm, opts_.newton_rtol * rscale + opts_.newton_atol,
+  PetscCall(active_set_.Certify(states_, keys_, normals_, rnorm, EquilibriumTol(rscale),
                                 certificate_));
   PetscCheck(certificate_.Satisfied(), comm, PETSC_ERR_NOT_CONVERGED,
              "the final state is not a contact solution: %s", certificate_.Violation().c_str());

@@ -99,6 +99,9 @@ private:
   [[nodiscard]] PetscErrorCode OwnedDisplacement(std::vector<double> &u) const;
   [[nodiscard]] PetscErrorCode SetOwnedDisplacement(const std::vector<double> &u);
   [[nodiscard]] PetscErrorCode UpdateLocal();
+  /// The equilibrium tolerance of Newton and of the certificate at a force scale ||F_int|| + ||f||:
+  /// -newton_rtol scale + min(-newton_atol, 1e-6 scale).
+  double EquilibriumTol(double scale) const;
   /// Adds extra times the displacement part of the last solution to u. Collective.
   [[nodiscard]] PetscErrorCode ExtendStep(double extra);
   /// Norm of R(u, lambda) = F_int - f - B^T lambda on the free rows, a force scale, and optionally direction . R.
