@@ -79,12 +79,11 @@ PetscErrorCode CollectFields(ContactSolver &solver, const NodeContact &nodes, st
     for (int k = 0; k < dim; ++k) disp.values[3 * v + k] = solver.ULocal()[v * dim + k];
   std::vector<CellStress> cells;
   PetscCall(solver.GetAssembler().CellResults(solver.ULocal().data(), cells));
-  Field strain{"strain", 9, true, {}}, stress{"stress", 9, true, {}}, vm{"von_mises", 1, true, {}};
+  Field strain{"strain", 6, true, {}}, stress{"stress", 6, true, {}}, vm{"von_mises", 1, true, {}};
   for (const auto &c : cells) {
-    // Full 3x3 tensors, row by row (XDMF Tensor), so that every ParaView reader names the components right.
-    strain.values.insert(strain.values.end(), {c.strain[0], c.strain[2], 0, c.strain[2], c.strain[1], 0, 0, 0, 0});
-    stress.values.insert(stress.values.end(),
-                         {c.stress[0], c.stress[2], 0, c.stress[2], c.stress[1], 0, 0, 0, c.stress_zz});
+    // VTK's order of a symmetric tensor (xx, yy, zz, xy, yz, xz): ParaView names six components so (output.cpp).
+    strain.values.insert(strain.values.end(), {c.strain[0], c.strain[1], 0, c.strain[2], 0, 0});
+    stress.values.insert(stress.values.end(), {c.stress[0], c.stress[1], c.stress_zz, c.stress[2], 0, 0});
     vm.values.push_back(c.von_mises);
   }
   Field lambda{"contact_lambda", 1, false, nodes.lambda, true}, pressure{"contact_pressure", 1, false, nodes.pressure,

@@ -238,12 +238,13 @@ std::string DataItem(const std::string &dims, bool integer, const std::string &d
          "\" Precision=\"8\" Format=\"HDF\">solution.h5:" + dataset + "</DataItem>";
 }
 
-/// An attribute of n nodes or cells with ncomp values each. Three components are a vector; nine a full tensor,
-/// which every ParaView XDMF reader expands under the right names (a six-component Tensor6 is not: the Xdmf3
-/// readers pass it through and VTK names six components XX, YY, ZZ, XY, YZ, XZ).
+/// An attribute of n nodes or cells with ncomp values each; three components are a vector. Six are a symmetric
+/// tensor in VTK's order (xx, yy, zz, xy, yz, xz), declared as a plain matrix so that every ParaView XDMF reader
+/// passes them through and names them XX, YY, ZZ, XY, YZ, XZ: the legacy XDMFReader would expand an XDMF Tensor6
+/// (xx, xy, xz, yy, yz, zz) to nine, while the Xdmf3 readers pass it through under VTK's names, in the wrong order.
 std::string Attribute(const std::string &name, int ncomp, bool on_cells, int n, bool integer,
                       const std::string &dataset) {
-  const char *type = ncomp == 1 ? "Scalar" : ncomp == 3 ? "Vector" : ncomp == 9 ? "Tensor" : "Matrix";
+  const char *type = ncomp == 1 ? "Scalar" : ncomp == 3 ? "Vector" : "Matrix";
   const std::string dims = std::to_string(n) + (ncomp > 1 ? " " + std::to_string(ncomp) : "");
   return "     <Attribute Name=\"" + name + "\" AttributeType=\"" + type + "\" Center=\"" +
          (on_cells ? "Cell" : "Node") + "\">\n      " + DataItem(dims, integer, dataset) + "\n     </Attribute>\n";
