@@ -749,3 +749,18 @@ def paraview_view(runner):
         ctags = [int(t[0]) for t in contact["point_data"]["node_tags"]["values"]]
         runner.expect_close("%s: nodes.csv coordinates of the contact boundary's node_tags" % reader,
                             [by_tag[t] for t in ctags], contact["points"], 0, 1e-12)
+
+
+@test("monitor_after_header")
+def monitor_after_header(runner):
+    """-contact_monitor lines come after the run's header (model, mesh, unknowns) and before the result lines."""
+    r = runner.run(["-options_file", "options/beam_on_floor.yml", "-contact_monitor"], "beam_on_floor monitor")
+    lines = r.output.splitlines()
+
+    def first(prefix):
+        return next((i for i, line in enumerate(lines) if line.strip().startswith(prefix)), -1)
+
+    header, unknowns, monitor = first("signorini: 2D"), first("unknowns:"), first("step 1 (load 1) it 1:")
+    result = first("CONVERGED")
+    runner.expect_true("header line %d, unknowns line %d, first monitor line %d, result line %d in that order" % (
+        header, unknowns, monitor, result), 0 <= header < unknowns < monitor < result)
