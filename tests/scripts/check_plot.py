@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""scripts/plot.py on the output of a small run (beam_on_floor with a Hertz block, so that the analytical curve is drawn, and two load
-steps): it exits 0 and writes deformed.png, contact_pressure.png and active_set.png, each a valid PNG (signature,
-non-empty, an image matplotlib reads back with the size the script asked for)."""
+"""scripts/plot.py on the output of a small run (beam_on_floor with a Hertz block, so that the analytical curve is
+drawn, and two load steps): it exits 0 and writes deformed.png, contact_pressure.png and active_set.png, each a valid
+PNG (signature, non-empty, an image matplotlib reads back, at least 200 pixels each way)."""
 import argparse
 import os
 import shutil
