@@ -35,18 +35,25 @@ void ComputeHertz(const Material &m, const ContactSummary &s, HertzReport &h) {
   h.p0_h = s.max_pressure;
 }
 
-PetscErrorCode PrintSummary(MPI_Comm comm, const RunInfo &info, const Material &m, ContactSolver &solver,
-                            const ContactSummary &s, const HertzReport &h) {
-  const SolveStats &st = solver.Stats();
+PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m, ContactSolver &solver) {
+  const Mesh &mesh = solver.GetMesh();
   const DofMap &dofs = solver.Dofs();
+  PetscInt owned = 0, candidates;
   PetscFunctionBeginUser;
+  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) owned += mesh.Owned(v) && solver.Candidates()[v];
+  PetscCallMPI(MPI_Allreduce(&owned, &candidates, 1, MPIU_INT, MPI_SUM, comm));
   PetscCall(PetscPrintf(comm, "signorini: 2D %s, plane %s, E = %g, nu = %g, thickness = %g\n", m.ModelName(),
                         m.plane_stress ? "stress" : "strain", m.E, m.nu, m.thickness));
   PetscCall(PetscPrintf(comm, "  mesh %s: %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells, %d rank(s)\n",
-                        info.mesh_file.c_str(), solver.GetMesh().NumGlobalNodes(), solver.GetMesh().NumGlobalCells(),
-                        info.ranks));
+                        info.mesh_file.c_str(), mesh.NumGlobalNodes(), mesh.NumGlobalCells(), info.ranks));
   PetscCall(PetscPrintf(comm, "  unknowns: %" PetscInt_FMT " displacements, %" PetscInt_FMT " multipliers (%"
-                        PetscInt_FMT " candidate nodes)\n", dofs.GlobalU(), dofs.GlobalLambda(), s.candidates));
+                        PetscInt_FMT " candidate nodes)\n", dofs.GlobalU(), dofs.GlobalLambda(), candidates));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PrintSummary(MPI_Comm comm, ContactSolver &solver, const ContactSummary &s, const HertzReport &h) {
+  const SolveStats &st = solver.Stats();
+  PetscFunctionBeginUser;
   PetscCall(PetscPrintf(comm, "  %s after %" PetscInt_FMT " active-set iteration(s) in %" PetscInt_FMT
                         " load step(s): %" PetscInt_FMT " active pair(s) on %" PetscInt_FMT " node(s)\n",
                         st.reason.c_str(), st.active_set_iterations, st.steps, s.active_pairs, s.active_nodes));

@@ -81,13 +81,13 @@ PetscErrorCode CollectFields(ContactSolver &solver, const NodeContact &nodes, st
   PetscCall(solver.GetAssembler().CellResults(solver.ULocal().data(), cells));
   Field strain{"strain", 6, true, {}}, stress{"stress", 6, true, {}}, vm{"von_mises", 1, true, {}};
   for (const auto &c : cells) {
-    // XDMF Tensor6 order: xx, xy, xz, yy, yz, zz.
-    strain.values.insert(strain.values.end(), {c.strain[0], c.strain[2], 0, c.strain[1], 0, 0});
-    stress.values.insert(stress.values.end(), {c.stress[0], c.stress[2], 0, c.stress[1], 0, c.stress_zz});
+    // VTK's order of a symmetric tensor (xx, yy, zz, xy, yz, xz): ParaView names six components so (output.cpp).
+    strain.values.insert(strain.values.end(), {c.strain[0], c.strain[1], 0, c.strain[2], 0, 0});
+    stress.values.insert(stress.values.end(), {c.stress[0], c.stress[1], c.stress_zz, c.stress[2], 0, 0});
     vm.values.push_back(c.von_mises);
   }
-  Field lambda{"contact_lambda", 1, false, nodes.lambda}, pressure{"contact_pressure", 1, false, nodes.pressure},
-      gap{"contact_gap", 1, false, nodes.gap}, active{"contact_active", 1, false, nodes.active};
+  Field lambda{"contact_lambda", 1, false, nodes.lambda, true}, pressure{"contact_pressure", 1, false, nodes.pressure,
+      true}, gap{"contact_gap", 1, false, nodes.gap, true}, active{"contact_active", 1, false, nodes.active, true};
   fields = {disp, lambda, pressure, gap, active, strain, stress, vm};
   table = {disp2, {"lambda", 1, false, nodes.lambda}, {"pressure", 1, false, nodes.pressure},
            {"gap", 1, false, nodes.gap}, {"active", 1, false, nodes.active}};
@@ -174,6 +174,9 @@ PetscErrorCode Run() {
   PetscCall(solver.Setup());
   PetscCall(PetscLogStagePop());
   info.timings["setup"] = MPI_Wtime() - t;
+  output.SetObstacle(obstacle);
+  PetscCall(output.SetContactBoundary(solver.Candidates()));
+  PetscCall(PrintHeader(comm, info, material, solver));
 
   double t_output = 0;
   NodeContact nodes;
@@ -204,7 +207,7 @@ PetscErrorCode Run() {
   PetscCall(PetscLogStagePush(stage_output));
   PetscCall(ComputeContactResults(solver, material, nodes, summary));
   ComputeHertz(material, summary, hertz);
-  PetscCall(PrintSummary(comm, info, material, solver, summary, hertz));
+  PetscCall(PrintSummary(comm, solver, summary, hertz));
   if (output.Enabled()) {
     PetscCall(CollectFields(solver, nodes, fields, table));
     PetscCall(output.WriteNodeTable(table));

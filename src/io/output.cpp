@@ -6,6 +6,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -62,6 +63,12 @@ PetscErrorCode GatherToRoot(const Mesh &mesh, const Field &field, std::vector<do
 
 namespace {
 
+bool UniformCells(const SerialMesh &sm) {
+  for (int c = 1; c < sm.NumCells(); ++c)
+    if (sm.CellSize(c) != sm.CellSize(0)) return false;
+  return true;
+}
+
 std::string HdfError(const std::string &path) { return "cannot write HDF5 file '" + path + "'"; }
 
 /// Writes a 2D dataset (rows x cols) of doubles or ints into an open HDF5 location.
@@ -88,22 +95,46 @@ PetscErrorCode OutputWriter::Open(const Mesh &mesh, const OutputOptions &opts) {
   if (!Enabled()) PetscFunctionReturn(0);
   PetscCallMPI(MPI_Comm_rank(mesh.Comm(), &rank));
   std::string error;
-  if (rank == 0) {
-    std::error_code ec;
-    fs::create_directories(opts_.dir, ec);
-    if (ec || !fs::is_directory(opts_.dir)) {
-      error = "-output_dir '" + opts_.dir + "' cannot be created (" + ec.message() + "); expected a writable directory";
-    } else {
-      fs::remove_all(Staging(), ec);
-      fs::create_directory(Staging(), ec);
-      const std::string probe = Staging() + "/.probe";
-      std::ofstream f(probe);
-      if (ec || !f) error = "-output_dir '" + opts_.dir + "' is not writable; expected a writable directory";
-      f.close();
-      fs::remove(probe, ec);
-    }
-  }
+  if (rank == 0) error = PrepareOutputDirectory(opts_.dir);
   PetscCall(RaiseFromRoot(mesh.Comm(), error));
+  PetscFunctionReturn(0);
+}
+
+void OutputWriter::SetObstacle(const Obstacle &obstacle) {
+  obstacle_points_.clear();
+  for (const auto &facet : obstacle.facets) {
+    const auto line = facet->Polyline();
+    for (std::size_t k = 0; k + 1 < line.size(); ++k) obstacle_points_.insert(obstacle_points_.end(), {line[k], line[k + 1]});
+  }
+}
+
+PetscErrorCode OutputWriter::SetContactBoundary(const std::vector<char> &candidate) {
+  std::vector<std::array<PetscInt, 2>> edges;
+  PetscMPIInt rank, size;
+  PetscFunctionBeginUser;
+  if (!Enabled()) PetscFunctionReturn(0);
+  MPI_Comm comm = mesh_->Comm();
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(mesh_->BoundaryEdges(edges));
+  std::vector<PetscInt> send;
+  for (const auto &e : edges)
+    if (candidate[e[0]] && candidate[e[1]]) send.insert(send.end(), {mesh_->VertexOriginal(e[0]), mesh_->VertexOriginal(e[1])});
+  PetscMPIInt count = (PetscMPIInt)send.size();
+  std::vector<PetscMPIInt> counts(size), displs(size, 0);
+  PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
+  std::vector<PetscInt> all;
+  if (rank == 0) {
+    for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+    all.resize(displs[size - 1] + counts[size - 1]);
+  }
+  PetscCallMPI(MPI_Gatherv(send.data(), count, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT, 0, comm));
+  contact_nodes_.assign(all.begin(), all.end());
+  std::sort(contact_nodes_.begin(), contact_nodes_.end());
+  contact_nodes_.erase(std::unique(contact_nodes_.begin(), contact_nodes_.end()), contact_nodes_.end());
+  contact_edges_.clear();
+  for (PetscInt v : all)
+    contact_edges_.push_back(std::lower_bound(contact_nodes_.begin(), contact_nodes_.end(), v) - contact_nodes_.begin());
   PetscFunctionReturn(0);
 }
 
@@ -129,42 +160,111 @@ PetscErrorCode OutputWriter::WriteStep(PetscInt step, double t, const std::vecto
     hid_t file = first ? H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)
                        : H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
     bool ok = file >= 0;
-    if (ok && first) {
-      const SerialMesh &sm = mesh_->Serial();
-      hid_t g = H5Gcreate2(file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-      std::vector<double> xyz(3 * sm.NumNodes(), 0.0);
-      for (int i = 0; i < sm.NumNodes(); ++i)
-        for (int d = 0; d < sm.dim; ++d) xyz[3 * i + d] = sm.coords[sm.dim * i + d];
-      bool uniform = true;
-      for (int c = 1; c < sm.NumCells(); ++c) uniform = uniform && sm.CellSize(c) == sm.CellSize(0);
-      std::vector<long long> topo, ntags(sm.node_tags.begin(), sm.node_tags.end()),
-          ctags(sm.cell_tags.begin(), sm.cell_tags.end());
-      for (int c = 0; c < sm.NumCells(); ++c) {
-        if (!uniform) topo.push_back(sm.CellSize(c) == 3 ? 4 : 5); // XDMF mixed: 4 triangle, 5 quadrilateral
-        for (int k = sm.cell_offsets[c]; k < sm.cell_offsets[c + 1]; ++k) topo.push_back(sm.cell_nodes[k]);
-      }
-      ok = g >= 0 && WriteDataset(g, "coordinates", xyz, 3) &&
-           WriteDataset(g, "topology", topo, uniform ? (hsize_t)sm.CellSize(0) : 1) &&
-           WriteDataset(g, "node_tags", ntags, 1) && WriteDataset(g, "cell_tags", ctags, 1);
-      if (g >= 0) H5Gclose(g);
-    }
+    ok = ok && (!first || WriteGeometry(file));
     char name[32];
     std::snprintf(name, sizeof(name), "step_%06d", (int)step);
     hid_t g = ok ? H5Gcreate2(file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
     ok = ok && g >= 0;
     for (std::size_t f = 0; ok && f < fields.size(); ++f)
       ok = WriteDataset(g, fields[f].name, gathered[f], (hsize_t)fields[f].ncomp);
+    hid_t boundary = ok && !contact_nodes_.empty()
+                         ? H5Gcreate2(g, "contact_boundary", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
+    for (std::size_t f = 0; boundary >= 0 && ok && f < fields.size(); ++f) {
+      if (!fields[f].on_contact) continue;
+      const int nc = fields[f].ncomp;
+      std::vector<double> restricted;
+      for (PetscInt v : contact_nodes_)
+        restricted.insert(restricted.end(), gathered[f].begin() + v * nc, gathered[f].begin() + (v + 1) * nc);
+      ok = WriteDataset(boundary, fields[f].name, restricted, (hsize_t)nc);
+    }
+    if (boundary >= 0) H5Gclose(boundary);
     if (g >= 0) H5Gclose(g);
     if (file >= 0) ok = H5Fclose(file) >= 0 && ok;
     if (!ok) error = HdfError(path);
   }
   PetscCall(RaiseFromRoot(mesh_->Comm(), error));
   StepInfo info{step, t, {}};
-  for (const auto &f : fields) info.layout.push_back({f.name, f.ncomp, f.on_cells, {}});
+  for (const auto &f : fields) info.layout.push_back({f.name, f.ncomp, f.on_cells, {}, f.on_contact});
   steps_.push_back(info);
   PetscCall(WriteXdmf());
   PetscFunctionReturn(0);
 }
+
+bool OutputWriter::WriteGeometry(std::int64_t file) const {
+  const SerialMesh &sm = mesh_->Serial();
+  hid_t g = H5Gcreate2(file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const auto xyz = [](const std::vector<std::array<double, 2>> &points) {
+    std::vector<double> out;
+    for (const auto &p : points) out.insert(out.end(), {p[0], p[1], 0.0});
+    return out;
+  };
+  std::vector<std::array<double, 2>> nodes(sm.NumNodes());
+  for (int i = 0; i < sm.NumNodes(); ++i) nodes[i] = {sm.coords[2 * i], sm.coords[2 * i + 1]};
+  const bool uniform = UniformCells(sm);
+  std::vector<long long> topo, ntags(sm.node_tags.begin(), sm.node_tags.end()),
+      ctags(sm.cell_tags.begin(), sm.cell_tags.end());
+  for (int c = 0; c < sm.NumCells(); ++c) {
+    if (!uniform) topo.push_back(sm.CellSize(c) == 3 ? 4 : 5); // XDMF mixed: 4 triangle, 5 quadrilateral
+    for (int k = sm.cell_offsets[c]; k < sm.cell_offsets[c + 1]; ++k) topo.push_back(sm.cell_nodes[k]);
+  }
+  bool ok = g >= 0 && WriteDataset(g, "coordinates", xyz(nodes), 3) &&
+            WriteDataset(g, "topology", topo, uniform ? (hsize_t)sm.CellSize(0) : 1) &&
+            WriteDataset(g, "node_tags", ntags, 1) && WriteDataset(g, "cell_tags", ctags, 1);
+  if (g >= 0) H5Gclose(g);
+  if (ok && !obstacle_points_.empty()) {
+    std::vector<long long> lines(obstacle_points_.size());
+    for (std::size_t k = 0; k < lines.size(); ++k) lines[k] = (long long)k;
+    g = H5Gcreate2(file, "obstacle", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    ok = g >= 0 && WriteDataset(g, "coordinates", xyz(obstacle_points_), 3) && WriteDataset(g, "topology", lines, 2);
+    if (g >= 0) H5Gclose(g);
+  }
+  if (ok && !contact_nodes_.empty()) {
+    std::vector<std::array<double, 2>> points;
+    std::vector<long long> tags;
+    for (PetscInt v : contact_nodes_) points.push_back(nodes[v]), tags.push_back((long long)sm.node_tags[v]);
+    g = H5Gcreate2(file, "contact_boundary", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    ok = g >= 0 && WriteDataset(g, "coordinates", xyz(points), 3) && WriteDataset(g, "topology", contact_edges_, 2) &&
+         WriteDataset(g, "node_tags", tags, 1);
+    if (g >= 0) H5Gclose(g);
+  }
+  return ok;
+}
+
+namespace {
+
+/// An HDF5 DataItem of solution.h5 (dims: "n" or "n m").
+std::string DataItem(const std::string &dims, bool integer, const std::string &dataset) {
+  return "<DataItem Dimensions=\"" + dims + "\" NumberType=\"" + (integer ? "Int" : "Float") +
+         "\" Precision=\"8\" Format=\"HDF\">solution.h5:" + dataset + "</DataItem>";
+}
+
+/// An attribute of n nodes or cells with ncomp values each; three components are a vector. Six are a symmetric
+/// tensor in VTK's order (xx, yy, zz, xy, yz, xz), declared as a plain matrix so that every ParaView XDMF reader
+/// passes them through and names them XX, YY, ZZ, XY, YZ, XZ: the legacy XDMFReader would expand an XDMF Tensor6
+/// (xx, xy, xz, yy, yz, zz) to nine, while the Xdmf3 readers pass it through under VTK's names, in the wrong order.
+std::string Attribute(const std::string &name, int ncomp, bool on_cells, int n, bool integer,
+                      const std::string &dataset) {
+  const char *type = ncomp == 1 ? "Scalar" : ncomp == 3 ? "Vector" : "Matrix";
+  const std::string dims = std::to_string(n) + (ncomp > 1 ? " " + std::to_string(ncomp) : "");
+  return "     <Attribute Name=\"" + name + "\" AttributeType=\"" + type + "\" Center=\"" +
+         (on_cells ? "Cell" : "Node") + "\">\n      " + DataItem(dims, integer, dataset) + "\n     </Attribute>\n";
+}
+
+/// Topology and geometry of a grid whose datasets live in group (cells of `nodes_per_cell` nodes, or mixed).
+std::string Shape(const std::string &group, const char *type, int cells, int nodes_per_cell, std::size_t mixed_size,
+                  int nodes) {
+  std::ostringstream x;
+  x << "     <Topology TopologyType=\"" << type << "\" NumberOfElements=\"" << cells << "\"";
+  if (std::string(type) == "Polyline") x << " NodesPerElement=\"2\"";
+  x << ">\n      "
+    << DataItem(mixed_size ? std::to_string(mixed_size) : std::to_string(cells) + " " + std::to_string(nodes_per_cell),
+                true, "/" + group + "/topology")
+    << "\n     </Topology>\n     <Geometry GeometryType=\"XYZ\">\n      "
+    << DataItem(std::to_string(nodes) + " 3", false, "/" + group + "/coordinates") << "\n     </Geometry>\n";
+  return x.str();
+}
+
+} // namespace
 
 PetscErrorCode OutputWriter::WriteXdmf() const {
   PetscMPIInt rank;
@@ -173,38 +273,37 @@ PetscErrorCode OutputWriter::WriteXdmf() const {
   std::string error;
   if (rank == 0) {
     const SerialMesh &sm = mesh_->Serial();
-    bool uniform = true;
+    const bool uniform = UniformCells(sm);
     std::size_t topo_size = 0;
-    for (int c = 0; c < sm.NumCells(); ++c) {
-      uniform = uniform && sm.CellSize(c) == sm.CellSize(0);
-      topo_size += sm.CellSize(c) + 1;
-    }
-    const int nn = sm.NumNodes(), nc = sm.NumCells();
+    for (int c = 0; c < sm.NumCells(); ++c) topo_size += sm.CellSize(c) + 1;
+    const int nn = sm.NumNodes(), nc = sm.NumCells(), nb = (int)contact_nodes_.size();
     std::ostringstream x;
     x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
       << "  <Grid Name=\"signorini\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
     for (const auto &s : steps_) {
       char group[32];
       std::snprintf(group, sizeof(group), "step_%06d", (int)s.step);
-      x << "   <Grid Name=\"" << group << "\" GridType=\"Uniform\">\n    <Time Value=\"" << s.t << "\"/>\n";
-      if (uniform)
-        x << "    <Topology TopologyType=\"" << (sm.CellSize(0) == 3 ? "Triangle" : "Quadrilateral")
-          << "\" NumberOfElements=\"" << nc << "\">\n     <DataItem Dimensions=\"" << nc << " " << sm.CellSize(0)
-          << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">solution.h5:/mesh/topology</DataItem>\n";
-      else
-        x << "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << nc << "\">\n     <DataItem Dimensions=\""
-          << topo_size << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">solution.h5:/mesh/topology</DataItem>\n";
-      x << "    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n     <DataItem Dimensions=\"" << nn
-        << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">solution.h5:/mesh/coordinates</DataItem>\n"
-        << "    </Geometry>\n";
-      for (const auto &f : s.layout) {
-        const char *type = f.ncomp == 1 ? "Scalar" : f.ncomp == 3 ? "Vector" : f.ncomp == 6 ? "Tensor6" : "Matrix";
-        const int n = f.on_cells ? nc : nn;
-        x << "    <Attribute Name=\"" << f.name << "\" AttributeType=\"" << type << "\" Center=\""
-          << (f.on_cells ? "Cell" : "Node") << "\">\n     <DataItem Dimensions=\"" << n;
-        if (f.ncomp > 1) x << " " << f.ncomp;
-        x << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">solution.h5:/" << group << "/" << f.name
-          << "</DataItem>\n    </Attribute>\n";
+      x << "   <Grid Name=\"" << group << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
+        << "    <Time Value=\"" << s.t << "\"/>\n    <Grid Name=\"body\" GridType=\"Uniform\">\n"
+        << Shape("mesh", uniform ? (sm.CellSize(0) == 3 ? "Triangle" : "Quadrilateral") : "Mixed", nc,
+                 sm.CellSize(0), uniform ? 0 : topo_size, nn)
+        << Attribute("node_tags", 1, false, nn, true, "/mesh/node_tags")
+        << Attribute("cell_tags", 1, true, nc, true, "/mesh/cell_tags");
+      for (const auto &f : s.layout)
+        x << Attribute(f.name, f.ncomp, f.on_cells, f.on_cells ? nc : nn, false, "/" + std::string(group) + "/" + f.name);
+      x << "    </Grid>\n";
+      if (!obstacle_points_.empty())
+        x << "    <Grid Name=\"obstacle\" GridType=\"Uniform\">\n"
+          << Shape("obstacle", "Polyline", (int)obstacle_points_.size() / 2, 2, 0, (int)obstacle_points_.size())
+          << "    </Grid>\n";
+      if (nb > 0) {
+        x << "    <Grid Name=\"contact_boundary\" GridType=\"Uniform\">\n"
+          << Shape("contact_boundary", "Polyline", (int)contact_edges_.size() / 2, 2, 0, nb)
+          << Attribute("node_tags", 1, false, nb, true, "/contact_boundary/node_tags");
+        for (const auto &f : s.layout)
+          if (f.on_contact)
+            x << Attribute(f.name, f.ncomp, false, nb, false, "/" + std::string(group) + "/contact_boundary/" + f.name);
+        x << "    </Grid>\n";
       }
       x << "   </Grid>\n";
     }
@@ -271,17 +370,7 @@ PetscErrorCode OutputWriter::Publish(const std::string &summary_json) {
     out << summary_json;
     out.close();
     if (!out) error = "cannot write '" + path + "'";
-    std::error_code ec;
-    fs::remove(fs::path(opts_.dir) / "summary.json", ec);
-    // summary.json moves last: its presence in DIR says that the other files are complete.
-    for (const char *name : {"solution.h5", "solution.xdmf", "nodes.csv", "summary.json"}) {
-      if (!error.empty()) break;
-      const fs::path from = fs::path(Staging()) / name, to = fs::path(opts_.dir) / name;
-      if (!fs::exists(from)) continue;
-      fs::rename(from, to, ec);
-      if (ec) error = "cannot move '" + from.string() + "' to '" + to.string() + "': " + ec.message();
-    }
-    if (error.empty()) fs::remove_all(Staging(), ec);
+    else error = PublishOutputDirectory(opts_.dir);
   }
   PetscCall(RaiseFromRoot(mesh_->Comm(), error));
   PetscFunctionReturn(0);

@@ -33,6 +33,15 @@ std::string Disc::Describe() const {
   return s.str();
 }
 
+std::vector<std::array<double, 2>> Disc::Polyline() const {
+  std::vector<std::array<double, 2>> points;
+  for (int k = 0; k <= POLYGON_SIDES; ++k) {
+    const double a = 2 * M_PI * (k % POLYGON_SIDES) / POLYGON_SIDES;
+    points.push_back({c_[0] + r_ * std::cos(a), c_[1] + r_ * std::sin(a)});
+  }
+  return points;
+}
+
 ShapeType DiscsShape() {
   return {"-obstacle_discs", "Rigid discs CX,CY,R,... (the body is outside)", 3,
           [](const double *v, std::vector<std::unique_ptr<Facet>> &out) -> std::string {

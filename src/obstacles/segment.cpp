@@ -41,6 +41,10 @@ std::string Segment::Describe() const {
   return s.str();
 }
 
+std::vector<std::array<double, 2>> Segment::Polyline() const {
+  return {{p0_[0], p0_[1]}, {p1_[0], p1_[1]}};
+}
+
 ShapeType SegmentsShape() {
   return {"-obstacle_segments", "Oriented segments X0,Y0,X1,Y1,... (normal: left of P0->P1, into the body)", 4,
           [](const double *v, std::vector<std::unique_ptr<Facet>> &out) -> std::string {

@@ -4,8 +4,11 @@ Each test gets a Runner (run_case.py): runner.run(args, label) runs the executab
 Result of the run; runner.expect_* record the checks. Integers (pairs, active-set iterations) are compared exactly;
 every floating-point tolerance is justified next to it by the physics or the arithmetic it stands for.
 """
+import json
 import os
 import re
+import shutil
+import subprocess
 
 import numpy as np
 
@@ -690,3 +693,84 @@ def nonlinear_sliding_repair(runner):
     runner.expect_close("24-segment floor = one-segment floor", displacement(a), displacement(b), 0, 1e-8)
     runner.expect_close("contact force", short.get("contact.contact_force.1"), one.get("contact.contact_force.1"),
                         1e-8)
+
+
+@test("paraview_view")
+def paraview_view(runner):
+    """What ParaView shows of block_on_floor, through each of its XDMF readers: stress and strain under the right
+    component names, the floor as its own grid, the contact fields on a grid of the contact boundary (finite gap
+    everywhere), and node and cell tags that match nodes.csv."""
+    pvpython = shutil.which("pvpython")
+    if not pvpython:
+        from run_case import Skipped
+        raise Skipped("pvpython not found (Debian package python3-paraview; scripts/bootstrap.sh installs it)")
+    q = 2.0
+    r = runner.run(["-options_file", "options/block_on_floor.yml"], "block_on_floor")
+    dump = os.path.join(r.dir, "paraview.json")
+    proc = subprocess.run([pvpython, os.path.join(os.path.dirname(os.path.abspath(__file__)), "paraview_dump.py"),
+                           os.path.join(r.dir, "solution.xdmf"), dump], stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True)
+    runner.expect_equal("pvpython exit status (output: %s)" % proc.stdout[-2000:], proc.returncode, 0)
+    if proc.returncode != 0:
+        return
+    with open(dump) as f:
+        readers = json.load(f)
+    nodes = r.nodes()
+    by_tag = {int(t): (x, y) for t, x, y in zip(nodes["node_tag"], nodes["x"], nodes["y"])}
+    bottom = nodes[nodes["y"] == 0.0]
+    E, nu = r.get("material.E"), r.get("material.nu")
+    # The exact field is uniform (block_on_floor): sigma_yy = -q, sigma_zz = nu sigma_yy (plane strain), no shear;
+    # eps_xx = nu (1 + nu) q / E, eps_yy = -(1 - nu^2) q / E. P1/Q1 reproduce it up to round-off (1e-10 as there).
+    exact = {"stress": {"XX": 0, "YY": -q, "ZZ": -nu * q, "XY": 0, "YZ": 0, "XZ": 0},
+             "strain": {"XX": nu * (1 + nu) * q / E, "YY": -(1 - nu * nu) * q / E, "ZZ": 0, "XY": 0, "YZ": 0,
+                        "XZ": 0}}
+    for reader, blocks in readers.items():
+        runner.expect_equal("%s: blocks (body, obstacle, contact boundary)" % reader, len(blocks), 3)
+        if len(blocks) != 3:
+            continue
+        body, floor, contact = blocks
+        for field, want in exact.items():
+            array = body["cell_data"][field]
+            runner.expect_equal("%s: %s component names" % (reader, field), sorted(array["components"]),
+                                sorted(want))
+            got = {name: [cell[k] for cell in array["values"]] for k, name in enumerate(array["components"])}
+            for name, value in want.items():
+                runner.expect_close("%s: %s_%s of every cell" % (reader, field, name), got.get(name, [np.nan]),
+                                    np.full(len(got.get(name, [0])), value), 0, 1e-10 * q)
+        # node_tags on the body: the tag a selection shows is the nodes.csv row at the same coordinates.
+        tags = [int(t[0]) for t in body["point_data"]["node_tags"]["values"]]
+        runner.expect_close("%s: nodes.csv coordinates of the body's node_tags" % reader,
+                            [by_tag[t] for t in tags], body["points"], 0, 1e-12)
+        runner.expect_equal("%s: cell_tags on every cell" % reader, len(body["cell_data"]["cell_tags"]["values"]),
+                            len(body["cells"]))
+        # The floor, -obstacle_segments -1,0,3,0 of the case: one segment.
+        runner.expect_close("%s: obstacle points" % reader, floor["points"], [[-1, 0], [3, 0]], 0, 1e-12)
+        runner.expect_equal("%s: obstacle cells" % reader, floor["cells"], [[0, 1]])
+        # The contact boundary: the bottom nodes (the group 'bottom') and the edges between them.
+        cx = sorted(p[0] for p in contact["points"])
+        runner.expect_close("%s: contact boundary nodes are the bottom nodes" % reader, cx, np.sort(bottom["x"]), 0,
+                            1e-12)
+        runner.expect_equal("%s: contact boundary edges" % reader, len(contact["cells"]), len(bottom) - 1)
+        gap = np.array(contact["point_data"]["contact_gap"]["values"]).ravel()
+        runner.expect_true("%s: contact_gap finite on every contact-boundary node" % reader, np.all(np.isfinite(gap)))
+        runner.expect_close("%s: contact_pressure on the contact boundary = q" % reader,
+                            np.array(contact["point_data"]["contact_pressure"]["values"]).ravel(),
+                            np.full(len(gap), q), 1e-10)
+        ctags = [int(t[0]) for t in contact["point_data"]["node_tags"]["values"]]
+        runner.expect_close("%s: nodes.csv coordinates of the contact boundary's node_tags" % reader,
+                            [by_tag[t] for t in ctags], contact["points"], 0, 1e-12)
+
+
+@test("monitor_after_header")
+def monitor_after_header(runner):
+    """-contact_monitor lines come after the run's header (model, mesh, unknowns) and before the result lines."""
+    r = runner.run(["-options_file", "options/beam_on_floor.yml", "-contact_monitor"], "beam_on_floor monitor")
+    lines = r.output.splitlines()
+
+    def first(prefix):
+        return next((i for i, line in enumerate(lines) if line.strip().startswith(prefix)), -1)
+
+    header, unknowns, monitor = first("signorini: 2D"), first("unknowns:"), first("step 1 (load 1) it 1:")
+    result = first("CONVERGED")
+    runner.expect_true("header line %d, unknowns line %d, first monitor line %d, result line %d in that order" % (
+        header, unknowns, monitor, result), 0 <= header < unknowns < monitor < result)

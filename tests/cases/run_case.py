@@ -36,6 +36,10 @@ class CheckFailed(Exception):
     """A run or an expectation failed; the message says which and by how much."""
 
 
+class Skipped(Exception):
+    """The test cannot run here (a tool it needs is missing); the message says which. Exit status 77 (CTest SKIP)."""
+
+
 class Result:
     """The files of one run: summary (the parsed summary.json), and on demand the node table and the HDF5 file."""
 
@@ -218,6 +222,10 @@ def main():
     start = time.time()
     try:
         case_tests.TESTS[name](runner, *([param] if param else []))
+    except Skipped as e:
+        print("SKIP %s: %s" % (args.test, e))
+        shutil.rmtree(workdir, ignore_errors=True)
+        return 77
     except CheckFailed as e:
         runner.failures.append(str(e))
         print("FAIL %s" % e)

@@ -32,9 +32,13 @@ struct RunInfo {
   std::map<std::string, double> timings; ///< phase -> seconds (max over ranks)
 };
 
-/// Prints the short deterministic summary on rank 0. Collective.
-[[nodiscard]] PetscErrorCode PrintSummary(MPI_Comm comm, const RunInfo &info, const Material &m,
-                                          ContactSolver &solver, const ContactSummary &s, const HertzReport &hertz);
+/// Prints the header of the run on rank 0 (model, mesh, unknowns), before the solve and its -contact_monitor
+/// lines. Collective.
+[[nodiscard]] PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m, ContactSolver &solver);
+
+/// Prints the short deterministic summary of the result on rank 0. Collective.
+[[nodiscard]] PetscErrorCode PrintSummary(MPI_Comm comm, ContactSolver &solver, const ContactSummary &s,
+                                          const HertzReport &hertz);
 
 /// The text of summary.json.
 std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &solver, const ContactSummary &s,

@@ -1,12 +1,17 @@
-// Output (prefix -output_): HDF5 + XDMF for ParaView (one step per load step), the per-node CSV table keyed by
-// the mesh file's node tags, and summary.json. Everything is written into DIR/incomplete/ and moved into DIR only
-// when the run succeeds, so a failed run never leaves files that look complete nor replaces a good earlier output.
+// Output (prefix -output_): HDF5 + XDMF for ParaView (one step per load step; the body, the obstacle and the contact
+// boundary as three grids), the per-node CSV table keyed by the mesh file's node tags, and summary.json. Everything
+// is written into DIR/incomplete/ and published with one rename only when the run succeeds (output_directory.hpp),
+// so a failed or killed run never leaves files that look complete nor replaces a good earlier output.
 #pragma once
 
+#include "signorini/io/output_directory.hpp"
 #include "signorini/mesh/mesh.hpp"
+#include "signorini/obstacles/obstacle.hpp"
 
 #include <petscsys.h>
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,12 +23,14 @@ struct OutputOptions {
 
 [[nodiscard]] PetscErrorCode ReadOutputOptions(MPI_Comm comm, OutputOptions &opts);
 
-/// A field on the vertices or the cells, ncomp values per local vertex (cell), named as in the HDF5 file.
+/// A field on the vertices or the cells, ncomp values per local vertex (cell), named as in the HDF5 file. A vertex
+/// field with on_contact is written on the contact-boundary grid too.
 struct Field {
   std::string name;
   int ncomp = 1;
   bool on_cells = false;
   std::vector<double> values;
+  bool on_contact = false;
 };
 
 /// Gathers a per-local-vertex (or per-local-cell) array to rank 0 in the file's order (owned vertices only).
@@ -35,6 +42,11 @@ public:
   /// Prepares DIR/incomplete (removing a stale one); checks that DIR can be written. Collective.
   [[nodiscard]] PetscErrorCode Open(const Mesh &mesh, const OutputOptions &opts);
   bool Enabled() const { return !opts_.dir.empty(); }
+  /// Records the obstacle's facets (as polylines) for the obstacle grid. Call on every rank before WriteStep.
+  void SetObstacle(const Obstacle &obstacle);
+  /// Records the contact boundary: the boundary edges whose two vertices are candidates (candidate: per local
+  /// vertex), the edges that carry contact pressure. Collective; call before WriteStep.
+  [[nodiscard]] PetscErrorCode SetContactBoundary(const std::vector<char> &candidate);
   /// Writes the fields of one load step (load factor t) and rewrites the XDMF. Collective.
   [[nodiscard]] PetscErrorCode WriteStep(PetscInt step, double t, const std::vector<Field> &fields);
   /// Writes the node table (vertex fields: name, ncomp) of the final state. Collective.
@@ -42,10 +54,12 @@ public:
   /// Writes summary.json (its text is given) and moves everything into DIR. Collective.
   [[nodiscard]] PetscErrorCode Publish(const std::string &summary_json);
   /// Path of the staging directory (for messages).
-  std::string Staging() const { return opts_.dir + "/incomplete"; }
+  std::string Staging() const { return StagingDirectory(opts_.dir); }
 
 private:
   [[nodiscard]] PetscErrorCode WriteXdmf() const;
+  /// Writes the mesh, the obstacle and the contact boundary into a new HDF5 file; false on an HDF5 error.
+  bool WriteGeometry(std::int64_t file) const;
   /// Gathers every field to rank 0 in file order; returns this rank's number. Collective.
   [[nodiscard]] PetscErrorCode GatherFields(const std::vector<Field> &fields,
                                             std::vector<std::vector<double>> &gathered, PetscMPIInt &rank) const;
@@ -57,7 +71,9 @@ private:
     std::vector<Field> layout; // names and sizes only
   };
   std::vector<StepInfo> steps_;
-  std::vector<std::string> files_;
+  std::vector<std::array<double, 2>> obstacle_points_; ///< two per obstacle segment
+  std::vector<PetscInt> contact_nodes_;                ///< rank 0: file indices of the contact-boundary nodes
+  std::vector<long long> contact_edges_;               ///< rank 0: two positions in contact_nodes_ per edge
 };
 
 } // namespace signorini

@@ -5,6 +5,7 @@
 
 #include <petscsys.h>
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -30,6 +31,8 @@ public:
   /// Axis-aligned bounding box (lo, hi: dim values each).
   virtual void Bounds(double *lo, double *hi) const = 0;
   virtual std::string Describe() const = 0;
+  /// The facet's shape for output: a polyline (dim values per point); a closed curve repeats its first point.
+  virtual std::vector<std::array<double, 2>> Polyline() const = 0;
 };
 
 /// An oriented segment P0 -> P1; its normal is the left normal of the direction.
@@ -40,6 +43,7 @@ public:
   double Distance(const double *x) const override;
   void Bounds(double *lo, double *hi) const override;
   std::string Describe() const override;
+  std::vector<std::array<double, 2>> Polyline() const override;
   double Length() const { return length_; }
 
 private:
@@ -54,6 +58,9 @@ public:
   double Distance(const double *x) const override;
   void Bounds(double *lo, double *hi) const override;
   std::string Describe() const override;
+  /// The circle as a polygon of POLYGON_SIDES sides (output only; the gap is exact).
+  std::vector<std::array<double, 2>> Polyline() const override;
+  static constexpr int POLYGON_SIDES = 128;
 
 private:
   double c_[2], r_;

@@ -137,6 +137,28 @@ TEST(Disc, GapAndNormalAreRadial) {
   EXPECT_EQ(hi[1], 2.5);
 }
 
+TEST(Segment, PolylineIsItsTwoEndsInOrder) {
+  const double p0[2] = {1, 2}, p1[2] = {3, -1};
+  const auto points = Segment(p0, p1).Polyline();
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_EQ(points[0][0], 1.0);
+  EXPECT_EQ(points[0][1], 2.0);
+  EXPECT_EQ(points[1][0], 3.0);
+  EXPECT_EQ(points[1][1], -1.0);
+}
+
+TEST(Disc, PolylineIsAClosedPolygonOnTheCircle) {
+  const double c[2] = {1, 2};
+  const auto points = Disc(c, 0.5).Polyline();
+  ASSERT_EQ(points.size(), (std::size_t)Disc::POLYGON_SIDES + 1);
+  EXPECT_EQ(points.front(), points.back());
+  for (const auto &p : points) EXPECT_NEAR(std::hypot(p[0] - 1, p[1] - 2), 0.5, 1e-15);
+  // Equal sides: the polygon is regular, so no side hides a flat spot of the circle.
+  const double side = std::hypot(points[1][0] - points[0][0], points[1][1] - points[0][1]);
+  for (std::size_t k = 1; k + 1 < points.size(); ++k)
+    EXPECT_NEAR(std::hypot(points[k + 1][0] - points[k][0], points[k + 1][1] - points[k][1]), side, 1e-14);
+}
+
 TEST(ShapeRegistry, ListsSegmentsArcsAndDiscs) {
   EXPECT_EQ(ShapeRegistry().size(), 3u);
   EXPECT_EQ(Shape("-obstacle_segments").numbers, 4);

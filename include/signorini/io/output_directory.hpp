@@ -1,0 +1,26 @@
+// The layout of an output directory and its all-or-nothing switch: a run writes into DIR/incomplete/, which becomes
+// DIR/run_<id>/ when it succeeds; DIR/current is a symbolic link to the published run and one rename of that link
+// replaces every file at once. DIR/solution.h5, solution.xdmf, nodes.csv and summary.json link to current/.
+// Plain file-system code, called on one rank.
+#pragma once
+
+#include <string>
+
+namespace signorini {
+
+/// The files a run publishes, in the order a reader should trust them (summary.json says the rest is complete).
+inline constexpr const char *OUTPUT_FILES[] = {"solution.h5", "solution.xdmf", "nodes.csv", "summary.json"};
+
+/// DIR/incomplete/, where a run writes its files.
+std::string StagingDirectory(const std::string &dir);
+
+/// Removes what an interrupted run or switch left beside the published run (stale run_* directories, a temporary
+/// link), and recreates an empty DIR/incomplete/. Returns an empty string on success, else the reason.
+std::string PrepareOutputDirectory(const std::string &dir);
+
+/// Publishes DIR/incomplete/ (complete, summary.json included) as the current run of DIR: renames it to a fresh
+/// DIR/run_<id>/, points DIR/current at it with one rename of a new link over the old one, then removes the earlier
+/// run. A kill at any point leaves either the earlier run or this one, whole. Returns "" or the reason of a failure.
+std::string PublishOutputDirectory(const std::string &dir);
+
+} // namespace signorini

@@ -1,0 +1,62 @@
+#!/usr/bin/python3
+"""scripts/plot.py on the output of a small run (beam_on_floor with a Hertz block, so that the analytical curve is
+drawn, and two load steps): it exits 0 and writes deformed.png, contact_pressure.png and active_set.png, each a valid
+PNG (signature, non-empty, an image matplotlib reads back, at least 200 pixels each way)."""
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import matplotlib.image
+
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+PICTURES = ("deformed.png", "contact_pressure.png", "active_set.png")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--exe", required=True)
+    parser.add_argument("--mpiexec", default="mpiexec")
+    parser.add_argument("--np", type=int, default=1)
+    parser.add_argument("--source-dir", required=True)
+    args = parser.parse_args()
+    work = tempfile.mkdtemp(prefix="signorini_plot_np%d_" % args.np)
+    out = os.path.join(work, "out")
+    cmd = [args.mpiexec, "-n", str(args.np), args.exe, "-options_file", "options/beam_on_floor.yml", "-load_steps",
+           "2", "-report_hertz", "8,10", "-output_dir", out]
+    failures = []
+    run = subprocess.run(cmd, cwd=args.source_dir, capture_output=True, text=True)
+    if run.returncode != 0:
+        failures.append("the run failed: %s\n%s%s" % (" ".join(cmd), run.stdout, run.stderr))
+    else:
+        plot = subprocess.run([sys.executable, os.path.join(args.source_dir, "scripts", "plot.py"), out],
+                              capture_output=True, text=True)
+        if plot.returncode != 0:
+            failures.append("plot.py exit status %d:\n%s%s" % (plot.returncode, plot.stdout, plot.stderr))
+        for name in PICTURES:
+            path = os.path.join(out, name)
+            if not os.path.exists(path):
+                failures.append("%s missing" % name)
+                continue
+            with open(path, "rb") as f:
+                head = f.read(8)
+            size = os.path.getsize(path)
+            image = matplotlib.image.imread(path)
+            ok = head == PNG_SIGNATURE and size > 0 and image.ndim == 3 and min(image.shape[:2]) >= 200
+            print("%s %s: %d bytes, %dx%d pixels" % ("ok  " if ok else "FAIL", name, size, image.shape[1],
+                                                   image.shape[0]))
+            if not ok:
+                failures.append("%s is not a valid picture (signature %r, %d bytes, shape %s)" % (
+                    name, head, size, image.shape))
+    if failures:
+        print("FAIL " + "\nFAIL ".join(failures) + "\nkept in " + work)
+        return 1
+    shutil.rmtree(work, ignore_errors=True)
+    print("PASS")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
