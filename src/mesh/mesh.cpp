@@ -58,6 +58,7 @@ PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, M
                           "metis, ptscotch or simple", opts.partitioner));
   PetscOptionsEnd();
   PetscCheck(!opts.file.empty(), comm, PETSC_ERR_USER_INPUT, "-mesh_file is empty; expected a .msh or .geo path");
+  PetscCall(PathCandidatesFor("-mesh_file", opts.file, opts.file_candidates));
   PetscCheck(opts.partitioner == "metis" || opts.partitioner == "ptscotch" || opts.partitioner == "simple", comm,
              PETSC_ERR_USER_INPUT, "-mesh_partitioner '%s' is unknown; expected metis, ptscotch or simple",
              opts.partitioner.c_str());
@@ -70,7 +71,17 @@ PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
   comm_ = comm;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   std::string error;
-  if (rank == 0) error = ReadGmsh(opts.file, opts.size_factor, serial_);
+  if (rank == 0) {
+    std::string looked;
+    // Options not read by ReadMeshOptions (unit tests) name the file as it is.
+    const PathCandidates as_given{{opts.file}, {"relative to the current directory"}};
+    const std::string path = FirstExisting(opts.file_candidates.paths.empty() ? as_given : opts.file_candidates, looked);
+    if (path.empty())
+      error = "cannot open mesh file '" + opts.file + "': not found at " + looked +
+              "; expected a readable gmsh .msh or .geo file";
+    else
+      error = ReadGmsh(path, opts.size_factor, serial_);
+  }
   PetscCall(RaiseFromRoot(comm, error));
   PetscCall(BroadcastGroups(comm, serial_, group_names_, group_dims_));
   DMH dm;

@@ -1,16 +1,22 @@
 #!/usr/bin/env python3
 """Command-line behaviour: -help lists every option of the README's tables with its default, a misspelled option is
-reported, the built-in default case equals options/hertz.yml."""
+reported, the built-in default case equals options/hertz.yml, a relative path in an options file is read relative to
+that file."""
 import os
 import re
+import shutil
 import subprocess
 import sys
+import tempfile
 
 EXE, SOURCE, TEST = sys.argv[1], sys.argv[2], sys.argv[3]
+MPIEXEC = sys.argv[4] if len(sys.argv) > 4 else "mpiexec"
 
 
-def run(args):
-    proc = subprocess.run([EXE] + args, capture_output=True, text=True, timeout=300, cwd=SOURCE)
+def run(args, cwd=SOURCE, np=0):
+    """Runs the executable in cwd, directly (np = 0) or under mpiexec with np ranks."""
+    launcher = [MPIEXEC, "-n", str(np)] if np else []
+    proc = subprocess.run(launcher + [EXE] + args, capture_output=True, text=True, timeout=300, cwd=cwd)
     return proc.returncode, proc.stdout + proc.stderr
 
 
@@ -46,5 +52,24 @@ elif TEST == "default_case":
     check(rc1 == 0 and rc2 == 0, "both runs succeed")
     check(strip(out1) == strip(out2), "the default case prints the same summary as options/hertz.yml")
     check("Hertz (R = 8., P = 10.)" in out1, "the default case compares with Hertz")
+elif TEST.startswith("options_file_paths_np"):
+    np = int(TEST[len("options_file_paths_np"):])
+    case = os.path.join(SOURCE, "options", "beam_on_floor.yml")
+    with tempfile.TemporaryDirectory() as elsewhere:
+        rc, out = run(["-options_file", case], cwd=elsewhere, np=np)
+        check(rc == 0 and "CONVERGED" in out, "a case's options file runs from another directory: " + out[-300:])
+        # A copy of the case one level deeper than the meshes it names: found neither there nor here.
+        os.makedirs(os.path.join(elsewhere, "cases"))
+        copy = os.path.join(elsewhere, "cases", "beam.yml")
+        shutil.copy(case, copy)
+        rc, out = run(["-options_file", copy], cwd=elsewhere, np=np)
+        errors = [l for l in out.splitlines() if l.startswith("signorini: error:")]
+        check(rc != 0 and len(errors) == 1, "a missing mesh is one error line: " + out[-300:])
+        check(os.path.join(elsewhere, "cases", "../meshes/beam.msh") in errors[0] and "options file" in errors[0]
+              and "current directory" in errors[0], "the error names both places looked: " + errors[0])
+        # The command line is relative to the current directory, and overrides the file's setting.
+        rc, out = run(["-options_file", copy, "-mesh_file", os.path.relpath(os.path.join(SOURCE, "meshes", "beam.msh"),
+                                                                                elsewhere)], cwd=elsewhere, np=np)
+        check(rc == 0, "-mesh_file on the command line is relative to the current directory: " + out[-300:])
 else:
     sys.exit("unknown test " + TEST)
