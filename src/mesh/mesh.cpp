@@ -4,6 +4,7 @@
 #include "signorini/core/errors.hpp"
 #include "signorini/core/options.hpp"
 #include "signorini/core/parse.hpp"
+#include "signorini/mesh/geo_mesher.hpp"
 
 #include <metis.h>
 
@@ -54,6 +55,9 @@ PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, M
                           "in-process)", "a .msh or .geo path", opts.file));
   PetscCall(OptionsReal(PetscOptionsObject, "-mesh_size_factor", "Mesh size factor applied when meshing a .geo file",
                         {MESH_SIZE_FACTOR_MIN, MESH_SIZE_FACTOR_MAX}, opts.size_factor));
+  opts.max_cells = DefaultMaxCells();
+  PetscCall(OptionsReal(PetscOptionsObject, "-mesh_max_cells", "Refuse a .geo whose mesh is estimated to have more "
+                        "cells (default: physical memory / 3.2 kB per cell)", {1, 1e12}, opts.max_cells));
   PetscCall(OptionsString(PetscOptionsObject, "-mesh_partitioner", "Partitioner: metis, ptscotch or simple",
                           "metis, ptscotch or simple", opts.partitioner));
   PetscOptionsEnd();
@@ -80,7 +84,7 @@ PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
       error = "cannot open mesh file '" + opts.file + "': not found at " + looked +
               "; expected a readable gmsh .msh or .geo file";
     else
-      error = ReadGmsh(path, opts.size_factor, serial_);
+      error = ReadGmsh(path, opts.size_factor, serial_, opts.max_cells);
   }
   PetscCall(RaiseFromRoot(comm, error));
   PetscCall(BroadcastGroups(comm, serial_, group_names_, group_dims_));
