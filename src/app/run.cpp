@@ -3,6 +3,7 @@
 
 #include "signorini/app/report.hpp"
 #include "signorini/contact/contact_results.hpp"
+#include "signorini/core/progress.hpp"
 #include "signorini/io/output.hpp"
 #include "signorini/solver/contact_solver.hpp"
 
@@ -128,6 +129,7 @@ PetscErrorCode Run() {
   PetscCall(PetscLogStageRegister("ContactSolve", &stage_solve));
   PetscCall(PetscLogStageRegister("Output", &stage_output));
   PetscCall(ApplyDefaultCase());
+  PetscCall(ReadProgressOptions(comm));
 
   MeshOptions mesh_opts;
   Material material;
@@ -171,7 +173,9 @@ PetscErrorCode Run() {
   t = MPI_Wtime();
   ContactSolver solver(mesh, material, bc, obstacle, contact, solver_opts);
   PetscCall(PetscLogStagePush(stage_setup));
+  ProgressBegin("set-up (supports, contact pairs, numbering, matrix pattern)");
   PetscCall(solver.Setup());
+  ProgressEnd();
   PetscCall(PetscLogStagePop());
   info.timings["setup"] = MPI_Wtime() - t;
 
@@ -184,16 +188,20 @@ PetscErrorCode Run() {
     if (!output.Enabled()) PetscFunctionReturn(0);
     const double t0 = MPI_Wtime();
     PetscCall(PetscLogStagePush(stage_output));
+    ProgressBegin("output of load step");
     PetscCall(ComputeContactResults(solver, material, nodes, summary));
     PetscCall(CollectFields(solver, nodes, fields, table));
     PetscCall(output.WriteStep(step, factor, fields));
+    ProgressEnd();
     PetscCall(PetscLogStagePop());
     t_output += MPI_Wtime() - t0;
     PetscFunctionReturn(0);
   };
   t = MPI_Wtime();
   PetscCall(PetscLogStagePush(stage_solve));
+  ProgressBegin("contact solve");
   PetscCall(solver.Solve(step_done));
+  ProgressEnd();
   PetscCall(PetscLogStagePop());
   info.timings["contact_solve"] = MPI_Wtime() - t - t_output;
   info.timings["assembly"] = solver.Stats().time_assembly;
@@ -202,6 +210,7 @@ PetscErrorCode Run() {
 
   t = MPI_Wtime();
   PetscCall(PetscLogStagePush(stage_output));
+  ProgressBegin("results and output");
   PetscCall(ComputeContactResults(solver, material, nodes, summary));
   ComputeHertz(material, summary, hertz);
   PetscCall(PrintSummary(comm, info, material, solver, summary, hertz));
@@ -218,6 +227,7 @@ PetscErrorCode Run() {
     v = m;
   }
   PetscCall(output.Publish(SummaryJson(info, material, solver, summary, hertz)));
+  ProgressEnd();
   PetscCall(ReportUnusedOptions(comm));
   PetscFunctionReturn(0);
 }

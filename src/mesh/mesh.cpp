@@ -4,6 +4,7 @@
 #include "signorini/core/errors.hpp"
 #include "signorini/core/options.hpp"
 #include "signorini/core/parse.hpp"
+#include "signorini/core/progress.hpp"
 #include "signorini/mesh/geo_mesher.hpp"
 
 #include <metis.h>
@@ -75,6 +76,8 @@ PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
   comm_ = comm;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   std::string error;
+  ProgressBegin(("reading " + opts.file + (opts.file.size() > 4 && opts.file.substr(opts.file.size() - 4) == ".geo"
+                                                ? " (meshing with gmsh)" : "")).c_str());
   if (rank == 0) {
     std::string looked;
     // Options not read by ReadMeshOptions (unit tests) name the file as it is.
@@ -86,12 +89,15 @@ PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
     else
       error = ReadGmsh(path, opts.size_factor, serial_, opts.max_cells);
   }
+  ProgressEnd();
   PetscCall(RaiseFromRoot(comm, error));
   PetscCall(BroadcastGroups(comm, serial_, group_names_, group_dims_));
   DMH dm;
   PetscCall(BuildSerialDM(dm.out()));
+  ProgressBegin("partition and distribution");
   PetscCall(Partition(dm, opts.partitioner));
   PetscCall(Distribute(dm));
+  ProgressEnd();
   dm_ = std::move(dm);
   PetscCall(BuildLocalArrays());
   PetscFunctionReturn(0);

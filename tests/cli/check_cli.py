@@ -71,5 +71,22 @@ elif TEST.startswith("options_file_paths_np"):
         rc, out = run(["-options_file", copy, "-mesh_file", os.path.relpath(os.path.join(SOURCE, "meshes", "beam.msh"),
                                                                                 elsewhere)], cwd=elsewhere, np=np)
         check(rc == 0, "-mesh_file on the command line is relative to the current directory: " + out[-300:])
+elif TEST.startswith("progress_np"):
+    np = int(TEST[len("progress_np"):])
+    launcher = [MPIEXEC, "-n", str(np)]
+    proc = subprocess.run(launcher + [EXE, "-progress"], capture_output=True, text=True, timeout=300, cwd=SOURCE)
+    lines = [l for l in proc.stderr.splitlines() if l.startswith("signorini: [")]
+    check(proc.returncode == 0, "-progress run succeeds")
+    for phase in ["reading ", "partition and distribution", "set-up", "stiffness assembly", "factorisation",
+                  "step 1 iteration 1:", "contact solve", "results and output"]:
+        begun = [l for l in lines if phase in l and not l.endswith("s)")]
+        check(len(begun) == 1, f"-progress prints one line as '{phase}' starts (rank 0 only): {begun}")
+        if phase in ("reading ", "partition and distribution", "contact solve", "results and output"):
+            ended = [l for l in lines if phase in l and " done (" in l]
+            check(len(ended) == 1, f"-progress prints one line as '{phase}' ends, with its duration: {ended}")
+    iterations = [l for l in lines if " iteration " in l]
+    check(len(iterations) == 6, f"one line per active-set iteration (6 on the Hertz case): {len(iterations)}")
+    proc = subprocess.run(launcher + [EXE], capture_output=True, text=True, timeout=300, cwd=SOURCE)
+    check(proc.returncode == 0 and "signorini: [" not in proc.stderr, "quiet without -progress when stderr is a file")
 else:
     sys.exit("unknown test " + TEST)
