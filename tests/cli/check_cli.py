@@ -39,6 +39,13 @@ if TEST == "help":
         check(re.search(r"^\s+" + re.escape(option) + r"\b", out, re.M) is not None, f"-help lists {option}")
     check("-contact_ksp_type <now preonly" in out, "-help shows the default saddle-point KSP (preonly)")
     check("-contact_pc_type <now cholesky" in out, "-help shows the default PC (cholesky)")
+    check(out.find("Mesh options:") < out.find("Options for all PETSc programs"),
+          "-help lists the program's groups before PETSc's generic options")
+    check("-contact_mat_mumps_icntl_24" in out, "-help lists the MUMPS options of the default solver")
+    check("-contact_search_radius <now 0.1 x body diagonal" in out, "-help gives a ratio default with its unit")
+    rc, out = run(["-help", "-options_file", "options/solver/fieldsplit_gamg.yml"])
+    check(rc == 0 and "-contact_fieldsplit_u_pc_gamg_threshold" in out,
+          "-help with a fieldsplit preset lists the options of its blocks")
 elif TEST == "misspelled":
     rc, out = run(["-material_nuu", "0.3"])
     check(rc == 0, "a misspelled option does not stop the run")
