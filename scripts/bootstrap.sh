@@ -28,6 +28,8 @@ if ((${#missing[@]})); then
 fi
 
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
+# mpiexec otherwise waits 2 s after a rank exits non-zero (README, Running).
+export OMPI_MCA_odls_base_sigkill_timeout=0
 jobs=$(nproc)
 if [ ! -f "$build_dir/CMakeCache.txt" ]; then
   cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release

@@ -8,6 +8,7 @@ static const char help[] = "signorini: frictionless (Signorini) contact of elast
 int main(int argc, char **argv) {
   // The handler goes first so that a bad -options_file, read by PetscInitialize, is reported like any other input.
   PetscCall(signorini::InstallErrorHandler());
+  signorini::HoldGenericHelp();
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   const PetscErrorCode ierr = signorini::Run();
   if (ierr) (void)PetscOptionsSetValue(nullptr, "-options_left", "0");

@@ -3,10 +3,13 @@
 
 #include "signorini/app/report.hpp"
 #include "signorini/contact/contact_results.hpp"
+#include "signorini/core/progress.hpp"
 #include "signorini/io/output.hpp"
 #include "signorini/solver/contact_solver.hpp"
 
 #include <cmath>
+#include <cstdarg>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +17,22 @@
 namespace signorini {
 
 namespace {
+
+std::string &HeldHelp() {
+  static std::string text;
+  return text;
+}
+
+/// PetscHelpPrintf while PetscInitialize runs: keeps the text for later.
+PetscErrorCode HoldHelpPrintf(MPI_Comm, const char format[], ...) {
+  char line[4096];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(line, sizeof(line), format, args);
+  va_end(args);
+  HeldHelp() += line;
+  return 0;
+}
 
 /// The built-in default case (2D Hertz: half cylinder R = 8 on a rigid flat, P = 10 per unit thickness). Its
 /// options fill in whatever the user did not set when -mesh_file is absent.
@@ -40,13 +59,36 @@ PetscErrorCode ApplyDefaultCase() {
   PetscFunctionReturn(0);
 }
 
-/// Lists the saddle-point KSP's options for -help (the solve itself is not reached).
+/// Lists the saddle-point KSP's options for -help, with the user's solver preset: the KSP is set up on a tiny
+/// saddle-point matrix (per rank two u rows and one multiplier row, diag(1, 1, -1), split into the index sets u and
+/// lambda as the real system is) so that the options of the factorisation and of the fieldsplit blocks are listed too.
 PetscErrorCode HelpKsp(MPI_Comm comm) {
   KSPH ksp;
+  MatH A;
+  PetscMPIInt rank;
   PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(MatCreateAIJ(comm, 3, 3, PETSC_DETERMINE, PETSC_DETERMINE, 1, nullptr, 0, nullptr, A.out()));
+  for (PetscInt i = 0; i < 3; ++i) PetscCall(MatSetValue(A, 3 * rank + i, 3 * rank + i, i < 2 ? 1.0 : -1.0,
+                                                          INSERT_VALUES));
+  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  ISH u, lambda;
+  PetscCall(ISCreateStride(comm, 2, 3 * rank, 1, u.out()));
+  PetscCall(ISCreateStride(comm, 1, 3 * rank + 2, 1, lambda.out()));
   PetscCall(KSPCreate(comm, ksp.out()));
+  PetscCall(KSPSetOperators(ksp, A, A));
   PetscCall(SetDefaultSolver(ksp));
   PetscCall(KSPSetFromOptions(ksp));
+  PC pc;
+  PetscBool fieldsplit;
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
+  if (fieldsplit) {
+    PetscCall(PCFieldSplitSetIS(pc, "u", u));
+    PetscCall(PCFieldSplitSetIS(pc, "lambda", lambda));
+  }
+  PetscCall(KSPSetUp(ksp));
   SaddlePointOptions opts;
   PetscCall(ReadSaddlePointOptions(comm, opts));
   PetscFunctionReturn(0);
@@ -114,6 +156,8 @@ PetscErrorCode ReportUnusedOptions(MPI_Comm comm) {
 
 } // namespace
 
+void HoldGenericHelp() { PetscHelpPrintf = HoldHelpPrintf; }
+
 PetscErrorCode Run() {
   MPI_Comm comm = PETSC_COMM_WORLD;
   PetscLogStage stage_mesh, stage_setup, stage_solve, stage_output;
@@ -121,6 +165,7 @@ PetscErrorCode Run() {
   RunInfo info;
   const double t_start = MPI_Wtime();
   PetscFunctionBeginUser;
+  PetscHelpPrintf = PetscHelpPrintfDefault;
   PetscCallMPI(MPI_Comm_size(comm, &size));
   info.ranks = size;
   PetscCall(PetscLogStageRegister("Mesh", &stage_mesh));
@@ -128,6 +173,7 @@ PetscErrorCode Run() {
   PetscCall(PetscLogStageRegister("ContactSolve", &stage_solve));
   PetscCall(PetscLogStageRegister("Output", &stage_output));
   PetscCall(ApplyDefaultCase());
+  PetscCall(ReadProgressOptions(comm));
 
   MeshOptions mesh_opts;
   Material material;
@@ -149,6 +195,8 @@ PetscErrorCode Run() {
   if (help) {
     PetscCall(ReadContactOptions(comm, 1.0, material.E * material.thickness, contact));
     PetscCall(HelpKsp(comm));
+    PetscCall(PetscPrintf(comm, "----------------------------------------\nPETSc's own options (every PETSc "
+                          "program):\n%s", HeldHelp().c_str()));
     PetscCall(PetscOptionsSetValue(nullptr, "-options_left", "0"));
     PetscFunctionReturn(0);
   }
@@ -171,7 +219,9 @@ PetscErrorCode Run() {
   t = MPI_Wtime();
   ContactSolver solver(mesh, material, bc, obstacle, contact, solver_opts);
   PetscCall(PetscLogStagePush(stage_setup));
+  ProgressBegin("set-up (supports, contact pairs, numbering, matrix pattern)");
   PetscCall(solver.Setup());
+  ProgressEnd();
   PetscCall(PetscLogStagePop());
   info.timings["setup"] = MPI_Wtime() - t;
   output.SetObstacle(obstacle);
@@ -187,16 +237,20 @@ PetscErrorCode Run() {
     if (!output.Enabled()) PetscFunctionReturn(0);
     const double t0 = MPI_Wtime();
     PetscCall(PetscLogStagePush(stage_output));
+    ProgressBegin("output of load step");
     PetscCall(ComputeContactResults(solver, material, nodes, summary));
     PetscCall(CollectFields(solver, nodes, fields, table));
     PetscCall(output.WriteStep(step, factor, fields));
+    ProgressEnd();
     PetscCall(PetscLogStagePop());
     t_output += MPI_Wtime() - t0;
     PetscFunctionReturn(0);
   };
   t = MPI_Wtime();
   PetscCall(PetscLogStagePush(stage_solve));
+  ProgressBegin("contact solve");
   PetscCall(solver.Solve(step_done));
+  ProgressEnd();
   PetscCall(PetscLogStagePop());
   info.timings["contact_solve"] = MPI_Wtime() - t - t_output;
   info.timings["assembly"] = solver.Stats().time_assembly;
@@ -205,6 +259,7 @@ PetscErrorCode Run() {
 
   t = MPI_Wtime();
   PetscCall(PetscLogStagePush(stage_output));
+  ProgressBegin("results and output");
   PetscCall(ComputeContactResults(solver, material, nodes, summary));
   ComputeHertz(material, summary, hertz);
   PetscCall(PrintSummary(comm, solver, summary, hertz));
@@ -221,6 +276,7 @@ PetscErrorCode Run() {
     v = m;
   }
   PetscCall(output.Publish(SummaryJson(info, material, solver, summary, hertz)));
+  ProgressEnd();
   PetscCall(ReportUnusedOptions(comm));
   PetscFunctionReturn(0);
 }

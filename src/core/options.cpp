@@ -59,8 +59,11 @@ PetscErrorCode OptionsReal(PetscOptionItems *PetscOptionsObject, const char *nam
   std::string raw;
   PetscBool found;
   PetscFunctionBeginUser;
-  PetscCall(ListAndRead(PetscOptionsObject, name, std::string(help) + "; range " + range.Relative(),
-                        FormatNumber(value), raw, found));
+  // A relative range lists its default in the range's unit ("0.1 x body diagonal"), not as a bare number.
+  const std::string default_text =
+      range.unit && range.scale != 0 ? FormatNumber(value / range.scale) + " x " + range.unit : FormatNumber(value);
+  PetscCall(ListAndRead(PetscOptionsObject, name, std::string(help) + "; range " + range.Relative(), default_text,
+                        raw, found));
   if (set) *set = found;
   if (!found) PetscFunctionReturn(0);
   PetscCheck(!raw.empty(), comm, PETSC_ERR_USER_INPUT, "%s is given without a value; expected a number in %s", name,

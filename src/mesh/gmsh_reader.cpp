@@ -1,5 +1,7 @@
-// Reading gmsh files (and meshing .geo files) on one rank through the gmsh API.
+// Reading gmsh files (and .geo files, meshed in a child process) on one rank through the gmsh API.
 #include "signorini/mesh/serial_mesh.hpp"
+
+#include "signorini/mesh/geo_mesher.hpp"
 
 #include <gmsh.h>
 
@@ -14,15 +16,6 @@
 namespace signorini {
 
 namespace {
-
-std::string LastGmshError(const char *fallback) {
-  std::string err;
-  try {
-    gmsh::logger::getLastError(err);
-  } catch (...) {
-  }
-  return err.empty() ? fallback : err;
-}
 
 bool EndsWith(const std::string &s, const std::string &suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -163,7 +156,7 @@ std::string ReadModel(const std::string &path, SerialMesh &mesh) {
 
 } // namespace
 
-std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &mesh) {
+std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &mesh, double max_cells) {
   mesh = SerialMesh{};
   FILE *f = std::fopen(path.c_str(), "rb");
   if (!f) return "cannot open mesh file '" + path + "'; expected a readable gmsh .msh or .geo file";
@@ -177,6 +170,12 @@ std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &me
   if (!geo && std::string(head).rfind("$MeshFormat", 0) != 0)
     return "mesh file '" + path + "' is not a gmsh mesh (no $MeshFormat header); expected a gmsh .msh file";
 
+  // A .geo is meshed by gmsh in a child process into a temporary .msh, read below like any other.
+  std::string source = path;
+  if (geo) {
+    const std::string error = MeshGeo(path, {size_factor, max_cells}, source);
+    if (!error.empty()) return error;
+  }
   std::string error;
   try {
     gmsh::initialize(0, nullptr, false);
@@ -184,9 +183,8 @@ std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &me
     // Warnings reach the logger (not the terminal): the .msh 2 reader only warns about a duplicate node tag and
     // keeps one of the nodes.
     gmsh::option::setNumber("General.Verbosity", 2);
-    if (geo) gmsh::option::setNumber("Mesh.MeshSizeFactor", size_factor);
     gmsh::logger::start();
-    gmsh::open(path);
+    gmsh::open(source);
     std::vector<std::string> log;
     gmsh::logger::get(log);
     gmsh::logger::stop();
@@ -195,7 +193,6 @@ std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &me
       if (error.empty() && line.find(duplicate) != std::string::npos)
         error = "mesh '" + path + "' has duplicate node tag " + line.substr(line.find(duplicate) + duplicate.size()) +
                 "; expected unique node tags";
-    if (error.empty() && geo) gmsh::model::mesh::generate(2);
     if (error.empty()) error = ReadModel(path, mesh);
   } catch (const std::exception &e) {
     error = "cannot read mesh file '" + path + "': " + LastGmshError(e.what()) +
@@ -208,6 +205,7 @@ std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &me
     gmsh::finalize();
   } catch (...) {
   }
+  if (geo) std::remove(source.c_str());
   if (error.empty()) {
     error = CheckAndOrientCells(mesh);
     if (!error.empty()) error = "mesh '" + path + "': " + error;

@@ -4,6 +4,8 @@
 #include "signorini/core/errors.hpp"
 #include "signorini/core/options.hpp"
 #include "signorini/core/parse.hpp"
+#include "signorini/core/progress.hpp"
+#include "signorini/mesh/geo_mesher.hpp"
 
 #include <metis.h>
 
@@ -54,10 +56,14 @@ PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, M
                           "in-process)", "a .msh or .geo path", opts.file));
   PetscCall(OptionsReal(PetscOptionsObject, "-mesh_size_factor", "Mesh size factor applied when meshing a .geo file",
                         {MESH_SIZE_FACTOR_MIN, MESH_SIZE_FACTOR_MAX}, opts.size_factor));
+  opts.max_cells = DefaultMaxCells();
+  PetscCall(OptionsReal(PetscOptionsObject, "-mesh_max_cells", "Refuse a .geo whose mesh is estimated to have more "
+                        "cells (default: physical memory / 3.2 kB per cell)", {1, 1e12}, opts.max_cells));
   PetscCall(OptionsString(PetscOptionsObject, "-mesh_partitioner", "Partitioner: metis, ptscotch or simple",
                           "metis, ptscotch or simple", opts.partitioner));
   PetscOptionsEnd();
   PetscCheck(!opts.file.empty(), comm, PETSC_ERR_USER_INPUT, "-mesh_file is empty; expected a .msh or .geo path");
+  PetscCall(PathCandidatesFor("-mesh_file", opts.file, opts.file_candidates));
   PetscCheck(opts.partitioner == "metis" || opts.partitioner == "ptscotch" || opts.partitioner == "simple", comm,
              PETSC_ERR_USER_INPUT, "-mesh_partitioner '%s' is unknown; expected metis, ptscotch or simple",
              opts.partitioner.c_str());
@@ -70,13 +76,28 @@ PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
   comm_ = comm;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   std::string error;
-  if (rank == 0) error = ReadGmsh(opts.file, opts.size_factor, serial_);
+  ProgressBegin(("reading " + opts.file + (opts.file.size() > 4 && opts.file.substr(opts.file.size() - 4) == ".geo"
+                                                ? " (meshing with gmsh)" : "")).c_str());
+  if (rank == 0) {
+    std::string looked;
+    // Options not read by ReadMeshOptions (unit tests) name the file as it is.
+    const PathCandidates as_given{{opts.file}, {"relative to the current directory"}};
+    const std::string path = FirstExisting(opts.file_candidates.paths.empty() ? as_given : opts.file_candidates, looked);
+    if (path.empty())
+      error = "cannot open mesh file '" + opts.file + "': not found at " + looked +
+              "; expected a readable gmsh .msh or .geo file";
+    else
+      error = ReadGmsh(path, opts.size_factor, serial_, opts.max_cells);
+  }
+  ProgressEnd();
   PetscCall(RaiseFromRoot(comm, error));
   PetscCall(BroadcastGroups(comm, serial_, group_names_, group_dims_));
   DMH dm;
   PetscCall(BuildSerialDM(dm.out()));
+  ProgressBegin("partition and distribution");
   PetscCall(Partition(dm, opts.partitioner));
   PetscCall(Distribute(dm));
+  ProgressEnd();
   dm_ = std::move(dm);
   PetscCall(BuildLocalArrays());
   PetscFunctionReturn(0);

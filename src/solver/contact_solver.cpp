@@ -1,6 +1,8 @@
 // The load-step / active-set / Newton loop.
 #include "signorini/solver/contact_solver.hpp"
 
+#include "signorini/core/progress.hpp"
+
 #include "signorini/core/options.hpp"
 
 #include <algorithm>
@@ -249,6 +251,8 @@ PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double
 
 PetscErrorCode ContactSolver::Monitor(const IterationRecord &r) const {
   PetscFunctionBeginUser;
+  ProgressNote("step %" PetscInt_FMT " iteration %" PetscInt_FMT ": %" PetscInt_FMT " active pairs, %" PetscInt_FMT
+               " changed", r.step, r.iteration, r.active, r.changed);
   if (contact_.monitor)
     PetscCall(PetscPrintf(mesh_.Comm(),
                           "  step %" PetscInt_FMT " (load %.4g) it %" PetscInt_FMT ": active %" PetscInt_FMT
@@ -414,12 +418,14 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(EV_ASSEMBLY, 0, 0, 0, 0));
   if (st.large || !k_assembled_) {
+    ProgressBegin("stiffness assembly");
     PetscCall(MatZeroEntries(system_->A()));
     PetscCall(assembler_->Assemble(u_local_.data(), system_->A(), kscale_, nullptr, nullptr));
     PetscCall(MatAssemblyBegin(system_->A(), MAT_FLUSH_ASSEMBLY));
     PetscCall(MatAssemblyEnd(system_->A(), MAT_FLUSH_ASSEMBLY));
     if (system_->ReusesFactorization()) PetscCall(system_->AddAugmentation(rows_));
     k_assembled_ = true;
+    ProgressEnd();
   }
   PetscCall(system_->SetConstraints(rows_, st.next, -1.0 / kscale_, st.stabilised ? STABILISATION * kscale_ : 0.0));
   if (st.stabilised) {

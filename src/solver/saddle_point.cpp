@@ -1,6 +1,8 @@
 // Pattern, constraint rows, KSP set-up and solve of the saddle-point system.
 #include "signorini/solver/saddle_point.hpp"
 
+#include "signorini/core/progress.hpp"
+
 #include <cmath>
 
 namespace signorini {
@@ -180,6 +182,37 @@ double SaddlePointSystem::InactiveDiagonal(double plain) const {
   return stab_ > 0 ? -1.0 / stab_ : plain;
 }
 
+PetscErrorCode SaddlePointSystem::FailureAdvice(std::string &advice) const {
+  PC pc;
+  PetscBool fieldsplit;
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetPC(ksp_, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
+  // Measured on the Hertz case, whose K is singular (README, Solver presets): fieldsplit_mumps and fieldsplit_gamg
+  // stop at their iteration limit, fieldsplit_hypre and the direct presets converge.
+  const std::string direct = "; expected a solver that fits: the default MUMPS LDL^T (no solver preset, or "
+                             "options/solver/mumps_cholesky.yml) solves every system whose body is held";
+  if (!fieldsplit) {
+    advice = ": the system is singular or the solver unsuitable; is the body held (Dirichlet conditions or enough "
+             "active contact)?" + direct;
+    PetscFunctionReturn(0);
+  }
+  PetscInt n = 0;
+  KSP *sub = nullptr;
+  PCType u_pc = nullptr;
+  PetscCall(PCFieldSplitGetSubKSP(pc, &n, &sub));
+  if (n > 0) {
+    PC upc;
+    PetscCall(KSPGetPC(sub[0], &upc));
+    PetscCall(PCGetType(upc, &u_pc));
+  }
+  PetscCall(PetscFree(sub));
+  advice = std::string(": a Schur fieldsplit with the u block by ") + (u_pc ? u_pc : "?") +
+           " fails when the stiffness K is singular (a body held only by contact, as in the Hertz case)" + direct +
+           "; among the fieldsplits, options/solver/fieldsplit_hypre.yml converges there";
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &residual) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   KSPConvergedReason reason;
@@ -190,7 +223,11 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
   if (reuse_) {
     std::vector<PetscScalar> d;
     PetscCall(MultiplierDiagonal(d));
-    if (!factored_) PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_));
+    if (!factored_) {
+      ProgressBegin("analysis and factorisation (MUMPS with the Schur complement on the candidates)");
+      PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_));
+      ProgressEnd();
+    }
     factored_ = true;
     null_pivots = mumps_schur_.NullPivots();
     PetscCheck(null_pivots == 0, comm, PETSC_ERR_NOT_CONVERGED,
@@ -201,6 +238,10 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
     reason = KSP_CONVERGED_ITS;
     krylov_iterations = 1;
   } else {
+    // KSPSetUp sets the preconditioner up (a factorisation, for the direct presets) before KSPSolve would.
+    ProgressBegin("preconditioner set-up (analysis and factorisation)");
+    PetscCall(KSPSetUp(ksp_));
+    ProgressEnd();
     PetscCall(KSPSolve(ksp_, b_, x_));
     PetscCall(KSPGetConvergedReason(ksp_, &reason));
     PetscCall(KSPGetIterationNumber(ksp_, &krylov_iterations));
@@ -212,10 +253,12 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
                "held; add Dirichlet conditions (e.g. on a symmetry line) so that the initial contact and the supports "
                "remove every rigid-body motion", null_pivots);
   }
-  PetscCheck(reason >= 0, comm, PETSC_ERR_NOT_CONVERGED,
-             "the saddle-point solve failed (%s): the system is singular or the solver unsuitable; is the body held "
-             "(Dirichlet conditions or enough active contact) and do the -contact_ solver options fit?",
-             KSPConvergedReasons[reason]);
+  if (reason < 0) {
+    std::string advice;
+    PetscCall(FailureAdvice(advice));
+    SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "the saddle-point solve failed (%s after %" PetscInt_FMT " iterations)%s",
+            KSPConvergedReasons[reason], krylov_iterations, advice.c_str());
+  }
   // A factorisation of a singular matrix can "succeed" with garbage: check the residual.
   PetscCall(MatMult(A_, x_, r_));
   PetscCall(VecAYPX(r_, -1.0, b_));

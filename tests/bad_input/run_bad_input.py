@@ -69,6 +69,14 @@ CASES = {
     "mesh_bowtie_quad": (mesh("bowtie.msh"), ["bowtie.msh", "element 1 is not convex", "expected"], {}),
     "mesh_curve_not_edges": (mesh("curve_not_edge.msh") + ["-bc_traction", "diagonal:0:1"],
                              ["'diagonal'", "not an edge", "expected"], {}),
+    "mesh_geo_gmsh_crash": (mesh("gmsh_crash.geo"), ["gmsh_crash.geo", "gmsh crashed", "Mesh.Algorithm = 8",
+                                                     "expected", "another Mesh.Algorithm"], {}),
+    "mesh_geo_too_many_cells": (["-options_file", "{root}/options/hertz.yml", "-mesh_file", "{root}/meshes/hertz.geo",
+                                 "-mesh_size_factor", "1e-3"], ["hertz.geo", "would have about", "-mesh_max_cells",
+                                                                "expected a coarser mesh"], {}),
+    "mesh_geo_over_max_cells": (["-options_file", "{root}/options/hertz.yml", "-mesh_file", "{root}/meshes/hertz.geo",
+                                 "-mesh_max_cells", "1000"], ["hertz.geo", "more than -mesh_max_cells 1e+03"], {}),
+    "mesh_max_cells_zero": (["-mesh_max_cells", "0"], ["-mesh_max_cells 0", "[1, 1e+12]"], {}),
     "mesh_size_factor_zero": (["-mesh_size_factor", "0"], ["-mesh_size_factor 0", "[0.001, 1000]"], {}),
     "mesh_partitioner_bogus": (["-mesh_partitioner", "bogus"], ["-mesh_partitioner", "'bogus'", "expected metis"], {}),
     # Material.
@@ -177,6 +185,12 @@ CASES = {
                                 ["-contact_reuse_factorization", "constant stiffness"], {}),
     "reuse_factorization_mumps_layout": (["-contact_mat_mumps_icntl_19", "1"],
                                          ["-contact_mat_mumps_icntl_19", "cannot be set"], {}),
+    # A Schur fieldsplit on the Hertz case (K singular): the message names the presets that work. The iteration limit
+    # only makes it stop sooner (it stops at 2000 otherwise).
+    "fieldsplit_on_singular_K": (["-options_file", "{root}/options/solver/fieldsplit_gamg.yml", "-contact_ksp_max_it",
+                                  "50"], ["saddle-point solve failed", "gamg", "K is singular",
+                                          "options/solver/mumps_cholesky.yml", "options/solver/fieldsplit_hypre.yml"],
+                                 {}),
     "reuse_factorization_iterative": (["-options_file", "{root}/options/solver/fieldsplit_hypre.yml",
                                        "-contact_reuse_factorization", "true"],
                                       ["-contact_reuse_factorization", "MUMPS LU or Cholesky"], {}),

@@ -36,9 +36,12 @@ def yaml_options(path):
 
 
 def options_args(runner, yml, drop=()):
-    """The options of a case file as command-line arguments, without the keys in drop."""
+    """The options of a case file as command-line arguments, without the keys in drop; its mesh_file, relative to the
+    file's directory, made relative to the source directory as the command line reads it."""
     args = []
     for key, value in yaml_options(runner.path(yml)):
+        if key == "mesh_file":
+            value = os.path.normpath(os.path.join(os.path.dirname(yml), value))
         if key not in drop:
             args += ["-" + key, value]
     return args

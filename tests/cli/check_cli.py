@@ -1,16 +1,22 @@
 #!/usr/bin/env python3
 """Command-line behaviour: -help lists every option of the README's tables with its default, a misspelled option is
-reported, the built-in default case equals options/hertz.yml."""
+reported, the built-in default case equals options/hertz.yml, a relative path in an options file is read relative to
+that file."""
 import os
 import re
+import shutil
 import subprocess
 import sys
+import tempfile
 
 EXE, SOURCE, TEST = sys.argv[1], sys.argv[2], sys.argv[3]
+MPIEXEC = sys.argv[4] if len(sys.argv) > 4 else "mpiexec"
 
 
-def run(args):
-    proc = subprocess.run([EXE] + args, capture_output=True, text=True, timeout=300, cwd=SOURCE)
+def run(args, cwd=SOURCE, np=0):
+    """Runs the executable in cwd, directly (np = 0) or under mpiexec with np ranks."""
+    launcher = [MPIEXEC, "-n", str(np)] if np else []
+    proc = subprocess.run(launcher + [EXE] + args, capture_output=True, text=True, timeout=300, cwd=cwd)
     return proc.returncode, proc.stdout + proc.stderr
 
 
@@ -33,6 +39,13 @@ if TEST == "help":
         check(re.search(r"^\s+" + re.escape(option) + r"\b", out, re.M) is not None, f"-help lists {option}")
     check("-contact_ksp_type <now preonly" in out, "-help shows the default saddle-point KSP (preonly)")
     check("-contact_pc_type <now cholesky" in out, "-help shows the default PC (cholesky)")
+    check(out.find("Mesh options:") < out.find("Options for all PETSc programs"),
+          "-help lists the program's groups before PETSc's generic options")
+    check("-contact_mat_mumps_icntl_24" in out, "-help lists the MUMPS options of the default solver")
+    check("-contact_search_radius <now 0.1 x body diagonal" in out, "-help gives a ratio default with its unit")
+    rc, out = run(["-help", "-options_file", "options/solver/fieldsplit_gamg.yml"])
+    check(rc == 0 and "-contact_fieldsplit_u_pc_gamg_threshold" in out,
+          "-help with a fieldsplit preset lists the options of its blocks")
 elif TEST == "misspelled":
     rc, out = run(["-material_nuu", "0.3"])
     check(rc == 0, "a misspelled option does not stop the run")
@@ -46,5 +59,41 @@ elif TEST == "default_case":
     check(rc1 == 0 and rc2 == 0, "both runs succeed")
     check(strip(out1) == strip(out2), "the default case prints the same summary as options/hertz.yml")
     check("Hertz (R = 8., P = 10.)" in out1, "the default case compares with Hertz")
+elif TEST.startswith("options_file_paths_np"):
+    np = int(TEST[len("options_file_paths_np"):])
+    case = os.path.join(SOURCE, "options", "beam_on_floor.yml")
+    with tempfile.TemporaryDirectory() as elsewhere:
+        rc, out = run(["-options_file", case], cwd=elsewhere, np=np)
+        check(rc == 0 and "CONVERGED" in out, "a case's options file runs from another directory: " + out[-300:])
+        # A copy of the case one level deeper than the meshes it names: found neither there nor here.
+        os.makedirs(os.path.join(elsewhere, "cases"))
+        copy = os.path.join(elsewhere, "cases", "beam.yml")
+        shutil.copy(case, copy)
+        rc, out = run(["-options_file", copy], cwd=elsewhere, np=np)
+        errors = [l for l in out.splitlines() if l.startswith("signorini: error:")]
+        check(rc != 0 and len(errors) == 1, "a missing mesh is one error line: " + out[-300:])
+        check(os.path.join(elsewhere, "cases", "../meshes/beam.msh") in errors[0] and "options file" in errors[0]
+              and "current directory" in errors[0], "the error names both places looked: " + errors[0])
+        # The command line is relative to the current directory, and overrides the file's setting.
+        rc, out = run(["-options_file", copy, "-mesh_file", os.path.relpath(os.path.join(SOURCE, "meshes", "beam.msh"),
+                                                                                elsewhere)], cwd=elsewhere, np=np)
+        check(rc == 0, "-mesh_file on the command line is relative to the current directory: " + out[-300:])
+elif TEST.startswith("progress_np"):
+    np = int(TEST[len("progress_np"):])
+    launcher = [MPIEXEC, "-n", str(np)]
+    proc = subprocess.run(launcher + [EXE, "-progress"], capture_output=True, text=True, timeout=300, cwd=SOURCE)
+    lines = [l for l in proc.stderr.splitlines() if l.startswith("signorini: [")]
+    check(proc.returncode == 0, "-progress run succeeds")
+    for phase in ["reading ", "partition and distribution", "set-up", "stiffness assembly", "factorisation",
+                  "step 1 iteration 1:", "contact solve", "results and output"]:
+        begun = [l for l in lines if phase in l and not l.endswith("s)")]
+        check(len(begun) == 1, f"-progress prints one line as '{phase}' starts (rank 0 only): {begun}")
+        if phase in ("reading ", "partition and distribution", "contact solve", "results and output"):
+            ended = [l for l in lines if phase in l and " done (" in l]
+            check(len(ended) == 1, f"-progress prints one line as '{phase}' ends, with its duration: {ended}")
+    iterations = [l for l in lines if " iteration " in l]
+    check(len(iterations) == 6, f"one line per active-set iteration (6 on the Hertz case): {len(iterations)}")
+    proc = subprocess.run(launcher + [EXE], capture_output=True, text=True, timeout=300, cwd=SOURCE)
+    check(proc.returncode == 0 and "signorini: [" not in proc.stderr, "quiet without -progress when stderr is a file")
 else:
     sys.exit("unknown test " + TEST)

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "signorini/core/handle.hpp"
+#include "signorini/core/option_paths.hpp"
 #include "signorini/mesh/serial_mesh.hpp"
 
 #include <array>
@@ -13,8 +14,10 @@ namespace signorini {
 
 /// Mesh options (prefix -mesh_), read by Mesh::Create.
 struct MeshOptions {
-  std::string file;               ///< -mesh_file: gmsh .msh or .geo
+  std::string file;               ///< -mesh_file: gmsh .msh or .geo, as given
+  PathCandidates file_candidates; ///< where file is looked for (relative to the options file that set it, then here)
   double size_factor = 1.0;       ///< -mesh_size_factor: scales the mesh size of a .geo
+  double max_cells = 0;           ///< -mesh_max_cells: a .geo estimated to mesh into more cells is refused
   std::string partitioner = "metis"; ///< -mesh_partitioner: metis | ptscotch | simple
 };
 

@@ -34,9 +34,10 @@ struct SerialMesh {
   int CellSize(int c) const { return cell_offsets[c + 1] - cell_offsets[c]; }
 };
 
-/// Reads a gmsh .msh file (2.2 or 4.1, ASCII or binary) or meshes a .geo file with the given size factor, through
-/// the gmsh API. Serial: call on one rank only. Returns an empty string on success, else the error message.
-std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &mesh);
+/// Reads a gmsh .msh file (2.2 or 4.1, ASCII or binary) through the gmsh API, or meshes a .geo file with the given
+/// size factor in a child process (MeshGeo: refused when estimated above max_cells, 0 for no limit). Serial: call on
+/// one rank only. Returns an empty string on success, else the error message.
+std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &mesh, double max_cells = 0);
 
 /// Checks orientation and shape of every cell: a mesh whose cells are all clockwise is flipped; cells oriented
 /// against the rest, with zero area, or not convex are errors. Returns an empty string on success.

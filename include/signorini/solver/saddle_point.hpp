@@ -77,6 +77,8 @@ private:
   /// Reuse mode: the multiplier diagonal D of A (from the active flags) on rank 0, in the order of schur_rows_.
   /// Collective.
   [[nodiscard]] PetscErrorCode MultiplierDiagonal(std::vector<PetscScalar> &d);
+  /// What to use instead after a failed KSP solve (": ...; expected ..."), from the preconditioner that failed.
+  [[nodiscard]] PetscErrorCode FailureAdvice(std::string &advice) const;
   /// D on an inactive row (plain: the value of the plain form without stabilisation).
   double InactiveDiagonal(double plain) const;
   const DofMap *dofs_ = nullptr;

@@ -1,5 +1,8 @@
-// Reading gmsh files (format 2.2 and 4.1) into the serial mesh, and the orientation and shape checks of cells.
+// Reading gmsh files (format 2.2 and 4.1) into the serial mesh, and the orientation and shape checks of cells;
+// meshing a .geo in a child process, with its cell estimate.
 #include "signorini/mesh/serial_mesh.hpp"
+
+#include "signorini/mesh/geo_mesher.hpp"
 
 #include "mesh/mesh_files.hpp"
 
@@ -7,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -274,6 +278,38 @@ TEST(CheckAndOrientCells, NonConvexQuadrilateralsAreErrors) {
   SerialMesh dart = MakeMesh({{1, 2, 5}, {0, 1, 6, 3}});
   const std::string error2 = CheckAndOrientCells(dart);
   EXPECT_NE(error2.find("element 6 is not convex"), std::string::npos) << error2;
+}
+
+const char *SQUARE_GEO = "Point(1) = {0, 0, 0, 0.1}; Point(2) = {1, 0, 0, 0.1}; Point(3) = {1, 1, 0, 0.1};\n"
+                         "Point(4) = {0, 1, 0, 0.1}; Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4};\n"
+                         "Line(4) = {4, 1}; Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};\n"
+                         "Physical Surface(\"body\") = {1}; Physical Curve(\"bottom\") = {1};\n";
+
+TEST(EstimateCells, EquilateralTrianglesOfTheMeanBoundarySize) {
+  // A unit square with 40 boundary segments: h = 0.1, an equilateral triangle of side h has area sqrt(3)/4 h^2.
+  EXPECT_NEAR(EstimateCells(1.0, 4.0, 40), 4 / (std::sqrt(3.0) * 0.01), 1e-9);
+  EXPECT_EQ(EstimateCells(1.0, 0.0, 0), 0);
+  EXPECT_GT(DefaultMaxCells(), 1e5);
+}
+
+TEST(MeshGeo, SquareIsMeshedInAChildAndReadBack) {
+  TempDir dir;
+  SerialMesh mesh;
+  ASSERT_EQ(ReadGmsh(dir.Write("square.geo", SQUARE_GEO), 1.0, mesh, 1e6), "");
+  // 0.1 on a unit square: about 230 triangles (gmsh's frontal mesher lands near the estimate).
+  EXPECT_GT(mesh.NumCells(), 100);
+  EXPECT_LT(mesh.NumCells(), 500);
+  std::set<std::string> names;
+  for (const auto &g : mesh.groups) names.insert(g.name);
+  EXPECT_EQ(names, (std::set<std::string>{"body", "bottom"}));
+}
+
+TEST(MeshGeo, RefusesAMeshEstimatedAboveTheLimit) {
+  TempDir dir;
+  SerialMesh mesh;
+  const std::string error = ReadGmsh(dir.Write("square.geo", SQUARE_GEO), 1e-2, mesh, 1e5);
+  EXPECT_NE(error.find("square.geo' would have about 2.31e+06 cells"), std::string::npos) << error;
+  EXPECT_NE(error.find("more than -mesh_max_cells 1e+05"), std::string::npos) << error;
 }
 
 } // namespace

@@ -1,0 +1,16 @@
+// An annulus meshed with Mesh.Algorithm = 8 (Frontal-Delaunay for quads): gmsh 4.8 crashes inside the process on it.
+Mesh.Algorithm = 8;
+Point(1) = {0, 0, 0, 0.1};
+Point(2) = {1, 0, 0, 0.1};
+Point(3) = {-1, 0, 0, 0.1};
+Point(4) = {2, 0, 0, 0.2};
+Point(5) = {-2, 0, 0, 0.2};
+Circle(1) = {2, 1, 3};
+Circle(2) = {3, 1, 2};
+Circle(3) = {4, 1, 5};
+Circle(4) = {5, 1, 4};
+Curve Loop(1) = {3, 4};
+Curve Loop(2) = {1, 2};
+Plane Surface(1) = {1, 2};
+Physical Surface("body") = {1};
+Physical Curve("inner") = {1, 2};
