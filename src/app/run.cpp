@@ -81,9 +81,16 @@ PetscErrorCode CollectFields(ContactSolver &solver, const NodeContact &nodes, st
   PetscCall(solver.GetAssembler().CellResults(solver.ULocal().data(), cells));
   Field strain{"strain", 6, true, {}}, stress{"stress", 6, true, {}}, vm{"von_mises", 1, true, {}};
   for (const auto &c : cells) {
-    // XDMF Tensor6 order: xx, xy, xz, yy, yz, zz.
-    strain.values.insert(strain.values.end(), {c.strain[0], c.strain[2], 0, c.strain[1], 0, 0});
-    stress.values.insert(stress.values.end(), {c.stress[0], c.stress[2], 0, c.stress[1], 0, c.stress_zz});
+    // XDMF Tensor6 order: xx, xy, xz, yy, yz, zz; the kernels' Voigt order is (xx, yy, xy) in 2D and
+    // (xx, yy, zz, yz, xz, xy) in 3D.
+    const auto &e = c.strain, &s = c.stress;
+    if (dim == 2) {
+      strain.values.insert(strain.values.end(), {e[0], e[2], 0, e[1], 0, 0});
+      stress.values.insert(stress.values.end(), {s[0], s[2], 0, s[1], 0, c.stress_zz});
+    } else {
+      strain.values.insert(strain.values.end(), {e[0], e[5], e[4], e[1], e[3], e[2]});
+      stress.values.insert(stress.values.end(), {s[0], s[5], s[4], s[1], s[3], s[2]});
+    }
     vm.values.push_back(c.von_mises);
   }
   Field lambda{"contact_lambda", 1, false, nodes.lambda}, pressure{"contact_pressure", 1, false, nodes.pressure},
@@ -139,7 +146,6 @@ PetscErrorCode Run() {
   HertzReport hertz;
   PetscCall(ReadMeshOptions(comm, "", mesh_opts));
   PetscCall(ReadMaterialOptions(comm, material));
-  PetscCall(ReadBoundaryConditions(comm, 2, bc));
   PetscCall(ReadObstacle(comm, obstacle));
   PetscCall(ReadSolverOptions(comm, solver_opts));
   PetscCall(ReadOutputOptions(comm, output_opts));
@@ -147,6 +153,7 @@ PetscErrorCode Run() {
   PetscBool help;
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (help) {
+    PetscCall(ReadBoundaryConditions(comm, 0, bc));
     PetscCall(ReadContactOptions(comm, 1.0, material.E * material.thickness, contact));
     PetscCall(HelpKsp(comm));
     PetscCall(PetscOptionsSetValue(nullptr, "-options_left", "0"));
@@ -160,6 +167,10 @@ PetscErrorCode Run() {
   PetscCall(mesh.Create(comm, mesh_opts));
   PetscCall(PetscLogStagePop());
   info.timings["mesh"] = MPI_Wtime() - t;
+  // What the mesh's dimension decides: the components of loads and supports, the shapes, the 2D-only options.
+  PetscCall(CheckMaterialDimension(comm, material, mesh.Dim()));
+  PetscCall(ReadBoundaryConditions(comm, mesh.Dim(), bc));
+  PetscCall(CheckObstacleDimension(comm, obstacle, mesh.Dim()));
 
   double L = 1;
   PetscCall(BodyDiagonal(mesh, L));
@@ -203,7 +214,7 @@ PetscErrorCode Run() {
   t = MPI_Wtime();
   PetscCall(PetscLogStagePush(stage_output));
   PetscCall(ComputeContactResults(solver, material, nodes, summary));
-  ComputeHertz(material, summary, hertz);
+  ComputeHertz(material, summary, mesh.Dim(), hertz);
   PetscCall(PrintSummary(comm, info, material, solver, summary, hertz));
   if (output.Enabled()) {
     PetscCall(CollectFields(solver, nodes, fields, table));

@@ -64,6 +64,16 @@ namespace {
 
 std::string HdfError(const std::string &path) { return "cannot write HDF5 file '" + path + "'"; }
 
+/// XDMF name and mixed-topology id of a cell with n vertices in dimension dim.
+const char *XdmfCellName(int dim, int n) {
+  if (dim == 2) return n == 3 ? "Triangle" : "Quadrilateral";
+  return n == 4 ? "Tetrahedron" : "Hexahedron";
+}
+int XdmfCellId(int dim, int n) {
+  if (dim == 2) return n == 3 ? 4 : 5; // XDMF: 4 triangle, 5 quadrilateral, 6 tetrahedron, 9 hexahedron
+  return n == 4 ? 6 : 9;
+}
+
 /// Writes a 2D dataset (rows x cols) of doubles or ints into an open HDF5 location.
 template <typename T>
 bool WriteDataset(hid_t loc, const std::string &name, const std::vector<T> &data, hsize_t cols) {
@@ -140,7 +150,7 @@ PetscErrorCode OutputWriter::WriteStep(PetscInt step, double t, const std::vecto
       std::vector<long long> topo, ntags(sm.node_tags.begin(), sm.node_tags.end()),
           ctags(sm.cell_tags.begin(), sm.cell_tags.end());
       for (int c = 0; c < sm.NumCells(); ++c) {
-        if (!uniform) topo.push_back(sm.CellSize(c) == 3 ? 4 : 5); // XDMF mixed: 4 triangle, 5 quadrilateral
+        if (!uniform) topo.push_back(XdmfCellId(sm.dim, sm.CellSize(c)));
         for (int k = sm.cell_offsets[c]; k < sm.cell_offsets[c + 1]; ++k) topo.push_back(sm.cell_nodes[k]);
       }
       ok = g >= 0 && WriteDataset(g, "coordinates", xyz, 3) &&
@@ -188,7 +198,7 @@ PetscErrorCode OutputWriter::WriteXdmf() const {
       std::snprintf(group, sizeof(group), "step_%06d", (int)s.step);
       x << "   <Grid Name=\"" << group << "\" GridType=\"Uniform\">\n    <Time Value=\"" << s.t << "\"/>\n";
       if (uniform)
-        x << "    <Topology TopologyType=\"" << (sm.CellSize(0) == 3 ? "Triangle" : "Quadrilateral")
+        x << "    <Topology TopologyType=\"" << XdmfCellName(sm.dim, sm.CellSize(0))
           << "\" NumberOfElements=\"" << nc << "\">\n     <DataItem Dimensions=\"" << nc << " " << sm.CellSize(0)
           << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">solution.h5:/mesh/topology</DataItem>\n";
       else
@@ -235,7 +245,7 @@ PetscErrorCode OutputWriter::WriteNodeTable(const std::vector<Field> &fields) {
     FILE *out = std::fopen(path.c_str(), "w");
     if (!out) error = "cannot write '" + path + "'";
     else {
-      std::fprintf(out, "node_tag,x,y");
+      std::fprintf(out, sm.dim == 2 ? "node_tag,x,y" : "node_tag,x,y,z");
       for (const auto &f : fields) {
         if (f.ncomp == 1) std::fprintf(out, ",%s", f.name.c_str());
         else
@@ -243,7 +253,8 @@ PetscErrorCode OutputWriter::WriteNodeTable(const std::vector<Field> &fields) {
       }
       std::fprintf(out, "\n");
       for (int i = 0; i < sm.NumNodes(); ++i) {
-        std::fprintf(out, "%zu,%.17g,%.17g", sm.node_tags[i], sm.coords[2 * i], sm.coords[2 * i + 1]);
+        std::fprintf(out, "%zu", sm.node_tags[i]);
+        for (int d = 0; d < sm.dim; ++d) std::fprintf(out, ",%.17g", sm.coords[sm.dim * i + d]);
         for (std::size_t f = 0; f < fields.size(); ++f)
           for (int k = 0; k < fields[f].ncomp; ++k) {
             const double v = gathered[f][i * fields[f].ncomp + k];

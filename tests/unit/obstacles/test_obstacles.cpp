@@ -113,7 +113,7 @@ TEST(Segment, DistanceIsToTheFiniteSegment) {
 
 TEST(Disc, GapAndNormalAreRadial) {
   const double c[2] = {1, 2};
-  const Disc d(c, 0.5);
+  const Ball d(c, 0.5, 2);
   const Projection top = ProjectOn(d, 1, 3);
   EXPECT_NEAR(top.gap, 0.5, 1e-15);
   EXPECT_NEAR(top.normal[0], 0.0, 1e-15);
@@ -137,11 +137,18 @@ TEST(Disc, GapAndNormalAreRadial) {
   EXPECT_EQ(hi[1], 2.5);
 }
 
-TEST(ShapeRegistry, ListsSegmentsArcsAndDiscs) {
-  EXPECT_EQ(ShapeRegistry().size(), 3u);
+TEST(ShapeRegistry, ListsThe2DAnd3DShapes) {
+  EXPECT_EQ(ShapeRegistry().size(), 6u);
   EXPECT_EQ(Shape("-obstacle_segments").numbers, 4);
   EXPECT_EQ(Shape("-obstacle_arcs").numbers, 6);
   EXPECT_EQ(Shape("-obstacle_discs").numbers, 3);
+  EXPECT_EQ(Shape("-obstacle_planes").numbers, 6);
+  EXPECT_EQ(Shape("-obstacle_spheres").numbers, 4);
+  EXPECT_EQ(Shape("-obstacle_cylinders").numbers, 7);
+  for (const char *option : {"-obstacle_segments", "-obstacle_arcs", "-obstacle_discs"})
+    EXPECT_EQ(Shape(option).dim, 2) << option;
+  for (const char *option : {"-obstacle_planes", "-obstacle_spheres", "-obstacle_cylinders"})
+    EXPECT_EQ(Shape(option).dim, 3) << option;
   for (const ShapeType &shape : ShapeRegistry()) {
     EXPECT_TRUE(shape.build) << shape.option;
     EXPECT_GT(std::string(shape.help).size(), 0u) << shape.option;
@@ -236,7 +243,7 @@ TEST(ObstacleOptions, EveryShapeOptionContributesItsFacets) {
   ASSERT_EQ(ReadObstacle(PETSC_COMM_SELF, obstacle), 0);
   EXPECT_EQ(test::PetscMemoryInUse(), before);
   ASSERT_EQ(obstacle.facets.size(), 2u + 6u + 1u);
-  EXPECT_NE(dynamic_cast<const Disc *>(obstacle.facets.back().get()), nullptr);
+  EXPECT_NE(dynamic_cast<const Ball *>(obstacle.facets.back().get()), nullptr);
 }
 
 TEST(ObstacleOptions, BadItemsAreErrors) {
