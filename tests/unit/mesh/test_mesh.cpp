@@ -175,6 +175,48 @@ TEST(Mesh, BeamGroupsSitOnTheirEdges) {
     EXPECT_LT(mesh.X(e.v[1])[0], mesh.X(e.v[0])[0]); // top edge runs in -x, body below
 }
 
+TEST(Mesh3D, CubeFacesAreOrientedOutwardsAndTileTheBoundary) {
+  for (const char *file : {"cube.msh", "cube_tet.msh"}) {
+    SCOPED_TRACE(file);
+    Mesh mesh;
+    ASSERT_EQ(mesh.Create(PETSC_COMM_SELF, Options(std::string(SIGNORINI_SOURCE_DIR "/meshes/") + file)), 0);
+    EXPECT_EQ(mesh.Dim(), 3);
+    std::vector<Face> faces;
+    ASSERT_EQ(mesh.BoundaryFaces(faces), 0);
+    // Six unit faces: the outward vector areas cancel and their absolute values sum to 6.
+    double sum[3] = {0, 0, 0}, total = 0;
+    for (const Face &f : faces) {
+      EXPECT_EQ(f.n, std::string(file) == "cube.msh" ? 4 : 3);
+      double n[3], centre[3] = {0, 0, 0};
+      mesh.FaceNormal(f, n);
+      for (int a = 0; a < f.n; ++a)
+        for (int d = 0; d < 3; ++d)
+          centre[d] += mesh.X(f.v[a])[d] / f.n;
+      // On the face of the unit cube with outward normal e_d (or -e_d), the centre lies at 1 (or 0) along d.
+      for (int d = 0; d < 3; ++d) {
+        sum[d] += n[d];
+        total += std::abs(n[d]);
+        if (std::abs(n[d]) > 1e-12) EXPECT_NEAR(centre[d], n[d] > 0 ? 1.0 : 0.0, 1e-14);
+      }
+    }
+    for (int d = 0; d < 3; ++d)
+      EXPECT_NEAR(sum[d], 0.0, 1e-13);
+    EXPECT_NEAR(total, 6.0, 1e-13);
+    ASSERT_EQ(mesh.GroupFaces("bottom", faces), 0);
+    double bottom = 0;
+    for (const Face &f : faces) {
+      double n[3];
+      mesh.FaceNormal(f, n);
+      bottom += n[2];
+    }
+    EXPECT_NEAR(bottom, -1.0, 1e-14); // outward: -z
+    ErrorCapture capture;
+    EXPECT_NE(mesh.GroupFaces("body", faces), 0);
+    EXPECT_NE(capture.Message().find("expected a physical surface (dimension 2)"), std::string::npos)
+        << capture.Message();
+  }
+}
+
 TEST(Mesh, MissingFileIsAnError) {
   TempDir dir;
   Mesh mesh;
