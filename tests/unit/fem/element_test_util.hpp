@@ -86,4 +86,29 @@ inline Vector SymmetricEigenvalues(Vector A, int n) {
   return eig;
 }
 
+/// Largest |K_rc - K_cr| of an n x n row-major matrix.
+inline double MaxAsymmetry(const Vector &K, int n) {
+  double asym = 0;
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c)
+      asym = std::max(asym, std::abs(K[r * n + c] - K[c * n + r]));
+  return asym;
+}
+
+/// Central finite-difference Jacobian (row-major) of force(u) at u with step h.
+template <typename ForceFunction>
+Vector CentralDifferenceJacobian(const Vector &u, double h, ForceFunction force) {
+  const int n = (int)u.size();
+  Vector J(n * n);
+  for (int c = 0; c < n; ++c) {
+    Vector up(u), um(u);
+    up[c] += h;
+    um[c] -= h;
+    const Vector fp = force(up), fm = force(um);
+    for (int r = 0; r < n; ++r)
+      J[r * n + c] = (fp[r] - fm[r]) / (2 * h);
+  }
+  return J;
+}
+
 } // namespace signorini::test

@@ -455,24 +455,12 @@ TEST(SvkElement, TangentMatchesCentralFiniteDifferenceOfTheForce) {
       Vector K, f;
       TangentAndForce(m, cell, u, K, f);
       const double h = 1e-6 * std::sqrt(Area(cell));
-      Vector K_fd(n * n);
-      for (int c = 0; c < n; ++c) {
-        Vector up(u), um(u);
-        up[c] += h;
-        um[c] -= h;
-        const Vector fp = Force(m, cell, up), fm = Force(m, cell, um);
-        for (int r = 0; r < n; ++r)
-          K_fd[r * n + c] = (fp[r] - fm[r]) / (2 * h);
-      }
+      const Vector K_fd = test::CentralDifferenceJacobian(u, h, [&](const Vector &v) { return Force(m, cell, v); });
       EXPECT_LE(Norm(Difference(K, K_fd)), 1e-6 * Norm(K));
       // The state is genuinely nonlinear: the tangent differs from the linear stiffness.
       EXPECT_GT(Norm(Difference(K, Stiffness(MakeMaterial(plane_stress), cell))), 1e-2 * Norm(K));
       // The tangent of a hyperelastic law is symmetric.
-      double asym = 0;
-      for (int r = 0; r < n; ++r)
-        for (int c = 0; c < n; ++c)
-          asym = std::max(asym, std::abs(K[r * n + c] - K[c * n + r]));
-      EXPECT_LE(asym, 1e-12 * MaxAbs(K));
+      EXPECT_LE(test::MaxAsymmetry(K, n), 1e-12 * MaxAbs(K));
     }
 }
 

@@ -148,8 +148,9 @@ TEST(ElementGeometry3D, WeightsSumToTheVolumeAndShapeFunctionsArePartitionsOfUni
     SCOPED_TRACE(cell.name);
     const ElementGeometry g = Geometry(cell);
     EXPECT_EQ(g.nqp, cell.nodes == 4 ? 4 : 8);
-    if (cell.volume > 0)
+    if (cell.volume > 0) {
       EXPECT_NEAR(Volume(cell), cell.volume, 1e-14);
+    }
     EXPECT_GT(g.min_detJ, 0.0);
     for (int q = 0; q < g.nqp; ++q) {
       double N = 0, d[3] = {0, 0, 0};
@@ -311,22 +312,10 @@ TEST(SvkElement3D, TangentMatchesCentralFiniteDifferenceOfTheForce) {
     Vector K, f;
     TangentAndForce(m, cell, u, K, f);
     const double h = 1e-6 * std::cbrt(Volume(cell));
-    Vector K_fd(n * n);
-    for (int c = 0; c < n; ++c) {
-      Vector up(u), um(u);
-      up[c] += h;
-      um[c] -= h;
-      const Vector fp = Force(m, cell, up), fm = Force(m, cell, um);
-      for (int r = 0; r < n; ++r)
-        K_fd[r * n + c] = (fp[r] - fm[r]) / (2 * h);
-    }
+    const Vector K_fd = test::CentralDifferenceJacobian(u, h, [&](const Vector &v) { return Force(m, cell, v); });
     EXPECT_LE(Norm(Difference(K, K_fd)), 1e-6 * Norm(K));
     EXPECT_GT(Norm(Difference(K, Stiffness(MakeMaterial(), cell))), 1e-2 * Norm(K));
-    double asym = 0;
-    for (int r = 0; r < n; ++r)
-      for (int c = 0; c < n; ++c)
-        asym = std::max(asym, std::abs(K[r * n + c] - K[c * n + r]));
-    EXPECT_LE(asym, 1e-12 * MaxAbs(K));
+    EXPECT_LE(test::MaxAsymmetry(K, n), 1e-12 * MaxAbs(K));
   }
 }
 
