@@ -5,6 +5,7 @@
 #include "signorini/io/json.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 namespace signorini {
@@ -14,25 +15,35 @@ PetscErrorCode ReadReportOptions(MPI_Comm comm, HertzReport &hertz) {
   PetscBool set = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Report", "signorini");
-  PetscCall(OptionsRealList(PetscOptionsObject, "-report_hertz", "Compare with Hertz line contact: cylinder radius R, "
-                            "load P per unit thickness (R,P)", "no comparison", "R,P", v, &set));
+  PetscCall(OptionsRealList(PetscOptionsObject, "-report_hertz", "Compare with Hertz contact: 2D cylinder radius R and "
+                            "load P per unit thickness, 3D sphere radius R and total load P (R,P)", "no comparison",
+                            "R,P", v, &set));
   PetscOptionsEnd();
   if (!set) PetscFunctionReturn(0);
   PetscCheck(v.size() == 2 && v[0] > 0 && v[1] > 0, comm, PETSC_ERR_USER_INPUT,
-             "-report_hertz expects two positive numbers R,P (cylinder radius, load per unit thickness)");
+             "-report_hertz expects two positive numbers R,P (radius, load: per unit thickness in 2D, total in 3D)");
   hertz.enabled = true;
   hertz.R = v[0];
   hertz.P = v[1];
   PetscFunctionReturn(0);
 }
 
-void ComputeHertz(const Material &m, const ContactSummary &s, HertzReport &h) {
+void ComputeHertz(const Material &m, const ContactSummary &s, int dim, HertzReport &h) {
   if (!h.enabled) return;
-  const double Estar = m.plane_stress ? m.E : m.E / (1 - m.nu * m.nu);
-  h.a = std::sqrt(4 * h.P * h.R / (M_PI * Estar));
-  h.p0 = 2 * h.P / (M_PI * h.a);
-  h.a_h = 0.5 * s.contact_length;
+  h.dim = dim;
+  const double Estar = dim == 2 && m.plane_stress ? m.E : m.E / (1 - m.nu * m.nu);
   h.p0_h = s.max_pressure;
+  if (dim == 2) {
+    h.a = std::sqrt(4 * h.P * h.R / (M_PI * Estar));
+    h.p0 = 2 * h.P / (M_PI * h.a);
+    h.a_h = 0.5 * s.contact_length;
+    return;
+  }
+  h.a = std::cbrt(3 * h.P * h.R / (4 * Estar));
+  h.p0 = 3 * h.P / (2 * M_PI * h.a * h.a);
+  const auto &f = s.contact_force;
+  const double fraction = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / h.P;
+  h.a_h = fraction > 0 ? std::sqrt(s.contact_length / (fraction * M_PI)) : 0;
 }
 
 PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m, ContactSolver &solver) {
@@ -42,8 +53,11 @@ PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m
   PetscFunctionBeginUser;
   for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) owned += mesh.Owned(v) && solver.Candidates()[v];
   PetscCallMPI(MPI_Allreduce(&owned, &candidates, 1, MPIU_INT, MPI_SUM, comm));
-  PetscCall(PetscPrintf(comm, "signorini: 2D %s, plane %s, E = %g, nu = %g, thickness = %g\n", m.ModelName(),
-                        m.plane_stress ? "stress" : "strain", m.E, m.nu, m.thickness));
+  if (mesh.Dim() == 2)
+    PetscCall(PetscPrintf(comm, "signorini: 2D %s, plane %s, E = %g, nu = %g, thickness = %g\n", m.ModelName(),
+                          m.plane_stress ? "stress" : "strain", m.E, m.nu, m.thickness));
+  else
+    PetscCall(PetscPrintf(comm, "signorini: 3D %s, E = %g, nu = %g\n", m.ModelName(), m.E, m.nu));
   PetscCall(PetscPrintf(comm, "  mesh %s: %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells, %d rank(s)\n",
                         info.mesh_file.c_str(), mesh.NumGlobalNodes(), mesh.NumGlobalCells(), info.ranks));
   PetscCall(PetscPrintf(comm, "  unknowns: %" PetscInt_FMT " displacements, %" PetscInt_FMT " multipliers (%"
@@ -53,20 +67,28 @@ PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m
 
 PetscErrorCode PrintSummary(MPI_Comm comm, ContactSolver &solver, const ContactSummary &s, const HertzReport &h) {
   const SolveStats &st = solver.Stats();
+  const int dim = solver.GetMesh().Dim();
   PetscFunctionBeginUser;
   PetscCall(PetscPrintf(comm, "  %s after %" PetscInt_FMT " active-set iteration(s) in %" PetscInt_FMT
                         " load step(s): %" PetscInt_FMT " active pair(s) on %" PetscInt_FMT " node(s)\n",
                         st.reason.c_str(), st.active_set_iterations, st.steps, s.active_pairs, s.active_nodes));
-  PetscCall(PetscPrintf(comm, "  contact force (%.6g, %.6g), applied load (%.6g, %.6g), reactions (%.6g, %.6g), "
-                        "balance %.2e\n", s.contact_force[0], s.contact_force[1], s.applied_force[0],
-                        s.applied_force[1], s.reaction_force[0], s.reaction_force[1], s.force_balance));
-  PetscCall(PetscPrintf(comm, "  contact length %.6g, max pressure %.6g, max penetration %.3e, max |lambda g| "
-                        "%.3e, max |u| %.6g\n", s.contact_length, s.max_pressure, s.max_penetration, s.complementarity,
-                        s.max_displacement));
+  const auto vec = [dim](const std::array<double, 3> &v) {
+    char text[96];
+    if (dim == 2) std::snprintf(text, sizeof(text), "(%.6g, %.6g)", v[0], v[1]);
+    else std::snprintf(text, sizeof(text), "(%.6g, %.6g, %.6g)", v[0], v[1], v[2]);
+    return std::string(text);
+  };
+  PetscCall(PetscPrintf(comm, "  contact force %s, applied load %s, reactions %s, balance %.2e\n",
+                        vec(s.contact_force).c_str(), vec(s.applied_force).c_str(), vec(s.reaction_force).c_str(),
+                        s.force_balance));
+  PetscCall(PetscPrintf(comm, "  contact %s %.6g, max pressure %.6g, max penetration %.3e, max |lambda g| "
+                        "%.3e, max |u| %.6g\n", dim == 2 ? "length" : "area", s.contact_length, s.max_pressure,
+                        s.max_penetration, s.complementarity, s.max_displacement));
   if (h.enabled) {
-    PetscCall(PetscPrintf(comm, "  Hertz (R = %g, P = %g): half-width a = %.6g computed %.6g (%+.2f%%), peak "
-                          "pressure p0 = %.6g computed %.6g (%+.2f%%)\n", h.R, h.P, h.a, h.a_h,
-                          100 * (h.a_h - h.a) / h.a, h.p0, h.p0_h, 100 * (h.p0_h - h.p0) / h.p0));
+    PetscCall(PetscPrintf(comm, "  Hertz (R = %g, P = %g): %s a = %.6g computed %.6g (%+.2f%%), peak "
+                          "pressure p0 = %.6g computed %.6g (%+.2f%%)\n", h.R, h.P,
+                          dim == 2 ? "half-width" : "contact radius", h.a, h.a_h, 100 * (h.a_h - h.a) / h.a, h.p0,
+                          h.p0_h, 100 * (h.p0_h - h.p0) / h.p0));
   }
   PetscFunctionReturn(0);
 }
@@ -75,7 +97,8 @@ std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &s
                         const HertzReport &h) {
   const SolveStats &st = solver.Stats();
   const DofMap &dofs = solver.Dofs();
-  const auto vec3 = [](const std::array<double, 3> &v) { return std::vector<double>{v[0], v[1]}; };
+  const int dim = solver.GetMesh().Dim();
+  const auto vec3 = [dim](const std::array<double, 3> &v) { return std::vector<double>(v.begin(), v.begin() + dim); };
   JsonWriter j;
   j.BeginObject();
   const Certificate &cert = solver.GetCertificate();
@@ -95,13 +118,14 @@ std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &s
       .EndObject();
   j.BeginObject("mesh")
       .String("file", info.mesh_file)
+      .Integer("dim", dim)
       .Integer("nodes", solver.GetMesh().NumGlobalNodes())
       .Integer("cells", solver.GetMesh().NumGlobalCells())
       .Integer("ranks", info.ranks)
       .EndObject();
   j.BeginObject("material")
       .String("model", m.ModelName())
-      .String("plane", m.plane_stress ? "stress" : "strain")
+      .String("plane", dim == 3 ? "none (3D)" : m.plane_stress ? "stress" : "strain")
       .Number("E", m.E)
       .Number("nu", m.nu)
       .Number("thickness", m.thickness)

@@ -123,9 +123,16 @@ PetscErrorCode CollectFields(ContactSolver &solver, const NodeContact &nodes, st
   PetscCall(solver.GetAssembler().CellResults(solver.ULocal().data(), cells));
   Field strain{"strain", 6, true, {}}, stress{"stress", 6, true, {}}, vm{"von_mises", 1, true, {}};
   for (const auto &c : cells) {
-    // VTK's order of a symmetric tensor (xx, yy, zz, xy, yz, xz): ParaView names six components so (output.cpp).
-    strain.values.insert(strain.values.end(), {c.strain[0], c.strain[1], 0, c.strain[2], 0, 0});
-    stress.values.insert(stress.values.end(), {c.stress[0], c.stress[1], c.stress_zz, c.stress[2], 0, 0});
+    // VTK's order of a symmetric tensor (xx, yy, zz, xy, yz, xz): ParaView names six components so (output.cpp). The
+    // kernels' Voigt order is (xx, yy, xy) in 2D and (xx, yy, zz, yz, xz, xy) in 3D.
+    const auto &e = c.strain, &s = c.stress;
+    if (dim == 2) {
+      strain.values.insert(strain.values.end(), {e[0], e[1], 0, e[2], 0, 0});
+      stress.values.insert(stress.values.end(), {s[0], s[1], c.stress_zz, s[2], 0, 0});
+    } else {
+      strain.values.insert(strain.values.end(), {e[0], e[1], e[2], e[5], e[3], e[4]});
+      stress.values.insert(stress.values.end(), {s[0], s[1], s[2], s[5], s[3], s[4]});
+    }
     vm.values.push_back(c.von_mises);
   }
   Field lambda{"contact_lambda", 1, false, nodes.lambda, true}, pressure{"contact_pressure", 1, false, nodes.pressure,
@@ -185,7 +192,6 @@ PetscErrorCode Run() {
   HertzReport hertz;
   PetscCall(ReadMeshOptions(comm, "", mesh_opts));
   PetscCall(ReadMaterialOptions(comm, material));
-  PetscCall(ReadBoundaryConditions(comm, 2, bc));
   PetscCall(ReadObstacle(comm, obstacle));
   PetscCall(ReadSolverOptions(comm, solver_opts));
   PetscCall(ReadOutputOptions(comm, output_opts));
@@ -193,6 +199,7 @@ PetscErrorCode Run() {
   PetscBool help;
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (help) {
+    PetscCall(ReadBoundaryConditions(comm, 0, bc));
     PetscCall(ReadContactOptions(comm, 1.0, material.E * material.thickness, contact));
     PetscCall(HelpKsp(comm));
     PetscCall(PetscPrintf(comm, "----------------------------------------\nPETSc's own options (every PETSc "
@@ -208,6 +215,10 @@ PetscErrorCode Run() {
   PetscCall(mesh.Create(comm, mesh_opts));
   PetscCall(PetscLogStagePop());
   info.timings["mesh"] = MPI_Wtime() - t;
+  // What the mesh's dimension decides: the components of loads and supports, the shapes, the 2D-only options.
+  PetscCall(CheckMaterialDimension(comm, material, mesh.Dim()));
+  PetscCall(ReadBoundaryConditions(comm, mesh.Dim(), bc));
+  PetscCall(CheckObstacleDimension(comm, obstacle, mesh.Dim()));
 
   double L = 1;
   PetscCall(BodyDiagonal(mesh, L));
@@ -261,7 +272,7 @@ PetscErrorCode Run() {
   PetscCall(PetscLogStagePush(stage_output));
   ProgressBegin("results and output");
   PetscCall(ComputeContactResults(solver, material, nodes, summary));
-  ComputeHertz(material, summary, hertz);
+  ComputeHertz(material, summary, mesh.Dim(), hertz);
   PetscCall(PrintSummary(comm, solver, summary, hertz));
   if (output.Enabled()) {
     PetscCall(CollectFields(solver, nodes, fields, table));

@@ -59,17 +59,20 @@ PetscErrorCode ReadBoundaryConditions(MPI_Comm comm, int dim, BoundaryConditions
   const char *nothing = "no condition of this kind";
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Boundary conditions and loads", "signorini");
-  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_dirichlet", "Prescribed displacements GROUP:x=VALUE:y=VALUE,... "
-                              "(value defaults to 0)", nothing, "GROUP:COMPONENT[=VALUE] items", dirichlet));
-  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_traction", "Tractions GROUP:TX:TY,... on physical curves (force "
-                              "per area)", nothing, "GROUP:TX:TY items", traction));
-  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_pressure", "Pressures GROUP:P,... on physical curves, along the "
-                              "inward normal", nothing, "GROUP:P items", pressure));
-  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_point_force", "Point forces GROUP:FX:FY,... on every node of "
-                              "the group", nothing, "GROUP:FX:FY items", point_force));
-  PetscCall(OptionsRealList(PetscOptionsObject, "-bc_body_force", "Body force per unit volume BX,BY", nothing, "BX,BY",
-                            body, &body_set));
+  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_dirichlet", "Prescribed displacements GROUP:x=VALUE:y=VALUE"
+                              "[:z=VALUE],... (value defaults to 0)", nothing, "GROUP:COMPONENT[=VALUE] items",
+                              dirichlet));
+  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_traction", "Tractions GROUP:TX:TY[:TZ],... on physical curves "
+                              "(2D) or surfaces (3D) (force per area)", nothing, "GROUP:TX:TY[:TZ] items", traction));
+  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_pressure", "Pressures GROUP:P,... on physical curves (2D) or "
+                              "surfaces (3D), along the inward normal", nothing, "GROUP:P items", pressure));
+  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_point_force", "Point forces GROUP:FX:FY[:FZ],... on every node "
+                              "of the group", nothing, "GROUP:FX:FY[:FZ] items", point_force));
+  PetscCall(OptionsRealList(PetscOptionsObject, "-bc_body_force", "Body force per unit volume BX,BY[,BZ]", nothing,
+                            "BX,BY[,BZ]", body, &body_set));
   PetscOptionsEnd();
+  // -help lists the options before the mesh, and so its dimension, is known (dim 0): nothing to parse.
+  if (dim == 0) PetscFunctionReturn(0);
 
   bc = BoundaryConditions{};
   std::string error;
@@ -95,7 +98,7 @@ PetscErrorCode ReadBoundaryConditions(MPI_Comm comm, int dim, BoundaryConditions
   PetscCheck(error.empty(), comm, PETSC_ERR_USER_INPUT, "%s", error.c_str());
   if (body_set) {
     PetscCheck((int)body.size() == dim, comm, PETSC_ERR_USER_INPUT,
-               "-bc_body_force has %zu value(s); expected %d (BX,BY)", body.size(), dim);
+               "-bc_body_force has %zu value(s); expected %d (%s)", body.size(), dim, dim == 2 ? "BX,BY" : "BX,BY,BZ");
     bc.body_force = body;
   }
   PetscFunctionReturn(0);

@@ -2,6 +2,7 @@
 #include "signorini/contact/contact_set.hpp"
 
 #include "signorini/core/options.hpp"
+#include "signorini/fem/element.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -49,45 +50,72 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
 
 namespace {
 
-/// Uniform grid of bins over the facets' bounding boxes inflated by the search radius.
+/// Uniform grid of bins (dim dimensions) over the bounded facets' bounding boxes inflated by the search radius;
+/// unbounded facets (planes, cylinders) are candidates everywhere.
 class FacetBins {
 public:
-  FacetBins(const Obstacle &obstacle, double radius) {
-    lo_[0] = lo_[1] = 1e300;
-    double hi[2] = {-1e300, -1e300}, total = 0;
+  FacetBins(const Obstacle &obstacle, int dim, double radius) : dim_(dim) {
+    double hi[3] = {-1e300, -1e300, -1e300}, total = 0;
     const auto &facets = obstacle.facets;
-    for (const auto &f : facets) {
-      double a[2], b[2];
-      f->Bounds(a, b);
-      for (int i = 0; i < 2; ++i) lo_[i] = std::min(lo_[i], a[i] - radius), hi[i] = std::max(hi[i], b[i] + radius);
-      total += std::max(b[0] - a[0], b[1] - a[1]);
-    }
-    if (facets.empty()) return;
-    h_ = std::max({radius, total / facets.size(), 1e-300});
-    for (int i = 0; i < 2; ++i) n_[i] = std::clamp((long)std::ceil((hi[i] - lo_[i]) / h_), 1L, 4096L);
-    h_ = std::max((hi[0] - lo_[0]) / n_[0], (hi[1] - lo_[1]) / n_[1]);
+    std::vector<PetscInt> bounded;
     for (std::size_t k = 0; k < facets.size(); ++k) {
-      double a[2], b[2];
+      double a[3], b[3];
       facets[k]->Bounds(a, b);
-      const long i0 = Cell(a[0] - radius, 0), i1 = Cell(b[0] + radius, 0);
-      const long j0 = Cell(a[1] - radius, 1), j1 = Cell(b[1] + radius, 1);
-      for (long i = i0; i <= i1; ++i)
-        for (long j = j0; j <= j1; ++j) bins_[i * n_[1] + j].push_back((PetscInt)k);
+      bool finite = true;
+      for (int i = 0; i < dim; ++i) finite = finite && std::isfinite(a[i]) && std::isfinite(b[i]);
+      if (!finite) {
+        everywhere_.push_back((PetscInt)k);
+        continue;
+      }
+      bounded.push_back((PetscInt)k);
+      double size = 0;
+      for (int i = 0; i < dim; ++i) {
+        lo_[i] = std::min(lo_[i], a[i] - radius), hi[i] = std::max(hi[i], b[i] + radius);
+        size = std::max(size, b[i] - a[i]);
+      }
+      total += size;
+    }
+    if (bounded.empty()) return;
+    h_ = std::max({radius, total / bounded.size(), 1e-300});
+    // At most MAX_BINS bins per direction keep the bin keys (products of the counts) within a long.
+    for (int i = 0; i < dim; ++i) n_[i] = std::clamp((long)std::ceil((hi[i] - lo_[i]) / h_), 1L, MAX_BINS);
+    h_ = 0;
+    for (int i = 0; i < dim; ++i) h_ = std::max(h_, (hi[i] - lo_[i]) / n_[i]);
+    for (PetscInt k : bounded) {
+      double a[3], b[3];
+      facets[k]->Bounds(a, b);
+      long first[3] = {0, 0, 0}, last[3] = {0, 0, 0};
+      for (int i = 0; i < dim; ++i) first[i] = Cell(a[i] - radius, i), last[i] = Cell(b[i] + radius, i);
+      for (long i = first[0]; i <= last[0]; ++i)
+        for (long j = first[1]; j <= last[1]; ++j)
+          for (long l = first[2]; l <= last[2]; ++l) bins_[(i * n_[1] + j) * n_[2] + l].push_back(k);
     }
   }
-  const std::vector<PetscInt> *Find(const double *x) const {
-    if (bins_.empty()) return nullptr;
-    const long i = (long)std::floor((x[0] - lo_[0]) / h_), j = (long)std::floor((x[1] - lo_[1]) / h_);
-    if (i < 0 || j < 0 || i >= n_[0] || j >= n_[1]) return nullptr;
-    const auto it = bins_.find(i * n_[1] + j);
-    return it == bins_.end() ? nullptr : &it->second;
+  /// The facets that may lie within the search radius of x: those of x's bin, then the unbounded ones.
+  void Find(const double *x, std::vector<PetscInt> &near) const {
+    near.clear();
+    long key = 0;
+    bool in = !bins_.empty();
+    for (int i = 0; i < dim_ && in; ++i) {
+      const long c = (long)std::floor((x[i] - lo_[i]) / h_);
+      in = c >= 0 && c < n_[i];
+      key = key * n_[i] + c;
+    }
+    if (in) {
+      const auto it = bins_.find(key);
+      if (it != bins_.end()) near = it->second;
+    }
+    near.insert(near.end(), everywhere_.begin(), everywhere_.end());
   }
 
 private:
+  static constexpr long MAX_BINS = 4096;
   long Cell(double x, int d) const { return std::clamp((long)std::floor((x - lo_[d]) / h_), 0L, n_[d] - 1); }
-  double lo_[2], h_ = 1;
-  long n_[2] = {1, 1};
+  int dim_;
+  double lo_[3] = {1e300, 1e300, 1e300}, h_ = 1;
+  long n_[3] = {1, 1, 1};
   std::map<long, std::vector<PetscInt>> bins_;
+  std::vector<PetscInt> everywhere_;
 };
 
 } // namespace
@@ -117,15 +145,15 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
   }
   pairs.clear();
   std::vector<double> distance;
-  const FacetBins bins(obstacle, opts.search_radius);
+  const FacetBins bins(obstacle, dim, opts.search_radius);
+  std::vector<PetscInt> near;
   for (PetscInt v = 0; v < nv; ++v) {
     if (!candidate[v] || !mesh.Owned(v)) continue;
     double x[3] = {0, 0, 0};
     for (int k = 0; k < dim; ++k) x[k] = mesh.X(v)[k] + (u_local ? u_local[v * dim + k] : 0.0);
-    const auto *near = bins.Find(x);
-    if (!near) continue;
+    bins.Find(x, near);
     const std::size_t first = pairs.size();
-    for (PetscInt f : *near) {
+    for (PetscInt f : near) {
       const Facet &facet = *obstacle.facets[f];
       if (facet.Distance(x) > opts.search_radius) continue;
       const Projection p = facet.Project(x, opts.alpha_tol);
@@ -158,17 +186,20 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
 }
 
 PetscErrorCode TributaryLengths(const Mesh &mesh, const std::vector<char> &candidate, std::vector<double> &length) {
-  std::vector<std::array<PetscInt, 2>> edges;
+  const int dim = mesh.Dim();
+  std::vector<Face> faces;
   PetscFunctionBeginUser;
-  PetscCall(mesh.BoundaryEdges(edges));
+  PetscCall(mesh.BoundaryFaces(faces));
   length.assign(mesh.NumLocalVertices(), 0.0);
-  for (const auto &e : edges) {
-    if (!candidate[e[0]] || !candidate[e[1]]) continue;
-    const double *a = mesh.X(e[0]), *b = mesh.X(e[1]);
-    double L2 = 0;
-    for (int d = 0; d < mesh.Dim(); ++d) L2 += (b[d] - a[d]) * (b[d] - a[d]);
-    length[e[0]] += 0.5 * std::sqrt(L2);
-    length[e[1]] += 0.5 * std::sqrt(L2);
+  for (const auto &f : faces) {
+    bool all = true;
+    for (int a = 0; a < f.n; ++a) all = all && candidate[f.v[a]];
+    if (!all) continue;
+    double X[4 * 3], w[4], an[4][3];
+    for (int a = 0; a < f.n; ++a)
+      for (int d = 0; d < dim; ++d) X[a * dim + d] = mesh.X(f.v[a])[d];
+    FaceIntegrals(dim, f.n, X, w, an);
+    for (int a = 0; a < f.n; ++a) length[f.v[a]] += w[a];
   }
   PetscCall(mesh.SumShared(length));
   PetscFunctionReturn(0);

@@ -98,18 +98,8 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
         rows[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : all[a * dim + k];
       }
     ElementTangentAndForce(material_, g, ue.data(), Ke.data(), fe.data());
-    if (material_.model == MaterialModel::SVK) {
-      // det F at the quadrature points: the deformation must stay invertible.
-      for (int q = 0; q < g.nqp; ++q) {
-        double F[MAX_DIM][MAX_DIM];
-        for (int i = 0; i < dim; ++i)
-          for (int j = 0; j < dim; ++j) {
-            F[i][j] = i == j;
-            for (PetscInt a = 0; a < nn; ++a) F[i][j] += ue[a * dim + i] * g.dN[q][a][j];
-          }
-        jmin = std::min(jmin, dim == 2 ? F[0][0] * F[1][1] - F[0][1] * F[1][0] : jmin);
-      }
-    }
+    // det F at the quadrature points (svk): the deformation must stay invertible.
+    if (material_.model == MaterialModel::SVK) jmin = std::min(jmin, MinDeformationJacobian(g, ue.data()));
     if (A) PetscCall(MatSetValues(A, nn * dim, rows.data(), nn * dim, rows.data(), Ke.data(), ADD_VALUES));
     if (fint) PetscCall(VecSetValues(fint, nn * dim, all.data(), fe.data(), ADD_VALUES));
   }
@@ -164,7 +154,7 @@ PetscErrorCode Assembler::AddStiffnessTimes(const double *u_local, const double 
 PetscErrorCode Assembler::AssembleLoads(const BoundaryConditions &bc, double factor, Vec f) const {
   const int dim = mesh_.Dim();
   const double t = material_.thickness;
-  std::vector<std::array<PetscInt, 2>> edges;
+  std::vector<Face> faces;
   std::vector<PetscInt> vertices;
   PetscFunctionBeginUser;
   auto add = [&](PetscInt v, const double *value, double scale) -> PetscErrorCode {
@@ -172,25 +162,30 @@ PetscErrorCode Assembler::AssembleLoads(const BoundaryConditions &bc, double fac
     for (int k = 0; k < dim; ++k) PetscCall(VecSetValue(f, dofs_.Row(v, k), factor * scale * value[k], ADD_VALUES));
     PetscFunctionReturn(0);
   };
-  for (const auto &tr : bc.traction) {
-    PetscCall(mesh_.GroupEdges(tr.group, edges));
-    for (const auto &e : edges) {
-      const double *a = mesh_.X(e[0]), *b = mesh_.X(e[1]);
-      const double L = std::hypot(b[0] - a[0], b[1] - a[1]);
-      PetscCall(add(e[0], tr.value.data(), 0.5 * L * t));
-      PetscCall(add(e[1], tr.value.data(), 0.5 * L * t));
+  // Tractions t and pressures p on faces: nodal forces int N_a t dA and -p int N_a n dA (n outward).
+  auto face_loads = [&](const std::vector<LoadSpec> &loads, bool pressure) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    for (const auto &load : loads) {
+      PetscCall(mesh_.GroupFaces(load.group, faces));
+      for (const auto &face : faces) {
+        double X[4 * MAX_DIM], w[4], an[4][3];
+        for (int a = 0; a < face.n; ++a)
+          for (int d = 0; d < dim; ++d) X[a * dim + d] = mesh_.X(face.v[a])[d];
+        FaceIntegrals(dim, face.n, X, w, an);
+        for (int a = 0; a < face.n; ++a) {
+          if (pressure) {
+            const double force[3] = {-load.value[0] * an[a][0], -load.value[0] * an[a][1], -load.value[0] * an[a][2]};
+            PetscCall(add(face.v[a], force, t));
+          } else {
+            PetscCall(add(face.v[a], load.value.data(), w[a] * t));
+          }
+        }
+      }
     }
-  }
-  for (const auto &pr : bc.pressure) {
-    PetscCall(mesh_.GroupEdges(pr.group, edges));
-    for (const auto &e : edges) {
-      // The body lies left of a -> b, so the inward normal is the left normal; pressure p pushes along it.
-      const double *a = mesh_.X(e[0]), *b = mesh_.X(e[1]);
-      const double force[2] = {-(b[1] - a[1]) * pr.value[0], (b[0] - a[0]) * pr.value[0]};
-      PetscCall(add(e[0], force, 0.5 * t));
-      PetscCall(add(e[1], force, 0.5 * t));
-    }
-  }
+    PetscFunctionReturn(0);
+  };
+  PetscCall(face_loads(bc.traction, false));
+  PetscCall(face_loads(bc.pressure, true));
   for (const auto &pf : bc.point_force) {
     PetscCall(mesh_.GroupVertices(pf.group, vertices));
     for (PetscInt v : vertices)

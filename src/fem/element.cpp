@@ -2,6 +2,7 @@
 #include "signorini/fem/element.hpp"
 
 #include <cmath>
+#include <algorithm>
 #include <cstring>
 
 namespace signorini {
@@ -20,10 +21,26 @@ void ReferenceShape(int dim, int nodes, const double *xi, double *N, double (*dN
       dN[a][0] = 0.25 * s[a] * (1 + t[a] * xi[1]);
       dN[a][1] = 0.25 * t[a] * (1 + s[a] * xi[0]);
     }
+  } else if (dim == 3 && nodes == 4) {
+    N[0] = 1 - xi[0] - xi[1] - xi[2], N[1] = xi[0], N[2] = xi[1], N[3] = xi[2];
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i) dN[a][i] = a == 0 ? -1.0 : a == i + 1 ? 1.0 : 0.0;
+  } else if (dim == 3 && nodes == 8) {
+    // gmsh's hexahedron: bottom (zeta = -1) and top counter-clockwise seen from +zeta, vertex a + 4 above a.
+    const double s[8] = {-1, 1, 1, -1, -1, 1, 1, -1}, t[8] = {-1, -1, 1, 1, -1, -1, 1, 1},
+                 r[8] = {-1, -1, -1, -1, 1, 1, 1, 1};
+    for (int a = 0; a < 8; ++a) {
+      const double fs = 1 + s[a] * xi[0], ft = 1 + t[a] * xi[1], fr = 1 + r[a] * xi[2];
+      N[a] = 0.125 * fs * ft * fr;
+      dN[a][0] = 0.125 * s[a] * ft * fr;
+      dN[a][1] = 0.125 * t[a] * fs * fr;
+      dN[a][2] = 0.125 * r[a] * fs * ft;
+    }
   }
 }
 
-/// Quadrature rule on the reference cell: exact for quadratics on the triangle, 2x2 Gauss on the quadrilateral.
+/// Quadrature rule on the reference cell: exact for quadratics on the triangle and the tetrahedron, 2x2 (2x2x2)
+/// Gauss on the quadrilateral (hexahedron).
 int ReferenceQuadrature(int dim, int nodes, double (*xi)[MAX_DIM], double *w) {
   if (dim == 2 && nodes == 3) {
     const double p[3][2] = {{1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6}, {1.0 / 6, 2.0 / 3}};
@@ -35,6 +52,23 @@ int ReferenceQuadrature(int dim, int nodes, double (*xi)[MAX_DIM], double *w) {
     const double p[4][2] = {{-g, -g}, {g, -g}, {g, g}, {-g, g}};
     for (int q = 0; q < 4; ++q) xi[q][0] = p[q][0], xi[q][1] = p[q][1], w[q] = 1.0;
     return 4;
+  }
+  if (dim == 3 && nodes == 4) {
+    // Four points (a, b, b), ... with b = (5 - sqrt 5) / 20, a = 1 - 3 b, weights 1/24: exact for quadratics.
+    const double b = (5 - std::sqrt(5.0)) / 20, a = 1 - 3 * b;
+    for (int q = 0; q < 4; ++q) {
+      for (int i = 0; i < 3; ++i) xi[q][i] = q == i + 1 ? a : b;
+      w[q] = 1.0 / 24;
+    }
+    return 4;
+  }
+  if (dim == 3 && nodes == 8) {
+    const double g = 1.0 / std::sqrt(3.0);
+    for (int q = 0; q < 8; ++q) {
+      xi[q][0] = q & 1 ? g : -g, xi[q][1] = q & 2 ? g : -g, xi[q][2] = q & 4 ? g : -g;
+      w[q] = 1.0;
+    }
+    return 8;
   }
   return 0;
 }
@@ -102,6 +136,62 @@ void Strain(const ElementGeometry &g, int q, const double *u, bool large, double
 }
 
 } // namespace
+
+double MinDeformationJacobian(const ElementGeometry &g, const double *u) {
+  double jmin = 1e300;
+  for (int q = 0; q < g.nqp; ++q) {
+    double F[MAX_DIM][MAX_DIM];
+    DeformationGradient(g, q, u, true, F);
+    jmin = std::min(jmin, Det(g.dim, F));
+  }
+  return jmin;
+}
+
+void FaceIntegrals(int dim, int n, const double *X, double *w, double (*an)[3]) {
+  const auto x = [&](int a, int d) { return X[a * dim + d]; };
+  if (n == dim) {
+    // An edge (2D) or a triangle (3D): N_a integrates to 1 / n of the length or area.
+    double A[3] = {0, 0, 0};
+    if (dim == 2) {
+      A[0] = x(1, 1) - x(0, 1), A[1] = -(x(1, 0) - x(0, 0));
+    } else {
+      double e1[3], e2[3];
+      for (int d = 0; d < 3; ++d) e1[d] = x(1, d) - x(0, d), e2[d] = x(2, d) - x(0, d);
+      A[0] = 0.5 * (e1[1] * e2[2] - e1[2] * e2[1]);
+      A[1] = 0.5 * (e1[2] * e2[0] - e1[0] * e2[2]);
+      A[2] = 0.5 * (e1[0] * e2[1] - e1[1] * e2[0]);
+    }
+    const double area = std::sqrt(A[0] * A[0] + A[1] * A[1] + A[2] * A[2]);
+    for (int a = 0; a < n; ++a) {
+      w[a] = area / n;
+      for (int d = 0; d < 3; ++d) an[a][d] = A[d] / n;
+    }
+    return;
+  }
+  // A bilinear quadrilateral (3D): n dA = x_xi x x_eta dxi deta, 2x2 Gauss (exact for N_a x_xi x x_eta).
+  const double s[4] = {-1, 1, 1, -1}, t[4] = {-1, -1, 1, 1}, g = 1.0 / std::sqrt(3.0);
+  for (int a = 0; a < 4; ++a) {
+    w[a] = 0;
+    an[a][0] = an[a][1] = an[a][2] = 0;
+  }
+  for (int q = 0; q < 4; ++q) {
+    const double xi = s[q] * g, eta = t[q] * g;
+    double dxi[3] = {0, 0, 0}, deta[3] = {0, 0, 0};
+    for (int a = 0; a < 4; ++a)
+      for (int d = 0; d < 3; ++d) {
+        dxi[d] += 0.25 * s[a] * (1 + t[a] * eta) * x(a, d);
+        deta[d] += 0.25 * t[a] * (1 + s[a] * xi) * x(a, d);
+      }
+    const double da[3] = {dxi[1] * deta[2] - dxi[2] * deta[1], dxi[2] * deta[0] - dxi[0] * deta[2],
+                          dxi[0] * deta[1] - dxi[1] * deta[0]};
+    const double J = std::sqrt(da[0] * da[0] + da[1] * da[1] + da[2] * da[2]);
+    for (int a = 0; a < 4; ++a) {
+      const double N = 0.25 * (1 + s[a] * xi) * (1 + t[a] * eta);
+      w[a] += N * J;
+      for (int d = 0; d < 3; ++d) an[a][d] += N * da[d];
+    }
+  }
+}
 
 bool ComputeGeometry(int dim, int nodes, const double *X, double thickness, ElementGeometry &g) {
   double xi[MAX_QP][MAX_DIM], wq[MAX_QP];

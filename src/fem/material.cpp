@@ -13,6 +13,7 @@ PetscErrorCode ReadMaterialOptions(MPI_Comm comm, Material &m) {
   const char *models[] = {"linear", "svk"};
   const char *planes[] = {"strain", "stress"};
   PetscInt model = m.model == MaterialModel::SVK ? 1 : 0, plane = m.plane_stress ? 1 : 0;
+  PetscBool plane_given = PETSC_FALSE, thickness_given = PETSC_FALSE;
   const RealRange positive{0, std::numeric_limits<double>::infinity(), true, true};
   const std::string scale = "; E x thickness in [" + FormatNumber(STIFFNESS_SCALE_MIN) + ", " +
                             FormatNumber(STIFFNESS_SCALE_MAX) + "]";
@@ -24,13 +25,16 @@ PetscErrorCode ReadMaterialOptions(MPI_Comm comm, Material &m) {
   PetscCall(OptionsReal(PetscOptionsObject, "-material_E", ("Young's modulus" + scale).c_str(), positive, m.E));
   PetscCall(OptionsReal(PetscOptionsObject, "-material_nu", "Poisson's ratio", {-1, 0.5, true, true}, m.nu));
   PetscCall(OptionsRequireValue(PetscOptionsObject, "-material_plane", "strain or stress"));
-  PetscCall(PetscOptionsEList("-material_plane", "2D assumption: strain or stress", "", planes, 2, planes[plane],
-                              &plane, nullptr));
-  PetscCall(OptionsReal(PetscOptionsObject, "-material_thickness", ("Out-of-plane thickness" + scale).c_str(),
-                        positive, m.thickness));
+  PetscCall(PetscOptionsEList("-material_plane", "2D assumption: strain or stress (2D meshes only)", "", planes, 2,
+                              planes[plane], &plane, &plane_given));
+  PetscCall(OptionsReal(PetscOptionsObject, "-material_thickness",
+                        ("Out-of-plane thickness (2D meshes only)" + scale).c_str(), positive, m.thickness));
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-material_thickness", &thickness_given));
   PetscOptionsEnd();
   m.model = model == 1 ? MaterialModel::SVK : MaterialModel::LINEAR;
   m.plane_stress = plane == 1;
+  m.plane_given = plane_given;
+  m.thickness_given = thickness_given;
   // E t is the scale of the stiffness and 1 / (E t) that of the multipliers' diagonal: outside these bounds the
   // discrete system is numerically singular (the Hertz case fails at E t = 2e-8) or overflows.
   const double k = m.E * m.thickness;
@@ -39,6 +43,16 @@ PetscErrorCode ReadMaterialOptions(MPI_Comm comm, Material &m) {
              "[%s, %s], outside which the discrete system is numerically singular or overflows (rescale the units)",
              FormatNumber(m.E).c_str(), FormatNumber(m.thickness).c_str(), FormatNumber(k).c_str(),
              FormatNumber(STIFFNESS_SCALE_MIN).c_str(), FormatNumber(STIFFNESS_SCALE_MAX).c_str());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckMaterialDimension(MPI_Comm comm, const Material &m, int dim) {
+  PetscFunctionBeginUser;
+  PetscCheck(dim == 2 || !m.plane_given, comm, PETSC_ERR_USER_INPUT,
+             "-material_plane is given but the mesh is 3D; expected it only with a 2D mesh (plane strain or stress)");
+  PetscCheck(dim == 2 || !m.thickness_given, comm, PETSC_ERR_USER_INPUT,
+             "-material_thickness is given but the mesh is 3D; expected it only with a 2D mesh (out-of-plane "
+             "thickness)");
   PetscFunctionReturn(0);
 }
 

@@ -71,6 +71,16 @@ bool UniformCells(const SerialMesh &sm) {
 
 std::string HdfError(const std::string &path) { return "cannot write HDF5 file '" + path + "'"; }
 
+/// XDMF name and mixed-topology id of a cell with n vertices in dimension dim.
+const char *XdmfCellName(int dim, int n) {
+  if (dim == 2) return n == 3 ? "Triangle" : "Quadrilateral";
+  return n == 4 ? "Tetrahedron" : "Hexahedron";
+}
+int XdmfCellId(int dim, int n) {
+  if (dim == 2) return n == 3 ? 4 : 5; // XDMF: 4 triangle, 5 quadrilateral, 6 tetrahedron, 9 hexahedron
+  return n == 4 ? 6 : 9;
+}
+
 /// Writes a 2D dataset (rows x cols) of doubles or ints into an open HDF5 location.
 template <typename T>
 bool WriteDataset(hid_t loc, const std::string &name, const std::vector<T> &data, hsize_t cols) {
@@ -109,17 +119,19 @@ void OutputWriter::SetObstacle(const Obstacle &obstacle) {
 }
 
 PetscErrorCode OutputWriter::SetContactBoundary(const std::vector<char> &candidate) {
-  std::vector<std::array<PetscInt, 2>> edges;
+  std::vector<Face> faces;
   PetscMPIInt rank, size;
   PetscFunctionBeginUser;
   if (!Enabled()) PetscFunctionReturn(0);
   MPI_Comm comm = mesh_->Comm();
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(mesh_->BoundaryEdges(edges));
+  // The contact boundary as a polyline of boundary edges (2D); 3D contact surfaces are not written yet.
+  PetscCall(mesh_->BoundaryFaces(faces));
   std::vector<PetscInt> send;
-  for (const auto &e : edges)
-    if (candidate[e[0]] && candidate[e[1]]) send.insert(send.end(), {mesh_->VertexOriginal(e[0]), mesh_->VertexOriginal(e[1])});
+  for (const auto &f : faces)
+    if (f.n == 2 && candidate[f.v[0]] && candidate[f.v[1]])
+      send.insert(send.end(), {mesh_->VertexOriginal(f.v[0]), mesh_->VertexOriginal(f.v[1])});
   PetscMPIInt count = (PetscMPIInt)send.size();
   std::vector<PetscMPIInt> counts(size), displs(size, 0);
   PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
@@ -198,16 +210,17 @@ bool OutputWriter::WriteGeometry(std::int64_t file) const {
     for (const auto &p : points) out.insert(out.end(), {p[0], p[1], 0.0});
     return out;
   };
-  std::vector<std::array<double, 2>> nodes(sm.NumNodes());
-  for (int i = 0; i < sm.NumNodes(); ++i) nodes[i] = {sm.coords[2 * i], sm.coords[2 * i + 1]};
+  std::vector<double> coords(3 * sm.NumNodes(), 0.0);
+  for (int i = 0; i < sm.NumNodes(); ++i)
+    for (int d = 0; d < sm.dim; ++d) coords[3 * i + d] = sm.coords[sm.dim * i + d];
   const bool uniform = UniformCells(sm);
   std::vector<long long> topo, ntags(sm.node_tags.begin(), sm.node_tags.end()),
       ctags(sm.cell_tags.begin(), sm.cell_tags.end());
   for (int c = 0; c < sm.NumCells(); ++c) {
-    if (!uniform) topo.push_back(sm.CellSize(c) == 3 ? 4 : 5); // XDMF mixed: 4 triangle, 5 quadrilateral
+    if (!uniform) topo.push_back(XdmfCellId(sm.dim, sm.CellSize(c)));
     for (int k = sm.cell_offsets[c]; k < sm.cell_offsets[c + 1]; ++k) topo.push_back(sm.cell_nodes[k]);
   }
-  bool ok = g >= 0 && WriteDataset(g, "coordinates", xyz(nodes), 3) &&
+  bool ok = g >= 0 && WriteDataset(g, "coordinates", coords, 3) &&
             WriteDataset(g, "topology", topo, uniform ? (hsize_t)sm.CellSize(0) : 1) &&
             WriteDataset(g, "node_tags", ntags, 1) && WriteDataset(g, "cell_tags", ctags, 1);
   if (g >= 0) H5Gclose(g);
@@ -221,7 +234,8 @@ bool OutputWriter::WriteGeometry(std::int64_t file) const {
   if (ok && !contact_nodes_.empty()) {
     std::vector<std::array<double, 2>> points;
     std::vector<long long> tags;
-    for (PetscInt v : contact_nodes_) points.push_back(nodes[v]), tags.push_back((long long)sm.node_tags[v]);
+    for (PetscInt v : contact_nodes_)
+      points.push_back({coords[3 * v], coords[3 * v + 1]}), tags.push_back((long long)sm.node_tags[v]);
     g = H5Gcreate2(file, "contact_boundary", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     ok = g >= 0 && WriteDataset(g, "coordinates", xyz(points), 3) && WriteDataset(g, "topology", contact_edges_, 2) &&
          WriteDataset(g, "node_tags", tags, 1);
@@ -285,7 +299,7 @@ PetscErrorCode OutputWriter::WriteXdmf() const {
       std::snprintf(group, sizeof(group), "step_%06d", (int)s.step);
       x << "   <Grid Name=\"" << group << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
         << "    <Time Value=\"" << s.t << "\"/>\n    <Grid Name=\"body\" GridType=\"Uniform\">\n"
-        << Shape("mesh", uniform ? (sm.CellSize(0) == 3 ? "Triangle" : "Quadrilateral") : "Mixed", nc,
+        << Shape("mesh", uniform ? XdmfCellName(sm.dim, sm.CellSize(0)) : "Mixed", nc,
                  sm.CellSize(0), uniform ? 0 : topo_size, nn)
         << Attribute("node_tags", 1, false, nn, true, "/mesh/node_tags")
         << Attribute("cell_tags", 1, true, nc, true, "/mesh/cell_tags");
@@ -334,7 +348,7 @@ PetscErrorCode OutputWriter::WriteNodeTable(const std::vector<Field> &fields) {
     FILE *out = std::fopen(path.c_str(), "w");
     if (!out) error = "cannot write '" + path + "'";
     else {
-      std::fprintf(out, "node_tag,x,y");
+      std::fprintf(out, sm.dim == 2 ? "node_tag,x,y" : "node_tag,x,y,z");
       for (const auto &f : fields) {
         if (f.ncomp == 1) std::fprintf(out, ",%s", f.name.c_str());
         else
@@ -342,7 +356,8 @@ PetscErrorCode OutputWriter::WriteNodeTable(const std::vector<Field> &fields) {
       }
       std::fprintf(out, "\n");
       for (int i = 0; i < sm.NumNodes(); ++i) {
-        std::fprintf(out, "%zu,%.17g,%.17g", sm.node_tags[i], sm.coords[2 * i], sm.coords[2 * i + 1]);
+        std::fprintf(out, "%zu", sm.node_tags[i]);
+        for (int d = 0; d < sm.dim; ++d) std::fprintf(out, ",%.17g", sm.coords[sm.dim * i + d]);
         for (std::size_t f = 0; f < fields.size(); ++f)
           for (int k = 0; k < fields[f].ncomp; ++k) {
             const double v = gathered[f][i * fields[f].ncomp + k];

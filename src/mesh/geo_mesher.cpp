@@ -70,7 +70,10 @@ int MeshInChild(const std::string &geo, const GeoMeshing &meshing, const std::st
     double algorithm = 0;
     gmsh::option::getNumber("Mesh.Algorithm", algorithm);
     say("algorithm " + Format(algorithm));
-    gmsh::model::mesh::generate(2);
+    // Mesh up to the highest dimension of the geometry (3 when it has volumes).
+    std::vector<std::pair<int, int>> volumes;
+    gmsh::model::getEntities(volumes, 3);
+    gmsh::model::mesh::generate(volumes.empty() ? 2 : 3);
     gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
     gmsh::option::setNumber("Mesh.Binary", 1);
     gmsh::option::setNumber("Mesh.SaveAll", 1);

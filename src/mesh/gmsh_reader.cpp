@@ -21,36 +21,42 @@ bool EndsWith(const std::string &s, const std::string &suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-/// Gmsh element types signorini reads: 1 line (2 nodes), 2 triangle (3), 3 quadrangle (4), 15 point.
-constexpr int GMSH_LINE = 1, GMSH_TRIANGLE = 2, GMSH_QUADRANGLE = 3;
+/// Gmsh element types signorini reads: 1 line (2 nodes), 2 triangle (3), 3 quadrangle (4), 4 tetrahedron (4),
+/// 5 hexahedron (8).
+constexpr int GMSH_LINE = 1, GMSH_TRIANGLE = 2, GMSH_QUADRANGLE = 3, GMSH_TETRAHEDRON = 4, GMSH_HEXAHEDRON = 5;
+
+/// Number of vertices of a cell type signorini reads in dimension dim, 0 for any other type.
+int CellVertices(int dim, int type) {
+  if (dim == 2) return type == GMSH_TRIANGLE ? 3 : type == GMSH_QUADRANGLE ? 4 : 0;
+  return type == GMSH_TETRAHEDRON ? 4 : type == GMSH_HEXAHEDRON ? 8 : 0;
+}
 
 std::string ReadModel(const std::string &path, SerialMesh &mesh) {
-  std::vector<std::pair<int, int>> entities3;
-  gmsh::model::getEntities(entities3, 3);
-  std::vector<int> types3;
-  std::vector<std::vector<std::size_t>> tags3, nodes3;
-  gmsh::model::mesh::getElements(types3, tags3, nodes3, 3, -1);
-  std::size_t n3 = 0;
-  for (auto &t : tags3) n3 += t.size();
-  if (n3 > 0) return "mesh '" + path + "' has 3D elements; this version of signorini solves 2D problems only";
-
+  // The mesh's dimension is that of its highest-dimensional elements: 3 when it has any volume element.
   std::vector<int> types;
   std::vector<std::vector<std::size_t>> elem_tags, elem_nodes;
-  gmsh::model::mesh::getElements(types, elem_tags, elem_nodes, 2, -1);
+  gmsh::model::mesh::getElements(types, elem_tags, elem_nodes, 3, -1);
+  std::size_t n3 = 0;
+  for (auto &t : elem_tags) n3 += t.size();
+  mesh.dim = n3 > 0 ? 3 : 2;
+  const int dim = mesh.dim;
+  if (dim == 2) gmsh::model::mesh::getElements(types, elem_tags, elem_nodes, 2, -1);
+  const char *expected = dim == 2 ? "linear triangles (3 nodes) and quadrilaterals (4 nodes)"
+                                  : "linear tetrahedra (4 nodes) and hexahedra (8 nodes)";
   std::size_t ncells = 0;
   for (std::size_t k = 0; k < types.size(); ++k) {
-    if (types[k] != GMSH_TRIANGLE && types[k] != GMSH_QUADRANGLE) {
+    if (CellVertices(dim, types[k]) == 0) {
       std::string name;
       int d, order, nn, npr;
       std::vector<double> lc;
       gmsh::model::mesh::getElementProperties(types[k], name, d, order, nn, lc, npr);
-      return "mesh '" + path + "' has elements of type '" + name +
-             "'; expected linear triangles (3 nodes) and quadrilaterals (4 nodes)";
+      return "mesh '" + path + "' has elements of type '" + name + "'; expected " + expected;
     }
     ncells += elem_tags[k].size();
   }
   if (ncells == 0)
-    return "mesh '" + path + "' has no triangles or quadrilaterals (a 1D-only or empty mesh?); expected a 2D mesh";
+    return "mesh '" + path + "' has no triangles or quadrilaterals (a 1D-only or empty mesh?); expected a 2D or 3D "
+           "mesh";
 
   std::vector<std::size_t> all_tags;
   std::vector<double> all_coords, params;
@@ -74,22 +80,19 @@ std::string ReadModel(const std::string &path, SerialMesh &mesh) {
     if (used[i] == 0) {
       used[i] = mesh.NumNodes();
       mesh.node_tags.push_back(all_tags[i]);
-      mesh.coords.push_back(all_coords[3 * i]);
-      mesh.coords.push_back(all_coords[3 * i + 1]);
-      if (std::abs(all_coords[3 * i + 2]) > 0) {
-        // Planar meshes away from z = 0 are fine; a curved surface is not: checked after reading all nodes.
-      }
+      for (int d = 0; d < dim; ++d) mesh.coords.push_back(all_coords[3 * i + d]);
     }
+  // A 2D mesh may lie in any plane z = const (a curved surface is not a 2D mesh).
   double zmin = 1e300, zmax = -1e300;
   for (std::size_t i = 0; i < all_tags.size(); ++i)
     if (used[i] >= 0) zmin = std::min(zmin, all_coords[3 * i + 2]), zmax = std::max(zmax, all_coords[3 * i + 2]);
-  if (zmax - zmin > 1e-12 * (1.0 + std::abs(zmax)))
+  if (dim == 2 && zmax - zmin > 1e-12 * (1.0 + std::abs(zmax)))
     return "mesh '" + path + "' is not planar (z varies); expected a 2D mesh in the x-y plane";
 
   auto node_index = [&](std::size_t tag) { return used[tag_pos.at(tag)]; };
   std::unordered_map<std::size_t, int> cell_of_tag;
   for (std::size_t k = 0; k < types.size(); ++k) {
-    const int nv = types[k] == GMSH_TRIANGLE ? 3 : 4;
+    const int nv = CellVertices(dim, types[k]);
     for (std::size_t e = 0; e < elem_tags[k].size(); ++e) {
       for (int j = 0; j < nv; ++j) mesh.cell_nodes.push_back(node_index(elem_nodes[k][nv * e + j]));
       mesh.cell_offsets.push_back((int)mesh.cell_nodes.size());
@@ -102,7 +105,6 @@ std::string ReadModel(const std::string &path, SerialMesh &mesh) {
   gmsh::vectorpair groups;
   gmsh::model::getPhysicalGroups(groups, -1);
   for (auto [dim, tag] : groups) {
-    if (dim > 2) continue;
     PhysicalGroup g;
     g.dim = dim;
     g.tag = tag;
@@ -124,8 +126,24 @@ std::string ReadModel(const std::string &path, SerialMesh &mesh) {
               return "physical curve '" + g.name + "' has a node that belongs to no cell";
             g.edges.push_back(used[it->second]);
           }
-        } else if (dim == 2) {
+        } else if (dim == mesh.dim) {
           for (std::size_t t : etags[k]) g.cells.push_back(cell_of_tag.at(t));
+        } else if (dim == 2) {
+          // A physical surface of a 3D mesh: its triangles and quadrilaterals are boundary faces (checked when the
+          // DMPlex is labelled).
+          const int nv = et[k] == GMSH_TRIANGLE ? 3 : et[k] == GMSH_QUADRANGLE ? 4 : 0;
+          if (nv == 0)
+            return "physical surface '" + g.name + "' has non-linear surface elements; expected 3-node triangles "
+                   "and 4-node quadrilaterals";
+          for (std::size_t e = 0; e < etags[k].size(); ++e) {
+            for (int j = 0; j < nv; ++j) {
+              auto it = tag_pos.find(enodes[k][nv * e + j]);
+              if (it == tag_pos.end() || used[it->second] < 0)
+                return "physical surface '" + g.name + "' has a node that belongs to no cell";
+              g.face_nodes.push_back(used[it->second]);
+            }
+            g.face_offsets.push_back((int)g.face_nodes.size());
+          }
         }
         // The nodes of the group's elements: a format 2.2 file classifies each node on one entity only, so the
         // entity's own nodes (below) miss those it shares with neighbouring entities (corners, curve ends).
@@ -213,34 +231,79 @@ std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &me
   return error;
 }
 
-std::string CheckAndOrientCells(SerialMesh &mesh) {
-  const int nc = mesh.NumCells();
-  double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-  for (int i = 0; i < mesh.NumNodes(); ++i) {
-    xmin = std::min(xmin, mesh.coords[2 * i]), xmax = std::max(xmax, mesh.coords[2 * i]);
-    ymin = std::min(ymin, mesh.coords[2 * i + 1]), ymax = std::max(ymax, mesh.coords[2 * i + 1]);
+namespace {
+
+/// Signed measures at the corners of cell c: twice the area of each corner triangle in 2D, the determinant of the
+/// three edges leaving each corner in 3D (one for a tetrahedron); positive for a counter-clockwise (2D) or
+/// right-handed (3D) cell. Returns the number of corners.
+int CornerMeasures(const SerialMesh &mesh, int c, double *m) {
+  const int n = mesh.CellSize(c), dim = mesh.dim;
+  const int *v = &mesh.cell_nodes[mesh.cell_offsets[c]];
+  const auto x = [&](int k) { return &mesh.coords[dim * v[k]]; };
+  if (dim == 2) {
+    for (int k = 0; k < n; ++k) {
+      const double *a = x((k + n - 1) % n), *b = x(k), *d = x((k + 1) % n);
+      m[k] = (b[0] - a[0]) * (d[1] - b[1]) - (b[1] - a[1]) * (d[0] - b[0]);
+    }
+    return n;
   }
-  const double area_tol = 1e-14 * ((xmax - xmin) * (xmax - xmin) + (ymax - ymin) * (ymax - ymin));
+  const auto det = [&](int o, int i, int j, int k) {
+    double e[3][3];
+    for (int d = 0; d < 3; ++d) e[0][d] = x(i)[d] - x(o)[d], e[1][d] = x(j)[d] - x(o)[d], e[2][d] = x(k)[d] - x(o)[d];
+    return e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+           e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+  };
+  if (n == 4) {
+    m[0] = det(0, 1, 2, 3);
+    return 1;
+  }
+  // Hexahedron (gmsh order: bottom 0-3 and top 4-7 counter-clockwise seen from above, k + 4 above k): the edges to
+  // the next and previous corner of its quadrilateral and to the corner above (below, with the sign turned).
+  for (int k = 0; k < 4; ++k) {
+    m[k] = det(k, (k + 1) % 4, (k + 3) % 4, k + 4);
+    m[k + 4] = -det(k + 4, (k + 1) % 4 + 4, (k + 3) % 4 + 4, k);
+  }
+  return 8;
+}
+
+/// Turns cell c inside out: reverses a polygon; swaps two vertices of a tetrahedron; reverses both quadrilaterals of
+/// a hexahedron, keeping each top vertex above its bottom one.
+void FlipCell(SerialMesh &mesh, int c) {
+  int *v = &mesh.cell_nodes[mesh.cell_offsets[c]];
+  if (mesh.dim == 2) std::reverse(v, v + mesh.CellSize(c));
+  else if (mesh.CellSize(c) == 4) std::swap(v[1], v[2]);
+  else std::swap(v[1], v[3]), std::swap(v[5], v[7]);
+}
+
+} // namespace
+
+std::string CheckAndOrientCells(SerialMesh &mesh) {
+  const int nc = mesh.NumCells(), dim = mesh.dim;
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, diag2 = 0;
+  for (int i = 0; i < mesh.NumNodes(); ++i)
+    for (int d = 0; d < dim; ++d)
+      lo[d] = std::min(lo[d], mesh.coords[dim * i + d]), hi[d] = std::max(hi[d], mesh.coords[dim * i + d]);
+  for (int d = 0; d < dim; ++d) diag2 += (hi[d] - lo[d]) * (hi[d] - lo[d]);
+  // A corner measure below 1e-14 of the bounding box's diagonal to the power dim is zero (round-off).
+  const double tol = 1e-14 * std::pow(diag2, 0.5 * dim);
+  const std::string measure = dim == 2 ? "area" : "volume";
+  const std::string shape = dim == 2 ? "quadrilateral" : "hexahedron";
   std::vector<int> sign(nc, 0);
   int npos = 0, nneg = 0;
   for (int c = 0; c < nc; ++c) {
-    const int n = mesh.CellSize(c);
-    const int *v = &mesh.cell_nodes[mesh.cell_offsets[c]];
+    double m[8];
+    const int n = CornerMeasures(mesh, c, m);
     int pos = 0, neg = 0;
     for (int k = 0; k < n; ++k) {
-      // Twice the area of the corner triangle at vertex k: positive for a counter-clockwise corner.
-      const double *a = &mesh.coords[2 * v[(k + n - 1) % n]], *b = &mesh.coords[2 * v[k]],
-                   *d = &mesh.coords[2 * v[(k + 1) % n]];
-      const double cross = (b[0] - a[0]) * (d[1] - b[1]) - (b[1] - a[1]) * (d[0] - b[0]);
-      if (cross > area_tol) ++pos;
-      else if (cross < -area_tol) ++neg;
+      if (m[k] > tol) ++pos;
+      else if (m[k] < -tol) ++neg;
     }
     if (pos + neg < n && (pos == 0 || neg == 0))
-      return "element " + std::to_string(mesh.cell_tags[c]) + " has zero area (or a degenerate corner); expected " +
-             "a valid mesh";
+      return "element " + std::to_string(mesh.cell_tags[c]) + " has zero " + measure +
+             " (or a degenerate corner); expected a valid mesh";
     if (pos && neg)
       return "element " + std::to_string(mesh.cell_tags[c]) + " is not convex (self-intersecting or inverted " +
-             "quadrilateral); expected convex elements";
+             shape + "); expected convex elements";
     sign[c] = pos ? 1 : -1;
     (pos ? npos : nneg)++;
   }
@@ -253,9 +316,8 @@ std::string CheckAndOrientCells(SerialMesh &mesh) {
       << mesh.cell_tags[first] << "); expected all elements oriented alike";
     return s.str();
   }
-  if (nneg) {
-    for (int c = 0; c < nc; ++c) std::reverse(&mesh.cell_nodes[mesh.cell_offsets[c]], &mesh.cell_nodes[mesh.cell_offsets[c + 1]]);
-  }
+  if (nneg)
+    for (int c = 0; c < nc; ++c) FlipCell(mesh, c);
   return "";
 }
 

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <unordered_map>
 
 namespace signorini {
 
@@ -91,6 +92,8 @@ PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
   }
   ProgressEnd();
   PetscCall(RaiseFromRoot(comm, error));
+  dim_ = serial_.dim;
+  PetscCallMPI(MPI_Bcast(&dim_, 1, MPI_INT, 0, comm));
   PetscCall(BroadcastGroups(comm, serial_, group_names_, group_dims_));
   DMH dm;
   PetscCall(BuildSerialDM(dm.out()));
@@ -114,10 +117,13 @@ PetscErrorCode Mesh::BuildSerialDM(DM *out) {
   PetscCall(DMPlexSetChart(dm, 0, nc + nv));
   for (PetscInt c = 0; c < nc; ++c) PetscCall(DMPlexSetConeSize(dm, c, serial_.CellSize(c)));
   PetscCall(DMSetUp(dm));
-  std::vector<PetscInt> cone(4);
+  std::vector<PetscInt> cone(MAX_CELL_VERTICES);
   for (PetscInt c = 0; c < nc; ++c) {
     const int n = serial_.CellSize(c);
     for (int j = 0; j < n; ++j) cone[j] = nc + serial_.cell_nodes[serial_.cell_offsets[c] + j];
+    // DMPlex orders the vertices of a tetrahedron and a hexahedron differently from gmsh (its first face points
+    // inwards); the element loops keep gmsh's order (cell_vertices_).
+    if (dim_ == 3) PetscCall(DMPlexInvertCell(n == 4 ? DM_POLYTOPE_TETRAHEDRON : DM_POLYTOPE_HEXAHEDRON, cone.data()));
     PetscCall(DMPlexSetCone(dm, c, cone.data()));
   }
   PetscCall(DMPlexSymmetrize(dm));
@@ -153,6 +159,20 @@ PetscErrorCode Mesh::BuildSerialDM(DM *out) {
                    "physical curve to be cell edges", group.name.c_str());
         PetscCall(DMLabelSetValue(label, edge, 1));
       }
+      for (std::size_t f = 0; f + 1 < group.face_offsets.size(); ++f) {
+        std::vector<PetscInt> pts;
+        for (int k = group.face_offsets[f]; k < group.face_offsets[f + 1]; ++k)
+          pts.push_back(vstart + group.face_nodes[k]);
+        PetscInt njoin;
+        const PetscInt *join;
+        PetscCall(DMPlexGetFullJoin(idm, (PetscInt)pts.size(), pts.data(), &njoin, &join));
+        const PetscInt face = njoin == 1 ? join[0] : -1;
+        PetscCall(DMPlexRestoreJoin(idm, (PetscInt)pts.size(), pts.data(), &njoin, &join));
+        PetscCheck(face >= 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+                   "a surface element of physical surface '%s' is not a face of any cell; expected the triangles and "
+                   "quadrilaterals of a physical surface to be cell faces", group.name.c_str());
+        PetscCall(DMLabelSetValue(label, face, 1));
+      }
     }
     PetscCall(DMPlexLabelComplete(idm, label));
   }
@@ -167,6 +187,8 @@ PetscErrorCode Mesh::BuildSerialDM(DM *out) {
   cell_orig_.resize(nc);
   for (PetscInt v = 0; v < nv; ++v) vertex_orig_[v] = v;
   for (PetscInt c = 0; c < nc; ++c) cell_orig_[c] = c;
+  cell_offsets_.assign(serial_.cell_offsets.begin(), serial_.cell_offsets.end());
+  cell_vertices_.assign(serial_.cell_nodes.begin(), serial_.cell_nodes.end());
   vstart_ = vstart;
   cstart_ = cstart;
   PetscInt ng[2] = {nv, nc};
@@ -197,7 +219,12 @@ PetscErrorCode Mesh::Partition(DM dm, const std::string &partitioner) {
   PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSHELL));
   std::vector<PetscInt> sizes(size, 0), points;
   if (rank == 0) {
-    idx_t ne = serial_.NumCells(), nn = serial_.NumNodes(), ncommon = dim_, nparts = size, objval = 0;
+    // Cells are neighbours when they share a face: 2 nodes in 2D, 3 for a tetrahedron, 4 for a hexahedron (3 when
+    // tetrahedra are present, so that a mixed mesh connects through its triangular faces).
+    bool tets = false;
+    for (int c = 0; c < serial_.NumCells(); ++c) tets = tets || serial_.CellSize(c) == 4;
+    idx_t ne = serial_.NumCells(), nn = serial_.NumNodes(), nparts = size, objval = 0;
+    idx_t ncommon = dim_ == 2 ? 2 : tets ? 3 : 4;
     std::vector<idx_t> eptr(serial_.cell_offsets.begin(), serial_.cell_offsets.end());
     std::vector<idx_t> eind(serial_.cell_nodes.begin(), serial_.cell_nodes.end());
     std::vector<idx_t> epart(ne), npart(nn);
@@ -222,14 +249,16 @@ PetscErrorCode Mesh::Distribute(DMH &dm) {
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm_, &size));
   if (size == 1) PetscFunctionReturn(0);
-  // Section with one dof on every cell and vertex holding its index in the file.
+  // Section holding, on every vertex, its index in the file and, on every cell, its index in the file followed by
+  // those of its vertices in gmsh's order.
   PetscInt pstart, pend;
   PetscCall(DMPlexGetChart(dm, &pstart, &pend));
   SectionH sec;
   PetscCall(PetscSectionCreate(PETSC_COMM_SELF, sec.out()));
   PetscCall(PetscSectionSetChart(sec, pstart, pend));
   const PetscInt nv = (PetscInt)vertex_orig_.size(), nc = (PetscInt)cell_orig_.size();
-  for (PetscInt c = 0; c < nc; ++c) PetscCall(PetscSectionSetDof(sec, cstart_ + c, 1));
+  for (PetscInt c = 0; c < nc; ++c)
+    PetscCall(PetscSectionSetDof(sec, cstart_ + c, 1 + cell_offsets_[c + 1] - cell_offsets_[c]));
   for (PetscInt v = 0; v < nv; ++v) PetscCall(PetscSectionSetDof(sec, vstart_ + v, 1));
   PetscCall(PetscSectionSetUp(sec));
   VecH orig;
@@ -242,6 +271,7 @@ PetscErrorCode Mesh::Distribute(DMH &dm) {
     PetscInt off;
     PetscCall(PetscSectionGetOffset(sec, cstart_ + c, &off));
     a[off] = cell_orig_[c];
+    for (PetscInt k = cell_offsets_[c]; k < cell_offsets_[c + 1]; ++k) a[off + 1 + k - cell_offsets_[c]] = cell_vertices_[k];
   }
   for (PetscInt v = 0; v < nv; ++v) {
     PetscInt off;
@@ -270,10 +300,15 @@ PetscErrorCode Mesh::Distribute(DMH &dm) {
     PetscCall(PetscSectionGetOffset(new_sec, vstart_ + v, &off));
     vertex_orig_[v] = (PetscInt)PetscRealPart(b[off]);
   }
+  cell_offsets_.assign(1, 0);
+  cell_vertices_.clear();
   for (PetscInt c = 0; c < (PetscInt)cell_orig_.size(); ++c) {
-    PetscInt off;
+    PetscInt off, ndof;
     PetscCall(PetscSectionGetOffset(new_sec, cstart_ + c, &off));
+    PetscCall(PetscSectionGetDof(new_sec, cstart_ + c, &ndof));
     cell_orig_[c] = (PetscInt)PetscRealPart(b[off]);
+    for (PetscInt k = 1; k < ndof; ++k) cell_vertices_.push_back((PetscInt)PetscRealPart(b[off + k]));
+    cell_offsets_.push_back((PetscInt)cell_vertices_.size());
   }
   PetscCall(VecRestoreArrayRead(new_orig, &b));
   dm = std::move(dist);
@@ -315,15 +350,13 @@ PetscErrorCode Mesh::BuildLocalArrays() {
   }
   PetscCall(VecRestoreArrayRead(coords, &x));
 
-  cell_offsets_.assign(1, 0);
-  cell_vertices_.clear();
-  for (PetscInt c = 0; c < nc; ++c) {
-    PetscInt n, *pts = nullptr;
-    PetscCall(DMPlexGetTransitiveClosure(dm_, cstart_ + c, PETSC_TRUE, &n, &pts));
-    for (PetscInt i = 0; i < n; ++i)
-      if (pts[2 * i] >= vstart_ && pts[2 * i] < vend) cell_vertices_.push_back(pts[2 * i] - vstart_);
-    PetscCall(DMPlexRestoreTransitiveClosure(dm_, cstart_ + c, PETSC_TRUE, &n, &pts));
-    cell_offsets_.push_back((PetscInt)cell_vertices_.size());
+  // The cells' vertices, in gmsh's order, from file indices to local ones.
+  std::unordered_map<PetscInt, PetscInt> local_of;
+  for (PetscInt v = 0; v < nv; ++v) local_of[vertex_orig_[v]] = v;
+  for (auto &v : cell_vertices_) {
+    const auto it = local_of.find(v);
+    PetscCheck(it != local_of.end(), PETSC_COMM_SELF, PETSC_ERR_PLIB, "a cell's vertex is not on its rank");
+    v = it->second;
   }
   PetscFunctionReturn(0);
 }
@@ -357,8 +390,8 @@ PetscErrorCode Mesh::CheckGroup(const std::string &name, int required_dim) const
              group_names_.empty() ? "(no physical groups)" : Join(group_names_, ", ").c_str());
   const int dim = group_dims_[it - group_names_.begin()];
   PetscCheck(required_dim < 0 || dim == required_dim, comm_, PETSC_ERR_USER_INPUT,
-             "physical group '%s' has dimension %d; expected a physical curve (dimension %d)", name.c_str(), dim,
-             required_dim);
+             "physical group '%s' has dimension %d; expected a physical %s (dimension %d)", name.c_str(), dim,
+             required_dim == 1 ? "curve" : "surface", required_dim);
   PetscFunctionReturn(0);
 }
 
@@ -375,16 +408,16 @@ PetscErrorCode Mesh::BoundaryVertices(std::vector<PetscInt> &vertices) const {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Mesh::GroupEdges(const std::string &name, std::vector<std::array<PetscInt, 2>> &edges) const {
+PetscErrorCode Mesh::GroupFaces(const std::string &name, std::vector<Face> &faces) const {
   PetscFunctionBeginUser;
-  PetscCall(CheckGroup(name, 1));
-  PetscCall(LabelEdges(LABEL_PREFIX + name, edges));
+  PetscCall(CheckGroup(name, dim_ - 1));
+  PetscCall(LabelFaces(LABEL_PREFIX + name, faces));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Mesh::BoundaryEdges(std::vector<std::array<PetscInt, 2>> &edges) const {
+PetscErrorCode Mesh::BoundaryFaces(std::vector<Face> &faces) const {
   PetscFunctionBeginUser;
-  PetscCall(LabelEdges(BOUNDARY_LABEL, edges));
+  PetscCall(LabelFaces(BOUNDARY_LABEL, faces));
   PetscFunctionReturn(0);
 }
 
@@ -408,42 +441,87 @@ PetscErrorCode Mesh::SumShared(std::vector<double> &per_vertex) const {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Mesh::LabelEdges(const std::string &label_name, std::vector<std::array<PetscInt, 2>> &edges) const {
+PetscErrorCode Mesh::LabelFaces(const std::string &label_name, std::vector<Face> &faces) const {
   PetscFunctionBeginUser;
-  edges.clear();
+  faces.clear();
   DMLabel label;
   PetscCall(DMGetLabel(dm_, label_name.c_str(), &label));
   if (!label) PetscFunctionReturn(0);
   ISH is;
   PetscCall(DMLabelGetStratumIS(label, 1, is.out()));
   if (!is) PetscFunctionReturn(0);
-  PetscInt n, estart, eend, pstart, pend;
+  PetscInt n, fstart, fend, pstart, pend;
   const PetscInt *pts;
-  PetscCall(DMPlexGetDepthStratum(dm_, 1, &estart, &eend));
+  PetscCall(DMPlexGetHeightStratum(dm_, 1, &fstart, &fend));
   PetscCall(DMPlexGetChart(dm_, &pstart, &pend));
   PetscCall(ISGetLocalSize(is, &n));
   PetscCall(ISGetIndices(is, &pts));
   for (PetscInt i = 0; i < n; ++i) {
-    if (pts[i] < estart || pts[i] >= eend || point_leaf_[pts[i] - pstart]) continue;
+    if (pts[i] < fstart || pts[i] >= fend || point_leaf_[pts[i] - pstart]) continue;
     const PetscInt *cone, *support;
-    PetscInt nsupport;
+    PetscInt ncone, nsupport;
+    PetscCall(DMPlexGetConeSize(dm_, pts[i], &ncone));
     PetscCall(DMPlexGetCone(dm_, pts[i], &cone));
+    Face f;
+    if (dim_ == 2) {
+      f.n = 2, f.v[0] = cone[0] - vstart_, f.v[1] = cone[1] - vstart_;
+    } else {
+      // The face's edges chained into a cycle of vertices.
+      std::vector<std::array<PetscInt, 2>> edges(ncone);
+      for (PetscInt k = 0; k < ncone; ++k) {
+        const PetscInt *ev;
+        PetscCall(DMPlexGetCone(dm_, cone[k], &ev));
+        edges[k] = {ev[0] - vstart_, ev[1] - vstart_};
+      }
+      f.n = (int)ncone;
+      f.v[0] = edges[0][0], f.v[1] = edges[0][1];
+      std::vector<char> used(ncone, 0);
+      used[0] = 1;
+      for (int k = 2; k < f.n; ++k)
+        for (PetscInt e = 0; e < ncone; ++e) {
+          if (used[e] || (edges[e][0] != f.v[k - 1] && edges[e][1] != f.v[k - 1])) continue;
+          f.v[k] = edges[e][0] == f.v[k - 1] ? edges[e][1] : edges[e][0];
+          used[e] = 1;
+          break;
+        }
+    }
     PetscCall(DMPlexGetSupportSize(dm_, pts[i], &nsupport));
     PetscCall(DMPlexGetSupport(dm_, pts[i], &support));
-    std::array<PetscInt, 2> e = {cone[0] - vstart_, cone[1] - vstart_};
     if (nsupport >= 1) {
-      // Orient the edge so that its cell (the body) lies on its left.
+      // Orient the face outwards: its outward normal (the right normal of v0 -> v1 in 2D, the right-hand normal
+      // in 3D) points away from its cell's centroid.
       PetscInt nc;
       const PetscInt *cv = CellVertices(support[0] - cstart_, nc);
-      double centre[2] = {0, 0};
-      for (PetscInt k = 0; k < nc; ++k) centre[0] += X(cv[k])[0] / nc, centre[1] += X(cv[k])[1] / nc;
-      const double *a = X(e[0]), *b = X(e[1]);
-      if ((b[0] - a[0]) * (centre[1] - a[1]) - (b[1] - a[1]) * (centre[0] - a[0]) < 0) std::swap(e[0], e[1]);
+      double out[3] = {0, 0, 0}, normal[3];
+      for (PetscInt k = 0; k < nc; ++k)
+        for (int d = 0; d < dim_; ++d) out[d] -= X(cv[k])[d] / nc;
+      for (int k = 0; k < f.n; ++k)
+        for (int d = 0; d < dim_; ++d) out[d] += X(f.v[k])[d] / f.n;
+      FaceNormal(f, normal);
+      double dot = 0;
+      for (int d = 0; d < dim_; ++d) dot += normal[d] * out[d];
+      if (dot < 0) std::reverse(f.v.begin(), f.v.begin() + f.n);
     }
-    edges.push_back(e);
+    faces.push_back(f);
   }
   PetscCall(ISRestoreIndices(is, &pts));
   PetscFunctionReturn(0);
+}
+
+void Mesh::FaceNormal(const Face &f, double *normal) const {
+  normal[0] = normal[1] = normal[2] = 0;
+  if (dim_ == 2) {
+    const double *a = X(f.v[0]), *b = X(f.v[1]);
+    normal[0] = b[1] - a[1], normal[1] = -(b[0] - a[0]);
+    return;
+  }
+  // Newell's formula: the vector area of the polygon (of its projections for a warped quadrilateral).
+  for (int k = 0; k < f.n; ++k) {
+    const double *a = X(f.v[k]), *b = X(f.v[(k + 1) % f.n]);
+    normal[0] += 0.5 * (a[1] - b[1]) * (a[2] + b[2]);
+    normal[1] += 0.5 * (a[2] - b[2]) * (a[0] + b[0]);
+    normal[2] += 0.5 * (a[0] - b[0]) * (a[1] + b[1]);
+  }
 }
 
 } // namespace signorini

@@ -28,7 +28,8 @@ ShapeType ArcsShape() {
               out.push_back(std::make_unique<Segment>(p0, p1));
             }
             return "";
-          }};
+          },
+          2};
 }
 
 } // namespace signorini

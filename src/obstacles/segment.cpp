@@ -51,7 +51,8 @@ ShapeType SegmentsShape() {
             if (std::hypot(v[2] - v[0], v[3] - v[1]) <= 0) return "has zero length";
             out.push_back(std::make_unique<Segment>(v, v + 2));
             return "";
-          }};
+          },
+          2};
 }
 
 } // namespace signorini

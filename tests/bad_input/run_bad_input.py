@@ -39,6 +39,8 @@ FORBIDDEN = ("PETSC ERROR", "Caught signal", "Segmentation", "AddressSanitizer",
 HERTZ = []
 BEAM = ["-options_file", "{root}/options/beam_on_floor.yml"]
 # The beam without its clamp and with no obstacle: nothing holds it.
+# The unit cube of hexahedra on a rigid plane (3D).
+CUBE = ["-options_file", "{root}/options/cube_on_plane.yml"]
 LOOSE_BEAM = ["-mesh_file", "{root}/meshes/beam.msh", "-material_E", "1000", "-material_nu", "0.3",
               "-bc_pressure", "top:0.2"]
 
@@ -60,12 +62,14 @@ CASES = {
     "mesh_without_groups": (mesh("no_groups.msh") + ["-bc_dirichlet", "left:x:y"],
                             ["'left'", "not in the mesh", "no physical groups"], {}),
     "mesh_lines_only": (mesh("lines_only.msh"), ["lines_only.msh", "no triangles or quadrilaterals", "expected"], {}),
-    "mesh_tetrahedron": (mesh("tetrahedron.msh"), ["tetrahedron.msh", "3D elements", "2D"], {}),
+    "mesh_prism": (mesh("prism.msh"), ["prism.msh", "Prism", "expected linear tetrahedra"], {}),
     "mesh_duplicate_nodes": (mesh("duplicate_nodes.msh"),
                              ["duplicate_nodes.msh", "duplicate node tag 3", "expected unique"], {}),
     "mesh_inverted_element": (mesh("inverted.msh"), ["inverted.msh", "inverted element", "element 2", "expected"],
                               {}),
     "mesh_zero_area_element": (mesh("zero_area.msh"), ["zero_area.msh", "element 3 has zero area", "expected"], {}),
+    "mesh_inverted_tetrahedron": (mesh("inverted_tet.msh"),
+                                  ["inverted_tet.msh", "inverted element", "element 2", "expected"], {}),
     "mesh_bowtie_quad": (mesh("bowtie.msh"), ["bowtie.msh", "element 1 is not convex", "expected"], {}),
     "mesh_curve_not_edges": (mesh("curve_not_edge.msh") + ["-bc_traction", "diagonal:0:1"],
                              ["'diagonal'", "not an edge", "expected"], {}),
@@ -92,11 +96,23 @@ CASES = {
     "material_nu_half": (["-material_nu", "0.5"], ["-material_nu 0.5", "expected", "(-1, 0.5)"], {}),
     "material_nu_minus_one": (["-material_nu", "-1"], ["-material_nu -1", "expected", "(-1, 0.5)"], {}),
     "material_nu_inf": (["-material_nu", "inf"], ["-material_nu inf", "expected"], {}),
+    "material_plane_on_3d": (CUBE + ["-material_plane", "stress"], ["-material_plane", "mesh is 3D", "expected"],
+                             {}),
+    "material_thickness_on_3d": (CUBE + ["-material_thickness", "2"],
+                                 ["-material_thickness", "mesh is 3D", "expected"], {}),
     "material_thickness_zero": (["-material_thickness", "0"], ["-material_thickness 0", "expected", "(0, inf)"], {}),
     "material_thickness_minus_inf": (["-material_thickness", "-inf"], ["-material_thickness -inf", "expected"], {}),
     "material_model_unknown": (["-material_model", "neo"], ["-material_model", "neo", "linear svk"], {}),
     "material_model_empty": (["-material_model", ""], ["-material_model", "without a value", "linear or svk"], {}),
     # Obstacles.
+    "obstacle_segments_on_3d": (CUBE + ["-obstacle_segments", "-1,0,3,0"],
+                                ["-obstacle_segments", "2D shape", "mesh is 3D", "expected -obstacle_planes"], {}),
+    "obstacle_planes_on_2d": (["-obstacle_planes", "0,0,-8,0,0,1"],
+                              ["-obstacle_planes", "3D shape", "mesh is 2D", "expected -obstacle_segments"], {}),
+    "obstacle_sphere_radius_zero": (CUBE + ["-obstacle_spheres", "0,0,-1,0"],
+                                    ["-obstacle_spheres item 1", "radius 0"], {}),
+    "bc_traction_two_values_on_3d": (CUBE + ["-bc_traction", "top:0:-1"],
+                                     ["-bc_traction", "2 value(s)", "expected 3"], {}),
     "obstacle_segment_zero_length": (["-obstacle_segments", "1,-8,1,-8"],
                                      ["-obstacle_segments item 1", "zero length"], {}),
     "obstacle_segments_count": (["-obstacle_segments", "-12,-8,12"],

@@ -63,7 +63,13 @@ def rate(h, e):
 
 
 def displacement(nodes):
-    return np.column_stack([nodes["u_x"], nodes["u_y"]])
+    """Displacements of a node table: (u_x, u_y), and u_z for a 3D mesh."""
+    return np.column_stack([nodes[k] for k in ("u_x", "u_y", "u_z") if k in nodes.dtype.names])
+
+
+def coordinates(nodes):
+    """Coordinates of a node table: (x, y), and z for a 3D mesh."""
+    return np.column_stack([nodes[k] for k in ("x", "y", "z") if k in nodes.dtype.names])
 
 
 def check_same_mesh(runner, what, a, b):
@@ -71,8 +77,7 @@ def check_same_mesh(runner, what, a, b):
     runner.expect_true("%s: same node tags (%d)" % (what, len(a)),
                        len(a) == len(b) and np.array_equal(a["node_tag"], b["node_tag"]))
     # Coordinates come from the same mesh file (or the same gmsh run written in another format, %.16g in ASCII).
-    runner.expect_close("%s: node coordinates" % what, np.column_stack([b["x"], b["y"]]),
-                        np.column_stack([a["x"], a["y"]]), 0, 1e-14)
+    runner.expect_close("%s: node coordinates" % what, coordinates(b), coordinates(a), 0, 1e-14)
 
 
 # Hertz line contact (ARCHITECTURE.md, Johnson 1985 section 4.2): mesh size factors of meshes/hertz.geo and its
@@ -145,6 +150,72 @@ def block_on_floor(runner):
                         1e-10 * np.abs(exact).max())
 
 
+def bottom_tributary_areas(result, tags):
+    """Tributary areas of the nodes on z = 0, by hand from solution.h5: a third of each bottom triangle of a
+    tetrahedron, a quarter of each bottom rectangle of a hexahedron (the cube's bottom faces are axis-aligned)."""
+    import h5py
+
+    with h5py.File(os.path.join(result.dir, "solution.h5"), "r") as f:
+        xyz = f["mesh/coordinates"][()]
+        topo = f["mesh/topology"][()]
+        file_tags = f["mesh/node_tags"][()]
+    on_bottom = xyz[:, 2] == 0.0
+    area = np.zeros(len(xyz))
+    for cell in topo:
+        face = [v for v in cell if on_bottom[v]]
+        if len(face) == 3:
+            p = xyz[face]
+            a = 0.5 * np.linalg.norm(np.cross(p[1] - p[0], p[2] - p[0]))
+        elif len(face) == 4:
+            p = xyz[face]
+            a = np.ptp(p[:, 0]) * np.ptp(p[:, 1])
+        else:
+            continue
+        area[face] += a / len(face)
+    by_tag = dict(zip(file_tags, area))
+    return np.array([by_tag[t] for t in tags])
+
+
+@test("cube_on_plane")
+def cube_on_plane(runner, mesh):
+    """Unit cube (hexahedra or tetrahedra) under uniform pressure on a rigid plane: every bottom node active,
+    lambda_i = q w_i with w_i its tributary area, no penetration, the exact linear field."""
+    q = 2.0
+    args = ["-options_file", "options/cube_on_plane.yml", "-mesh_file", "meshes/%s.msh" % mesh]
+    r = runner.run(args, "cube_on_plane " + mesh)
+    nodes = r.nodes()
+    bottom = nodes[nodes["z"] == 0.0]
+    n = len(bottom)
+    runner.expect_true("bottom nodes found (%d)" % n, n >= 9)
+    # Every bottom node touches the plane at the start and stays in compression: one solve settles it. The
+    # supports u_x = 0, u_y = 0 fix one component only, so every bottom node is a candidate.
+    runner.expect_equal("candidate pairs", r.get("contact.pairs"), n)
+    runner.expect_equal("active pairs", r.get("contact.active_pairs"), n)
+    runner.expect_equal("active-set iterations", r.get("iterations.active_set"), 1)
+    runner.expect_equal("active flags of the bottom nodes", int(bottom["active"].sum()), n)
+    runner.expect_equal("active nodes off the bottom", int(nodes["active"].sum()) - n, 0)
+    # The exact solution is linear (uniform stress sigma_zz = -q), reproduced by P1/Q1 up to round-off; the
+    # consistent nodal forces of the pressure are q w_i (1e-10 leaves room for the conditioning of K).
+    w = bottom_tributary_areas(r, bottom["node_tag"])
+    runner.expect_true("tributary areas differ (graded mesh)", w.max() > 1.5 * w.min())
+    runner.expect_close("sum of tributary areas = 1", w.sum(), 1.0, 1e-14)
+    runner.expect_close("lambda_i = q w_i", bottom["lambda"], q * w, 1e-10)
+    runner.expect_close("contact pressure = q", bottom["pressure"], np.full(n, q), 1e-10)
+    runner.expect_close("contact area", r.get("contact.contact_length"), 1.0, 1e-12)
+    runner.expect_close("contact force", r.get("contact.contact_force"), [0, 0, q], 0, 1e-10 * q)
+    runner.expect_true("no penetration beyond round-off (%g)" % r.get("contact.max_penetration"),
+                       r.get("contact.max_penetration") <= 1e-15)
+    E, nu = r.get("material.E"), r.get("material.nu")
+    exact = np.column_stack([nu * q / E * nodes["x"], nu * q / E * nodes["y"], -q / E * nodes["z"]])
+    runner.expect_close("displacement = exact linear field", displacement(nodes), exact, 0,
+                        1e-10 * np.abs(exact).max())
+    # Uniform Cauchy stress sigma_zz = -q in every cell (VTK order: xx, yy, zz, xy, yz, xz), von Mises q.
+    stress = r.cell_field("stress")
+    runner.expect_close("stress = (0, 0, -q, 0, 0, 0)", stress, np.tile([0, 0, -q, 0, 0, 0], (len(stress), 1)), 0,
+                        1e-10 * q)
+    runner.expect_close("von Mises = q", r.cell_field("von_mises"), np.full(len(stress), q), 1e-10)
+
+
 @test("block_pulled_off")
 def block_pulled_off(runner):
     """Block pulled off a floor it touches: no active pair, the same displacement as without any obstacle."""
@@ -206,6 +277,8 @@ def block_in_corner(runner):
 
 
 RANK_CASES = {"hertz": [], "beam_on_floor": ["-options_file", "options/beam_on_floor.yml"],
+              "cube_on_sphere": ["-options_file", "options/cube_on_sphere.yml"],
+              "cube_on_sphere_svk": ["-options_file", "options/cube_on_sphere.yml", "-material_model", "svk"],
               "plate_on_arc": ["-options_file", "options/plate_on_arc.yml"],
               "block_in_notch": ["-options_file", "options/block_in_notch.yml"]}
 

@@ -63,6 +63,13 @@ class Result:
         table = np.genfromtxt(os.path.join(self.dir, "nodes.csv"), delimiter=",", names=True)
         return np.sort(table, order="node_tag")
 
+    def cell_field(self, name, step=1):
+        """A cell field of solution.h5 (one row per cell, in the file's cell order)."""
+        import h5py
+
+        with h5py.File(os.path.join(self.dir, "solution.h5"), "r") as f:
+            return f["step_%06d/%s" % (step, name)][()]
+
     def solution(self, step=1):
         """(coordinates N x 2, cells as a list of node-index arrays, displacement N x 2) from solution.h5."""
         import h5py

@@ -11,19 +11,24 @@
 
 namespace signorini {
 
-/// Hertz line contact of a cylinder (radius R, load P per unit thickness) on a rigid flat (Johnson 1985, 4.2).
+/// Hertz contact on a rigid flat (Johnson 1985, 4.2), by the mesh's dimension: in 2D line contact of a cylinder
+/// (radius R, load P per unit thickness), in 3D a sphere (radius R, total load P).
 struct HertzReport {
   bool enabled = false;
+  int dim = 2;
   double R = 0, P = 0;
-  double a = 0, p0 = 0;                 ///< analytical half-width and peak pressure
-  double a_h = 0, p0_h = 0;             ///< computed: contact length / 2 and peak nodal pressure
+  double a = 0, p0 = 0;                 ///< analytical half-width (2D) or contact radius (3D) and peak pressure
+  double a_h = 0, p0_h = 0;             ///< computed (see ComputeHertz) and peak nodal pressure
 };
 
 /// Reads -report_hertz R,P. Collective.
 [[nodiscard]] PetscErrorCode ReadReportOptions(MPI_Comm comm, HertzReport &hertz);
 
-/// Fills the analytical and computed Hertz values.
-void ComputeHertz(const Material &m, const ContactSummary &s, HertzReport &hertz);
+/// Fills the analytical and computed Hertz values for a mesh of dimension dim. 2D: a = sqrt(4 P R / (pi E*)),
+/// p0 = 2 P / (pi a), computed a = contact length / 2. 3D: a = (3 P R / (4 E*))^(1/3), p0 = 3 P / (2 pi a^2);
+/// a model of a fraction f of the sphere (symmetry planes) carries f P, so f = |contact force| / P and the computed
+/// radius is that of the circle of area contact area / f.
+void ComputeHertz(const Material &m, const ContactSummary &s, int dim, HertzReport &hertz);
 
 /// Everything the report needs besides the solver.
 struct RunInfo {

@@ -1,5 +1,5 @@
 // Boundary conditions and loads (prefix -bc_): Dirichlet per component on any physical group, tractions and
-// pressure on physical curves, point forces on node sets, a body force.
+// pressure on physical curves (2D) or surfaces (3D), point forces on node sets, a body force.
 #pragma once
 
 #include <petscsys.h>
@@ -22,15 +22,15 @@ struct LoadSpec {
 };
 
 struct BoundaryConditions {
-  std::vector<DirichletSpec> dirichlet; ///< -bc_dirichlet GROUP:x[=v][:y[=v]],...
-  std::vector<LoadSpec> traction;       ///< -bc_traction GROUP:tx:ty,...   (force per unit area, reference config.)
-  std::vector<LoadSpec> pressure;       ///< -bc_pressure GROUP:p,...       (along the inward normal)
-  std::vector<LoadSpec> point_force;    ///< -bc_point_force GROUP:fx:fy,... (force on every node of the group)
-  std::vector<double> body_force;       ///< -bc_body_force bx,by           (force per unit volume)
+  std::vector<DirichletSpec> dirichlet; ///< -bc_dirichlet GROUP:x[=v][:y[=v]][:z[=v]],...
+  std::vector<LoadSpec> traction;       ///< -bc_traction GROUP:tx:ty[:tz],... (force per unit area, reference config.)
+  std::vector<LoadSpec> pressure;       ///< -bc_pressure GROUP:p,...          (along the inward normal)
+  std::vector<LoadSpec> point_force;    ///< -bc_point_force GROUP:fx:fy[:fz],... (force on every node of the group)
+  std::vector<double> body_force;       ///< -bc_body_force bx,by[,bz]         (force per unit volume)
 };
 
-/// Reads and validates the -bc_ options for a mesh of dimension dim (group names are checked against the mesh
-/// later, when the conditions are applied). Collective.
+/// Reads and validates the -bc_ options for a mesh of dimension dim (2 or 3; 0 only lists them for -help). Group names
+/// are checked against the mesh later, when the conditions are applied. Collective.
 [[nodiscard]] PetscErrorCode ReadBoundaryConditions(MPI_Comm comm, int dim, BoundaryConditions &bc);
 
 /// Largest ratio of a load or prescribed displacement to the problem's scale (a strain-like number): beyond it the

@@ -55,8 +55,9 @@ struct ContactPair {
                                               const std::vector<char> &fixed, std::vector<ContactPair> &pairs,
                                               std::vector<char> &candidate, const double *u_local = nullptr);
 
-/// Tributary length of every local candidate vertex: half of each adjacent boundary edge whose both ends are
-/// candidates (summed over ranks). Collective.
+/// Tributary length (2D) or area (3D) of every local candidate vertex: the integral of its shape function over each
+/// adjacent boundary face whose every vertex is a candidate (half of an edge, a third of a triangle, a quarter of a
+/// parallelogram), summed over ranks. Collective.
 [[nodiscard]] PetscErrorCode TributaryLengths(const Mesh &mesh, const std::vector<char> &candidate,
                                               std::vector<double> &length);
 

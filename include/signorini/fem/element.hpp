@@ -1,5 +1,5 @@
-// Reference elements (P1 triangle, Q1 quadrilateral), quadrature, and the element kernels: linear small-strain
-// elasticity and St. Venant-Kirchhoff with Green-Lagrange strain. Written for any dimension; 2D cells today.
+// Reference elements (P1 triangle and tetrahedron, Q1 quadrilateral and hexahedron), quadrature, and the element
+// kernels: linear small-strain elasticity and St. Venant-Kirchhoff with Green-Lagrange strain, in 2D and 3D.
 #pragma once
 
 #include "signorini/fem/material.hpp"
@@ -23,8 +23,9 @@ struct ElementGeometry {
   double min_detJ = 0, max_detJ = 0;
 };
 
-/// Fills the geometry of a cell with `nodes` vertices (3 triangle, 4 quadrilateral in 2D) at coordinates X
-/// (dim values per vertex, vertices in cyclic order). Returns false for an unknown cell.
+/// Fills the geometry of a cell with `nodes` vertices (3 triangle, 4 quadrilateral in 2D; 4 tetrahedron, 8 hexahedron
+/// in 3D) at coordinates X (dim values per vertex, in gmsh's order: cyclic in 2D, the hexahedron's top face above its
+/// bottom face). Returns false for an unknown cell.
 bool ComputeGeometry(int dim, int nodes, const double *X, double thickness, ElementGeometry &g);
 
 /// Element stiffness (tangent, Eq. 17) and internal force (Eq. 15 without contact and loads) at the element
@@ -40,6 +41,15 @@ struct CellStress {
   double stress_zz = 0, von_mises = 0, min_J = 1;
 };
 CellStress ElementStress(const Material &m, const ElementGeometry &g, const double *u);
+
+/// Smallest det F = det(I + grad u) over the quadrature points at the element displacement u.
+double MinDeformationJacobian(const ElementGeometry &g, const double *u);
+
+/// Consistent nodal integrals over a boundary face with n vertices at X (dim values each, oriented as Face in
+/// mesh.hpp: an edge in 2D, a triangle or a bilinear quadrilateral in 3D): w[a] = int N_a dA and an[a] = int N_a n dA
+/// with n the unit outward normal (3 values per vertex). A uniform traction t gives the nodal forces w[a] t, a
+/// pressure p the forces -p an[a]; w is also the tributary length or area of a node.
+void FaceIntegrals(int dim, int n, const double *X, double *w, double (*an)[3]);
 
 /// Body force contribution t * int N_a b dA (b per unit volume).
 void ElementBodyForce(const ElementGeometry &g, const double *b, double *f);

@@ -21,6 +21,7 @@ struct Material {
   bool plane_stress = false;                   ///< -material_plane strain | stress
   double thickness = 1.0;                      ///< -material_thickness, out-of-plane thickness (scales stiffness and
                                                ///< distributed loads)
+  bool plane_given = false, thickness_given = false; ///< the 2D-only options were set (an error on a 3D mesh)
 
   double Mu() const { return E / (2.0 * (1.0 + nu)); }
   double Lambda3D() const { return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)); }
@@ -36,5 +37,8 @@ struct Material {
 /// Reads and validates the -material_ options (E and thickness > 0 with E t in [STIFFNESS_SCALE_MIN,
 /// STIFFNESS_SCALE_MAX], nu in (-1, 0.5)). Collective.
 [[nodiscard]] PetscErrorCode ReadMaterialOptions(MPI_Comm comm, Material &m);
+
+/// Refuses -material_plane and -material_thickness on a 3D mesh (dim 3), where they mean nothing. Collective.
+[[nodiscard]] PetscErrorCode CheckMaterialDimension(MPI_Comm comm, const Material &m, int dim);
 
 } // namespace signorini

@@ -12,6 +12,17 @@
 
 namespace signorini {
 
+/// Most vertices of a cell (the hexahedron).
+constexpr int MAX_CELL_VERTICES = 8;
+
+/// A face of the cells (codimension 1) as local vertex indices, oriented outwards: an edge in 2D with the body on the
+/// left of v[0] -> v[1]; a triangle or quadrilateral in 3D, vertices in cyclic order, its right-hand normal pointing
+/// out of the body.
+struct Face {
+  int n = 0;
+  std::array<PetscInt, 4> v{};
+};
+
 /// Mesh options (prefix -mesh_), read by Mesh::Create.
 struct MeshOptions {
   std::string file;               ///< -mesh_file: gmsh .msh or .geo, as given
@@ -40,7 +51,7 @@ public:
   PetscInt VertexOriginal(PetscInt v) const { return vertex_orig_[v]; }
   PetscInt CellOriginal(PetscInt c) const { return cell_orig_[c]; }
   const double *X(PetscInt v) const { return &coords_[dim_ * v]; }
-  /// Local vertex indices of cell c in closure order (a cyclic order around the cell).
+  /// Local vertex indices of cell c in gmsh's order (counter-clockwise in 2D; positive Jacobian in 3D).
   const PetscInt *CellVertices(PetscInt c, PetscInt &n) const {
     n = cell_offsets_[c + 1] - cell_offsets_[c];
     return &cell_vertices_[cell_offsets_[c]];
@@ -52,13 +63,15 @@ public:
   /// Local vertices (owned and ghost) of the physical group `name`; an unknown name is an error listing the names.
   /// Collective.
   [[nodiscard]] PetscErrorCode GroupVertices(const std::string &name, std::vector<PetscInt> &vertices) const;
-  /// Owned edges of a physical curve as local vertex pairs, oriented so that the body lies on their left (the
-  /// outward normal is the right normal); error if the group is not a curve. Collective.
-  [[nodiscard]] PetscErrorCode GroupEdges(const std::string &name, std::vector<std::array<PetscInt, 2>> &edges) const;
+  /// Owned faces of a physical curve (2D) or surface (3D), oriented outwards (Face); error if the group has another
+  /// dimension. Collective.
+  [[nodiscard]] PetscErrorCode GroupFaces(const std::string &name, std::vector<Face> &faces) const;
   /// Local vertices on the boundary of the body. Collective.
   [[nodiscard]] PetscErrorCode BoundaryVertices(std::vector<PetscInt> &vertices) const;
-  /// Owned edges on the boundary of the body, oriented with the body on their left. Collective.
-  [[nodiscard]] PetscErrorCode BoundaryEdges(std::vector<std::array<PetscInt, 2>> &edges) const;
+  /// Owned faces on the boundary of the body, oriented outwards (Face). Collective.
+  [[nodiscard]] PetscErrorCode BoundaryFaces(std::vector<Face> &faces) const;
+  /// Outward normal of a face scaled by its length (2D) or its area (3D; exact for a planar face).
+  void FaceNormal(const Face &f, double *normal) const;
   /// Sums a per-vertex quantity over the ranks that share a vertex, so that every copy holds the total. Collective.
   [[nodiscard]] PetscErrorCode SumShared(std::vector<double> &per_vertex) const;
 
@@ -68,7 +81,7 @@ private:
   [[nodiscard]] PetscErrorCode Distribute(DMH &dm);
   [[nodiscard]] PetscErrorCode BuildLocalArrays();
   [[nodiscard]] PetscErrorCode LabelVertices(const std::string &label, std::vector<PetscInt> &vertices) const;
-  [[nodiscard]] PetscErrorCode LabelEdges(const std::string &label, std::vector<std::array<PetscInt, 2>> &edges) const;
+  [[nodiscard]] PetscErrorCode LabelFaces(const std::string &label, std::vector<Face> &faces) const;
   [[nodiscard]] PetscErrorCode CheckGroup(const std::string &name, int required_dim) const;
 
   MPI_Comm comm_ = MPI_COMM_NULL;

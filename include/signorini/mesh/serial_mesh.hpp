@@ -15,17 +15,21 @@ struct PhysicalGroup {
   int tag = 0;
   std::vector<int> nodes;          ///< every node of the group (sorted, unique)
   std::vector<int> edges;          ///< dim 1: node pairs of its line elements, flattened
-  std::vector<int> cells;          ///< dim 2: cells of the group
+  std::vector<int> cells;          ///< dimension of the mesh: cells of the group
+  std::vector<int> face_offsets{0}; ///< dim 2 of a 3D mesh: CSR offsets into face_nodes
+  std::vector<int> face_nodes;      ///< dim 2 of a 3D mesh: nodes of its triangles and quadrilaterals
 };
 
 /// The serial mesh. Nodes are the nodes used by cells, in the order gmsh returns them (the file order for format
-/// 4.1, grouped by entity for 2.2); each keeps its file tag. Cells are counter-clockwise.
+/// 4.1, grouped by entity for 2.2); each keeps its file tag. Cells keep gmsh's vertex order, counter-clockwise in 2D and
+/// with a positive Jacobian in 3D (tetrahedra, and hexahedra with two counter-clockwise quadrilaterals seen from
+/// above, bottom first).
 struct SerialMesh {
   int dim = 2;
   std::vector<double> coords;              ///< dim values per node
   std::vector<std::size_t> node_tags;      ///< the file's own node tags
   std::vector<int> cell_offsets{0};        ///< CSR offsets into cell_nodes
-  std::vector<int> cell_nodes;             ///< node indices of each cell, counter-clockwise
+  std::vector<int> cell_nodes;             ///< node indices of each cell, in gmsh's order (oriented)
   std::vector<std::size_t> cell_tags;      ///< the file's element tags
   std::vector<PhysicalGroup> groups;
 
@@ -39,8 +43,9 @@ struct SerialMesh {
 /// one rank only. Returns an empty string on success, else the error message.
 std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &mesh, double max_cells = 0);
 
-/// Checks orientation and shape of every cell: a mesh whose cells are all clockwise is flipped; cells oriented
-/// against the rest, with zero area, or not convex are errors. Returns an empty string on success.
+/// Checks orientation and shape of every cell: a mesh whose cells are all clockwise (negative Jacobian in 3D) is
+/// flipped; cells oriented against the rest, with zero area or volume, or not convex (a corner Jacobian of the other
+/// sign) are errors. Returns an empty string on success.
 std::string CheckAndOrientCells(SerialMesh &mesh);
 
 } // namespace signorini

@@ -1,5 +1,5 @@
-// The rigid obstacle: a set of facets (oriented segments, arcs as polylines, discs), each of which computes the
-// signed gap and the normal of a point. Sign convention: the normal points from the obstacle into the body;
+// The rigid obstacle: a set of facets (2D: oriented segments, arcs as polylines, discs; 3D: planes, spheres,
+// cylinders), each of which computes the signed gap and the normal of a point. Sign convention: the normal points from the obstacle into the body;
 // gap = n . (x - P) >= 0 is open, < 0 is penetration.
 #pragma once
 
@@ -28,11 +28,12 @@ public:
   virtual Projection Project(const double *x, double alpha_tol) const = 0;
   /// Euclidean distance from x to the facet (for the pair search).
   virtual double Distance(const double *x) const = 0;
-  /// Axis-aligned bounding box (lo, hi: dim values each).
+  /// Axis-aligned bounding box (lo, hi: dim values each; infinite for an unbounded facet).
   virtual void Bounds(double *lo, double *hi) const = 0;
   virtual std::string Describe() const = 0;
-  /// The facet's shape for output: a polyline (dim values per point); a closed curve repeats its first point.
-  virtual std::vector<std::array<double, 2>> Polyline() const = 0;
+  /// The facet's shape for output in 2D: a polyline; a closed curve repeats its first point. 3D facets are not drawn
+  /// yet (empty).
+  virtual std::vector<std::array<double, 2>> Polyline() const { return {}; }
 };
 
 /// An oriented segment P0 -> P1; its normal is the left normal of the direction.
@@ -50,10 +51,11 @@ private:
   double p0_[2], p1_[2], n_[2], length_;
 };
 
-/// A rigid disc (centre, radius), the body outside it; normals point radially outwards.
-class Disc final : public Facet {
+/// A rigid ball (centre, radius) in dimension dim, the body outside it: a disc in 2D, a sphere in 3D; normals point
+/// radially outwards.
+class Ball final : public Facet {
 public:
-  Disc(const double *centre, double radius);
+  Ball(const double *centre, double radius, int dim);
   Projection Project(const double *x, double alpha_tol) const override;
   double Distance(const double *x) const override;
   void Bounds(double *lo, double *hi) const override;
@@ -63,16 +65,47 @@ public:
   static constexpr int POLYGON_SIDES = 128;
 
 private:
-  double c_[2], r_;
+  double CentreDistance(const double *x) const;
+  double c_[3] = {0, 0, 0}, r_;
+  int dim_;
 };
 
-/// A shape type of the registry: the option that lists its items, how many numbers one item takes, and how an item
-/// becomes facets (an empty return is success, else the reason the item is invalid).
+/// An unbounded plane (3D) through a point, its unit normal pointing into the body.
+class Plane final : public Facet {
+public:
+  Plane(const double *point, const double *normal);
+  Projection Project(const double *x, double alpha_tol) const override;
+  double Distance(const double *x) const override;
+  void Bounds(double *lo, double *hi) const override;
+  std::string Describe() const override;
+
+private:
+  double p_[3], n_[3];
+};
+
+/// An infinite rigid cylinder (3D): a point on its axis, the axis, the radius; the body outside it.
+class Cylinder final : public Facet {
+public:
+  Cylinder(const double *point, const double *axis, double radius);
+  Projection Project(const double *x, double alpha_tol) const override;
+  double Distance(const double *x) const override;
+  void Bounds(double *lo, double *hi) const override;
+  std::string Describe() const override;
+
+private:
+  /// The part r of x - P normal to the axis, and its length.
+  double Radial(const double *x, double *r) const;
+  double p_[3], a_[3], r_;
+};
+
+/// A shape type of the registry: the option that lists its items, how many numbers one item takes, how an item
+/// becomes facets (an empty return is success, else the reason the item is invalid), and the mesh dimension it is for.
 struct ShapeType {
   const char *option;
   const char *help;
   int numbers;
   std::function<std::string(const double *, std::vector<std::unique_ptr<Facet>> &)> build;
+  int dim;
 };
 
 /// Registered shape types; adding a shape is one file plus one line in obstacle.cpp.
@@ -80,13 +113,21 @@ const std::vector<ShapeType> &ShapeRegistry();
 ShapeType SegmentsShape();
 ShapeType ArcsShape();
 ShapeType DiscsShape();
+ShapeType PlanesShape();
+ShapeType SpheresShape();
+ShapeType CylindersShape();
 
 /// The obstacle: every facet of every shape given by the -obstacle_ options.
 struct Obstacle {
   std::vector<std::unique_ptr<Facet>> facets;
+  std::vector<const ShapeType *> shapes; ///< the shape types given
 };
 
 /// Reads the -obstacle_ options (one real array per shape type). Collective.
 [[nodiscard]] PetscErrorCode ReadObstacle(MPI_Comm comm, Obstacle &obstacle);
+
+/// Refuses shapes made for another dimension than the mesh's dim (a segment on a 3D mesh, a plane on a 2D one),
+/// naming the option and the shapes that fit. Collective.
+[[nodiscard]] PetscErrorCode CheckObstacleDimension(MPI_Comm comm, const Obstacle &obstacle, int dim);
 
 } // namespace signorini

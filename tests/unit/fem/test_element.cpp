@@ -2,6 +2,8 @@
 // and the St. Venant-Kirchhoff tangent, small-strain limit and frame indifference.
 #include "signorini/fem/element.hpp"
 
+#include "fem/element_test_util.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,7 +15,13 @@
 namespace signorini {
 namespace {
 
-using Vector = std::vector<double>;
+using test::Difference;
+using test::MatVec;
+using test::MaxAbs;
+using test::Norm;
+using test::Random;
+using test::SymmetricEigenvalues;
+using test::Vector;
 
 struct Cell {
   std::string name;
@@ -38,18 +46,6 @@ Material MakeMaterial(bool plane_stress, MaterialModel model = MaterialModel::LI
 std::string Describe(const Cell &cell, const Material &m) {
   return cell.name + (m.plane_stress ? ", plane stress" : ", plane strain") + ", " + m.ModelName();
 }
-
-/// Deterministic uniform numbers in [-1, 1) (the same on every platform).
-class Random {
-public:
-  double Next() {
-    state_ = state_ * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(state_ >> 11) * 0x1.0p-53 * 2.0 - 1.0;
-  }
-
-private:
-  std::uint64_t state_ = 20240601;
-};
 
 ElementGeometry Geometry(const Cell &cell, double thickness = 1.0) {
   ElementGeometry g;
@@ -77,36 +73,6 @@ Vector Force(const Material &m, const Cell &cell, const Vector &u) {
   Vector K, f;
   TangentAndForce(m, cell, u, K, f);
   return f;
-}
-
-Vector MatVec(const Vector &K, const Vector &x) {
-  const std::size_t n = x.size();
-  Vector y(n, 0.0);
-  for (std::size_t r = 0; r < n; ++r)
-    for (std::size_t c = 0; c < n; ++c)
-      y[r] += K[r * n + c] * x[c];
-  return y;
-}
-
-double Norm(const Vector &v) {
-  double s = 0;
-  for (double x : v)
-    s += x * x;
-  return std::sqrt(s);
-}
-
-double MaxAbs(const Vector &v) {
-  double s = 0;
-  for (double x : v)
-    s = std::max(s, std::abs(x));
-  return s;
-}
-
-Vector Difference(const Vector &a, const Vector &b) {
-  Vector d(a.size());
-  for (std::size_t i = 0; i < a.size(); ++i)
-    d[i] = a[i] - b[i];
-  return d;
 }
 
 double Area(const Cell &cell) {
@@ -138,40 +104,6 @@ std::vector<Vector> RigidModes(const Vector &X) {
     modes[2][2 * k + 1] = X[2 * k];
   }
   return modes;
-}
-
-/// Eigenvalues of a small symmetric matrix by cyclic Jacobi rotations.
-Vector SymmetricEigenvalues(Vector A, int n) {
-  for (int sweep = 0; sweep < 100; ++sweep) {
-    double off = 0, total = 0;
-    for (int p = 0; p < n; ++p)
-      for (int q = 0; q < n; ++q)
-        (p == q ? total : off) += A[p * n + q] * A[p * n + q];
-    if (off <= 1e-30 * (total + off)) break;
-    for (int p = 0; p < n; ++p)
-      for (int q = p + 1; q < n; ++q) {
-        const double apq = A[p * n + q];
-        if (apq == 0.0) continue;
-        const double theta = (A[q * n + q] - A[p * n + p]) / (2 * apq);
-        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
-        const double c = 1 / std::sqrt(t * t + 1), s = t * c;
-        for (int k = 0; k < n; ++k) {
-          const double akp = A[k * n + p], akq = A[k * n + q];
-          A[k * n + p] = c * akp - s * akq;
-          A[k * n + q] = s * akp + c * akq;
-        }
-        for (int k = 0; k < n; ++k) {
-          const double apk = A[p * n + k], aqk = A[q * n + k];
-          A[p * n + k] = c * apk - s * aqk;
-          A[q * n + k] = s * apk + c * aqk;
-        }
-      }
-  }
-  Vector eig(n);
-  for (int i = 0; i < n; ++i)
-    eig[i] = A[i * n + i];
-  std::sort(eig.begin(), eig.end());
-  return eig;
 }
 
 /// Hand formulas: in-plane Cauchy stress (xx, yy, xy) and sigma_zz of the linear law for a small strain.
@@ -523,24 +455,12 @@ TEST(SvkElement, TangentMatchesCentralFiniteDifferenceOfTheForce) {
       Vector K, f;
       TangentAndForce(m, cell, u, K, f);
       const double h = 1e-6 * std::sqrt(Area(cell));
-      Vector K_fd(n * n);
-      for (int c = 0; c < n; ++c) {
-        Vector up(u), um(u);
-        up[c] += h;
-        um[c] -= h;
-        const Vector fp = Force(m, cell, up), fm = Force(m, cell, um);
-        for (int r = 0; r < n; ++r)
-          K_fd[r * n + c] = (fp[r] - fm[r]) / (2 * h);
-      }
+      const Vector K_fd = test::CentralDifferenceJacobian(u, h, [&](const Vector &v) { return Force(m, cell, v); });
       EXPECT_LE(Norm(Difference(K, K_fd)), 1e-6 * Norm(K));
       // The state is genuinely nonlinear: the tangent differs from the linear stiffness.
       EXPECT_GT(Norm(Difference(K, Stiffness(MakeMaterial(plane_stress), cell))), 1e-2 * Norm(K));
       // The tangent of a hyperelastic law is symmetric.
-      double asym = 0;
-      for (int r = 0; r < n; ++r)
-        for (int c = 0; c < n; ++c)
-          asym = std::max(asym, std::abs(K[r * n + c] - K[c * n + r]));
-      EXPECT_LE(asym, 1e-12 * MaxAbs(K));
+      EXPECT_LE(test::MaxAsymmetry(K, n), 1e-12 * MaxAbs(K));
     }
 }
 

@@ -314,3 +314,52 @@ TEST(MeshGeo, RefusesAMeshEstimatedAboveTheLimit) {
 
 } // namespace
 } // namespace signorini
+
+namespace signorini {
+namespace {
+
+/// A 3D serial mesh on the corners of the unit cube (node = x + 2 y + 4 z) with the given cells.
+SerialMesh MakeMesh3D(const std::vector<std::vector<int>> &cells) {
+  SerialMesh mesh;
+  mesh.dim = 3;
+  for (int k = 0; k < 8; ++k) {
+    mesh.coords.insert(mesh.coords.end(), {double(k & 1), double((k >> 1) & 1), double((k >> 2) & 1)});
+    mesh.node_tags.push_back(k + 1);
+  }
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    mesh.cell_nodes.insert(mesh.cell_nodes.end(), cells[c].begin(), cells[c].end());
+    mesh.cell_offsets.push_back((int)mesh.cell_nodes.size());
+    mesh.cell_tags.push_back(10 + c);
+  }
+  return mesh;
+}
+
+TEST(CheckAndOrientCells3D, NegativeTetrahedraAndHexahedraAreFlippedAndAMinorityIsAnError) {
+  // Gmsh order of the unit cube (node = x + 2 y + 4 z): bottom 0 1 3 2, top 4 5 7 6.
+  const std::vector<int> hex = {0, 1, 3, 2, 4, 5, 7, 6}, hex_mirrored = {4, 5, 7, 6, 0, 1, 3, 2};
+  const std::vector<int> tet = {0, 1, 2, 4}, tet_mirrored = {0, 2, 1, 4};
+  SerialMesh good = MakeMesh3D({hex, tet});
+  EXPECT_EQ(CheckAndOrientCells(good), "");
+  EXPECT_EQ(good.cell_nodes, MakeMesh3D({hex, tet}).cell_nodes);
+  SerialMesh mirrored = MakeMesh3D({hex_mirrored, tet_mirrored});
+  EXPECT_EQ(CheckAndOrientCells(mirrored), "");
+  // Flipped back to a positive orientation: the same checks then pass without a change.
+  SerialMesh again = mirrored;
+  EXPECT_EQ(CheckAndOrientCells(again), "");
+  EXPECT_EQ(again.cell_nodes, mirrored.cell_nodes);
+  EXPECT_NE(mirrored.cell_nodes, MakeMesh3D({hex_mirrored, tet_mirrored}).cell_nodes);
+  SerialMesh mixed = MakeMesh3D({hex, tet, tet_mirrored});
+  const std::string error = CheckAndOrientCells(mixed);
+  EXPECT_NE(error.find("1 inverted element(s) of 3 (e.g. element 12)"), std::string::npos) << error;
+}
+
+TEST(CheckAndOrientCells3D, FlatAndTwistedCellsAreErrors) {
+  SerialMesh flat = MakeMesh3D({{0, 1, 2, 3}}); // four nodes in the plane z = 0
+  EXPECT_NE(CheckAndOrientCells(flat).find("element 10 has zero volume"), std::string::npos);
+  SerialMesh twisted = MakeMesh3D({{0, 1, 3, 2, 4, 5, 6, 7}}); // top quadrilateral self-intersecting
+  EXPECT_NE(CheckAndOrientCells(twisted).find("element 10 is not convex"), std::string::npos)
+      << CheckAndOrientCells(twisted);
+}
+
+} // namespace
+} // namespace signorini

@@ -95,40 +95,40 @@ TEST_F(MixedMesh, UnknownGroupIsAnErrorListingTheKnownNames) {
     EXPECT_NE(message.find(name), std::string::npos) << name << " missing from: " << message;
 }
 
-TEST_F(MixedMesh, GroupEdgesHaveTheBodyOnTheirLeft) {
-  std::vector<std::array<PetscInt, 2>> edges;
-  ASSERT_EQ(mesh_.GroupEdges("bottom", edges), 0);
+TEST_F(MixedMesh, GroupFacesHaveTheBodyOnTheirLeft) {
+  std::vector<Face> edges;
+  ASSERT_EQ(mesh_.GroupFaces("bottom", edges), 0);
   ASSERT_EQ(edges.size(), 2u);
   for (const auto &e : edges) {
-    EXPECT_EQ(mesh_.X(e[0])[1], 0.0);
-    EXPECT_EQ(mesh_.X(e[1])[1], 0.0);
-    EXPECT_EQ(mesh_.X(e[1])[0] - mesh_.X(e[0])[0], 1.0); // along +x: the body (y > 0) is on the left
+    EXPECT_EQ(mesh_.X(e.v[0])[1], 0.0);
+    EXPECT_EQ(mesh_.X(e.v[1])[1], 0.0);
+    EXPECT_EQ(mesh_.X(e.v[1])[0] - mesh_.X(e.v[0])[0], 1.0); // along +x: the body (y > 0) is on the left
   }
-  ASSERT_EQ(mesh_.GroupEdges("left", edges), 0);
+  ASSERT_EQ(mesh_.GroupFaces("left", edges), 0);
   ASSERT_EQ(edges.size(), 1u);
-  EXPECT_EQ(mesh_.X(edges[0][0])[1], 1.0); // downwards: the body (x > 0) is on the left
-  EXPECT_EQ(mesh_.X(edges[0][1])[1], 0.0);
+  EXPECT_EQ(mesh_.X(edges[0].v[0])[1], 1.0); // downwards: the body (x > 0) is on the left
+  EXPECT_EQ(mesh_.X(edges[0].v[1])[1], 0.0);
 }
 
-TEST_F(MixedMesh, GroupEdgesRequireACurve) {
-  std::vector<std::array<PetscInt, 2>> edges;
+TEST_F(MixedMesh, GroupFacesRequireACurve) {
+  std::vector<Face> edges;
   for (const char *name : {"body", "corner"}) {
     ErrorCapture capture;
-    EXPECT_NE(mesh_.GroupEdges(name, edges), 0) << name;
+    EXPECT_NE(mesh_.GroupFaces(name, edges), 0) << name;
     EXPECT_NE(capture.Message().find("expected a physical curve"), std::string::npos) << capture.Message();
   }
 }
 
-TEST_F(MixedMesh, BoundaryEdgesEncloseTheBodyCounterClockwise) {
+TEST_F(MixedMesh, BoundaryFacesEncloseTheBodyCounterClockwise) {
   std::vector<PetscInt> vertices;
   ASSERT_EQ(mesh_.BoundaryVertices(vertices), 0);
   EXPECT_EQ(vertices.size(), 6u);
-  std::vector<std::array<PetscInt, 2>> edges;
-  ASSERT_EQ(mesh_.BoundaryEdges(edges), 0);
+  std::vector<Face> edges;
+  ASSERT_EQ(mesh_.BoundaryFaces(edges), 0);
   ASSERT_EQ(edges.size(), 6u);
   double area = 0; // shoelace over the oriented boundary: +area for a counter-clockwise boundary
   for (const auto &e : edges)
-    area += 0.5 * (mesh_.X(e[0])[0] * mesh_.X(e[1])[1] - mesh_.X(e[1])[0] * mesh_.X(e[0])[1]);
+    area += 0.5 * (mesh_.X(e.v[0])[0] * mesh_.X(e.v[1])[1] - mesh_.X(e.v[1])[0] * mesh_.X(e.v[0])[1]);
   EXPECT_DOUBLE_EQ(area, 2.0);
 }
 
@@ -145,10 +145,10 @@ TEST(Mesh, CreateAndDestroyLeaveNoPetscObjects) {
     Mesh mesh;
     ASSERT_EQ(mesh.Create(PETSC_COMM_SELF, opts), 0);
     std::vector<PetscInt> vertices;
-    std::vector<std::array<PetscInt, 2>> edges;
+    std::vector<Face> edges;
     ASSERT_EQ(mesh.GroupVertices("bottom", vertices), 0);
-    ASSERT_EQ(mesh.GroupEdges("bottom", edges), 0);
-    ASSERT_EQ(mesh.BoundaryEdges(edges), 0);
+    ASSERT_EQ(mesh.GroupFaces("bottom", edges), 0);
+    ASSERT_EQ(mesh.BoundaryFaces(edges), 0);
     std::vector<double> per_vertex(mesh.NumLocalVertices(), 1.0);
     ASSERT_EQ(mesh.SumShared(per_vertex), 0);
     EXPECT_EQ(per_vertex, std::vector<double>(6, 1.0)); // one rank: nothing shared
@@ -168,11 +168,53 @@ TEST(Mesh, BeamGroupsSitOnTheirEdges) {
     EXPECT_NEAR(mesh.X(v)[1], 1.0, 1e-12);
   for (PetscInt v : left)
     EXPECT_NEAR(mesh.X(v)[0], 0.0, 1e-12);
-  std::vector<std::array<PetscInt, 2>> edges;
-  ASSERT_EQ(mesh.GroupEdges("top", edges), 0);
+  std::vector<Face> edges;
+  ASSERT_EQ(mesh.GroupFaces("top", edges), 0);
   EXPECT_EQ(edges.size(), top.size() - 1);
   for (const auto &e : edges)
-    EXPECT_LT(mesh.X(e[1])[0], mesh.X(e[0])[0]); // top edge runs in -x, body below
+    EXPECT_LT(mesh.X(e.v[1])[0], mesh.X(e.v[0])[0]); // top edge runs in -x, body below
+}
+
+TEST(Mesh3D, CubeFacesAreOrientedOutwardsAndTileTheBoundary) {
+  for (const char *file : {"cube.msh", "cube_tet.msh"}) {
+    SCOPED_TRACE(file);
+    Mesh mesh;
+    ASSERT_EQ(mesh.Create(PETSC_COMM_SELF, Options(std::string(SIGNORINI_SOURCE_DIR "/meshes/") + file)), 0);
+    EXPECT_EQ(mesh.Dim(), 3);
+    std::vector<Face> faces;
+    ASSERT_EQ(mesh.BoundaryFaces(faces), 0);
+    // Six unit faces: the outward vector areas cancel and their absolute values sum to 6.
+    double sum[3] = {0, 0, 0}, total = 0;
+    for (const Face &f : faces) {
+      EXPECT_EQ(f.n, std::string(file) == "cube.msh" ? 4 : 3);
+      double n[3], centre[3] = {0, 0, 0};
+      mesh.FaceNormal(f, n);
+      for (int a = 0; a < f.n; ++a)
+        for (int d = 0; d < 3; ++d)
+          centre[d] += mesh.X(f.v[a])[d] / f.n;
+      // On the face of the unit cube with outward normal e_d (or -e_d), the centre lies at 1 (or 0) along d.
+      for (int d = 0; d < 3; ++d) {
+        sum[d] += n[d];
+        total += std::abs(n[d]);
+        if (std::abs(n[d]) > 1e-12) EXPECT_NEAR(centre[d], n[d] > 0 ? 1.0 : 0.0, 1e-14);
+      }
+    }
+    for (int d = 0; d < 3; ++d)
+      EXPECT_NEAR(sum[d], 0.0, 1e-13);
+    EXPECT_NEAR(total, 6.0, 1e-13);
+    ASSERT_EQ(mesh.GroupFaces("bottom", faces), 0);
+    double bottom = 0;
+    for (const Face &f : faces) {
+      double n[3];
+      mesh.FaceNormal(f, n);
+      bottom += n[2];
+    }
+    EXPECT_NEAR(bottom, -1.0, 1e-14); // outward: -z
+    ErrorCapture capture;
+    EXPECT_NE(mesh.GroupFaces("body", faces), 0);
+    EXPECT_NE(capture.Message().find("expected a physical surface (dimension 2)"), std::string::npos)
+        << capture.Message();
+  }
 }
 
 TEST(Mesh, MissingFileIsAnError) {

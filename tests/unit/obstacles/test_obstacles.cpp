@@ -113,7 +113,7 @@ TEST(Segment, DistanceIsToTheFiniteSegment) {
 
 TEST(Disc, GapAndNormalAreRadial) {
   const double c[2] = {1, 2};
-  const Disc d(c, 0.5);
+  const Ball d(c, 0.5, 2);
   const Projection top = ProjectOn(d, 1, 3);
   EXPECT_NEAR(top.gap, 0.5, 1e-15);
   EXPECT_NEAR(top.normal[0], 0.0, 1e-15);
@@ -147,10 +147,10 @@ TEST(Segment, PolylineIsItsTwoEndsInOrder) {
   EXPECT_EQ(points[1][1], -1.0);
 }
 
-TEST(Disc, PolylineIsAClosedPolygonOnTheCircle) {
+TEST(Ball, PolylineIsAClosedPolygonOnTheCircle) {
   const double c[2] = {1, 2};
-  const auto points = Disc(c, 0.5).Polyline();
-  ASSERT_EQ(points.size(), (std::size_t)Disc::POLYGON_SIDES + 1);
+  const auto points = Ball(c, 0.5, 2).Polyline();
+  ASSERT_EQ(points.size(), (std::size_t)Ball::POLYGON_SIDES + 1);
   EXPECT_EQ(points.front(), points.back());
   for (const auto &p : points) EXPECT_NEAR(std::hypot(p[0] - 1, p[1] - 2), 0.5, 1e-15);
   // Equal sides: the polygon is regular, so no side hides a flat spot of the circle.
@@ -159,11 +159,70 @@ TEST(Disc, PolylineIsAClosedPolygonOnTheCircle) {
     EXPECT_NEAR(std::hypot(points[k + 1][0] - points[k][0], points[k + 1][1] - points[k][1]), side, 1e-14);
 }
 
-TEST(ShapeRegistry, ListsSegmentsArcsAndDiscs) {
-  EXPECT_EQ(ShapeRegistry().size(), 3u);
+TEST(Plane, GapIsTheSignedDistanceAlongTheUnitNormalEverywhere) {
+  const double p[3] = {1, 2, 3}, n[3] = {0, 3, 4}; // normalised to (0, 0.6, 0.8)
+  const Plane plane(p, n);
+  const double x[3] = {-50, 2 + 0.6 * 2, 3 + 0.8 * 2}, behind[3] = {7, 2 - 0.6, 3 - 0.8};
+  const Projection a = plane.Project(x, 0), b = plane.Project(behind, 0);
+  EXPECT_NEAR(a.gap, 2.0, 1e-14);
+  EXPECT_NEAR(b.gap, -1.0, 1e-14);
+  EXPECT_NEAR(plane.Distance(behind), 1.0, 1e-14);
+  EXPECT_TRUE(a.inside && b.inside); // unbounded: every point projects onto it
+  EXPECT_NEAR(a.normal[0], 0.0, 1e-15);
+  EXPECT_NEAR(a.normal[1], 0.6, 1e-15);
+  EXPECT_NEAR(a.normal[2], 0.8, 1e-15);
+  double lo[3], hi[3];
+  plane.Bounds(lo, hi);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_TRUE(std::isinf(lo[i]) && std::isinf(hi[i]) && lo[i] < 0 && hi[i] > 0);
+}
+
+TEST(Sphere, GapAndNormalAreRadialIn3D) {
+  const double c[3] = {1, 2, -1};
+  const Ball sphere(c, 2.0, 3);
+  const double out[3] = {1 + 2, 2 + 4, -1 + 4}, in[3] = {1, 2, -1 + 1.5};
+  const Projection a = sphere.Project(out, 0), b = sphere.Project(in, 0);
+  EXPECT_NEAR(a.gap, 4.0, 1e-14); // |x - c| = 6
+  EXPECT_NEAR(a.normal[0], 1.0 / 3, 1e-15);
+  EXPECT_NEAR(a.normal[1], 2.0 / 3, 1e-15);
+  EXPECT_NEAR(a.normal[2], 2.0 / 3, 1e-15);
+  EXPECT_NEAR(b.gap, -0.5, 1e-14);
+  EXPECT_NEAR(b.normal[2], 1.0, 1e-15);
+  EXPECT_NEAR(sphere.Distance(in), 0.5, 1e-14);
+  double lo[3], hi[3];
+  sphere.Bounds(lo, hi);
+  EXPECT_EQ(lo[2], -3.0);
+  EXPECT_EQ(hi[1], 4.0);
+}
+
+TEST(Cylinder, GapIgnoresThePositionAlongTheAxis) {
+  const double p[3] = {0, 0, 1}, axis[3] = {2, 0, 0}, r = 0.5;
+  const Cylinder cylinder(p, axis, r);
+  for (double along : {-100.0, 0.0, 3.0}) {
+    const double x[3] = {along, 0.6, 1 + 0.8}, in[3] = {along, 0, 1 - 0.2};
+    const Projection a = cylinder.Project(x, 0), b = cylinder.Project(in, 0);
+    EXPECT_NEAR(a.gap, 0.5, 1e-14);
+    EXPECT_NEAR(a.normal[0], 0.0, 1e-15);
+    EXPECT_NEAR(a.normal[1], 0.6, 1e-15);
+    EXPECT_NEAR(a.normal[2], 0.8, 1e-15);
+    EXPECT_NEAR(b.gap, -0.3, 1e-14);
+    EXPECT_NEAR(b.normal[2], -1.0, 1e-15);
+    EXPECT_NEAR(cylinder.Distance(in), 0.3, 1e-14);
+  }
+}
+
+TEST(ShapeRegistry, ListsThe2DAnd3DShapes) {
+  EXPECT_EQ(ShapeRegistry().size(), 6u);
   EXPECT_EQ(Shape("-obstacle_segments").numbers, 4);
   EXPECT_EQ(Shape("-obstacle_arcs").numbers, 6);
   EXPECT_EQ(Shape("-obstacle_discs").numbers, 3);
+  EXPECT_EQ(Shape("-obstacle_planes").numbers, 6);
+  EXPECT_EQ(Shape("-obstacle_spheres").numbers, 4);
+  EXPECT_EQ(Shape("-obstacle_cylinders").numbers, 7);
+  for (const char *option : {"-obstacle_segments", "-obstacle_arcs", "-obstacle_discs"})
+    EXPECT_EQ(Shape(option).dim, 2) << option;
+  for (const char *option : {"-obstacle_planes", "-obstacle_spheres", "-obstacle_cylinders"})
+    EXPECT_EQ(Shape(option).dim, 3) << option;
   for (const ShapeType &shape : ShapeRegistry()) {
     EXPECT_TRUE(shape.build) << shape.option;
     EXPECT_GT(std::string(shape.help).size(), 0u) << shape.option;
@@ -258,7 +317,7 @@ TEST(ObstacleOptions, EveryShapeOptionContributesItsFacets) {
   ASSERT_EQ(ReadObstacle(PETSC_COMM_SELF, obstacle), 0);
   EXPECT_EQ(test::PetscMemoryInUse(), before);
   ASSERT_EQ(obstacle.facets.size(), 2u + 6u + 1u);
-  EXPECT_NE(dynamic_cast<const Disc *>(obstacle.facets.back().get()), nullptr);
+  EXPECT_NE(dynamic_cast<const Ball *>(obstacle.facets.back().get()), nullptr);
 }
 
 TEST(ObstacleOptions, BadItemsAreErrors) {
@@ -268,7 +327,9 @@ TEST(ObstacleOptions, BadItemsAreErrors) {
       {"-obstacle_segments", "0,0,1", "multiple of 4"},  {"-obstacle_segments", "0,0,0,0", "zero length"},
       {"-obstacle_segments", "0,0,1,nan", "value 4 'nan'"}, {"-obstacle_arcs", "0,0,1,0,90,0.5", "segments"},
       {"-obstacle_discs", "0,0,1,5,5,-1", "item 2"},    {"-obstacle_discs", "0x10,0,1", "value 1 '0x10'"},
-      {"-obstacle_segments", "", "no obstacle"},
+      {"-obstacle_segments", "", "no obstacle"},       {"-obstacle_planes", "0,0,0,0,0,0", "zero normal"},
+      {"-obstacle_spheres", "0,0,0", "multiple of 4"}, {"-obstacle_cylinders", "0,0,0,0,0,1,-1", "radius -1"},
+      {"-obstacle_cylinders", "0,0,0,0,0,0,1", "zero axis"},
   };
   for (const auto &c : cases) {
     SCOPED_TRACE(std::string(c.option) + " " + c.value);
