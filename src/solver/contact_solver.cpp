@@ -475,7 +475,8 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
   stats_.krylov_iterations += st.krylov;
   stats_.stabilised_solves += st.stabilised;
   double step_length;
-  PetscCall(UpdateSolution(st.rnorm, step_length));
+  PetscCall(UpdateSolution(st.rnorm, st.stabilised, step_length));
+  last_step_ = step_length;
   // What a shortened step left of the prescribed increment comes in the next solve; a full step lands exactly.
   for (double &d : st.delta) d *= 1.0 - step_length;
   if (step_length == 1.0) PetscCall(SetDirichlet(st.factor));
@@ -492,10 +493,11 @@ PetscErrorCode ContactSolver::ExtendStep(double extra) {
   const PetscScalar *x;
   PetscScalar *u;
   PetscFunctionBeginUser;
-  // u += extra du, du: the displacement part of the last solution (zero on the Dirichlet rows after a full step).
+  // u += extra s du, du: the displacement part of the last solution (zero on the Dirichlet rows after a full step),
+  // s the step length it was applied with.
   PetscCall(VecGetArrayRead(system_->Solution(), &x));
   PetscCall(VecGetArray(u_, &u));
-  for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) u[i] += extra * x[i];
+  for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) u[i] += extra * last_step_ * x[i];
   PetscCall(VecRestoreArray(u_, &u));
   PetscCall(VecRestoreArrayRead(system_->Solution(), &x));
   PetscCall(UpdateLocal());
@@ -527,7 +529,7 @@ PetscErrorCode ContactSolver::RecordIteration(PetscInt step, PetscInt it, double
 
 namespace signorini {
 
-PetscErrorCode ContactSolver::UpdateSolution(double r0, double &step) {
+PetscErrorCode ContactSolver::UpdateSolution(double r0, bool stabilised, double &step) {
   const bool large = material_.model == MaterialModel::SVK;
   const PetscInt nu = dofs_.OwnedU();
   std::vector<double> new_lambda(pairs_.size());
@@ -554,6 +556,15 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0, double &step) {
     PetscCall(Residual(new_lambda, r, scale, dir.data(), &g0));
   }
   double s = 1.0;
+  if (large && stabilised) {
+    // svk: a stabilised step moves the body along its free motions; it is cut to a quarter of the search radius,
+    // so that the pairs searched again at the new position still see the obstacle it approaches (StepControl then
+    // extends it from there).
+    double m = 0;
+    for (PetscInt i = 0; i < nu; ++i) m = std::max(m, std::abs(dir[i]));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &m, 1, MPI_DOUBLE, MPI_MAX, mesh_.Comm()));
+    if (m > 0.25 * contact_.search_radius) s = 0.25 * contact_.search_radius / m;
+  }
   for (int k = 0;; ++k) {
     // u = u_old + s du on the displacement rows (du_ holds u_old while trying).
     PetscScalar *u;

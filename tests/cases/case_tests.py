@@ -850,3 +850,18 @@ def monitor_after_header(runner):
     result = first("CONVERGED")
     runner.expect_true("header line %d, unknowns line %d, first monitor line %d, result line %d in that order" % (
         header, unknowns, monitor, result), 0 <= header < unknowns < monitor < result)
+
+
+@test("nonlinear_onto_disc")
+def nonlinear_onto_disc(runner):
+    """svk block held only in x (left side), pressed down onto a rigid disc 0.05 below it: the stabilised step moves
+    it into contact (cut to the search radius so that the pairs searched again still see the disc), then Newton
+    converges on the disc."""
+    r = runner.run(["-mesh_file", "meshes/block.msh", "-material_model", "svk", "-material_E", "1000",
+                    "-bc_dirichlet", "left:x", "-bc_pressure", "top:2", "-obstacle_discs", "1,-1.05,1",
+                    "-contact_groups", "bottom"], "svk block onto a disc")
+    runner.expect_true("stabilised solves (%d)" % r.get("iterations.stabilised_solves"),
+                       r.get("iterations.stabilised_solves") >= 1)
+    runner.expect_true("in contact (%d active pairs)" % r.get("contact.active_pairs"), r.get("contact.active_pairs") >= 1)
+    # The disc carries the whole load q W = 4 (round-off of Newton's converged residual, 1e-9 relative).
+    runner.expect_close("contact force", r.get("contact.contact_force.1"), 4.0, 1e-8)

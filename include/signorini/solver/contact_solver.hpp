@@ -102,13 +102,14 @@ private:
   /// The equilibrium tolerance of Newton and of the certificate at a force scale ||F_int|| + ||f||:
   /// -newton_rtol scale + min(-newton_atol, 1e-6 scale).
   double EquilibriumTol(double scale) const;
-  /// Adds extra times the displacement part of the last solution to u. Collective.
+  /// Adds extra times the last applied increment (step length times the displacement part of the last solution) to
+  /// u. Collective.
   [[nodiscard]] PetscErrorCode ExtendStep(double extra);
   /// Norm of R(u, lambda) = F_int - f - B^T lambda on the free rows, a force scale, and optionally direction . R.
   [[nodiscard]] PetscErrorCode Residual(const std::vector<double> &lambda, double &norm, double &scale,
                                         const PetscScalar *direction = nullptr, double *dot = nullptr);
   [[nodiscard]] PetscErrorCode SetDirichlet(double factor);
-  [[nodiscard]] PetscErrorCode UpdateSolution(double residual_before, double &step);
+  [[nodiscard]] PetscErrorCode UpdateSolution(double residual_before, bool stabilised, double &step);
   /// What runs per load step (LoadStep) and per active-set/Newton iteration within it: EvaluateIterate (pairs at the
   /// current iterate, the residual), the active-set update (ActiveSet), StepControl (certificate, stabilisation
   /// step extension, stopping reasons), AssembleSystem (K when it changes, constraint rows, right-hand side) and
@@ -154,6 +155,7 @@ private:
   DofMap dofs_;
   std::unique_ptr<Assembler> assembler_;
   std::unique_ptr<SaddlePointSystem> system_;
+  double last_step_ = 1;          ///< the step length of the last Newton update
   std::vector<double> paired_at_; ///< displacement (per local vertex dof) at the last pair search
   VecH u_, du_, fext_, fint_, fdir_, u_seq_;
   VecScatter scatter_ = nullptr;
