@@ -643,11 +643,14 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     PetscCall(PetscPrintf(comm, "Load step at factor %g failed (%s); cutting the increment to %g\n", t_try,
                           why.c_str(), dt));
     PetscCall(SetOwnedDisplacement(u_saved));
-    if (pairs_.size() != pairs_saved.size() ||
-        !std::equal(pairs_.begin(), pairs_.end(), pairs_saved.begin(), [](const ContactPair &a, const ContactPair &b) {
-          return a.vertex == b.vertex && a.facet == b.facet;
-        }))
-      PetscCall(AdoptPairs(pairs_saved, lambda_saved, mult_saved, active_saved));
+    bool differ = pairs_.size() != pairs_saved.size() ||
+                  !std::equal(pairs_.begin(), pairs_.end(), pairs_saved.begin(),
+                              [](const ContactPair &a, const ContactPair &b) {
+                                return a.vertex == b.vertex && a.facet == b.facet;
+                              });
+    // Collective decision: the pairs may have changed on some ranks only.
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &differ, 1, MPI_CXX_BOOL, MPI_LOR, comm));
+    if (differ) PetscCall(AdoptPairs(pairs_saved, lambda_saved, mult_saved, active_saved));
     pairs_ = pairs_saved;
     lambda_ = lambda_saved;
     mult_ = mult_saved;
