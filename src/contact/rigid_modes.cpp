@@ -1,6 +1,8 @@
 // Rigid-body modes left free by the supports and the active contact constraints.
 #include "signorini/contact/rigid_modes.hpp"
 
+#include "signorini/core/symmetric_eigen.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -22,36 +24,10 @@ int RigidModeRow(int dim, const double *x, const double *centre, double size, co
   return n;
 }
 
-double RelativeSmallestEigenvalue(int n, const double *a_in) {
-  double a[36];
-  std::copy(a_in, a_in + n * n, a);
-  for (int sweep = 0; sweep < 50; ++sweep) {
-    double off = 0;
-    for (int i = 0; i < n; ++i)
-      for (int j = i + 1; j < n; ++j) off += a[i * n + j] * a[i * n + j];
-    if (off < 1e-300) break;
-    for (int p = 0; p < n; ++p)
-      for (int q = p + 1; q < n; ++q) {
-        const double apq = a[p * n + q];
-        if (std::abs(apq) < 1e-300) continue;
-        const double theta = (a[q * n + q] - a[p * n + p]) / (2 * apq);
-        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
-        const double c = 1 / std::sqrt(t * t + 1), s = t * c;
-        for (int k = 0; k < n; ++k) {
-          const double akp = a[k * n + p], akq = a[k * n + q];
-          a[k * n + p] = c * akp - s * akq;
-          a[k * n + q] = s * akp + c * akq;
-        }
-        for (int k = 0; k < n; ++k) {
-          const double apk = a[p * n + k], aqk = a[q * n + k];
-          a[p * n + k] = c * apk - s * aqk;
-          a[q * n + k] = s * apk + c * aqk;
-        }
-      }
-  }
-  double lo = INFINITY, hi = 0;
-  for (int i = 0; i < n; ++i) lo = std::min(lo, a[i * n + i]), hi = std::max(hi, std::abs(a[i * n + i]));
-  return hi > 0 ? lo / hi : 0.0;
+double RelativeSmallestEigenvalue(int n, const double *a) {
+  const std::vector<double> eig = SymmetricEigenvalues(std::vector<double>(a, a + n * n), n);
+  const double hi = std::max(std::abs(eig.front()), std::abs(eig.back()));
+  return hi > 0 ? eig.front() / hi : 0.0;
 }
 
 namespace {

@@ -1,6 +1,8 @@
 // Helpers shared by the element tests: deterministic random numbers and small dense linear algebra.
 #pragma once
 
+#include "signorini/core/symmetric_eigen.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -52,39 +54,8 @@ inline Vector Difference(const Vector &a, const Vector &b) {
   return d;
 }
 
-/// Eigenvalues of a small symmetric matrix by cyclic Jacobi rotations.
-inline Vector SymmetricEigenvalues(Vector A, int n) {
-  for (int sweep = 0; sweep < 100; ++sweep) {
-    double off = 0, total = 0;
-    for (int p = 0; p < n; ++p)
-      for (int q = 0; q < n; ++q)
-        (p == q ? total : off) += A[p * n + q] * A[p * n + q];
-    if (off <= 1e-30 * (total + off)) break;
-    for (int p = 0; p < n; ++p)
-      for (int q = p + 1; q < n; ++q) {
-        const double apq = A[p * n + q];
-        if (apq == 0.0) continue;
-        const double theta = (A[q * n + q] - A[p * n + p]) / (2 * apq);
-        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
-        const double c = 1 / std::sqrt(t * t + 1), s = t * c;
-        for (int k = 0; k < n; ++k) {
-          const double akp = A[k * n + p], akq = A[k * n + q];
-          A[k * n + p] = c * akp - s * akq;
-          A[k * n + q] = s * akp + c * akq;
-        }
-        for (int k = 0; k < n; ++k) {
-          const double apk = A[p * n + k], aqk = A[q * n + k];
-          A[p * n + k] = c * apk - s * aqk;
-          A[q * n + k] = s * apk + c * aqk;
-        }
-      }
-  }
-  Vector eig(n);
-  for (int i = 0; i < n; ++i)
-    eig[i] = A[i * n + i];
-  std::sort(eig.begin(), eig.end());
-  return eig;
-}
+/// Eigenvalues of a small symmetric matrix, ascending.
+inline Vector SymmetricEigenvalues(Vector A, int n) { return signorini::SymmetricEigenvalues(std::move(A), n); }
 
 /// Largest |K_rc - K_cr| of an n x n row-major matrix.
 inline double MaxAsymmetry(const Vector &K, int n) {
