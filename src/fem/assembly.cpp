@@ -1,6 +1,7 @@
 // Global assembly over the local cells: stiffness, internal force, loads, Dirichlet data.
 #include "signorini/fem/assembly.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -75,6 +76,77 @@ PetscErrorCode Assembler::InsertPattern(Mat A) const {
         const PetscInt r = dofs_.Row(v, k);
         PetscCall(MatSetValue(A, r, r, 0.0, ADD_VALUES));
       }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::PatternCounts(std::vector<PetscInt> &d_nnz, std::vector<PetscInt> &o_nnz) const {
+  const int dim = mesh_.Dim();
+  const PetscInt nv = mesh_.NumLocalVertices(), nc = mesh_.NumLocalCells();
+  PetscFunctionBeginUser;
+  // The local cells of every vertex (compressed rows).
+  std::vector<PetscInt> first(nv + 1, 0), cells;
+  for (PetscInt c = 0; c < nc; ++c) {
+    PetscInt nn;
+    const PetscInt *v = mesh_.CellVertices(c, nn);
+    for (PetscInt a = 0; a < nn; ++a) ++first[v[a] + 1];
+  }
+  for (PetscInt v = 0; v < nv; ++v) first[v + 1] += first[v];
+  cells.resize(first[nv]);
+  {
+    std::vector<PetscInt> next(first.begin(), first.end() - 1);
+    for (PetscInt c = 0; c < nc; ++c) {
+      PetscInt nn;
+      const PetscInt *v = mesh_.CellVertices(c, nn);
+      for (PetscInt a = 0; a < nn; ++a) cells[next[v[a]]++] = c;
+    }
+  }
+  // Vertices that other ranks see too (roots of the point SF with leaves).
+  std::vector<char> shared(nv, 0);
+  {
+    DM dm = mesh_.Dm();
+    PetscSF sf;
+    PetscInt nroots, pstart, pend, vstart, vend;
+    const PetscInt *degree = nullptr;
+    PetscCall(DMGetPointSF(dm, &sf));
+    PetscCall(PetscSFGetGraph(sf, &nroots, nullptr, nullptr, nullptr));
+    PetscCall(DMPlexGetChart(dm, &pstart, &pend));
+    PetscCall(DMPlexGetDepthStratum(dm, 0, &vstart, &vend));
+    if (nroots >= 0) {
+      PetscCall(PetscSFComputeDegreeBegin(sf, &degree));
+      PetscCall(PetscSFComputeDegreeEnd(sf, &degree));
+      for (PetscInt v = 0; v < nv; ++v) shared[v] = degree[vstart + v - pstart] > 0;
+    }
+  }
+  const auto free_dofs = [&](PetscInt w) {
+    PetscInt n = 0;
+    for (int k = 0; k < dim; ++k) n += !dirichlet_.fixed[w * dim + k];
+    return n;
+  };
+  d_nnz.assign(dofs_.OwnedU(), 0);
+  o_nnz.assign(dofs_.OwnedU(), 0);
+  std::vector<PetscInt> seen(nv, -1);
+  const PetscInt owned_rows = dofs_.OwnedRows(), other_rows = dofs_.GlobalRows() - owned_rows;
+  for (PetscInt v = 0; v < nv; ++v) {
+    if (!mesh_.Owned(v)) continue;
+    PetscInt d = 0, o = 0;
+    for (PetscInt i = first[v]; i < first[v + 1]; ++i) {
+      PetscInt nn;
+      const PetscInt *w = mesh_.CellVertices(cells[i], nn);
+      for (PetscInt a = 0; a < nn; ++a) {
+        if (seen[w[a]] == v) continue;
+        seen[w[a]] = v;
+        (mesh_.Owned(w[a]) ? d : o) += free_dofs(w[a]);
+      }
+    }
+    if (shared[v]) o += d, d *= 2;
+    d = std::min(d, owned_rows), o = std::min(o, other_rows);
+    for (int k = 0; k < dim; ++k) {
+      const PetscInt r = dofs_.LocalOffset(v, k);
+      const bool fixed = dirichlet_.fixed[v * dim + k];
+      d_nnz[r] = fixed ? 1 : d;
+      o_nnz[r] = fixed ? 0 : o;
+    }
+  }
   PetscFunctionReturn(0);
 }
 

@@ -86,9 +86,11 @@ PetscErrorCode ContactSolver::CreateSystem() {
       for (int k = 0; k < dim; ++k) coords[dofs_.LocalOffset(v, k)] = mesh_.X(v)[k];
   EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, false, u_local_.data(), states_, rows_,
                 normals_);
+  std::vector<PetscInt> d_nnz, o_nnz;
+  PetscCall(assembler_->PatternCounts(d_nnz, o_nnz));
   system_ = std::make_unique<SaddlePointSystem>();
-  PetscCall(system_->Create(dofs_, rows_, coords, material_.model != MaterialModel::SVK, kscale_,
-                            [&](Mat P) { return assembler_->InsertPattern(P); }));
+  PetscCall(system_->Create(dofs_, rows_, coords, material_.model != MaterialModel::SVK, kscale_, d_nnz, o_nnz,
+                            [&](Mat A) { return assembler_->InsertPattern(A); }));
   k_assembled_ = false;
   PetscCall(MatCreateVecs(system_->A(), u_.out(), nullptr));
   PetscCall(VecDuplicate(u_, du_.out()));
@@ -362,6 +364,7 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt c
     if (changes == 0 && !st.moving && !st.stabilised) {
       if (!st.large) PetscCall(Residual(lambda_, st.rnorm, st.rscale));
       const double tol = EquilibriumTol(st.rscale);
+      PetscCall(PetscInfo(nullptr, "candidate state: equilibrium residual %g (tolerance %g)\n", st.rnorm, tol));
       if (st.rnorm <= tol || !st.large) {
         Certificate cert;
         PetscCall(active_set_.Certify(states_, keys_, normals_, st.rnorm, tol, cert));
@@ -423,7 +426,7 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
     PetscCall(assembler_->Assemble(u_local_.data(), system_->A(), kscale_, nullptr, nullptr));
     PetscCall(MatAssemblyBegin(system_->A(), MAT_FLUSH_ASSEMBLY));
     PetscCall(MatAssemblyEnd(system_->A(), MAT_FLUSH_ASSEMBLY));
-    if (system_->ReusesFactorization()) PetscCall(system_->AddAugmentation(rows_));
+    if (system_->Augmented()) PetscCall(system_->AddAugmentation(rows_));
     k_assembled_ = true;
     ProgressEnd();
   }

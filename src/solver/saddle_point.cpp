@@ -7,6 +7,25 @@
 
 namespace signorini {
 
+void SaddlePointSystem::RowCounts(const std::vector<ConstraintRow> &rows, const std::vector<PetscInt> &d_nnz_k,
+                                  const std::vector<PetscInt> &o_nnz_k, std::vector<PetscInt> &d_nnz,
+                                  std::vector<PetscInt> &o_nnz) const {
+  const PetscInt start = dofs_->RowStart(), end = start + dofs_->OwnedRows();
+  d_nnz.assign(d_nnz_k.begin(), d_nnz_k.end());
+  o_nnz.assign(o_nnz_k.begin(), o_nnz_k.end());
+  d_nnz.resize(dofs_->OwnedRows(), 1); // a multiplier row: its diagonal, then its columns below
+  o_nnz.resize(dofs_->OwnedRows(), 0);
+  for (std::size_t p = 0; p < rows.size(); ++p) {
+    const PetscInt r = dofs_->LambdaRow((PetscInt)p) - start;
+    for (PetscInt i = 0; i < rows[p].ncols; ++i) {
+      const PetscInt c = rows[p].cols[i];
+      const bool mine = c >= start && c < end;
+      (mine ? d_nnz[r] : o_nnz[r]) += 1;
+      if (mine) d_nnz[c - start] += 1; // the transposed entry; a row of another rank gets room when it is set
+    }
+  }
+}
+
 PetscErrorCode SaddlePointSystem::CreatePattern(const std::vector<ConstraintRow> &rows, Mat P) const {
   const PetscScalar zeros[3] = {0, 0, 0};
   PetscFunctionBeginUser;
@@ -65,6 +84,9 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   PetscCall(PetscObjectCompose((PetscObject)dofs_->IsU(), "nearnullspace", (PetscObject)near_null_.get()));
   if (dofs_->GlobalLambda() == 0) PetscCall(MatSetNearNullSpace(A_, near_null_));
   PetscCall(KSPSetFromOptions(ksp_));
+  PetscBool preonly;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ksp_.get(), KSPPREONLY, &preonly));
+  if (!preonly) PetscCall(KSPConvergedDefaultSetUIRNorm(ksp_)); // relative to the start's residual (InitialGuess)
   PetscBool fieldsplit;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
   if (fieldsplit) {
@@ -96,6 +118,9 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
              "-contact_reuse_factorization needs a constant stiffness (material_model linear) and a MUMPS LU or "
              "Cholesky solver (-contact_pc_type lu|cholesky -contact_pc_factor_mat_solver_type mumps)");
   reuse_ = possible && opts.reuse_factorization && dofs_->GlobalLambda() > 0;
+  // An iterative solver gets the augmented form too: its displacement block K + r B_C^T B_C is regular when the
+  // candidates hold the body, so that a Schur fieldsplit with AMG on that block works for a body held by contact.
+  augmented_ = reuse_ || (!factor && dofs_->GlobalLambda() > 0);
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu_));
   if (reuse_) {
     // The Schur complement on every multiplier row, centralised on rank 0 (what PETSc's MUMPS interface supports in
@@ -162,7 +187,7 @@ PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<ConstraintRow
   stab_ = stabilisation;
   for (std::size_t p = 0; p < rows.size(); ++p) {
     const PetscInt r = dofs_->LambdaRow((PetscInt)p);
-    const bool keep = active[p] || reuse_ || stab_ > 0;
+    const bool keep = active[p] || augmented_ || stab_ > 0;
     const PetscScalar *v = keep ? rows[p].coef : zeros;
     PetscCall(MatSetValues(A_, 1, &r, rows[p].ncols, rows[p].cols, v, INSERT_VALUES));
     PetscCall(MatSetValues(A_, rows[p].ncols, rows[p].cols, 1, &r, v, INSERT_VALUES));
@@ -178,7 +203,7 @@ double SaddlePointSystem::InactiveDiagonal(double plain) const {
   // Eliminating an inactive row -B_i du + D mu_i = 0 adds (r - 1/D) B_i^T B_i (augmented form) or -B_i^T B_i / D
   // (plain form, row kept) to the displacement block: the spring stab_ B_i^T B_i, or nothing in the augmented form
   // without stabilisation.
-  if (reuse_) return 1.0 / (aug_ - stab_);
+  if (augmented_) return 1.0 / (aug_ - stab_);
   return stab_ > 0 ? -1.0 / stab_ : plain;
 }
 
@@ -188,8 +213,8 @@ PetscErrorCode SaddlePointSystem::FailureAdvice(std::string &advice) const {
   PetscFunctionBeginUser;
   PetscCall(KSPGetPC(ksp_, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
-  // Measured on the Hertz case, whose K is singular (README, Solver presets): fieldsplit_mumps and fieldsplit_gamg
-  // stop at their iteration limit, fieldsplit_hypre and the direct presets converge.
+  // Iterative solvers get the augmented block K + r B_C^T B_C, regular when the candidates hold the body; a failure
+  // then means the candidates do not hold it, or the preconditioner does not fit the problem.
   const std::string direct = "; expected a solver that fits: the default MUMPS LDL^T (no solver preset, or "
                              "options/solver/mumps_cholesky.yml) solves every system whose body is held";
   if (!fieldsplit) {
@@ -208,8 +233,36 @@ PetscErrorCode SaddlePointSystem::FailureAdvice(std::string &advice) const {
   }
   PetscCall(PetscFree(sub));
   advice = std::string(": a Schur fieldsplit with the u block by ") + (u_pc ? u_pc : "?") +
-           " fails when the stiffness K is singular (a body held only by contact, as in the Hertz case)" + direct +
-           "; among the fieldsplits, options/solver/fieldsplit_hypre.yml converges there";
+           " failed on the block K + r B_C^T B_C, which is singular when neither the Dirichlet conditions nor the "
+           "candidate contact pairs hold the body; raise -contact_ksp_max_it or -contact_ksp_rtol if it was converging" +
+           direct;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::InitialGuess() {
+  PetscBool preonly;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ksp_.get(), KSPPREONLY, &preonly));
+  if (reuse_ || preonly) {
+    PetscCall(VecZeroEntries(x_));
+    PetscFunctionReturn(0);
+  }
+  // An iterative solve starts from the last multipliers (x_ holds them, in the plain form's meaning) in this system's
+  // variables, and no displacement increment; its tolerance is relative to that start's residual (SetupKsp). The
+  // multiplier unknown is the whole force, not an increment: from zero, a relative tolerance on the whole force
+  // would leave an equilibrium error (times r in the augmented form) that no correction solve removes.
+  PetscScalar *x;
+  const PetscScalar *b;
+  PetscCall(VecGetArray(x_, &x));
+  PetscCall(VecGetArrayRead(b_, &b));
+  for (PetscInt i = 0; i < dofs_->OwnedU(); ++i) x[i] = 0;
+  for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) {
+    const PetscInt i = dofs_->OwnedU() + p;
+    x[i] = active_[p] ? x[i] - (augmented_ ? aug_ * b[i] : 0.0) : 0.0;
+  }
+  PetscCall(VecRestoreArrayRead(b_, &b));
+  PetscCall(VecRestoreArray(x_, &x));
+  PetscCall(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
   PetscFunctionReturn(0);
 }
 
@@ -218,7 +271,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
   KSPConvergedReason reason;
   PetscReal bnorm, rnorm;
   PetscFunctionBeginUser;
-  PetscCall(VecZeroEntries(x_));
+  PetscCall(InitialGuess());
   PetscInt null_pivots = 0;
   if (reuse_) {
     std::vector<PetscScalar> d;
@@ -269,7 +322,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
              "the saddle-point system is singular (relative residual %g after the solve): the body is not held; add "
              "Dirichlet conditions or check that the obstacle touches it", finite ? (double)(rnorm / bnorm) : -1.0);
   residual = rnorm;
-  if (reuse_) {
+  if (augmented_) {
     // Augmented form: an active row holds lambda - r g (g: its right-hand side), an inactive one (r - s) B du; the
     // latter becomes the spring force -s B du of the plain form (0 without stabilisation).
     PetscScalar *x;

@@ -201,12 +201,12 @@ CASES = {
                                 ["-contact_reuse_factorization", "constant stiffness"], {}),
     "reuse_factorization_mumps_layout": (["-contact_mat_mumps_icntl_19", "1"],
                                          ["-contact_mat_mumps_icntl_19", "cannot be set"], {}),
-    # A Schur fieldsplit on the Hertz case (K singular): the message names the presets that work. The iteration limit
-    # only makes it stop sooner (it stops at 2000 otherwise).
-    "fieldsplit_on_singular_K": (["-options_file", "{root}/options/solver/fieldsplit_gamg.yml", "-contact_ksp_max_it",
-                                  "50"], ["saddle-point solve failed", "gamg", "K is singular",
-                                          "options/solver/mumps_cholesky.yml", "options/solver/fieldsplit_hypre.yml"],
-                                 {}),
+    # A Schur fieldsplit on a body that nothing holds (no Dirichlet condition, no obstacle): the message says why its
+    # block is singular and names the solver that reports it directly.
+    "fieldsplit_on_loose_body": (LOOSE_BEAM + ["-options_file", "{root}/options/solver/fieldsplit_gamg.yml",
+                                               "-contact_ksp_max_it", "200"],
+                                 ["saddle-point solve failed", "gamg", "singular when neither the Dirichlet",
+                                  "options/solver/mumps_cholesky.yml"], {}),
     "reuse_factorization_iterative": (["-options_file", "{root}/options/solver/fieldsplit_hypre.yml",
                                        "-contact_reuse_factorization", "true"],
                                       ["-contact_reuse_factorization", "MUMPS LU or Cholesky"], {}),

@@ -359,6 +359,26 @@ def solver_preset(runner, preset):
         ref.get("iterations.krylov")))
 
 
+@test("iterative_on_contact")
+def iterative_on_contact(runner, preset):
+    """The Hertz case, whose stiffness K alone is singular (the cylinder is held vertically only by contact), with a
+    Schur fieldsplit preset: built on the augmented block K + r B_C^T B_C it gives the active set, multipliers and
+    displacements of the default MUMPS solver to 1e-8."""
+    base = ["-options_file", "options/hertz.yml"]
+    ref = runner.run(base, "hertz mumps")
+    r = runner.run(base + ["-options_file", "options/solver/%s.yml" % preset], "hertz %s" % preset,
+                   heap_check=runner.np == 1)
+    a, b = ref.nodes(), r.nodes()
+    runner.expect_true("same active nodes", np.array_equal(a["active"], b["active"]))
+    lam = np.abs(a["lambda"]).max()
+    runner.expect_close("multipliers", b["lambda"], a["lambda"], 0, 1e-8 * lam)
+    runner.expect_close("displacement", displacement(b), displacement(a), 0, 1e-8 * np.abs(displacement(a)).max())
+    runner.expect_equal("status", r.get("status"), "converged")
+    its, krylov = r.get("iterations.active_set"), r.get("iterations.krylov")
+    print("  %s: %d active-set iterations, %d Krylov iterations (%.0f per solve)" % (preset, its, krylov,
+                                                                                      krylov / max(its, 1)))
+
+
 # Lame cylinder (options/lame_cylinder.yml): radii, internal pressure; size factors of meshes/lame*.geo.
 LAME_A, LAME_B, LAME_P = 1.0, 2.0, 1.0
 LAME_FACTORS = [0.5, 0.25, 0.125]

@@ -30,6 +30,11 @@ public:
   [[nodiscard]] PetscErrorCode CheckCells() const;
   /// Inserts the nonzero pattern of K (free rows and columns) and the Dirichlet diagonal into A (values 0).
   [[nodiscard]] PetscErrorCode InsertPattern(Mat A) const;
+  /// Bounds of the nonzeros of K per owned displacement row (local row order, dofs.OwnedU() values) in the columns
+  /// this rank owns (d_nnz) and in the others (o_nnz), from the local cells around each vertex: exact for a vertex
+  /// whose cells are all on this rank; a vertex shared with other ranks, whose rows also get entries from their
+  /// cells, is given room for as many again. Collective.
+  [[nodiscard]] PetscErrorCode PatternCounts(std::vector<PetscInt> &d_nnz, std::vector<PetscInt> &o_nnz) const;
   /// Adds K(u) to A (free rows and columns, plus dirichlet_diag on the Dirichlet diagonal) when A is given, and
   /// F_int(u) to fint (every displacement row, Dirichlet rows included) when fint is given. u_local holds dim values
   /// per local vertex. Returns through min_J the smallest det F over the cells (svk). Collective.
