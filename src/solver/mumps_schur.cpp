@@ -1,6 +1,7 @@
 // MUMPS with a Schur complement on the multipliers: one factorisation, then solves with a changing diagonal D.
 #include "signorini/solver/mumps_schur.hpp"
 
+#include <metis.h>
 #include <petscblaslapack.h>
 
 #include <algorithm>
@@ -14,12 +15,13 @@ namespace signorini {
 #define INFOG(I) infog[(I)-1]
 
 namespace {
-PetscLogEvent EV_ANALYSIS = 0, EV_FACTOR = 0, EV_SCHUR = 0, EV_SOLVE = 0;
+PetscLogEvent EV_ORDERING = 0, EV_ANALYSIS = 0, EV_FACTOR = 0, EV_SCHUR = 0, EV_SOLVE = 0;
 PetscErrorCode RegisterEvents() {
   PetscClassId id;
   PetscFunctionBeginUser;
   if (EV_ANALYSIS) PetscFunctionReturn(0);
   PetscCall(PetscClassIdRegister("signorini MUMPS-Schur", &id));
+  PetscCall(PetscLogEventRegister("SigOrdering", id, &EV_ORDERING));
   PetscCall(PetscLogEventRegister("SigMumpsAnalysis", id, &EV_ANALYSIS));
   PetscCall(PetscLogEventRegister("SigMumpsFactor", id, &EV_FACTOR));
   PetscCall(PetscLogEventRegister("SigSchurFactor", id, &EV_SCHUR));
@@ -45,6 +47,82 @@ PetscErrorCode MumpsSchur::Call(int job, const char *phase) {
              "MUMPS failed in the %s of the saddle-point system: INFOG(1) = %d, INFOG(2) = %d (see the MUMPS users' "
              "guide; -8/-9/-17/-20: out of workspace, -10: the matrix is singular)",
              phase, (int)id_.INFOG(1), (int)id_.INFOG(2));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::NestedDissection(PetscInt n) {
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(EV_ORDERING, 0, 0, 0, 0));
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  // The off-diagonal entries (one triangle for LDL^T, both for LU: the graph is symmetrised below) on rank 0.
+  std::vector<MUMPS_INT> edges;
+  edges.reserve(2 * irn_.size());
+  for (std::size_t e = 0; e < irn_.size(); ++e)
+    if (irn_[e] != jcn_[e]) edges.push_back(irn_[e] - 1), edges.push_back(jcn_[e] - 1);
+  PetscMPIInt count = 0;
+  PetscCall(PetscMPIIntCast((PetscInt)edges.size(), &count));
+  std::vector<PetscMPIInt> counts(size), displs(size, 0);
+  PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_));
+  std::vector<MUMPS_INT> all;
+  if (rank_ == 0) {
+    std::size_t total = counts[0];
+    for (PetscMPIInt r = 1; r < size; ++r) {
+      PetscCheck((std::size_t)displs[r - 1] + counts[r - 1] <= (std::size_t)INT32_MAX, PETSC_COMM_SELF,
+                 PETSC_ERR_SUP, "the matrix graph is too large for the nested-dissection ordering on one rank; choose "
+                 "one of MUMPS's orderings with -contact_mat_mumps_icntl_7");
+      displs[r] = displs[r - 1] + counts[r - 1], total += counts[r];
+    }
+    all.resize(total);
+  }
+  PetscCallMPI(MPI_Gatherv(edges.data(), count, MPI_INT, all.data(), counts.data(), displs.data(), MPI_INT, 0, comm_));
+  edges.clear();
+  edges.shrink_to_fit();
+  int status = METIS_OK;
+  if (rank_ == 0) {
+    // Compressed adjacency of the symmetrised graph (duplicates of an LU pattern's two triangles removed), then
+    // METIS's nested dissection; MUMPS takes the position of each variable in the pivot order (1-based).
+    std::vector<idx_t> xadj(n + 1, 0), adjncy;
+    for (std::size_t e = 0; e < all.size(); e += 2) ++xadj[all[e] + 1], ++xadj[all[e + 1] + 1];
+    for (PetscInt i = 0; i < n; ++i) xadj[i + 1] += xadj[i];
+    adjncy.resize(xadj[n]);
+    {
+      std::vector<idx_t> next(xadj.begin(), xadj.end() - 1);
+      for (std::size_t e = 0; e < all.size(); e += 2) {
+        adjncy[next[all[e]]++] = all[e + 1];
+        adjncy[next[all[e + 1]]++] = all[e];
+      }
+    }
+    all.clear();
+    all.shrink_to_fit();
+    idx_t w = 0;
+    for (PetscInt i = 0; i < n; ++i) {
+      const idx_t begin = w;
+      std::sort(adjncy.begin() + xadj[i], adjncy.begin() + xadj[i + 1]);
+      for (idx_t k = xadj[i]; k < xadj[i + 1]; ++k)
+        if (k == xadj[i] || adjncy[k] != adjncy[k - 1]) adjncy[w++] = adjncy[k];
+      xadj[i] = begin;
+    }
+    xadj[n] = w;
+    // METIS compresses the rows of one node (same closed neighbourhood) into one vertex itself (METIS_OPTION_COMPRESS).
+    idx_t nv = (idx_t)n, options[METIS_NOPTIONS];
+    METIS_SetDefaultOptions(options);
+    options[METIS_OPTION_SEED] = 7;
+    std::vector<idx_t> perm(n), iperm(n);
+    status = METIS_NodeND(&nv, xadj.data(), adjncy.data(), nullptr, options, perm.data(), iperm.data());
+    // MUMPS wants the Schur variables last in the pivot order (else INFOG(1) = -4); the others keep METIS's order.
+    std::vector<char> schur(n, 0);
+    for (MUMPS_INT v : listvar_) schur[v - 1] = 1;
+    perm_in_.resize(n);
+    MUMPS_INT position = 0;
+    for (PetscInt k = 0; k < n; ++k)
+      if (!schur[perm[k]]) perm_in_[perm[k]] = ++position;
+    for (MUMPS_INT v : listvar_) perm_in_[v - 1] = ++position;
+  }
+  PetscCallMPI(MPI_Bcast(&status, 1, MPI_INT, 0, comm_));
+  PetscCheck(status == METIS_OK, comm_, PETSC_ERR_LIB, "METIS nested dissection of the saddle-point matrix failed (%d)",
+             status);
+  PetscCall(PetscLogEventEnd(EV_ORDERING, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -102,6 +180,9 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   // The user's MUMPS controls under the solver's prefix (-contact_mat_mumps_icntl_<k>, -contact_mat_mumps_cntl_<k>),
   // as PETSc's interface reads them, except the ones this class relies on (input/Schur/right-hand-side layout).
   const auto control = [](const char *array, int k) { return "-mat_mumps_" + std::string(array) + "_" + std::to_string(k); };
+  // Ordering: METIS's nested dissection of the matrix graph, given to MUMPS (ICNTL(7) = 1; Debian's MUMPS has only
+  // AMD, AMF, QAMD and PORD built in), unless -contact_mat_mumps_icntl_7 picks one of those.
+  id_.ICNTL(7) = 1;
   for (int k = 1; k <= 60; ++k) {
     PetscInt v;
     PetscBool set;
@@ -126,8 +207,14 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   id_.listvar_schur = listvar_.data();
   id_.schur = schur_raw_.data();
   id_.schur_lld = (MUMPS_INT)m_all;
+  if (id_.ICNTL(7) == 1) {
+    PetscCall(NestedDissection(N));
+    if (rank_ == 0) id_.perm_in = perm_in_.data();
+  }
   PetscCall(PetscLogEventBegin(EV_ANALYSIS, 0, 0, 0, 0));
   PetscCall(Call(1, "analysis"));
+  perm_in_.clear();
+  perm_in_.shrink_to_fit();
   PetscCall(PetscLogEventEnd(EV_ANALYSIS, 0, 0, 0, 0));
   PetscCall(PetscLogEventBegin(EV_FACTOR, 0, 0, 0, 0));
   PetscCall(Call(2, "factorisation"));

@@ -3,8 +3,9 @@
 // Schur complement only on one rank) factors the matrix once with the Schur complement S0 = D0 - A21 A11^-1 A12 on
 // the multiplier rows, centralised on rank 0. A solve with another diagonal D uses S = S0 + (D - D0), factored
 // densely (LAPACK LDL^T) on rank 0 when D changes: MUMPS condenses the right-hand side onto the multipliers, rank 0
-// solves with S, MUMPS expands the solution. LU instead of LDL^T on request (the mumps_lu preset). The ordering and the analysis are MUMPS's defaults (ICNTL(7) = 7,
-// sequential analysis), with null-pivot detection (ICNTL(24)) so that a singular A11 is reported; the options
+// solves with S, MUMPS expands the solution. LU instead of LDL^T on request (the mumps_lu preset). The ordering is
+// METIS's nested dissection of the matrix graph, computed on rank 0 and given to MUMPS (ICNTL(7) = 1), the analysis
+// sequential, with null-pivot detection (ICNTL(24)) so that a singular A11 is reported; the options
 // -contact_mat_mumps_icntl_<k> and -contact_mat_mumps_cntl_<k> override them as for PETSc's interface.
 #pragma once
 
@@ -36,13 +37,16 @@ public:
 private:
   [[nodiscard]] PetscErrorCode Call(int job, const char *phase);
   [[nodiscard]] PetscErrorCode FactorSchur(const std::vector<PetscScalar> &d);
+  /// METIS nested dissection of the graph of the matrix entries in irn_/jcn_ (n rows), computed on rank 0 into
+  /// perm_in_ (MUMPS's PERM_IN). Collective.
+  [[nodiscard]] PetscErrorCode NestedDissection(PetscInt n);
 
   DMUMPS_STRUC_C id_{};
   bool initialised_ = false;
   MPI_Comm comm_ = MPI_COMM_NULL;
   PetscMPIInt rank_ = 0;
   PetscInt null_pivots_ = 0;
-  std::vector<MUMPS_INT> irn_, jcn_, listvar_;
+  std::vector<MUMPS_INT> irn_, jcn_, listvar_, perm_in_;
   std::vector<double> val_;
   std::vector<double> schur_raw_, s0_, d0_, s_, d_factored_, redrhs_, work_;
   std::vector<PetscBLASInt> ipiv_;
