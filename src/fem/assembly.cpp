@@ -169,7 +169,7 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
         all[a * dim + k] = dofs_.Row(v[a], k);
         rows[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : all[a * dim + k];
       }
-    ElementTangentAndForce(material_, g, ue.data(), Ke.data(), fe.data());
+    ElementTangentAndForce(material_, g, ue.data(), A ? Ke.data() : nullptr, fe.data());
     // det F at the quadrature points (svk): the deformation must stay invertible.
     if (material_.model == MaterialModel::SVK) jmin = std::min(jmin, MinDeformationJacobian(g, ue.data()));
     if (A) PetscCall(MatSetValues(A, nn * dim, rows.data(), nn * dim, rows.data(), Ke.data(), ADD_VALUES));

@@ -226,7 +226,7 @@ void ElementTangentAndForce(const Material &m, const ElementGeometry &g, const d
   const bool large = m.model == MaterialModel::SVK;
   double D[6][6];
   ElasticityMatrix(m, dim, D);
-  std::memset(K, 0, sizeof(double) * n * n);
+  if (K) std::memset(K, 0, sizeof(double) * n * n);
   std::memset(f, 0, sizeof(double) * n);
   for (int q = 0; q < g.nqp; ++q) {
     double F[MAX_DIM][MAX_DIM], eps[6], S[6] = {};
@@ -243,15 +243,17 @@ void ElementTangentAndForce(const Material &m, const ElementGeometry &g, const d
           B[v][a * dim + k] =
               i == j ? F[k][i] * g.dN[q][a][i] : F[k][i] * g.dN[q][a][j] + F[k][j] * g.dN[q][a][i];
     }
+    const double wq = g.w[q];
+    for (int r = 0; r < n; ++r)
+      for (int v = 0; v < nv; ++v) f[r] += wq * B[v][r] * S[v]; // Eq. 15: dE/du : S
+    if (!K) continue;
     double DB[6][MAX_EDOF];
     for (int v = 0; v < nv; ++v)
       for (int c = 0; c < n; ++c) {
         DB[v][c] = 0;
         for (int w = 0; w < nv; ++w) DB[v][c] += D[v][w] * B[w][c];
       }
-    const double wq = g.w[q];
     for (int r = 0; r < n; ++r) {
-      for (int v = 0; v < nv; ++v) f[r] += wq * B[v][r] * S[v]; // Eq. 15: dE/du : S
       for (int c = 0; c < n; ++c) {
         double kij = 0;
         for (int v = 0; v < nv; ++v) kij += B[v][r] * DB[v][c];

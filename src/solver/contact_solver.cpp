@@ -319,6 +319,15 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &st.moving, 1, MPI_CXX_BOOL, MPI_LOR, mesh_.Comm()));
   // Gaps with the prescribed displacements in place (the constraint rows hold only the free components).
   for (std::size_t i = 0; i < st.u_eval.size(); ++i) st.u_eval[i] = u_local_[i] + st.delta[i];
+  if (st.condensed) {
+    // The gaps after a condensed solve: the base's plus the normal displacement of the increment (the zone, the
+    // normals and the constraint rows of the linear material do not move).
+    for (std::size_t p = 0; p < pairs_.size(); ++p) states_[p].gap = st.g_base[p] + st.shift[p];
+    st.rnorm = st.solve_residual;
+    st.rscale = 0;
+    PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
+    PetscFunctionReturn(0);
+  }
   if (st.large) {
     // svk: pairs from the current configuration (new pairs mean a new pattern and a new analysis).
     bool rebuilt;
@@ -362,6 +371,7 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt c
     // A state that may be the solution: certified, or the loop goes on (svk: Newton; linear: one more solve corrects
     // an equilibrium residual left by an inexact solver) or stops with the violated condition.
     if (changes == 0 && !st.moving && !st.stabilised) {
+      if (st.condensed) PetscCall(Materialise(st, it));
       if (!st.large) PetscCall(Residual(lambda_, st.rnorm, st.rscale));
       const double tol = EquilibriumTol(st.rscale);
       PetscCall(PetscInfo(nullptr, "candidate state: equilibrium residual %g (tolerance %g)\n", st.rnorm, tol));
@@ -431,6 +441,15 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
     ProgressEnd();
   }
   PetscCall(system_->SetConstraints(rows_, st.next, -1.0 / kscale_, st.stabilised ? STABILISATION * kscale_ : 0.0));
+  if (Condensable(st)) {
+    // The base's right-hand side with the new active set: its displacement rows stay, the gaps are the base's.
+    PetscScalar *b;
+    PetscCall(VecGetArray(system_->Rhs(), &b));
+    for (std::size_t p = 0; p < pairs_.size(); ++p) b[dofs_.OwnedU() + p] = st.next[p] ? st.g_base[p] : 0.0;
+    PetscCall(VecRestoreArray(system_->Rhs(), &b));
+    PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
+    PetscFunctionReturn(0);
+  }
   if (st.stabilised) {
     st.gap_before.resize(pairs_.size());
     for (std::size_t p = 0; p < pairs_.size(); ++p) st.gap_before[p] = states_[p].gap;
@@ -462,13 +481,36 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   PetscFunctionReturn(0);
 }
 
+bool ContactSolver::Condensable(const StepState &st) const {
+  return st.base && !st.large && !st.stabilised && system_->ReusesFactorization();
+}
+
 PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
+  const bool condensed = Condensable(st);
   PetscFunctionBeginUser;
+  if (!condensed) {
+    // A full solve; without stabilisation (linear, kept factorisation) it is the base of the condensed solves after it.
+    st.base = system_->ReusesFactorization() && !st.large && !st.stabilised;
+    if (st.base) {
+      if (!st.u_base) PetscCall(VecDuplicate(u_, st.u_base.out()));
+      PetscCall(VecCopy(u_, st.u_base));
+      st.g_base.resize(pairs_.size());
+      for (std::size_t p = 0; p < pairs_.size(); ++p) st.g_base[p] = states_[p].gap;
+    }
+  }
   {
     ScopedTimer t(stats_.time_solve);
     const double t0 = MPI_Wtime();
     PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
-    PetscCall(system_->Solve(st.krylov, st.solve_residual));
+    if (condensed) {
+      std::vector<double> bm(pairs_.size());
+      for (std::size_t p = 0; p < pairs_.size(); ++p) bm[p] = st.next[p] ? st.g_base[p] : 0.0;
+      PetscCall(system_->SolveCondensed(bm, lambda_, st.shift));
+      mult_ = lambda_;
+      st.krylov = 1;
+    } else {
+      PetscCall(system_->Solve(st.krylov, st.solve_residual));
+    }
     PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
     const double dt = MPI_Wtime() - t0;
     PetscCallMPI(MPI_Allreduce(&dt, &st.last_solve_time, 1, MPI_DOUBLE, MPI_MAX, mesh_.Comm()));
@@ -477,12 +519,35 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
   stats_.active_set_iterations++;
   stats_.krylov_iterations += st.krylov;
   stats_.stabilised_solves += st.stabilised;
+  st.condensed = condensed;
+  if (condensed) PetscFunctionReturn(0);
   double step_length;
   PetscCall(UpdateSolution(st.rnorm, st.stabilised, step_length));
   last_step_ = step_length;
   // What a shortened step left of the prescribed increment comes in the next solve; a full step lands exactly.
   for (double &d : st.delta) d *= 1.0 - step_length;
   if (step_length == 1.0) PetscCall(SetDirichlet(st.factor));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::Materialise(StepState &st, PetscInt it) {
+  PetscFunctionBeginUser;
+  {
+    ScopedTimer t(stats_.time_solve);
+    PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
+    // The right-hand side is the base's with the gaps of the current active set (AssembleSystem of the last
+    // condensed solve), the constraints are the current ones: the displacement increment from the base.
+    PetscCall(system_->Solve(st.krylov, st.solve_residual));
+    PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
+  }
+  stats_.solves++;
+  PetscCall(VecCopy(st.u_base, u_));
+  double step_length;
+  PetscCall(UpdateSolution(st.rnorm, false, step_length));
+  last_step_ = step_length;
+  st.condensed = false;
+  PetscCall(EvaluateIterate(st, it));
+  for (std::size_t p = 0; p < pairs_.size(); ++p) states_[p].lambda = lambda_[p];
   PetscFunctionReturn(0);
 }
 

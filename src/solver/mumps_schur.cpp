@@ -15,7 +15,7 @@ namespace signorini {
 #define INFOG(I) infog[(I)-1]
 
 namespace {
-PetscLogEvent EV_ORDERING = 0, EV_ANALYSIS = 0, EV_FACTOR = 0, EV_SCHUR = 0, EV_SOLVE = 0;
+PetscLogEvent EV_ORDERING = 0, EV_ANALYSIS = 0, EV_FACTOR = 0, EV_SCHUR = 0, EV_SOLVE = 0, EV_REDUCED = 0;
 PetscErrorCode RegisterEvents() {
   PetscClassId id;
   PetscFunctionBeginUser;
@@ -26,6 +26,7 @@ PetscErrorCode RegisterEvents() {
   PetscCall(PetscLogEventRegister("SigMumpsFactor", id, &EV_FACTOR));
   PetscCall(PetscLogEventRegister("SigSchurFactor", id, &EV_SCHUR));
   PetscCall(PetscLogEventRegister("SigMumpsSolve", id, &EV_SOLVE));
+  PetscCall(PetscLogEventRegister("SigReducedSolve", id, &EV_REDUCED));
   PetscFunctionReturn(0);
 }
 } // namespace
@@ -283,6 +284,34 @@ PetscErrorCode MumpsSchur::FactorSchur(const std::vector<PetscScalar> &d) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode MumpsSchur::DenseSolve(std::vector<PetscScalar> &y) const {
+  const PetscInt m = (PetscInt)d0_.size();
+  PetscBLASInt n, one = 1, info;
+  PetscFunctionBeginUser;
+  PetscCall(PetscBLASIntCast(m, &n));
+  std::vector<PetscBLASInt> ipiv(ipiv_);
+  if (symmetric_) LAPACKsytrs_("L", &n, &one, s_.data(), &n, ipiv.data(), y.data(), &n, &info);
+  else LAPACKgetrs_("N", &n, &one, s_.data(), &n, ipiv.data(), y.data(), &n, &info);
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK solve with the Schur complement failed: info %d",
+             (int)info);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::SolveReduced(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y) {
+  const PetscInt m = (PetscInt)d0_.size();
+  PetscFunctionBeginUser;
+  PetscCall(FactorSchur(d));
+  PetscCall(PetscLogEventBegin(EV_REDUCED, 0, 0, 0, 0));
+  if (rank_ == 0 && m > 0) {
+    PetscCheck(condensed_u_.size() == (std::size_t)m, PETSC_COMM_SELF, PETSC_ERR_ORDER,
+               "SolveReduced needs an earlier Solve");
+    for (PetscInt i = 0; i < m; ++i) y[i] -= condensed_u_[i];
+    PetscCall(DenseSolve(y));
+  }
+  PetscCall(PetscLogEventEnd(EV_REDUCED, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MumpsSchur::Solve(const std::vector<PetscScalar> &d, Vec b, Vec x) {
   const PetscInt m = (PetscInt)d0_.size();
   PetscFunctionBeginUser;
@@ -302,13 +331,13 @@ PetscErrorCode MumpsSchur::Solve(const std::vector<PetscScalar> &d, Vec b, Vec x
   // Condensation onto the multipliers, their dense solve on rank 0, expansion.
   id_.ICNTL(26) = 1;
   PetscCall(Call(3, "solve (condensation)"));
+  // The part of the reduced right-hand side that comes from the displacement rows, A21 A11^-1 b_u, for SolveReduced.
+  if (rank_ == 0) {
+    condensed_u_.resize(m);
+    for (PetscInt i = 0; i < m; ++i) condensed_u_[i] = r[listvar_[i] - 1] - redrhs_[i];
+  }
   if (rank_ == 0 && m > 0) {
-    PetscBLASInt n, one = 1, info;
-    PetscCall(PetscBLASIntCast(m, &n));
-    if (symmetric_) LAPACKsytrs_("L", &n, &one, s_.data(), &n, ipiv_.data(), redrhs_.data(), &n, &info);
-    else LAPACKgetrs_("N", &n, &one, s_.data(), &n, ipiv_.data(), redrhs_.data(), &n, &info);
-    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK solve with the Schur complement failed: info %d",
-               (int)info);
+    PetscCall(DenseSolve(redrhs_));
   }
   id_.ICNTL(26) = 2;
   PetscCall(Call(3, "solve (expansion)"));

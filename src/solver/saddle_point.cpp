@@ -239,6 +239,44 @@ PetscErrorCode SaddlePointSystem::FailureAdvice(std::string &advice) const {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SaddlePointSystem::SolveCondensed(const std::vector<double> &bm, std::vector<double> &lambda,
+                                                 std::vector<double> &shift) {
+  const PetscInt nl = dofs_->OwnedLambda();
+  PetscFunctionBeginUser;
+  PetscCheck(reuse_ && factored_ && stab_ == 0, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
+             "a condensed solve needs the kept factorisation and no stabilisation");
+  std::vector<PetscScalar> d, y;
+  PetscCall(MultiplierDiagonal(d));
+  // b_m to rank 0 (through the diagonal's vector and scatter), the dense solve there, x_m back.
+  PetscScalar *a;
+  PetscCall(VecGetArray(diag_lambda_, &a));
+  for (PetscInt p = 0; p < nl; ++p) a[p] = bm[p];
+  PetscCall(VecRestoreArray(diag_lambda_, &a));
+  PetscCall(VecScatterBegin(to_root_, diag_lambda_, diag_root_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(to_root_, diag_lambda_, diag_root_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscInt m;
+  PetscCall(VecGetLocalSize(diag_root_, &m));
+  PetscCall(VecGetArray(diag_root_, &a));
+  y.assign(a, a + m);
+  PetscCall(mumps_schur_.SolveReduced(d, y));
+  for (PetscInt i = 0; i < m; ++i) a[i] = y[i];
+  PetscCall(VecRestoreArray(diag_root_, &a));
+  PetscCall(VecScatterBegin(to_root_, diag_root_, diag_lambda_, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(to_root_, diag_root_, diag_lambda_, INSERT_VALUES, SCATTER_REVERSE));
+  // Row p: -B_p du + D_p x_p = b_p, so B_p du = D_p x_p - b_p; an active row's multiplier is x_p + r b_p.
+  const PetscScalar *x;
+  lambda.assign(nl, 0.0);
+  shift.assign(nl, 0.0);
+  PetscCall(VecGetArrayRead(diag_lambda_, &x));
+  for (PetscInt p = 0; p < nl; ++p) {
+    const double dp = active_[p] ? 0.0 : InactiveDiagonal(0.0);
+    shift[p] = dp * x[p] - bm[p];
+    lambda[p] = active_[p] ? x[p] + aug_ * bm[p] : 0.0;
+  }
+  PetscCall(VecRestoreArrayRead(diag_lambda_, &x));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SaddlePointSystem::InitialGuess() {
   PetscBool preonly;
   PetscFunctionBeginUser;

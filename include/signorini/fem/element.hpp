@@ -30,7 +30,7 @@ bool ComputeGeometry(int dim, int nodes, const double *X, double thickness, Elem
 
 /// Element stiffness (tangent, Eq. 17) and internal force (Eq. 15 without contact and loads) at the element
 /// displacement u (dim values per vertex). For the linear model K does not depend on u and f = K u.
-/// K is (nodes*dim)^2 row-major, f has nodes*dim entries; both are overwritten.
+/// K is (nodes*dim)^2 row-major, f has nodes*dim entries; both are overwritten. K may be null (the force alone).
 void ElementTangentAndForce(const Material &m, const ElementGeometry &g, const double *u, double *K, double *f);
 
 /// Strain and stress averaged over the cell, in Voigt order (xx, yy, xy) in 2D and (xx, yy, zz, yz, xz, xy) in 3D,

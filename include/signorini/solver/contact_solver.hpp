@@ -125,6 +125,13 @@ private:
     bool moving = false;     ///< some prescribed displacement is still to apply
     bool stabilised = false; ///< the last solve carried the stabilisation springs
     std::vector<double> gap_before; ///< the gaps before the last stabilised solve
+    /// Condensed solves (linear material, kept factorisation): the active-set iterations after a full solve run in the
+    /// multiplier space against that solve's right-hand side (its base: u_base, the gaps g_base), the displacement
+    /// staying at the base's until a state may be the solution (Materialise).
+    bool base = false;      ///< the last full solve can be a base (reuse mode, linear, not stabilised)
+    bool condensed = false; ///< the last solve was condensed: states from g_base + shift, u not updated
+    VecH u_base;
+    std::vector<double> g_base, shift;
   };
   enum class Outcome { SOLVE, EXTENDED, CONVERGED, STOP };
   [[nodiscard]] PetscErrorCode LoadStep(PetscInt step, double factor, bool first, bool &ok);
@@ -132,6 +139,11 @@ private:
   [[nodiscard]] PetscErrorCode StepControl(StepState &st, PetscInt it, PetscInt changes, Outcome &outcome);
   [[nodiscard]] PetscErrorCode AssembleSystem(StepState &st);
   [[nodiscard]] PetscErrorCode SolveAndUpdate(StepState &st);
+  /// Whether the next solve can be condensed (StepState::base).
+  bool Condensable(const StepState &st) const;
+  /// After condensed solves: the full solve of the base's right-hand side with the current constraints, and the
+  /// displacement u_base + du; the pairs evaluated there. Collective.
+  [[nodiscard]] PetscErrorCode Materialise(StepState &st, PetscInt it);
   [[nodiscard]] PetscErrorCode Monitor(const IterationRecord &r) const;
   [[nodiscard]] PetscErrorCode RecordIteration(PetscInt step, PetscInt it, double factor, const std::vector<char> &next,
                                                PetscInt changes, PetscInt krylov, double rnorm, double solve_time);

@@ -31,12 +31,19 @@ public:
                                       const std::vector<PetscScalar> &d0, bool symmetric);
   /// Solves with the factored matrix whose multiplier diagonal is replaced by d (rank 0, Schur order). Collective.
   [[nodiscard]] PetscErrorCode Solve(const std::vector<PetscScalar> &d, Vec b, Vec x);
+  /// Solves with the multiplier diagonal d for a right-hand side [b_u; y] whose displacement part b_u is that of the
+  /// last Solve: y (rank 0, Schur order) is replaced by the multiplier part of the solution. Only the dense m x m
+  /// system: the displacement part of the solution is not computed (a Solve with the same right-hand side gives it).
+  /// Collective.
+  [[nodiscard]] PetscErrorCode SolveReduced(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y);
   /// Null pivots MUMPS met in A11 (INFOG(28)).
   PetscInt NullPivots() const { return null_pivots_; }
 
 private:
   [[nodiscard]] PetscErrorCode Call(int job, const char *phase);
   [[nodiscard]] PetscErrorCode FactorSchur(const std::vector<PetscScalar> &d);
+  /// y = S^-1 y with the factored Schur complement (rank 0).
+  [[nodiscard]] PetscErrorCode DenseSolve(std::vector<PetscScalar> &y) const;
   /// METIS nested dissection of the graph of the matrix entries in irn_/jcn_ (n rows), computed on rank 0 into
   /// perm_in_ (MUMPS's PERM_IN). Collective.
   [[nodiscard]] PetscErrorCode NestedDissection(PetscInt n);
@@ -49,6 +56,7 @@ private:
   std::vector<MUMPS_INT> irn_, jcn_, listvar_, perm_in_;
   std::vector<double> val_;
   std::vector<double> schur_raw_, s0_, d0_, s_, d_factored_, redrhs_, work_;
+  std::vector<double> condensed_u_; ///< A21 A11^-1 b_u of the last Solve (rank 0)
   std::vector<PetscBLASInt> ipiv_;
   bool s_factored_ = false, symmetric_ = true;
   VecScatter to_root_ = nullptr;

@@ -75,6 +75,15 @@ public:
   /// -s B du on inactive ones (0 without stabilisation), so that F_int(u + du) = f + B^T x on the free rows. residual: ||b - A x||. Collective.
   [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual);
 
+  /// Reuse mode, linear material: the solve for the current constraints (SetConstraints, without stabilisation) of a
+  /// right-hand side whose displacement rows are those of the last Solve() and whose multiplier rows are bm (owned
+  /// rows), in the multiplier space alone (the dense Schur complement on rank 0; no pass over the factors). Returns
+  /// per owned multiplier row the contact multiplier (0 on inactive rows) and B_p du, the normal displacement of
+  /// the solution's increment (the gap change). The displacement itself comes from a Solve() with the same
+  /// right-hand side. Collective.
+  [[nodiscard]] PetscErrorCode SolveCondensed(const std::vector<double> &bm, std::vector<double> &lambda,
+                                              std::vector<double> &shift);
+
 private:
   /// Inserts zeros at the constraint entries and the multiplier diagonal, then assembles A (final). Collective.
   [[nodiscard]] PetscErrorCode CreatePattern(const std::vector<ConstraintRow> &rows, Mat A) const;

@@ -464,6 +464,20 @@ TEST(SvkElement, TangentMatchesCentralFiniteDifferenceOfTheForce) {
     }
 }
 
+TEST(Element, ForceAloneEqualsTheForceComputedWithTheTangent) {
+  Random random;
+  for (MaterialModel model : {MaterialModel::LINEAR, MaterialModel::SVK})
+    for (const Cell &cell : {TRIANGLE, DISTORTED_QUAD}) {
+      const Material m = MakeMaterial(false, model);
+      SCOPED_TRACE(Describe(cell, m));
+      const Vector u = RandomDisplacement(cell, random);
+      Vector K, f, f_alone(2 * cell.nodes, 1e300);
+      TangentAndForce(m, cell, u, K, f);
+      ElementTangentAndForce(m, Geometry(cell), u.data(), nullptr, f_alone.data());
+      EXPECT_EQ(f_alone, f);
+    }
+}
+
 TEST(SvkElement, ReducesToLinearForSmallDisplacements) {
   Random random;
   const double epsilon = 1e-7;
