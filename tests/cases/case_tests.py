@@ -865,3 +865,85 @@ def nonlinear_onto_disc(runner):
     runner.expect_true("in contact (%d active pairs)" % r.get("contact.active_pairs"), r.get("contact.active_pairs") >= 1)
     # The disc carries the whole load q W = 4 (round-off of Newton's converged residual, 1e-9 relative).
     runner.expect_close("contact force", r.get("contact.contact_force.1"), 4.0, 1e-8)
+
+
+def expect_same_state(runner, ref, r):
+    """Two runs of one problem with the same obstacle given two ways: the same active-set iterations, active pairs and
+    nodes, and displacements and multipliers equal to round-off (1e-10 of the largest value: the same active set
+    gives the same linear system, assembled from coordinates that agree to the last digit or two)."""
+    for key in ("iterations.active_set", "contact.active_pairs", "contact.active_nodes"):
+        runner.expect_equal("%s: %s" % (r.label, key), r.get(key), ref.get(key))
+    nodes, ref_nodes = r.nodes(), ref.nodes()
+    runner.expect_true("%s: the same %d active nodes" % (r.label, int(ref_nodes["active"].sum())),
+                       np.array_equal(nodes["active"], ref_nodes["active"]))
+    u = displacement(ref_nodes)
+    runner.expect_close("%s: displacement" % r.label, displacement(nodes), u, 0, 1e-10 * np.abs(u).max())
+    runner.expect_close("%s: lambda" % r.label, nodes["lambda"], ref_nodes["lambda"], 0,
+                        1e-10 * np.abs(ref_nodes["lambda"]).max())
+
+
+@test("obstacle_mesh_plane")
+def obstacle_mesh_plane(runner):
+    """The cube on a rigid plane with the plane given as a meshed surface (triangles and quadrilaterals,
+    meshes/flat_obstacle.geo) gives the state of -obstacle_planes: node-to-facet pairs on facet edges and diagonals
+    are parallel duplicates of one constraint."""
+    case = options_args(runner, "options/cube_on_plane.yml", drop=("obstacle_planes",))
+    plane = runner.run(["-options_file", "options/cube_on_plane.yml"], "cube on a plane")
+    for obstacle in ("meshes/flat_obstacle.msh:floor", "meshes/flat_obstacle.msh", "meshes/flat_obstacle.geo:floor"):
+        r = runner.run(case + ["-obstacle_mesh", obstacle], "cube on " + obstacle)
+        # More candidate pairs than nodes: a node pairs with every facet within the search radius.
+        runner.expect_true("%s: candidate pairs %d > nodes %d" % (obstacle, r.get("contact.pairs"), plane.get(
+            "contact.pairs")), r.get("contact.pairs") > plane.get("contact.pairs"))
+        expect_same_state(runner, plane, r)
+
+
+@test("obstacle_mesh_corner")
+def obstacle_mesh_corner(runner):
+    """The cube pushed by a body force into a concave corner (floor and two walls, meshes/corner_obstacle.geo): equal
+    to the same three planes, with the nodes on the corner's edges active on two facets and the corner node on
+    three."""
+    case = ["-mesh_file", "meshes/cube.msh", "-material_E", "1000", "-material_nu", "0.3", "-bc_body_force",
+            "-1,-1.5,-2", "-contact_groups", "bottom,left,front"]
+    planes = runner.run(case + ["-obstacle_planes", "0,0,0,0,0,1,0,0,0,1,0,0,0,0,0,0,1,0"], "cube in three planes")
+    corner = runner.run(case + ["-obstacle_mesh", "meshes/corner_obstacle.msh:corner"], "cube in a meshed corner")
+    expect_same_state(runner, planes, corner)
+    # The cube (6 x 6 x 5 nodes) touches the floor and both walls at every node of those faces (80 nodes); the edges
+    # along x and y hold 5 nodes each besides the corner, the edge along z 4: 14 nodes on two facets, 1 on three.
+    runner.expect_equal("active nodes", corner.get("contact.active_nodes"), 80)
+    runner.expect_equal("active pairs", corner.get("contact.active_pairs"), 80 + 14 + 2)
+    runner.expect_close("contact force = -body force", corner.get("contact.contact_force"), [1, 1.5, 2], 0, 1e-10)
+
+
+@test("obstacle_mesh_polyline")
+def obstacle_mesh_polyline(runner):
+    """The clamped plate over the 30-segment arc, the arc given as a polyline from a gmsh file (.msh and .geo,
+    meshes/arc_obstacle.geo) instead of -obstacle_segments: the same state."""
+    case = options_args(runner, "options/plate_on_arc.yml", drop=("obstacle_arcs",))
+    segments = runner.run(case + ["-obstacle_segments", arc_segments(4.5, -4.1, 4, 150, 30, 30)],
+                          "plate on 30 segments")
+    for obstacle in ("meshes/arc_obstacle.msh:arc", "meshes/arc_obstacle.geo"):
+        expect_same_state(runner, segments, runner.run(case + ["-obstacle_mesh", obstacle], "plate on " + obstacle))
+
+
+@test("punch_on_plate")
+def punch_on_plate(runner):
+    """The shipped case: a plate pushed against a rigid punch with a spherical end given as 878 triangles. Converges
+    with a valid certificate (Runner.run), balanced, linear and svk; its contact force is within 5% of the same punch
+    as an exact sphere (-obstacle_spheres)."""
+    r = runner.run(["-options_file", "options/punch_on_plate.yml"], "punch on plate")
+    runner.expect_true("at least 10 active nodes (%d)" % r.get("contact.active_nodes"),
+                       r.get("contact.active_nodes") >= 10)
+    total = np.array(r.get("contact.contact_force")) + np.array(r.get("contact.reaction_force"))
+    runner.expect_close("contact force + reactions = 0", total, [0, 0, 0], 0,
+                        1e-10 * np.linalg.norm(r.get("contact.contact_force")))
+    sphere = runner.run(options_args(runner, "options/punch_on_plate.yml", drop=("obstacle_mesh",)) +
+                        ["-obstacle_spheres", "0,0,1.252,1"], "punch as a sphere")
+    # The triangles (edges up to h = 0.03) lie inside the sphere by up to their sagitta h^2 / (8 R) = 1.1e-4, which
+    # shortens the indentation (about 0.008) by up to 1.4%; the force grows like the indentation to the power 3/2:
+    # about 2% less, 5% leaves room for the facets' normals differing from the radial one.
+    fz, fz_sphere = r.get("contact.contact_force.2"), sphere.get("contact.contact_force.2")
+    runner.expect_close("contact force vs exact sphere (%.4g, %.4g)" % (fz, fz_sphere), fz, fz_sphere, 0.05)
+    # St. Venant-Kirchhoff: contact in the current configuration, pairs activated by the path crossing a triangle.
+    svk = runner.run(["-options_file", "options/punch_on_plate.yml", "-material_model", "svk"], "svk punch on plate")
+    runner.expect_true("svk: at least 10 active nodes (%d)" % svk.get("contact.active_nodes"),
+                       svk.get("contact.active_nodes") >= 10)
