@@ -608,6 +608,21 @@ def arc_segments(cx, cy, radius, theta0, theta1, n):
     return ",".join("%.17g,%.17g,%.17g,%.17g" % (x[k], y[k], x[k + 1], y[k + 1]) for k in range(n))
 
 
+def expect_same_state(runner, ref, r, keys=("iterations.active_set", "contact.active_pairs", "contact.active_nodes")):
+    """Two runs of one problem (e.g. the same obstacle given two ways): the same summary integers keys, the same active
+    nodes, and displacements and multipliers equal to round-off (1e-10 of the largest value: the same active set
+    gives the same linear system, assembled from coordinates that agree to the last digit or two)."""
+    for key in keys:
+        runner.expect_equal("%s: %s" % (r.label, key), r.get(key), ref.get(key))
+    nodes, ref_nodes = r.nodes(), ref.nodes()
+    runner.expect_true("%s: the same %d active nodes" % (r.label, int(ref_nodes["active"].sum())),
+                       np.array_equal(nodes["active"], ref_nodes["active"]))
+    u = displacement(ref_nodes)
+    runner.expect_close("%s: displacement" % r.label, displacement(nodes), u, 0, 1e-10 * np.abs(u).max())
+    runner.expect_close("%s: lambda" % r.label, nodes["lambda"], ref_nodes["lambda"], 0,
+                        1e-10 * np.abs(ref_nodes["lambda"]).max())
+
+
 def expect_balance(runner, r, what, atol=None):
     """Contact force + reactions + applied load = 0 to round-off (1e-10 of the load unless atol is given)."""
     total = np.array(r.get("contact.contact_force")) + np.array(r.get("contact.reaction_force")) + \
@@ -632,17 +647,10 @@ def plate_on_arc(runner):
                           ["-obstacle_segments", arc_segments(4.5, -4.1, 4, 150, 30, 30)], "plate on 30 segments")
     runs = [segments] + [runner.run(["-options_file", "options/plate_on_arc.yml", "-contact_activation_fraction", f],
                                     "plate on arc, activation fraction %s" % f) for f in ("0", "0.9")]
-    ref_nodes = arc.nodes()
     for r in runs:
-        nodes = r.nodes()
-        runner.expect_equal("%s: active pairs" % r.label, r.get("contact.active_pairs"), arc.get("contact.active_pairs"))
-        runner.expect_equal("%s: active flags" % r.label, list(nodes["active"]), list(ref_nodes["active"]))
         expect_balance(runner, r, r.label)
-        # The same active set gives the same linear system: equal to round-off (1e-10 of the largest value).
-        u = displacement(ref_nodes)
-        runner.expect_close("%s: displacement" % r.label, displacement(nodes), u, 0, 1e-10 * np.abs(u).max())
-        runner.expect_close("%s: lambda" % r.label, nodes["lambda"], ref_nodes["lambda"], 0,
-                            1e-10 * np.abs(ref_nodes["lambda"]).max())
+        # Other activation fractions may take other paths (iteration counts) to the same state.
+        expect_same_state(runner, arc, r, keys=("contact.active_pairs",))
 
 
 @test("block_in_notch")
@@ -865,21 +873,6 @@ def nonlinear_onto_disc(runner):
     runner.expect_true("in contact (%d active pairs)" % r.get("contact.active_pairs"), r.get("contact.active_pairs") >= 1)
     # The disc carries the whole load q W = 4 (round-off of Newton's converged residual, 1e-9 relative).
     runner.expect_close("contact force", r.get("contact.contact_force.1"), 4.0, 1e-8)
-
-
-def expect_same_state(runner, ref, r):
-    """Two runs of one problem with the same obstacle given two ways: the same active-set iterations, active pairs and
-    nodes, and displacements and multipliers equal to round-off (1e-10 of the largest value: the same active set
-    gives the same linear system, assembled from coordinates that agree to the last digit or two)."""
-    for key in ("iterations.active_set", "contact.active_pairs", "contact.active_nodes"):
-        runner.expect_equal("%s: %s" % (r.label, key), r.get(key), ref.get(key))
-    nodes, ref_nodes = r.nodes(), ref.nodes()
-    runner.expect_true("%s: the same %d active nodes" % (r.label, int(ref_nodes["active"].sum())),
-                       np.array_equal(nodes["active"], ref_nodes["active"]))
-    u = displacement(ref_nodes)
-    runner.expect_close("%s: displacement" % r.label, displacement(nodes), u, 0, 1e-10 * np.abs(u).max())
-    runner.expect_close("%s: lambda" % r.label, nodes["lambda"], ref_nodes["lambda"], 0,
-                        1e-10 * np.abs(ref_nodes["lambda"]).max())
 
 
 @test("obstacle_mesh_plane")
