@@ -321,8 +321,9 @@ std::string ReadElements(const std::string &path, int dim, const std::string &gr
       for (const auto &t : etags) n += t.size();
       if (n) held.push_back(std::to_string(n) + " element(s) of dimension " + std::to_string(d));
     }
-    return where + (group.empty() ? "" : " group '" + group + "'") + " has no " + ExpectedElements(dim) +
-           " (it has " + (held.empty() ? std::string("no elements") : Join(held, ", ")) + ")";
+    return where + (group.empty() ? "" : " group '" + group + "'") + " has " +
+           (held.empty() ? std::string("no elements") : "only " + Join(held, ", ")) + "; expected " +
+           ExpectedElements(dim);
   }
   return "";
 }
