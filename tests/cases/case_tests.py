@@ -929,6 +929,15 @@ def punch_on_plate(runner):
     total = np.array(r.get("contact.contact_force")) + np.array(r.get("contact.reaction_force"))
     runner.expect_close("contact force + reactions = 0", total, [0, 0, 0], 0,
                         1e-10 * np.linalg.norm(r.get("contact.contact_force")))
+    # The punch is written as a triangle grid next to the body (solution.h5 /obstacle, the XDMF grid "obstacle"):
+    # the 878 triangles of meshes/punch.msh, their corners on the sphere (to the digits of the .msh file).
+    import h5py
+
+    with h5py.File(os.path.join(r.dir, "solution.h5"), "r") as f:
+        xyz, topology = f["obstacle/coordinates"][()], f["obstacle/topology"][()]
+    runner.expect_equal("obstacle grid: triangles", list(topology.shape), [878, 3])
+    runner.expect_close("obstacle grid corners on the sphere", np.linalg.norm(xyz - [0, 0, 1.252], axis=1),
+                        np.ones(len(xyz)), 0, 1e-12)
     sphere = runner.run(options_args(runner, "options/punch_on_plate.yml", drop=("obstacle_mesh",)) +
                         ["-obstacle_spheres", "0,0,1.252,1"], "punch as a sphere")
     # The triangles (edges up to h = 0.03) lie inside the sphere by up to their sagitta h^2 / (8 R) = 1.1e-4, which
