@@ -121,7 +121,8 @@ void OutputWriter::SetObstacle(const Obstacle &obstacle) {
     }
     const auto line = facet->Polyline();
     for (std::size_t k = 0; k + 1 < line.size(); ++k)
-      obstacle_points_.insert(obstacle_points_.end(), {{line[k][0], line[k][1], 0.0}, {line[k + 1][0], line[k + 1][1], 0.0}});
+      obstacle_points_.insert(obstacle_points_.end(),
+                              {{line[k][0], line[k][1], 0.0}, {line[k + 1][0], line[k + 1][1], 0.0}});
   }
 }
 
