@@ -133,7 +133,7 @@ CASES = {
     "obstacle_mesh_group_of_other_dimension": (CUBE + ["-obstacle_mesh", "{root}/meshes/cube.msh:body"],
                                                ["cube.msh", "group 'body' is 3D", "expected a 2D group"], {}),
     "obstacle_mesh_surface_for_2d": (["-obstacle_mesh", "{root}/meshes/flat_obstacle.msh"],
-                                     ["flat_obstacle.msh", "has only 18 element(s) of dimension 2",
+                                     ["flat_obstacle.msh", "has only 28 element(s) of dimension 2",
                                       "expected 2-node line elements (the obstacle of a 2D body)"], {}),
     "obstacle_mesh_volume_only": (CUBE + ["-obstacle_mesh", "{meshes}/tet_only.msh"],
                                   ["tet_only.msh", "has only 1 element(s) of dimension 3",
