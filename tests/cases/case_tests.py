@@ -922,8 +922,9 @@ def obstacle_mesh_polyline(runner):
 @test("punch_on_plate")
 def punch_on_plate(runner):
     """The shipped case: a plate pushed against a rigid punch with a spherical end given as 878 triangles. Converges
-    with a valid certificate (Runner.run), balanced, linear and svk; its contact force is within 5% of the same punch
-    as an exact sphere (-obstacle_spheres)."""
+    with a valid certificate (Runner.run), balanced, linear and svk; the punch is written as a triangle grid; under
+    refinement of the punch's triangles the contact force converges to that of the exact sphere
+    (-obstacle_spheres) at the rate of the facets' sagitta, h^2 / (8 R)."""
     r = runner.run(["-options_file", "options/punch_on_plate.yml"], "punch on plate")
     runner.expect_true("at least 10 active nodes (%d)" % r.get("contact.active_nodes"),
                        r.get("contact.active_nodes") >= 10)
@@ -939,13 +940,29 @@ def punch_on_plate(runner):
     runner.expect_equal("obstacle grid: triangles", list(topology.shape), [878, 3])
     runner.expect_close("obstacle grid corners on the sphere", np.linalg.norm(xyz - [0, 0, 1.252], axis=1),
                         np.ones(len(xyz)), 0, 1e-12)
-    sphere = runner.run(options_args(runner, "options/punch_on_plate.yml", drop=("obstacle_mesh",)) +
-                        ["-obstacle_spheres", "0,0,1.252,1"], "punch as a sphere")
-    # The triangles (edges up to h = 0.03) lie inside the sphere by up to their sagitta h^2 / (8 R) = 1.1e-4, which
-    # shortens the indentation (about 0.008) by up to 1.4%; the force grows like the indentation to the power 3/2:
-    # about 2% less, 5% leaves room for the facets' normals differing from the radial one.
-    fz, fz_sphere = r.get("contact.contact_force.2"), sphere.get("contact.contact_force.2")
-    runner.expect_close("contact force vs exact sphere (%.4g, %.4g)" % (fz, fz_sphere), fz, fz_sphere, 0.05)
+    case = options_args(runner, "options/punch_on_plate.yml", drop=("obstacle_mesh",))
+    fz_sphere = runner.run(case + ["-obstacle_spheres", "0,0,1.252,1"], "punch as a sphere").get(
+        "contact.contact_force.2")
+    # The punch's .geo meshed with triangles of size h = 0.03, 0.015, 0.0075 (in-process, -obstacle_mesh FILE.geo).
+    with open(runner.path("meshes/punch.geo")) as f:
+        geo = f.read()
+    runner.expect_true("meshes/punch.geo sets Mesh.MeshSizeMax = 0.03", "Mesh.MeshSizeMax = 0.03;" in geo)
+    sizes, errors = [0.03, 0.015, 0.0075], []
+    for h in sizes:
+        path = os.path.join(runner.workdir, "punch_%g.geo" % h)
+        with open(path, "w") as f:
+            f.write(geo.replace("Mesh.MeshSizeMax = 0.03;", "Mesh.MeshSizeMax = %g;" % h))
+        fz = runner.run(case + ["-obstacle_mesh", path + ":tip"], "punch of size %g" % h).get("contact.contact_force.2")
+        errors.append(abs(fz - fz_sphere) / abs(fz_sphere))
+    print("  h        force error vs sphere")
+    for h, e in zip(sizes, errors):
+        print("  %-8g %.3e" % (h, e))
+    # The triangles lie inside the sphere by up to their sagitta h^2 / (8 R) (1.1e-4 at h = 0.03), which shortens
+    # the indentation (about 0.008) by up to 1.4%; the force grows like the indentation to the power 3/2: about 2%
+    # at h = 0.03, 5% leaves room for the facets' normals. Halving h divides the sagitta by 4: rates near 2.
+    runner.expect_close("h = 0.03: contact force vs exact sphere", errors[0], 0, 0, 0.05)
+    rates = rate(np.array(sizes), np.array(errors))
+    runner.expect_true("force error rates %s >= 1.5 (sagitta: 2)" % np.round(rates, 2), np.all(rates >= 1.5))
     # St. Venant-Kirchhoff: contact in the current configuration, pairs activated by the path crossing a triangle.
     svk = runner.run(["-options_file", "options/punch_on_plate.yml", "-material_model", "svk"], "svk punch on plate")
     runner.expect_true("svk: at least 10 active nodes (%d)" % svk.get("contact.active_nodes"),
