@@ -919,6 +919,23 @@ def obstacle_mesh_polyline(runner):
         expect_same_state(runner, segments, runner.run(case + ["-obstacle_mesh", obstacle], "plate on " + obstacle))
 
 
+def expect_outside_facets(runner, r, corners):
+    """Independently of the pairs and the certificate: no node of the plate's top has gone into the convex punch, whose
+    solid near its tip is where a point lies behind the plane of every triangle (corners: 3 per triangle, in the
+    order that orients it); a node near an edge or a vertex of the triangles is held like one over a triangle."""
+    nodes = r.nodes()
+    top = nodes[nodes["z"] == 0.25]
+    x = coordinates(top) + displacement(top)
+    p0, p1, p2 = corners[0::3], corners[1::3], corners[2::3]
+    n = np.cross(p1 - p0, p2 - p0)
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    # Signed distance of each node to each triangle's plane (n into the plate); the largest is the distance outside.
+    outside = np.max(x @ n.T - np.sum(n * p0, axis=1)[None, :], axis=1)
+    penetration = max(0.0, -outside.min())
+    runner.expect_true("%s: no top node inside the faceted punch (max penetration %.3g <= gap tolerance %.3g)" % (
+        r.label, penetration, r.get("certificate.gap_tol")), penetration <= r.get("certificate.gap_tol"))
+
+
 @test("punch_on_plate")
 def punch_on_plate(runner):
     """The shipped case: a plate pushed against a rigid punch with a spherical end given as 878 triangles. Converges
@@ -940,6 +957,7 @@ def punch_on_plate(runner):
     runner.expect_equal("obstacle grid: triangles", list(topology.shape), [878, 3])
     runner.expect_close("obstacle grid corners on the sphere", np.linalg.norm(xyz - [0, 0, 1.252], axis=1),
                         np.ones(len(xyz)), 0, 1e-12)
+    expect_outside_facets(runner, r, xyz)
     case = options_args(runner, "options/punch_on_plate.yml", drop=("obstacle_mesh",))
     fz_sphere = runner.run(case + ["-obstacle_spheres", "0,0,1.252,1"], "punch as a sphere").get(
         "contact.contact_force.2")
@@ -965,5 +983,6 @@ def punch_on_plate(runner):
     runner.expect_true("force error rates %s >= 1.5 (sagitta: 2)" % np.round(rates, 2), np.all(rates >= 1.5))
     # St. Venant-Kirchhoff: contact in the current configuration, pairs activated by the path crossing a triangle.
     svk = runner.run(["-options_file", "options/punch_on_plate.yml", "-material_model", "svk"], "svk punch on plate")
+    expect_outside_facets(runner, svk, xyz)
     runner.expect_true("svk: at least 10 active nodes (%d)" % svk.get("contact.active_nodes"),
                        svk.get("contact.active_nodes") >= 10)
