@@ -280,7 +280,9 @@ RANK_CASES = {"hertz": [], "beam_on_floor": ["-options_file", "options/beam_on_f
               "cube_on_sphere": ["-options_file", "options/cube_on_sphere.yml"],
               "cube_on_sphere_svk": ["-options_file", "options/cube_on_sphere.yml", "-material_model", "svk"],
               "plate_on_arc": ["-options_file", "options/plate_on_arc.yml"],
-              "block_in_notch": ["-options_file", "options/block_in_notch.yml"]}
+              "block_in_notch": ["-options_file", "options/block_in_notch.yml"],
+              "punch_on_plate": ["-options_file", "options/punch_on_plate.yml"],
+              "punch_on_plate_svk": ["-options_file", "options/punch_on_plate.yml", "-material_model", "svk"]}
 
 
 @test("rank_independence")
