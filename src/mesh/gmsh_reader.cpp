@@ -236,38 +236,45 @@ std::string ExpectedElements(int dim) {
                   : "3-node triangles or 4-node quadrilaterals (the obstacle of a 3D body)";
 }
 
+/// The loaded model's entities of dimension dim: those of the physical group named group, or all when it is empty.
+std::string GroupEntities(const std::string &where, int dim, const std::string &group, gmsh::vectorpair &entities) {
+  if (group.empty()) {
+    gmsh::model::getEntities(entities, dim);
+    return "";
+  }
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups, -1);
+  std::vector<std::string> names;
+  int other_dim = -1;
+  for (auto [d, tag] : groups) {
+    std::string name;
+    gmsh::model::getPhysicalName(d, tag, name);
+    if (name.empty()) name = std::to_string(tag);
+    names.push_back("'" + name + "' (" + std::to_string(d) + "D)");
+    if (name != group) continue;
+    if (d != dim) {
+      other_dim = d;
+      continue;
+    }
+    std::vector<int> tags;
+    gmsh::model::getEntitiesForPhysicalGroup(d, tag, tags);
+    for (int t : tags) entities.emplace_back(d, t);
+  }
+  if (entities.empty() && other_dim >= 0)
+    return where + ": physical group '" + group + "' is " + std::to_string(other_dim) + "D; expected a " +
+           std::to_string(dim) + "D group of " + ExpectedElements(dim);
+  if (entities.empty())
+    return where + " has no physical group '" + group + "'; expected one of: " +
+           (names.empty() ? std::string("(the file has no physical groups)") : Join(names, ", "));
+  return "";
+}
+
 /// The loaded model's elements of dimension dim (of the physical group named group, or all) into set.
 std::string ReadElements(const std::string &path, int dim, const std::string &group, ElementSet &set) {
   const std::string where = "obstacle mesh '" + path + "'";
   gmsh::vectorpair entities;
-  if (group.empty()) {
-    gmsh::model::getEntities(entities, dim);
-  } else {
-    gmsh::vectorpair groups;
-    gmsh::model::getPhysicalGroups(groups, -1);
-    std::vector<std::string> names;
-    int other_dim = -1;
-    for (auto [d, tag] : groups) {
-      std::string name;
-      gmsh::model::getPhysicalName(d, tag, name);
-      if (name.empty()) name = std::to_string(tag);
-      names.push_back("'" + name + "' (" + std::to_string(d) + "D)");
-      if (name != group) continue;
-      if (d != dim) {
-        other_dim = d;
-        continue;
-      }
-      std::vector<int> tags;
-      gmsh::model::getEntitiesForPhysicalGroup(d, tag, tags);
-      for (int t : tags) entities.emplace_back(d, t);
-    }
-    if (entities.empty() && other_dim >= 0)
-      return where + ": physical group '" + group + "' is " + std::to_string(other_dim) + "D; expected a " +
-             std::to_string(dim) + "D group of " + ExpectedElements(dim);
-    if (entities.empty())
-      return where + " has no physical group '" + group + "'; expected one of: " +
-             (names.empty() ? std::string("(the file has no physical groups)") : Join(names, ", "));
-  }
+  const std::string error = GroupEntities(where, dim, group, entities);
+  if (!error.empty()) return error;
   std::vector<std::size_t> all_tags;
   std::vector<double> all_coords, params;
   gmsh::model::mesh::getNodes(all_tags, all_coords, params, -1, -1, false, false);
