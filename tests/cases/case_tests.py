@@ -880,8 +880,8 @@ def nonlinear_onto_disc(runner):
 @test("obstacle_mesh_plane")
 def obstacle_mesh_plane(runner):
     """The cube on a rigid plane with the plane given as a meshed surface (triangles and quadrilaterals,
-    meshes/flat_obstacle.geo) gives the state of -obstacle_planes: node-to-facet pairs on facet edges and diagonals
-    are parallel duplicates of one constraint."""
+    meshes/flat_obstacle.geo) gives the state of -obstacle_planes, also given twice or with the plane itself:
+    node-to-facet pairs on facet edges and diagonals are parallel duplicates of one constraint."""
     case = options_args(runner, "options/cube_on_plane.yml", drop=("obstacle_planes",))
     plane = runner.run(["-options_file", "options/cube_on_plane.yml"], "cube on a plane")
     for obstacle in ("meshes/flat_obstacle.msh:floor", "meshes/flat_obstacle.msh", "meshes/flat_obstacle.geo:floor"):
@@ -891,6 +891,10 @@ def obstacle_mesh_plane(runner):
         runner.expect_true("%s: candidate pairs %d > nodes %d" % (obstacle, r.get("contact.pairs"), plane.get(
             "contact.pairs")), r.get("contact.pairs") > plane.get("contact.pairs"))
         expect_same_state(runner, plane, r)
+    # Several files, and a file with an analytic shape: the same plane twice is one constraint per node.
+    for extra in (["-obstacle_mesh", "meshes/flat_obstacle.msh:floor,meshes/flat_obstacle.geo"],
+                  ["-obstacle_mesh", "meshes/flat_obstacle.msh", "-obstacle_planes", "0,0,0,0,0,1"]):
+        expect_same_state(runner, plane, runner.run(case + extra, "cube on " + " ".join(extra)))
 
 
 @test("obstacle_mesh_corner")
