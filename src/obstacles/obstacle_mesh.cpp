@@ -5,6 +5,7 @@
 #include "signorini/core/errors.hpp"
 #include "signorini/core/option_paths.hpp"
 #include "signorini/core/parse.hpp"
+#include "signorini/core/progress.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -162,6 +163,7 @@ PetscErrorCode LoadObstacleMeshes(MPI_Comm comm, int dim, Obstacle &obstacle) {
   for (const ObstacleMeshSource &source : obstacle.meshes) {
     ElementSet set;
     std::string error, path;
+    ProgressBegin(("reading obstacle mesh " + source.file).c_str());
     if (rank == 0) {
       std::string looked;
       path = FirstExisting({source.paths, source.origins}, looked);
@@ -172,6 +174,7 @@ PetscErrorCode LoadObstacleMeshes(MPI_Comm comm, int dim, Obstacle &obstacle) {
       std::vector<std::unique_ptr<Facet>> check;
       if (error.empty()) error = BuildMeshFacets(set, dim, path, check);
     }
+    ProgressEnd();
     PetscCall(RaiseFromRoot(comm, error));
     PetscCall(BroadcastVector(comm, MPI_DOUBLE, set.coords));
     PetscCall(BroadcastVector(comm, MPI_UNSIGNED_LONG_LONG, set.node_tags));
