@@ -5,6 +5,7 @@
 #include "signorini/contact/contact_results.hpp"
 #include "signorini/core/progress.hpp"
 #include "signorini/io/output.hpp"
+#include "signorini/obstacles/obstacle_mesh.hpp"
 #include "signorini/solver/contact_solver.hpp"
 
 #include <cmath>
@@ -219,6 +220,7 @@ PetscErrorCode Run() {
   PetscCall(CheckMaterialDimension(comm, material, mesh.Dim()));
   PetscCall(ReadBoundaryConditions(comm, mesh.Dim(), bc));
   PetscCall(CheckObstacleDimension(comm, obstacle, mesh.Dim()));
+  PetscCall(LoadObstacleMeshes(comm, mesh.Dim(), obstacle));
 
   double L = 1;
   PetscCall(BodyDiagonal(mesh, L));

@@ -112,9 +112,17 @@ PetscErrorCode OutputWriter::Open(const Mesh &mesh, const OutputOptions &opts) {
 
 void OutputWriter::SetObstacle(const Obstacle &obstacle) {
   obstacle_points_.clear();
+  obstacle_cell_size_ = mesh_ && mesh_->Dim() == 3 ? 3 : 2;
   for (const auto &facet : obstacle.facets) {
+    if (obstacle_cell_size_ == 3) {
+      const auto corners = facet->Surface();
+      obstacle_points_.insert(obstacle_points_.end(), corners.begin(), corners.end());
+      continue;
+    }
     const auto line = facet->Polyline();
-    for (std::size_t k = 0; k + 1 < line.size(); ++k) obstacle_points_.insert(obstacle_points_.end(), {line[k], line[k + 1]});
+    for (std::size_t k = 0; k + 1 < line.size(); ++k)
+      obstacle_points_.insert(obstacle_points_.end(),
+                              {{line[k][0], line[k][1], 0.0}, {line[k + 1][0], line[k + 1][1], 0.0}});
   }
 }
 
@@ -225,10 +233,13 @@ bool OutputWriter::WriteGeometry(std::int64_t file) const {
             WriteDataset(g, "node_tags", ntags, 1) && WriteDataset(g, "cell_tags", ctags, 1);
   if (g >= 0) H5Gclose(g);
   if (ok && !obstacle_points_.empty()) {
-    std::vector<long long> lines(obstacle_points_.size());
-    for (std::size_t k = 0; k < lines.size(); ++k) lines[k] = (long long)k;
+    std::vector<long long> cells(obstacle_points_.size());
+    for (std::size_t k = 0; k < cells.size(); ++k) cells[k] = (long long)k;
     g = H5Gcreate2(file, "obstacle", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    ok = g >= 0 && WriteDataset(g, "coordinates", xyz(obstacle_points_), 3) && WriteDataset(g, "topology", lines, 2);
+    std::vector<double> coords;
+    for (const auto &p : obstacle_points_) coords.insert(coords.end(), p.begin(), p.end());
+    ok = g >= 0 && WriteDataset(g, "coordinates", coords, 3) &&
+         WriteDataset(g, "topology", cells, (hsize_t)obstacle_cell_size_);
     if (g >= 0) H5Gclose(g);
   }
   if (ok && !contact_nodes_.empty()) {
@@ -308,7 +319,9 @@ PetscErrorCode OutputWriter::WriteXdmf() const {
       x << "    </Grid>\n";
       if (!obstacle_points_.empty())
         x << "    <Grid Name=\"obstacle\" GridType=\"Uniform\">\n"
-          << Shape("obstacle", "Polyline", (int)obstacle_points_.size() / 2, 2, 0, (int)obstacle_points_.size())
+          << Shape("obstacle", obstacle_cell_size_ == 3 ? "Triangle" : "Polyline",
+                   (int)obstacle_points_.size() / obstacle_cell_size_, obstacle_cell_size_, 0,
+                   (int)obstacle_points_.size())
           << "    </Grid>\n";
       if (nb > 0) {
         x << "    <Grid Name=\"contact_boundary\" GridType=\"Uniform\">\n"

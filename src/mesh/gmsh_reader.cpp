@@ -1,6 +1,7 @@
 // Reading gmsh files (and .geo files, meshed in a child process) on one rank through the gmsh API.
 #include "signorini/mesh/serial_mesh.hpp"
 
+#include "signorini/core/parse.hpp"
 #include "signorini/mesh/geo_mesher.hpp"
 
 #include <gmsh.h>
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <map>
 #include <sstream>
 #include <unordered_map>
@@ -172,21 +174,22 @@ std::string ReadModel(const std::string &path, SerialMesh &mesh) {
   return "";
 }
 
-} // namespace
-
-std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &mesh, double max_cells) {
-  mesh = SerialMesh{};
+/// Opens path with gmsh (a .geo meshed first in a child process) and runs read on the loaded model. what names the
+/// kind of file in messages ("mesh", "obstacle mesh"). Returns the first error, or "".
+std::string WithGmshModel(const std::string &path, const std::string &what, double size_factor, double max_cells,
+                          const std::function<std::string()> &read) {
   FILE *f = std::fopen(path.c_str(), "rb");
-  if (!f) return "cannot open mesh file '" + path + "'; expected a readable gmsh .msh or .geo file";
+  if (!f) return "cannot open " + what + " file '" + path + "'; expected a readable gmsh .msh or .geo file";
   char head[16] = {0};
   const std::size_t nread = std::fread(head, 1, sizeof(head) - 1, f);
   const bool unreadable = std::ferror(f) != 0; // a directory opens but does not read
   std::fclose(f);
   const bool geo = EndsWith(path, ".geo");
-  if (unreadable) return "cannot read mesh file '" + path + "' (a directory?); expected a gmsh .msh or .geo file";
-  if (nread == 0) return "mesh file '" + path + "' is empty; expected a gmsh .msh or .geo file";
+  if (unreadable)
+    return "cannot read " + what + " file '" + path + "' (a directory?); expected a gmsh .msh or .geo file";
+  if (nread == 0) return what + " file '" + path + "' is empty; expected a gmsh .msh or .geo file";
   if (!geo && std::string(head).rfind("$MeshFormat", 0) != 0)
-    return "mesh file '" + path + "' is not a gmsh mesh (no $MeshFormat header); expected a gmsh .msh file";
+    return what + " file '" + path + "' is not a gmsh mesh (no $MeshFormat header); expected a gmsh .msh file";
 
   // A .geo is meshed by gmsh in a child process into a temporary .msh, read below like any other.
   std::string source = path;
@@ -209,14 +212,14 @@ std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &me
     const std::string duplicate = "Skipping duplicate node ";
     for (const auto &line : log)
       if (error.empty() && line.find(duplicate) != std::string::npos)
-        error = "mesh '" + path + "' has duplicate node tag " + line.substr(line.find(duplicate) + duplicate.size()) +
-                "; expected unique node tags";
-    if (error.empty()) error = ReadModel(path, mesh);
+        error = what + " '" + path + "' has duplicate node tag " +
+                line.substr(line.find(duplicate) + duplicate.size()) + "; expected unique node tags";
+    if (error.empty()) error = read();
   } catch (const std::exception &e) {
-    error = "cannot read mesh file '" + path + "': " + LastGmshError(e.what()) +
+    error = "cannot read " + what + " file '" + path + "': " + LastGmshError(e.what()) +
             "; expected a valid gmsh .msh or .geo file";
   } catch (...) {
-    error = "cannot read mesh file '" + path + "': " + LastGmshError("gmsh failed") +
+    error = "cannot read " + what + " file '" + path + "': " + LastGmshError("gmsh failed") +
             "; expected a valid gmsh .msh or .geo file";
   }
   try {
@@ -224,11 +227,129 @@ std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &me
   } catch (...) {
   }
   if (geo) std::remove(source.c_str());
+  return error;
+}
+
+/// What a dimension-dim obstacle mesh must consist of, for messages.
+std::string ExpectedElements(int dim) {
+  return dim == 1 ? "2-node line elements (the obstacle of a 2D body)"
+                  : "3-node triangles or 4-node quadrilaterals (the obstacle of a 3D body)";
+}
+
+/// The loaded model's entities of dimension dim: those of the physical group named group, or all when it is empty.
+std::string GroupEntities(const std::string &where, int dim, const std::string &group, gmsh::vectorpair &entities) {
+  if (group.empty()) {
+    gmsh::model::getEntities(entities, dim);
+    return "";
+  }
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups, -1);
+  std::vector<std::string> names;
+  int other_dim = -1;
+  for (auto [d, tag] : groups) {
+    std::string name;
+    gmsh::model::getPhysicalName(d, tag, name);
+    if (name.empty()) name = std::to_string(tag);
+    names.push_back("'" + name + "' (" + std::to_string(d) + "D)");
+    if (name != group) continue;
+    if (d != dim) {
+      other_dim = d;
+      continue;
+    }
+    std::vector<int> tags;
+    gmsh::model::getEntitiesForPhysicalGroup(d, tag, tags);
+    for (int t : tags) entities.emplace_back(d, t);
+  }
+  if (entities.empty() && other_dim >= 0)
+    return where + ": physical group '" + group + "' is " + std::to_string(other_dim) + "D; expected a " +
+           std::to_string(dim) + "D group of " + ExpectedElements(dim);
+  if (entities.empty())
+    return where + " has no physical group '" + group + "'; expected one of: " +
+           (names.empty() ? std::string("(the file has no physical groups)") : Join(names, ", "));
+  return "";
+}
+
+/// The loaded model's elements of dimension dim (of the physical group named group, or all) into set.
+std::string ReadElements(const std::string &path, int dim, const std::string &group, ElementSet &set) {
+  const std::string where = "obstacle mesh '" + path + "'";
+  gmsh::vectorpair entities;
+  const std::string error = GroupEntities(where, dim, group, entities);
+  if (!error.empty()) return error;
+  std::vector<std::size_t> all_tags;
+  std::vector<double> all_coords, params;
+  gmsh::model::mesh::getNodes(all_tags, all_coords, params, -1, -1, false, false);
+  std::unordered_map<std::size_t, std::size_t> tag_pos;
+  for (std::size_t i = 0; i < all_tags.size(); ++i) tag_pos.emplace(all_tags[i], i);
+  std::unordered_map<std::size_t, int> node_index;
+  std::unordered_map<std::size_t, char> seen;
+  for (auto [d, ent] : entities) {
+    std::vector<int> types;
+    std::vector<std::vector<std::size_t>> etags, enodes;
+    gmsh::model::mesh::getElements(types, etags, enodes, d, ent);
+    for (std::size_t k = 0; k < types.size(); ++k) {
+      const int nv = dim == 1 ? (types[k] == GMSH_LINE ? 2 : 0)
+                              : (types[k] == GMSH_TRIANGLE ? 3 : types[k] == GMSH_QUADRANGLE ? 4 : 0);
+      if (nv == 0 && !etags[k].empty()) {
+        std::string name;
+        int ed, order, nn, npr;
+        std::vector<double> lc;
+        gmsh::model::mesh::getElementProperties(types[k], name, ed, order, nn, lc, npr);
+        return where + ": element " + std::to_string(etags[k][0]) + " is a '" + name + "'; expected " +
+               ExpectedElements(dim);
+      }
+      for (std::size_t e = 0; e < etags[k].size(); ++e) {
+        if (!seen.emplace(etags[k][e], 1).second) continue; // an entity listed twice
+        for (int j = 0; j < nv; ++j) {
+          const std::size_t t = enodes[k][nv * e + j];
+          const auto pos = tag_pos.find(t);
+          if (pos == tag_pos.end())
+            return where + ": element " + std::to_string(etags[k][e]) + " refers to unknown node " + std::to_string(t);
+          const auto [it, added] = node_index.emplace(t, (int)set.node_tags.size());
+          if (added) {
+            set.node_tags.push_back(t);
+            set.coords.insert(set.coords.end(), &all_coords[3 * pos->second], &all_coords[3 * pos->second] + 3);
+          }
+          set.nodes.push_back(it->second);
+        }
+        set.offsets.push_back((int)set.nodes.size());
+        set.tags.push_back(etags[k][e]);
+      }
+    }
+  }
+  if (set.NumElements() == 0) {
+    // Say what the file (or group) holds instead: a surface mesh given for a 2D body, a volume mesh without faces.
+    std::vector<std::string> held;
+    for (int d = 0; d <= 3; ++d) {
+      if (d == dim) continue;
+      std::vector<int> types;
+      std::vector<std::vector<std::size_t>> etags, enodes;
+      gmsh::model::mesh::getElements(types, etags, enodes, d, -1);
+      std::size_t n = 0;
+      for (const auto &t : etags) n += t.size();
+      if (n) held.push_back(std::to_string(n) + " element(s) of dimension " + std::to_string(d));
+    }
+    return where + (group.empty() ? "" : " group '" + group + "'") + " has " +
+           (held.empty() ? std::string("no elements") : "only " + Join(held, ", ")) + "; expected " +
+           ExpectedElements(dim);
+  }
+  return "";
+}
+
+} // namespace
+
+std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &mesh, double max_cells) {
+  mesh = SerialMesh{};
+  std::string error = WithGmshModel(path, "mesh", size_factor, max_cells, [&] { return ReadModel(path, mesh); });
   if (error.empty()) {
     error = CheckAndOrientCells(mesh);
     if (!error.empty()) error = "mesh '" + path + "': " + error;
   }
   return error;
+}
+
+std::string ReadGmshElements(const std::string &path, int dim, const std::string &group, ElementSet &set) {
+  set = ElementSet{};
+  return WithGmshModel(path, "obstacle mesh", 1.0, 0, [&] { return ReadElements(path, dim, group, set); });
 }
 
 namespace {

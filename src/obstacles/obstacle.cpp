@@ -1,6 +1,7 @@
 // The registry of obstacle shapes and the reading of the -obstacle_ options.
 #include "signorini/obstacles/obstacle.hpp"
 
+#include "signorini/core/option_paths.hpp"
 #include "signorini/core/options.hpp"
 #include "signorini/core/parse.hpp"
 
@@ -19,6 +20,8 @@ PetscErrorCode ReadObstacle(MPI_Comm comm, Obstacle &obstacle) {
   PetscFunctionBeginUser;
   obstacle.facets.clear();
   obstacle.shapes.clear();
+  obstacle.meshes.clear();
+  std::vector<std::string> meshes;
   PetscOptionsBegin(comm, nullptr, "Rigid obstacle", "signorini");
   for (const ShapeType &shape : ShapeRegistry()) {
     PetscBool set = PETSC_FALSE;
@@ -34,7 +37,29 @@ PetscErrorCode ReadObstacle(MPI_Comm comm, Obstacle &obstacle) {
       PetscCheck(error.empty(), comm, PETSC_ERR_USER_INPUT, "%s item %zu %s", shape.option, k + 1, error.c_str());
     }
   }
+  PetscCall(OptionsStringList(PetscOptionsObject, "-obstacle_mesh", "Meshed rigid surfaces FILE[:GROUP],... from gmsh "
+                              "files (.msh, .geo): 2-node lines for a 2D body, triangles and quadrilaterals for a 3D "
+                              "one, of the physical group GROUP (default: all); the node order orients each facet (left "
+                              "normal of P0->P1; right-hand rule) into the body", "no meshed obstacle",
+                              "FILE or FILE:GROUP items", meshes));
   PetscOptionsEnd();
+  for (const std::string &item : meshes) {
+    ObstacleMeshSource source;
+    source.value = item;
+    // FILE:GROUP splits at the last colon that is followed by no path separator.
+    const std::size_t colon = item.rfind(':');
+    const bool grouped = colon != std::string::npos && item.find('/', colon) == std::string::npos;
+    source.file = grouped ? item.substr(0, colon) : item;
+    source.group = grouped ? item.substr(colon + 1) : "";
+    PetscCheck(!source.file.empty() && !(grouped && source.group.empty()), comm, PETSC_ERR_USER_INPUT,
+               "-obstacle_mesh item '%s' has an empty %s; expected FILE or FILE:GROUP", item.c_str(),
+               source.file.empty() ? "file name" : "group name");
+    PathCandidates candidates;
+    PetscCall(PathCandidatesFor("-obstacle_mesh", source.file, candidates));
+    source.paths = candidates.paths;
+    source.origins = candidates.origins;
+    obstacle.meshes.push_back(source);
+  }
   PetscFunctionReturn(0);
 }
 
@@ -43,6 +68,7 @@ PetscErrorCode CheckObstacleDimension(MPI_Comm comm, const Obstacle &obstacle, i
   std::vector<std::string> fitting;
   for (const ShapeType &shape : ShapeRegistry())
     if (shape.dim == dim) fitting.push_back(shape.option);
+  fitting.push_back("-obstacle_mesh");
   for (const ShapeType *shape : obstacle.shapes)
     PetscCheck(shape->dim == dim, comm, PETSC_ERR_USER_INPUT,
                "%s is a %dD shape but the mesh is %dD; expected %s", shape->option, shape->dim, dim,

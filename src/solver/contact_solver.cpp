@@ -61,6 +61,12 @@ PetscErrorCode ContactSolver::Setup() {
   }
   PetscCall(BuildDirichlet(mesh_, bc_, dirichlet_));
   PetscCall(FindContactPairs(mesh_, obstacle_, contact_, dirichlet_.fixed, pairs_, candidate_));
+  // Linear material: a pair's zone is fixed in the reference configuration (EvaluatePairs: inside = zone0), so a pair
+  // outside it can never be active. Dropping it keeps a fine obstacle mesh (a node within the search radius of many
+  // facets) from adding a multiplier, an identity row and a stabilising spring per facet.
+  if (material_.model != MaterialModel::SVK)
+    pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), [](const ContactPair &p) { return !p.zone0; }),
+                 pairs_.end());
   PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size()));
   assembler_ = std::make_unique<Assembler>(mesh_, material_, dofs_, dirichlet_);
   PetscCall(assembler_->CheckCells());

@@ -42,7 +42,8 @@ public:
   /// Prepares DIR/incomplete (removing a stale one); checks that DIR can be written. Collective.
   [[nodiscard]] PetscErrorCode Open(const Mesh &mesh, const OutputOptions &opts);
   bool Enabled() const { return !opts_.dir.empty(); }
-  /// Records the obstacle's facets (as polylines) for the obstacle grid. Call on every rank before WriteStep.
+  /// Records the obstacle's facets for the obstacle grid: polylines in 2D, the triangles of meshed surfaces in 3D
+  /// (analytic 3D shapes are not drawn). Call on every rank before WriteStep.
   void SetObstacle(const Obstacle &obstacle);
   /// Records the contact boundary: the boundary edges whose two vertices are candidates (candidate: per local
   /// vertex), the edges that carry contact pressure. Collective; call before WriteStep.
@@ -71,7 +72,8 @@ private:
     std::vector<Field> layout; // names and sizes only
   };
   std::vector<StepInfo> steps_;
-  std::vector<std::array<double, 2>> obstacle_points_; ///< two per obstacle segment
+  std::vector<std::array<double, 3>> obstacle_points_; ///< the corners of each obstacle cell (x, y, z)
+  int obstacle_cell_size_ = 2;                         ///< 2: segments of polylines (2D), 3: triangles (3D)
   std::vector<PetscInt> contact_nodes_;                ///< rank 0: file indices of the contact-boundary nodes
   std::vector<long long> contact_edges_;               ///< rank 0: two positions in contact_nodes_ per edge
 };

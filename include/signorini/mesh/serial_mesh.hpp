@@ -43,6 +43,27 @@ struct SerialMesh {
 /// one rank only. Returns an empty string on success, else the error message.
 std::string ReadGmsh(const std::string &path, double size_factor, SerialMesh &mesh, double max_cells = 0);
 
+/// Elements of one dimension read from a gmsh file (the facets of a meshed rigid obstacle): the nodes they use, with
+/// three coordinates each, and the elements with their file tags and nodes in the file's order (which orients them).
+struct ElementSet {
+  std::vector<double> coords;         ///< 3 values per node
+  std::vector<std::size_t> node_tags; ///< the file's node tags
+  std::vector<int> offsets{0};        ///< CSR offsets into nodes
+  std::vector<int> nodes;             ///< node indices of each element, in the file's order
+  std::vector<std::size_t> tags;      ///< the file's element tags
+
+  int NumElements() const { return (int)tags.size(); }
+  int Size(int e) const { return offsets[e + 1] - offsets[e]; }
+  const double *X(int node) const { return &coords[3 * node]; }
+};
+
+/// Reads the linear elements of dimension dim (1: 2-node lines; 2: 3-node triangles and 4-node quadrilaterals) of a
+/// gmsh .msh file (or a .geo, meshed like ReadGmsh's), those of the physical group named group or, when group is
+/// empty, every one. Errors (the returned message, empty on success, naming the file): an unreadable file, an unknown
+/// group (listing the groups there are) or one of another dimension, elements of another type, and no element of
+/// dimension dim (saying what the file holds instead). Serial: call on one rank only.
+std::string ReadGmshElements(const std::string &path, int dim, const std::string &group, ElementSet &set);
+
 /// Checks orientation and shape of every cell: a mesh whose cells are all clockwise (negative Jacobian in 3D) is
 /// flipped; cells oriented against the rest, with zero area or volume, or not convex (a corner Jacobian of the other
 /// sign) are errors. Returns an empty string on success.

@@ -1,5 +1,6 @@
 // The rigid obstacle: a set of facets (2D: oriented segments, arcs as polylines, discs; 3D: planes, spheres,
-// cylinders), each of which computes the signed gap and the normal of a point. Sign convention: the normal points from the obstacle into the body;
+// cylinders, triangles; meshed surfaces from gmsh files as segments or triangles), each of which computes the signed
+// gap and the normal of a point. Sign convention: the normal points from the obstacle into the body;
 // gap = n . (x - P) >= 0 is open, < 0 is penetration.
 #pragma once
 
@@ -17,7 +18,8 @@ namespace signorini {
 struct Projection {
   double gap = 0;          ///< signed gap n . (x - P)
   double normal[3] = {};   ///< unit normal at P, pointing into the body
-  double alpha = 0;        ///< position of the projection along the facet (segments: Eq. 24, in [0, 1] inside)
+  double alpha = 0;        ///< position of the projection along the facet (segments: Eq. 24, in [0, 1] inside;
+                           ///< triangles: the smallest barycentric coordinate, >= 0 inside)
   bool inside = false;     ///< the projection falls on the facet (seed Fig. 4), within the tolerance
 };
 
@@ -34,6 +36,8 @@ public:
   /// The facet's shape for output in 2D: a polyline; a closed curve repeats its first point. 3D facets are not drawn
   /// yet (empty).
   virtual std::vector<std::array<double, 2>> Polyline() const { return {}; }
+  /// The facet's shape for output in 3D: triangles, three corners each (empty for the analytic shapes).
+  virtual std::vector<std::array<double, 3>> Surface() const { return {}; }
 };
 
 /// An oriented segment P0 -> P1; its normal is the left normal of the direction.
@@ -49,6 +53,30 @@ public:
 
 private:
   double p0_[2], p1_[2], n_[2], length_;
+};
+
+/// An oriented triangle P0, P1, P2 (3D), the flat facet of a meshed rigid surface; its normal
+/// (P1 - P0) x (P2 - P0) / |.| follows the node order by the right-hand rule. Like a segment, its gap is the distance
+/// to its plane, n . (x - P0), and `inside` says whether the foot of x on the plane falls on the triangle: its
+/// barycentric coordinates are all >= -alpha_tol (alpha: the smallest of them). Distance is the exact distance to the
+/// closest point of the triangle (its interior, an edge or a vertex).
+class Triangle final : public Facet {
+public:
+  Triangle(const double *p0, const double *p1, const double *p2);
+  Projection Project(const double *x, double alpha_tol) const override;
+  double Distance(const double *x) const override;
+  void Bounds(double *lo, double *hi) const override;
+  std::string Describe() const override;
+  std::vector<std::array<double, 3>> Surface() const override;
+  /// The point of the triangle closest to x.
+  void ClosestPoint(const double *x, double *c) const;
+  double Area() const { return area_; }
+
+private:
+  /// Barycentric coordinates (of P0, P1, P2) of the foot of x on the triangle's plane.
+  void Barycentric(const double *x, double *b) const;
+  double p_[3][3], n_[3], area_;
+  double gram_inv_[3]; ///< inverse of the Gram matrix of the edges P1 - P0, P2 - P0: (00, 01, 11)
 };
 
 /// A rigid ball (centre, radius) in dimension dim, the body outside it: a disc in 2D, a sphere in 3D; normals point
@@ -117,13 +145,22 @@ ShapeType PlanesShape();
 ShapeType SpheresShape();
 ShapeType CylindersShape();
 
+/// A meshed rigid surface given by -obstacle_mesh FILE[:GROUP]: the file as given, the physical group (empty: every
+/// element of the obstacle's dimension) and where the file is looked for.
+struct ObstacleMeshSource {
+  std::string value; ///< the option's item as given
+  std::string file, group;
+  std::vector<std::string> paths, origins; ///< PathCandidates of the file
+};
+
 /// The obstacle: every facet of every shape given by the -obstacle_ options.
 struct Obstacle {
   std::vector<std::unique_ptr<Facet>> facets;
   std::vector<const ShapeType *> shapes; ///< the shape types given
+  std::vector<ObstacleMeshSource> meshes; ///< -obstacle_mesh items; their facets are added by LoadObstacleMeshes
 };
 
-/// Reads the -obstacle_ options (one real array per shape type). Collective.
+/// Reads the -obstacle_ options (one real array per shape type, and the -obstacle_mesh files). Collective.
 [[nodiscard]] PetscErrorCode ReadObstacle(MPI_Comm comm, Obstacle &obstacle);
 
 /// Refuses shapes made for another dimension than the mesh's dim (a segment on a 3D mesh, a plane on a 2D one),

@@ -363,3 +363,49 @@ TEST(CheckAndOrientCells3D, FlatAndTwistedCellsAreErrors) {
 
 } // namespace
 } // namespace signorini
+
+namespace signorini {
+namespace {
+
+TEST(ReadGmshElements, SurfaceOfTrianglesAndQuadrilateralsWithItsGroup) {
+  for (const char *group : {"floor", ""}) {
+    ElementSet set;
+    ASSERT_EQ(ReadGmshElements(SIGNORINI_SOURCE_DIR "/meshes/flat_obstacle.msh", 2, group, set), "");
+    int triangles = 0, quads = 0;
+    for (int e = 0; e < set.NumElements(); ++e)
+      (set.Size(e) == 3 ? triangles : quads) += 1;
+    EXPECT_EQ(triangles, 24);
+    EXPECT_EQ(quads, 4);
+    EXPECT_EQ(set.node_tags.size(), 25u); // the 4 x 5 nodes of the triangles, 5 more at x = 1.5
+    for (std::size_t i = 0; i < set.node_tags.size(); ++i)
+      EXPECT_EQ(set.X(i)[2], 0.0);
+  }
+}
+
+TEST(ReadGmshElements, PolylineKeepsTheFileOrderOfItsNodes) {
+  ElementSet set;
+  ASSERT_EQ(ReadGmshElements(SIGNORINI_SOURCE_DIR "/meshes/arc_obstacle.msh", 1, "arc", set), "");
+  ASSERT_EQ(set.NumElements(), 30);
+  // The arc runs from 150 to 30 degrees: each line starts where the previous one ends, left to right.
+  for (int e = 0; e < 30; ++e) {
+    const int *v = &set.nodes[set.offsets[e]];
+    EXPECT_LT(set.X(v[0])[0], set.X(v[1])[0]);
+    if (e > 0) EXPECT_EQ(v[0], set.nodes[set.offsets[e - 1] + 1]);
+  }
+}
+
+TEST(ReadGmshElements, GroupAndDimensionErrors) {
+  ElementSet set;
+  const std::string flat = SIGNORINI_SOURCE_DIR "/meshes/flat_obstacle.msh";
+  EXPECT_NE(ReadGmshElements(flat, 2, "roof", set).find("has no physical group 'roof'; expected one of: 'floor' (2D)"),
+            std::string::npos);
+  EXPECT_NE(ReadGmshElements(flat, 1, "floor", set).find("physical group 'floor' is 2D; expected a 1D group"),
+            std::string::npos);
+  EXPECT_NE(ReadGmshElements(flat, 1, "", set).find("has only 28 element(s) of dimension 2; expected 2-node line"),
+            std::string::npos);
+  EXPECT_NE(ReadGmshElements(SIGNORINI_SOURCE_DIR "/meshes/none.msh", 2, "", set).find("cannot open obstacle mesh"),
+            std::string::npos);
+}
+
+} // namespace
+} // namespace signorini
