@@ -80,7 +80,9 @@ private:
   [[nodiscard]] PetscErrorCode Partition(DM dm, const std::string &partitioner);
   [[nodiscard]] PetscErrorCode Distribute(DMH &dm);
   [[nodiscard]] PetscErrorCode BuildLocalArrays();
-  [[nodiscard]] PetscErrorCode LabelVertices(const std::string &label, std::vector<PetscInt> &vertices) const;
+  /// Local vertices of a label; cells: the label holds cells (a group of the mesh's dimension, not completed to its
+  /// closure), whose vertices are gathered over the ranks. Collective when cells.
+  [[nodiscard]] PetscErrorCode LabelVertices(const std::string &label, bool cells, std::vector<PetscInt> &vertices) const;
   [[nodiscard]] PetscErrorCode LabelFaces(const std::string &label, std::vector<Face> &faces) const;
   [[nodiscard]] PetscErrorCode CheckGroup(const std::string &name, int required_dim) const;
 
