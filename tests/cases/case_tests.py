@@ -468,6 +468,86 @@ def lame_convergence(runner, kind):
         runner.expect_true("rate %g -> %g: %.3f in [1.8, 2.2]" % (sizes[i], sizes[i + 1], p), 1.8 <= p <= 2.2)
 
 
+# Lame spherical shell (options/lame_sphere.yml): radii, internal pressure; size factors of meshes/lame3d*.geo (the
+# hexahedra of lame3d_hex.geo are about half the size of the tetrahedra at the same factor).
+LAME3D_A, LAME3D_B, LAME3D_P = 1.0, 2.0, 1.0
+LAME3D_FACTORS = {"tet": [0.7, 0.5, 0.35, 0.25], "hex": [1.4, 1, 0.7]}
+
+# Quadrature on tetrahedra: the 3 x 3 x 3 Gauss rule on the cube collapsed onto the tetrahedron (Duffy), degree 5;
+# on hexahedra the 3 x 3 x 3 Gauss rule. Barycentric points and weights summing to the reference volume 1/6.
+_U = 0.5 * (1 + _G)
+_UW = 0.5 * _GW
+_TET = [(u, v * (1 - u), w * (1 - u) * (1 - v), wu * wv * ww * (1 - u) ** 2 * (1 - v))
+        for u, wu in zip(_U, _UW) for v, wv in zip(_U, _UW) for w, ww in zip(_U, _UW)]
+TET_POINTS = np.array([[1 - l1 - l2 - l3, l1, l2, l3] for l1, l2, l3, _ in _TET])
+TET_WEIGHTS = np.array([w for *_, w in _TET])
+HEX_POINTS = np.array([(xi, eta, zeta) for xi in _G for eta in _G for zeta in _G])
+HEX_WEIGHTS = np.array([wx * wy * wz for wx in _GW for wy in _GW for wz in _GW])
+# VTK/XDMF vertex order of a hexahedron: the bottom face counter-clockwise, then the top face.
+HEX_CORNERS = np.array([(-1, -1, -1), (1, -1, -1), (1, 1, -1), (-1, 1, -1), (-1, -1, 1), (1, -1, 1), (1, 1, 1),
+                        (-1, 1, 1)])
+
+
+def lame_sphere_exact(x, E, nu):
+    """Displacement of the Lame sphere: u_r = p a^3 / (E (b^3 - a^3)) ((1 - 2 nu) r + (1 + nu) b^3 / (2 r^2))."""
+    c = LAME3D_P * LAME3D_A ** 3 / (E * (LAME3D_B ** 3 - LAME3D_A ** 3))
+    r = np.linalg.norm(x, axis=1)
+    ur = c * ((1 - 2 * nu) * r + (1 + nu) * LAME3D_B ** 3 / (2 * r ** 2))
+    return x * (ur / r)[:, None]
+
+
+def l2_error_3d(xyz, cells, u, exact):
+    """||u_h - u||_L2 over a mesh of tetrahedra and hexahedra, u_h interpolated with the P1/Q1 shape functions."""
+    total = 0.0
+    for n in (4, 8):
+        c = np.array([c for c in cells if len(c) == n], dtype=int)
+        if not len(c):
+            continue
+        xe, ue = xyz[c], u[c]  # cells x nodes x 3
+        if n == 4:
+            N, w = TET_POINTS, TET_WEIGHTS
+            J = np.stack([xe[:, 1] - xe[:, 0], xe[:, 2] - xe[:, 0], xe[:, 3] - xe[:, 0]], axis=1)
+            detJ = np.abs(np.linalg.det(J))[:, None] * np.ones(len(w))
+        else:
+            s = HEX_CORNERS
+            P = HEX_POINTS
+            N = np.prod(1 + P[:, None, :] * s[None, :, :], axis=2) / 8  # points x nodes
+            dN = np.stack([s[None, :, k] * np.prod(1 + np.delete(P[:, None, :] * s[None, :, :], k, axis=2), axis=2) / 8
+                           for k in range(3)], axis=1)  # points x 3 x nodes
+            J = np.einsum("qkn,cnd->cqkd", dN, xe)
+            detJ = np.abs(np.linalg.det(J))
+            w = HEX_WEIGHTS
+        xq, uq = np.einsum("qn,cnd->cqd", N, xe), np.einsum("qn,cnd->cqd", N, ue)
+        d = uq - exact(xq.reshape(-1, 3)).reshape(xq.shape)
+        total += np.sum(w[None, :] * detJ * np.sum(d * d, axis=2))
+    return np.sqrt(total)
+
+
+@test("lame3d_convergence")
+def lame3d_convergence(runner, kind):
+    """Lame spherical shell under internal pressure: the L2 displacement error of P1 tetrahedra or Q1 hexahedra
+    falls as h^2."""
+    mesh, cell_size = {"tet": ("meshes/lame3d.geo", 4), "hex": ("meshes/lame3d_hex.geo", 8)}[kind]
+    errors, sizes = [], []
+    for f in LAME3D_FACTORS[kind]:
+        r = runner.run(["-options_file", "options/lame_sphere.yml", "-mesh_file", mesh, "-mesh_size_factor", f],
+                       "lame3d %s factor %g" % (kind, f), heap_check=False)
+        xyz, cells, u = r.solution()
+        runner.expect_true("factor %g: %d cells, all with %d nodes" % (f, len(cells), cell_size),
+                           all(len(c) == cell_size for c in cells))
+        E, nu = r.get("material.E"), r.get("material.nu")
+        errors.append(l2_error_3d(xyz, cells, u, lambda x: lame_sphere_exact(x, E, nu)))
+        # The mean cell size (volume / cells)^(1/3): gmsh's 3D meshes do not refine exactly by the size factor (the
+        # cell count grows by 2.4 to 2.8 per factor 1.4), and the subdivided hexahedra even less so.
+        sizes.append((np.pi / 6 * (LAME3D_B ** 3 - LAME3D_A ** 3) / len(cells)) ** (1 / 3))
+        print("  factor %g: %d nodes, %d cells, h %.4f, L2 error %.4e" % (f, len(xyz), len(cells), sizes[-1],
+                                                                          errors[-1]))
+    rates = rate(np.array(sizes), np.array(errors))
+    # As in 2D: O(h^2) for linear elements and for the faceted spheres; the +-0.2 band for unstructured meshes.
+    for i, p in enumerate(rates):
+        runner.expect_true("rate h %.4f -> %.4f: %.3f in [1.8, 2.2]" % (sizes[i], sizes[i + 1], p), 1.8 <= p <= 2.2)
+
+
 MSH_VARIANTS = ["meshes/block.msh", "meshes/block_bin.msh", "meshes/block_v22.msh"]
 
 
