@@ -255,6 +255,37 @@ def cube_on_plane(runner, mesh):
     runner.expect_close("von Mises = q", r.cell_field("von_mises"), np.full(len(stress), q), 1e-10)
 
 
+@test("block_on_cylinder")
+def block_on_cylinder(runner):
+    """Block pressed onto a rigid cylinder: the cylinder carries the load, a strip around the line of first contact
+    is active, and the contact pressure is symmetric about the plane through the cylinder's axis."""
+    q, area = 1.0, 2.0
+    r = runner.run(["-options_file", "options/block_on_cylinder.yml"], "block_on_cylinder")
+    P = q * area
+    # Force balance: the top is flat, so the applied load is exactly q x area; the cylinder's reaction balances it
+    # (round-off of a direct solve), with no net x component (the symmetry) and no support reaction along z.
+    runner.expect_close("applied load", r.get("contact.applied_force"), [0, 0, -P], 0, 1e-12 * P)
+    runner.expect_close("contact force = applied load", r.get("contact.contact_force"), [0, 0, P], 0, 1e-10 * P)
+    runner.expect_true("force balance %.3g <= 1e-10" % r.get("contact.force_balance"),
+                       r.get("contact.force_balance") <= 1e-10)
+    nodes = r.nodes()
+    bottom = nodes[nodes["z"] == 0.0]
+    active = bottom[bottom["active"] > 0]
+    # Line contact spreading to a strip: the nodes over the axis are active, the block's ends are not.
+    runner.expect_equal("active nodes over the axis (5 along y)", int(np.sum(active["x"] == 0.0)), 5)
+    runner.expect_true("a strip: %d of %d bottom nodes active, none at |x| = 1" % (len(active), len(bottom)),
+                       0 < len(active) < len(bottom) and np.abs(active["x"]).max() < 1)
+    # Symmetry about x = 0: the mirror of every bottom node is a bottom node (the halves of the mesh are mirrored up
+    # to gmsh's round-off in the coordinates), with the same active flag and pressure. The solve is symmetric up to
+    # the conditioning of K: 1e-8 of the peak pressure.
+    xy = np.column_stack([bottom["x"], bottom["y"]])
+    mirror = np.array([np.argmin(np.sum((xy - [-x, y]) ** 2, axis=1)) for x, y in xy])
+    runner.expect_close("bottom nodes mirrored about x = 0", xy[mirror], xy * [-1, 1], 0, 1e-10)
+    runner.expect_equal("active set symmetric", list(bottom["active"][mirror]), list(bottom["active"]))
+    p = bottom["pressure"]
+    runner.expect_close("contact pressure symmetric", p[mirror], p, 0, 1e-8 * p.max())
+
+
 @test("block_pulled_off")
 def block_pulled_off(runner):
     """Block pulled off a floor it touches: no active pair, the same displacement as without any obstacle."""
