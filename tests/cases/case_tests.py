@@ -194,13 +194,12 @@ def bottom_tributary_areas(result, tags):
     tetrahedron, a quarter of each bottom rectangle of a hexahedron (the cube's bottom faces are axis-aligned)."""
     import h5py
 
+    xyz, cells, _ = result.solution()
     with h5py.File(os.path.join(result.dir, "solution.h5"), "r") as f:
-        xyz = f["mesh/coordinates"][()]
-        topo = f["mesh/topology"][()]
         file_tags = f["mesh/node_tags"][()]
     on_bottom = xyz[:, 2] == 0.0
     area = np.zeros(len(xyz))
-    for cell in topo:
+    for cell in cells:
         face = [v for v in cell if on_bottom[v]]
         if len(face) == 3:
             p = xyz[face]
@@ -253,6 +252,69 @@ def cube_on_plane(runner, mesh):
     runner.expect_close("stress = (0, 0, -q, 0, 0, 0)", stress, np.tile([0, 0, -q, 0, 0, 0], (len(stress), 1)), 0,
                         1e-10 * q)
     runner.expect_close("von Mises = q", r.cell_field("von_mises"), np.full(len(stress), q), 1e-10)
+
+
+@test("mixed_cells")
+def mixed_cells(runner):
+    """A mesh of hexahedra and tetrahedra (two cubes, meshes/cube_mixed.msh) under uniform pressure on a rigid plane:
+    the exact field and lambda_i = q w_i on both, and the hexahedral cube's answer that of cube.msh alone."""
+    q = 2.0
+    r = runner.run(["-options_file", "options/cube_on_plane.yml", "-mesh_file", "meshes/cube_mixed.msh"],
+                   "cube_on_plane cube_mixed")
+    xyz, cells, _ = r.solution()
+    kinds = sorted(set(len(c) for c in cells))
+    runner.expect_equal("cell kinds (nodes per cell)", kinds, [4, 8])
+    nodes = r.nodes()
+    bottom = nodes[nodes["z"] == 0.0]
+    n = len(bottom)
+    runner.expect_equal("active pairs: every bottom node", r.get("contact.active_pairs"), n)
+    w = bottom_tributary_areas(r, bottom["node_tag"])
+    runner.expect_close("sum of tributary areas = 2", w.sum(), 2.0, 1e-14)
+    runner.expect_close("lambda_i = q w_i", bottom["lambda"], q * w, 1e-10)
+    runner.expect_close("contact force", r.get("contact.contact_force"), [0, 0, 2 * q], 0, 1e-10 * q)
+    E, nu = r.get("material.E"), r.get("material.nu")
+    x0 = np.where(nodes["x"] >= 2.0, 2.0, 0.0)  # each cube's symmetry face u_x = 0
+    exact = np.column_stack([nu * q / E * (nodes["x"] - x0), nu * q / E * nodes["y"], -q / E * nodes["z"]])
+    runner.expect_close("displacement = exact linear field in both cubes", displacement(nodes), exact, 0,
+                        1e-10 * np.abs(exact).max())
+    # The hexahedral cube is meshes/cube.geo itself: its nodes, displacements and multipliers are those of cube.msh
+    # (the same equations, apart from the other cube's; round-off).
+    pure = runner.run(["-options_file", "options/cube_on_plane.yml"], "cube_on_plane cube")
+    ref = pure.nodes()
+    hexes = nodes[nodes["x"] <= 1.0]
+    key = lambda t: np.lexsort((t["z"], t["y"], t["x"]))
+    hexes, ref = hexes[key(hexes)], ref[key(ref)]
+    runner.expect_close("hexahedral cube: node coordinates", coordinates(hexes), coordinates(ref), 0, 1e-14)
+    u = displacement(ref)
+    runner.expect_close("hexahedral cube: displacement", displacement(hexes), u, 0, 1e-12 * np.abs(u).max())
+    runner.expect_close("hexahedral cube: lambda", hexes["lambda"], ref["lambda"], 0, 1e-12 * ref["lambda"].max())
+
+
+@test("forces_3d")
+def forces_3d(runner):
+    """Point forces and a body force with three components on the mixed mesh: the applied load is their sum, and
+    contact, supports and load balance to round-off."""
+    q, body, point = 2.0, np.array([0.5, -0.3, -2.0]), np.array([0.01, 0.02, -0.05])
+    r = runner.run(["-options_file", "options/cube_on_plane.yml", "-mesh_file", "meshes/cube_mixed.msh",
+                    "-bc_body_force", ",".join(map(str, body)), "-bc_point_force", "top:%g:%g:%g" % tuple(point)],
+                   "cube_mixed body and point forces")
+    nodes = r.nodes()
+    top = int(np.sum(nodes["z"] == 1.0))
+    volume, area = 2.0, 2.0
+    applied = volume * body + top * point + [0, 0, -q * area]
+    runner.expect_close("applied load = body force x volume + point forces + pressure x area (%d top nodes)" % top,
+                        r.get("contact.applied_force"), applied, 0, 1e-12 * np.abs(applied).max())
+    total = (np.array(r.get("contact.contact_force")) + np.array(r.get("contact.applied_force")) +
+             np.array(r.get("contact.reaction_force")))
+    runner.expect_close("contact + applied + reactions = 0", total, [0, 0, 0], 0, 1e-10 * np.abs(applied).max())
+    runner.expect_true("force balance %.3g <= 1e-10" % r.get("contact.force_balance"),
+                       r.get("contact.force_balance") <= 1e-10)
+    # The supports take the tangential load (frictionless contact cannot): reactions -F_x on the faces x = 0, 2 and
+    # -F_y on y = 0; the plane takes the whole normal load.
+    runner.expect_close("reactions take the tangential load", r.get("contact.reaction_force")[:2], -applied[:2], 0,
+                        1e-10 * np.abs(applied).max())
+    runner.expect_close("the plane takes the normal load", r.get("contact.contact_force"), [0, 0, -applied[2]], 0,
+                        1e-10 * np.abs(applied).max())
 
 
 @test("block_on_cylinder")
