@@ -170,7 +170,9 @@ PetscErrorCode PrintSummary(MPI_Comm comm, ContactSolver &solver, const ContactS
   PetscCall(PetscPrintf(comm, "  contact %s %.6g, max pressure %.6g, max penetration %.3e, max |lambda g| "
                         "%.3e, max |u| %.6g\n", dim == 2 ? "length" : "area", s.contact_length, s.max_pressure,
                         s.max_penetration, s.complementarity, s.max_displacement));
-  if (h.enabled) {
+  if (h.enabled && s.active_nodes == 0)
+    PetscCall(PetscPrintf(comm, "  Hertz (R = %g, P = %g): no contact, nothing to compare\n", h.R, h.P));
+  else if (h.enabled) {
     PetscCall(PetscPrintf(comm, "  Hertz (R = %g, P = %g): %s a = %.6g computed %.6g (%+.2f%%), peak pressure p0 = "
                           "%.6g computed %.6g (%+.2f%%, fit of %" PetscInt_FMT " nodal pressures)\n", h.R, h.P,
                           dim == 2 ? "half-width" : "contact radius", h.a, h.a_h, 100 * (h.a_h - h.a) / h.a, h.p0,
