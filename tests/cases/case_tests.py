@@ -412,7 +412,9 @@ RANK_CASES = {"hertz": [], "beam_on_floor": ["-options_file", "options/beam_on_f
               "cube_on_sphere": ["-options_file", "options/cube_on_sphere.yml"],
               "cube_on_sphere_svk": ["-options_file", "options/cube_on_sphere.yml", "-material_model", "svk"],
               "plate_on_arc": ["-options_file", "options/plate_on_arc.yml"],
-              "block_in_notch": ["-options_file", "options/block_in_notch.yml"]}
+              "block_in_notch": ["-options_file", "options/block_in_notch.yml"],
+              "hertz3d": ["-options_file", "options/hertz3d.yml"],
+              "block_on_cylinder": ["-options_file", "options/block_on_cylinder.yml"]}
 
 
 @test("rank_independence")
