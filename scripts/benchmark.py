@@ -9,6 +9,10 @@ Families (each run is the executable with a case options file, a solver preset a
   beam   options/beam_on_floor.yml on meshes/beam_bench.geo (cantilever clamped on the left, pushed onto a floor; K is
          regular, so every preset, the Schur fieldsplits included, applies)
   svk    the nonlinear line: hertz with -material_model svk -load_steps 3 and the default solver (mumps_cholesky)
+  hertz3d  options/hertz3d.yml on meshes/hertz3d.geo (3D Hertz: an octant of a ball on a plane, graded towards the
+         contact; K is singular as in 2D). Its largest level (about 760k displacement dofs) is the largest expected
+         to fit in 24 GiB with the default solver: one MUMPS LDL^T of a 3D cube took 17.4 GiB at 681k dofs on the
+         2-core machine, so 1M dofs would not fit.
 
 Per run it records: displacement dofs, multipliers, active-set iterations, Krylov iterations, the time per phase,
 the peak memory, the Hertz errors and the ratio (contact solve) / (one elastic solve).
@@ -87,10 +91,16 @@ BEAM_LEVELS = [0.2, 0.1, 0.05, 0.025, 0.0177, 0.0125]  # 8.4k, 33k, 130k, 516k, 
 BEAM_QUICK = [0.4]
 SVK_LEVELS = [1.0, 0.25]
 SVK_QUICK = [1.0]
+HERTZ3D_LEVELS = [2.0, 1.4, 1.0, 0.7, 0.5, 0.4, 0.35]  # 6.2k, 16k, 40k, 110k; estimated 280k, 530k, 760k dofs
+HERTZ3D_QUICK = [2.0]
 
 
 def hertz_dofs(f):
     return 12100.0 / (f * f)
+
+
+def hertz3d_dofs(f):
+    return 40400.0 / f ** 2.8  # measured 6.2k, 16k, 40k, 110k at F = 2, 1.4, 1, 0.7
 
 
 def beam_dofs(f):
@@ -103,6 +113,11 @@ FAMILIES = {
                            "-obstacle_segments", "-12,-8.0001,12,-8.0001"]),
     "beam": dict(case="options/beam_on_floor.yml", geo="meshes/beam_bench.geo", dofs=beam_dofs, extra=[],
                  elastic=["-bc_pressure", "top:-0.2"]),
+    # Elastic reference as for hertz: the top clamped, an upward body force of about the same total (P / 4 over the
+    # octant's volume), the plane lowered by 1e-4.
+    "hertz3d": dict(case="options/hertz3d.yml", geo="meshes/hertz3d.geo", dofs=hertz3d_dofs, extra=[],
+                    elastic=["-bc_dirichlet", "symmetry_x:x,symmetry_y:y,top:x:y:z", "-bc_body_force", "0,0,0.00716",
+                             "-obstacle_planes", "0,0,-10.0001,0,0,1"]),
     "svk": dict(case="options/hertz.yml", geo="meshes/hertz.geo", dofs=hertz_dofs,
                 extra=["-material_model", "svk", "-load_steps", "3"], elastic=None),
 }
@@ -365,7 +380,7 @@ def markdown(rows, meta):
              "`ratio` = contact / elastic, `ratio1` = contact / first solve.", ""]
     head = ("| preset | np | F | dofs | mult | AS its | Krylov | mesh | setup | assembly | factor | solve | "
             "output | contact | elastic | ratio | ratio1 | RSS | a err % | p0 err % | status |")
-    for fam in ["hertz", "beam", "svk"]:
+    for fam in ["hertz", "hertz3d", "beam", "svk"]:
         fr = [r for r in rows if r["family"] == fam]
         if not fr:
             continue
@@ -441,7 +456,8 @@ def plots(rows, outdir):
         plt.close(fig)
         return path
 
-    fams = [f for f in ["hertz", "beam", "svk"] if any(r["family"] == f and r["status"] == "ok" for r in rows)]
+    fams = [f for f in ["hertz", "hertz3d", "beam", "svk"]
+            if any(r["family"] == f and r["status"] == "ok" for r in rows)]
     if not fams:
         return []
     presets = sorted({r["preset"] for r in rows})
@@ -472,7 +488,7 @@ def plots(rows, outdir):
             if ref:
                 y0 = min(ref)
                 ax.loglog([x0, x1], [y0, y0 * (x1 / x0)], color="0.7", lw=0.8, label="O(n)")
-        style_axes(ax, {"hertz": "2D Hertz", "beam": "beam on floor (regular K)",
+        style_axes(ax, {"hertz": "2D Hertz", "hertz3d": "3D Hertz (octant)", "beam": "beam on floor (regular K)",
                         "svk": "Hertz, svk, 3 load steps"}[fam], "contact solve time [s]")
     written.append(save_figure(fig, outdir, "bench_time.png"))
 
@@ -484,10 +500,11 @@ def plots(rows, outdir):
                 x, y = series(fam, preset, n, "active_set_iterations")
                 if x:
                     ax.semilogx(x, y, ls, marker=mk, ms=4, color=colors[preset], label="%s np=%d" % (preset, n))
-        if fam != "svk":
+        if fam not in ("svk", "hertz3d"):
             ax.axhline(10, color="r", lw=0.8, ls=":", label="target 10")
         ax.set_ylim(bottom=0)
-        style_axes(ax, {"hertz": "2D Hertz", "beam": "beam on floor", "svk": "Hertz, svk, 3 load steps"}[fam],
+        style_axes(ax, {"hertz": "2D Hertz", "hertz3d": "3D Hertz (octant)", "beam": "beam on floor",
+                        "svk": "Hertz, svk, 3 load steps"}[fam],
                    "active-set iterations")
     written.append(save_figure(fig, outdir, "bench_iterations.png"))
 
@@ -541,12 +558,12 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     ap.add_argument("--quick", action="store_true",
-                    help="small subset, < 2 minutes: hertz F=1, 0.7 (direct presets), beam F=0.4 (all presets), "
-                         "svk F=1")
+                    help="small subset, < 2 minutes: hertz F=1, 0.7 and hertz3d F=2 (direct presets), beam F=0.4 "
+                         "(all presets), svk F=1")
     ap.add_argument("--max-dofs", type=float, default=2.1e6, help="largest mesh (estimated displacement dofs)")
     ap.add_argument("--presets", default="", help="comma list of options/solver/*.yml names (default: all)")
     ap.add_argument("--ranks", default="1,2", help="comma list of MPI rank counts (default 1,2)")
-    ap.add_argument("--families", default="hertz,beam,svk", help="comma list of hertz, beam, svk")
+    ap.add_argument("--families", default="hertz,beam,svk,hertz3d", help="comma list of hertz, beam, svk, hertz3d")
     ap.add_argument("--out", default=os.path.join(REPO, "scripts", "bench_out"), help="output folder")
     ap.add_argument("--exe", default=os.environ.get("SIGNORINI_EXE", os.path.join(REPO, "build", "signorini")))
     ap.add_argument("--timeout", type=float, default=None, help="seconds per run at most (default 1800, --quick 15)")
@@ -577,16 +594,17 @@ def main():
     families = [f for f in args.families.split(",") if f]
     for f in families:
         if f not in FAMILIES:
-            sys.exit("benchmark: unknown family %s; expected hertz, beam, svk" % f)
+            sys.exit("benchmark: unknown family %s; expected hertz, beam, svk, hertz3d" % f)
     os.makedirs(os.path.join(args.out, "runs"), exist_ok=True)
 
     levels = {"hertz": HERTZ_QUICK if args.quick else HERTZ_LEVELS,
               "beam": BEAM_QUICK if args.quick else BEAM_LEVELS,
-              "svk": SVK_QUICK if args.quick else SVK_LEVELS}
+              "svk": SVK_QUICK if args.quick else SVK_LEVELS,
+              "hertz3d": HERTZ3D_QUICK if args.quick else HERTZ3D_LEVELS}
     plan = []
     for fam in families:
         fam_presets = [DEFAULT_PRESET] if fam == "svk" else presets
-        if args.quick and fam == "hertz":
+        if args.quick and fam in ("hertz", "hertz3d"):
             # Expected to fail there (singular K) and slow to do so: --quick runs the fieldsplits on the beam only.
             fam_presets = [p for p in fam_presets if not p.startswith("fieldsplit")]
         for level in levels[fam]:

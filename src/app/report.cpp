@@ -4,7 +4,9 @@
 #include "signorini/core/options.hpp"
 #include "signorini/io/json.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <vector>
 
@@ -28,22 +30,106 @@ PetscErrorCode ReadReportOptions(MPI_Comm comm, HertzReport &hertz) {
   PetscFunctionReturn(0);
 }
 
-void ComputeHertz(const Material &m, const ContactSummary &s, int dim, HertzReport &h) {
-  if (!h.enabled) return;
-  h.dim = dim;
-  const double Estar = dim == 2 && m.plane_stress ? m.E : m.E / (1 - m.nu * m.nu);
-  h.p0_h = s.max_pressure;
-  if (dim == 2) {
-    h.a = std::sqrt(4 * h.P * h.R / (M_PI * Estar));
-    h.p0 = 2 * h.P / (M_PI * h.a);
-    h.a_h = 0.5 * s.contact_length;
-    return;
+namespace {
+
+/// The contact centre: the candidate node of the first contact (the smallest initial gap; the smallest original
+/// vertex number at a tie), its reference position and the normal of its pair, the same on every rank. Collective.
+PetscErrorCode ContactCentre(ContactSolver &solver, double centre[3], double normal[3]) {
+  const Mesh &mesh = solver.GetMesh();
+  const auto &pairs = solver.Pairs();
+  MPI_Comm comm = mesh.Comm();
+  double g_local = std::numeric_limits<double>::infinity(), g_min;
+  PetscFunctionBeginUser;
+  for (const auto &p : pairs) g_local = std::min(g_local, p.g0);
+  PetscCallMPI(MPI_Allreduce(&g_local, &g_min, 1, MPI_DOUBLE, MPI_MIN, comm));
+  PetscInt id_local = PETSC_MAX_INT, id_min;
+  std::size_t best = pairs.size();
+  for (std::size_t p = 0; p < pairs.size(); ++p)
+    if (pairs[p].g0 == g_min && mesh.VertexOriginal(pairs[p].vertex) < id_local) {
+      id_local = mesh.VertexOriginal(pairs[p].vertex);
+      best = p;
+    }
+  PetscCallMPI(MPI_Allreduce(&id_local, &id_min, 1, MPIU_INT, MPI_MIN, comm));
+  double local[6] = {0, 0, 0, 0, 0, 0}, global[6];
+  if (best < pairs.size() && id_local == id_min)
+    for (int k = 0; k < mesh.Dim(); ++k) {
+      local[k] = mesh.X(pairs[best].vertex)[k];
+      local[3 + k] = pairs[best].n0[k];
+    }
+  PetscCallMPI(MPI_Allreduce(local, global, 6, MPI_DOUBLE, MPI_SUM, comm));
+  for (int k = 0; k < 3; ++k) {
+    centre[k] = global[k];
+    normal[k] = global[3 + k];
   }
-  h.a = std::cbrt(3 * h.P * h.R / (4 * Estar));
-  h.p0 = 3 * h.P / (2 * M_PI * h.a * h.a);
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode ComputeHertz(ContactSolver &solver, const Material &m, const NodeContact &nodes,
+                            const ContactSummary &s, HertzReport &h) {
+  const Mesh &mesh = solver.GetMesh();
+  const int dim = mesh.Dim();
+  MPI_Comm comm = mesh.Comm();
+  PetscFunctionBeginUser;
+  if (!h.enabled || s.active_nodes == 0) PetscFunctionReturn(0);
+  h.dim = dim;
+  // The model carries the fraction 1, 1/2 or 1/4 (one or two symmetry planes) of P: the power of two nearest to
+  // |contact force| / P. Johnson's values are those of the load it carries, P_model = |contact force| / fraction
+  // (a pressure on a faceted curved boundary falls short of the nominal load by the area the facets cut off).
   const auto &f = s.contact_force;
-  const double fraction = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / h.P;
-  h.a_h = fraction > 0 ? std::sqrt(s.contact_length / (fraction * M_PI)) : 0;
+  const double force = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+  const int halvings = std::clamp((int)std::lround(std::log2(h.P / force)), 0, 2);
+  h.fraction = std::ldexp(1.0, -halvings);
+  h.P_model = force / h.fraction;
+  const double Estar = dim == 2 && m.plane_stress ? m.E : m.E / (1 - m.nu * m.nu);
+  if (dim == 2) {
+    h.a = std::sqrt(4 * h.P_model * h.R / (M_PI * Estar));
+    h.p0 = 2 * h.P_model / (M_PI * h.a);
+    h.a_h = 0.5 * s.contact_length / h.fraction; // the length of the contact zone of the whole cylinder is 2 a
+  } else {
+    h.a = std::cbrt(3 * h.P_model * h.R / (4 * Estar));
+    h.p0 = 3 * h.P_model / (2 * M_PI * h.a * h.a);
+    h.a_h = std::sqrt(s.contact_length / (h.fraction * M_PI)); // the contact area of the whole sphere is pi a^2
+  }
+  // Peak pressure: the nodal pressure lambda / w scatters by a few per cent from node to node on an unstructured
+  // mesh, so its maximum overshoots p0 and the value at the centre undershoots it. Hertz's profile p^2 = p0^2 (1 -
+  // r^2 / a^2) is linear in r^2: p0^2 is the intercept of the least-squares line through (r^2, p^2) of the active
+  // nodes within HERTZ_FIT_RADIUS of the outermost active node's distance r_out from the centre (the nodes of the
+  // outer ring average the pressure over the edge of the contact zone).
+  constexpr double HERTZ_FIT_RADIUS = 0.8;
+  double centre[3], normal[3];
+  PetscCall(ContactCentre(solver, centre, normal));
+  std::vector<double> r2(mesh.NumLocalVertices(), 0.0);
+  double r2_out_local = 0, r2_out;
+  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) {
+    if (!mesh.Owned(v) || !nodes.active[v]) continue;
+    double d2 = 0, dn = 0;
+    for (int k = 0; k < dim; ++k) {
+      const double d = mesh.X(v)[k] - centre[k];
+      d2 += d * d;
+      dn += d * normal[k];
+    }
+    r2[v] = std::max(0.0, d2 - dn * dn); // squared distance from the centre in the plane of the contact
+    r2_out_local = std::max(r2_out_local, r2[v]);
+  }
+  PetscCallMPI(MPI_Allreduce(&r2_out_local, &r2_out, 1, MPI_DOUBLE, MPI_MAX, comm));
+  double local[5] = {0, 0, 0, 0, 0}, sums[5]; // n, sum r^2, sum r^4, sum p^2, sum p^2 r^2
+  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) {
+    if (!mesh.Owned(v) || !nodes.active[v] || r2[v] > HERTZ_FIT_RADIUS * HERTZ_FIT_RADIUS * r2_out) continue;
+    const double p2 = nodes.pressure[v] * nodes.pressure[v];
+    local[0] += 1;
+    local[1] += r2[v];
+    local[2] += r2[v] * r2[v];
+    local[3] += p2;
+    local[4] += p2 * r2[v];
+  }
+  PetscCallMPI(MPI_Allreduce(local, sums, 5, MPI_DOUBLE, MPI_SUM, comm));
+  const double det = sums[0] * sums[2] - sums[1] * sums[1];
+  const double intercept = det > 0 ? (sums[2] * sums[3] - sums[1] * sums[4]) / det : 0;
+  h.fit_nodes = (PetscInt)sums[0];
+  h.p0_h = intercept > 0 ? std::sqrt(intercept) : s.max_pressure; // fewer than two distinct radii: the largest
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m, ContactSolver &solver) {
@@ -84,11 +170,15 @@ PetscErrorCode PrintSummary(MPI_Comm comm, ContactSolver &solver, const ContactS
   PetscCall(PetscPrintf(comm, "  contact %s %.6g, max pressure %.6g, max penetration %.3e, max |lambda g| "
                         "%.3e, max |u| %.6g\n", dim == 2 ? "length" : "area", s.contact_length, s.max_pressure,
                         s.max_penetration, s.complementarity, s.max_displacement));
-  if (h.enabled) {
-    PetscCall(PetscPrintf(comm, "  Hertz (R = %g, P = %g): %s a = %.6g computed %.6g (%+.2f%%), peak "
-                          "pressure p0 = %.6g computed %.6g (%+.2f%%)\n", h.R, h.P,
+  if (h.enabled && s.active_nodes == 0)
+    PetscCall(PetscPrintf(comm, "  Hertz (R = %g, P = %g): no contact, nothing to compare\n", h.R, h.P));
+  else if (h.enabled) {
+    PetscCall(PetscPrintf(comm, "  Hertz (R = %g, P = %g): %s a = %.6g computed %.6g (%+.2f%%), peak pressure p0 = "
+                          "%.6g computed %.6g (%+.2f%%, fit of %" PetscInt_FMT " nodal pressures)\n", h.R, h.P,
                           dim == 2 ? "half-width" : "contact radius", h.a, h.a_h, 100 * (h.a_h - h.a) / h.a, h.p0,
-                          h.p0_h, 100 * (h.p0_h - h.p0) / h.p0));
+                          h.p0_h, 100 * (h.p0_h - h.p0) / h.p0, h.fit_nodes));
+    PetscCall(PetscPrintf(comm, "    Johnson's values for the load the model stands for, %.6g (it is %g of the body "
+                          "and carries %.6g)\n", h.P_model, h.fraction, h.fraction * h.P_model));
   }
   PetscFunctionReturn(0);
 }
@@ -181,10 +271,13 @@ std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &s
     j.BeginObject("hertz")
         .Number("R", h.R)
         .Number("P", h.P)
+        .Number("fraction", h.fraction)
+        .Number("P_model", h.P_model)
         .Number("a", h.a)
         .Number("a_computed", h.a_h)
         .Number("p0", h.p0)
         .Number("p0_computed", h.p0_h)
+        .Integer("fit_nodes", h.fit_nodes)
         .EndObject();
   j.EndObject();
   return j.Text();

@@ -274,7 +274,7 @@ PetscErrorCode Run() {
   PetscCall(PetscLogStagePush(stage_output));
   ProgressBegin("results and output");
   PetscCall(ComputeContactResults(solver, material, nodes, summary));
-  ComputeHertz(material, summary, mesh.Dim(), hertz);
+  PetscCall(ComputeHertz(solver, material, nodes, summary, hertz));
   PetscCall(PrintSummary(comm, solver, summary, hertz));
   if (output.Enabled()) {
     PetscCall(CollectFields(solver, nodes, fields, table));

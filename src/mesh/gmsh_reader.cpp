@@ -89,7 +89,8 @@ std::string ReadModel(const std::string &path, SerialMesh &mesh) {
   for (std::size_t i = 0; i < all_tags.size(); ++i)
     if (used[i] >= 0) zmin = std::min(zmin, all_coords[3 * i + 2]), zmax = std::max(zmax, all_coords[3 * i + 2]);
   if (dim == 2 && zmax - zmin > 1e-12 * (1.0 + std::abs(zmax)))
-    return "mesh '" + path + "' is not planar (z varies); expected a 2D mesh in the x-y plane";
+    return "mesh '" + path + "' has no volume cells and is not planar (z varies): a surface mesh cannot be the body; "
+           "expected tetrahedra or hexahedra (3D) or a 2D mesh in the x-y plane";
 
   auto node_index = [&](std::size_t tag) { return used[tag_pos.at(tag)]; };
   std::unordered_map<std::size_t, int> cell_of_tag;

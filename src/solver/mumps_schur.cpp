@@ -178,6 +178,7 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   id_.nprow = 1, id_.npcol = 1, id_.mblock = 64, id_.nblock = 64;
   id_.ICNTL(24) = 1; // null-pivot detection
   id_.CNTL(3) = 1e-12;
+  id_.ICNTL(14) = MUMPS_WORKSPACE_INCREASE; // see saddle_point.cpp
   // The user's MUMPS controls under the solver's prefix (-contact_mat_mumps_icntl_<k>, -contact_mat_mumps_cntl_<k>),
   // as PETSc's interface reads them, except the ones this class relies on (input/Schur/right-hand-side layout).
   const auto control = [](const char *array, int k) { return "-mat_mumps_" + std::string(array) + "_" + std::to_string(k); };

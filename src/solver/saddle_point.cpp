@@ -109,6 +109,10 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
       // A pivot below 1e-12 ||A|| is null: MUMPS's default (1e-5 eps ||A||) misses the rigid modes of 2D
       // elasticity; -contact_mat_mumps_cntl_3 overrides.
       PetscCall(MatMumpsSetCntl(mumps_factor_, 3, 1e-12));
+      // MUMPS_WORKSPACE_INCREASE % over the analysis' workspace estimate (MUMPS's default 20 %): LDL^T pivots
+      // differently from run to run in parallel, and a 3D hexahedral mesh then stopped about every other 2-rank run
+      // with INFOG(1) = -9 (workspace too small); -contact_mat_mumps_icntl_14 overrides.
+      PetscCall(MatMumpsSetIcntl(mumps_factor_, 14, MUMPS_WORKSPACE_INCREASE));
     }
   }
   SaddlePointOptions opts;

@@ -71,19 +71,20 @@ class Result:
             return f["step_%06d/%s" % (step, name)][()]
 
     def solution(self, step=1):
-        """(coordinates N x 2, cells as a list of node-index arrays, displacement N x 2) from solution.h5."""
+        """(coordinates N x dim, cells as a list of node-index arrays, displacement N x dim) from solution.h5."""
         import h5py
 
         with h5py.File(os.path.join(self.dir, "solution.h5"), "r") as f:
-            xyz = f["mesh/coordinates"][:, :2]
+            dim = self.get("mesh.dim")
+            xyz = f["mesh/coordinates"][:, :dim]
             topo = f["mesh/topology"][()]
-            u = f["step_%06d/displacement" % step][:, :2]
+            u = f["step_%06d/displacement" % step][:, :dim]
         if topo.ndim == 2:
             cells = list(topo)
-        else:  # XDMF mixed topology: a type id (4 triangle, 5 quadrilateral) before each cell's nodes
-            cells, i = [], 0
+        else:  # XDMF mixed topology: a type id (4 triangle, 5 quadrilateral, 6 tetrahedron, 9 hexahedron) before
+            cells, i = [], 0  # each cell's nodes
             while i < len(topo):
-                n = {4: 3, 5: 4}[int(topo[i])]
+                n = {4: 3, 5: 4, 6: 4, 9: 8}[int(topo[i])]
                 cells.append(topo[i + 1:i + 1 + n])
                 i += n + 1
         return xyz, cells, u

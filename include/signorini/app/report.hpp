@@ -17,18 +17,23 @@ struct HertzReport {
   bool enabled = false;
   int dim = 2;
   double R = 0, P = 0;
+  double fraction = 1, P_model = 0;     ///< the fraction of the body modelled (symmetry planes), the load it stands for
   double a = 0, p0 = 0;                 ///< analytical half-width (2D) or contact radius (3D) and peak pressure
-  double a_h = 0, p0_h = 0;             ///< computed (see ComputeHertz) and peak nodal pressure
+  double a_h = 0, p0_h = 0;             ///< computed (see ComputeHertz)
+  PetscInt fit_nodes = 0;               ///< nodal pressures in the fit of p0_h
 };
 
 /// Reads -report_hertz R,P. Collective.
 [[nodiscard]] PetscErrorCode ReadReportOptions(MPI_Comm comm, HertzReport &hertz);
 
-/// Fills the analytical and computed Hertz values for a mesh of dimension dim. 2D: a = sqrt(4 P R / (pi E*)),
-/// p0 = 2 P / (pi a), computed a = contact length / 2. 3D: a = (3 P R / (4 E*))^(1/3), p0 = 3 P / (2 pi a^2);
-/// a model of a fraction f of the sphere (symmetry planes) carries f P, so f = |contact force| / P and the computed
-/// radius is that of the circle of area contact area / f.
-void ComputeHertz(const Material &m, const ContactSummary &s, int dim, HertzReport &hertz);
+/// Fills the analytical and computed Hertz values. The model is the fraction 1, 1/2 or 1/4 of the body (symmetry
+/// planes) nearest to |contact force| / P, and Johnson's values are those of the load it carries, P_model =
+/// |contact force| / fraction. 2D: a = sqrt(4 P R / (pi E*)), p0 = 2 P / (pi a), computed a = contact length /
+/// (2 fraction). 3D: a = (3 P R / (4 E*))^(1/3), p0 = 3 P / (2 pi a^2), computed a = radius of the circle of area
+/// contact area / fraction. Computed p0: the intercept of Hertz's profile p^2 = p0^2 (1 - r^2 / a^2) fitted to the
+/// nodal pressures around the contact centre (the candidate node of the first contact). Collective.
+[[nodiscard]] PetscErrorCode ComputeHertz(ContactSolver &solver, const Material &m, const NodeContact &nodes,
+                                          const ContactSummary &s, HertzReport &hertz);
 
 /// Everything the report needs besides the solver.
 struct RunInfo {

@@ -17,6 +17,10 @@
 
 namespace signorini {
 
+/// MUMPS's ICNTL(14) for every MUMPS factorisation of the saddle-point system: the workspace is this many per cent
+/// above the analysis' estimate (MUMPS's default, 20, was exceeded by 2-rank LDL^T of 3D hexahedral meshes).
+constexpr int MUMPS_WORKSPACE_INCREASE = 50;
+
 class MumpsSchur {
 public:
   MumpsSchur() = default;
