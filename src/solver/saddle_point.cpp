@@ -163,21 +163,42 @@ PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<ConstraintRo
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SaddlePointSystem::ToRoot(const std::vector<double> &owned, std::vector<PetscScalar> &root) {
+  PetscScalar *a;
+  PetscInt m;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(diag_lambda_, &a));
+  for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) a[p] = owned[p];
+  PetscCall(VecRestoreArray(diag_lambda_, &a));
+  PetscCall(VecScatterBegin(to_root_, diag_lambda_, diag_root_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(to_root_, diag_lambda_, diag_root_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetLocalSize(diag_root_, &m));
+  PetscCall(VecGetArray(diag_root_, &a));
+  root.assign(a, a + m);
+  PetscCall(VecRestoreArray(diag_root_, &a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::FromRoot(const std::vector<PetscScalar> &root, std::vector<double> &owned) {
+  PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(diag_root_, &a));
+  for (std::size_t i = 0; i < root.size(); ++i) a[i] = root[i];
+  PetscCall(VecRestoreArray(diag_root_, &a));
+  PetscCall(VecScatterBegin(to_root_, diag_root_, diag_lambda_, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(to_root_, diag_root_, diag_lambda_, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecGetArray(diag_lambda_, &a));
+  owned.assign(a, a + dofs_->OwnedLambda());
+  PetscCall(VecRestoreArray(diag_lambda_, &a));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SaddlePointSystem::MultiplierDiagonal(std::vector<PetscScalar> &d) {
   PetscFunctionBeginUser;
   // The values SetConstraints wrote.
-  PetscScalar *dl;
-  const PetscScalar *a;
-  PetscCall(VecGetArray(diag_lambda_, &dl));
-  for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) dl[p] = active_[p] ? 0.0 : InactiveDiagonal(0.0);
-  PetscCall(VecRestoreArray(diag_lambda_, &dl));
-  PetscCall(VecScatterBegin(to_root_, diag_lambda_, diag_root_, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(to_root_, diag_lambda_, diag_root_, INSERT_VALUES, SCATTER_FORWARD));
-  PetscInt m;
-  PetscCall(VecGetLocalSize(diag_root_, &m));
-  PetscCall(VecGetArrayRead(diag_root_, &a));
-  d.assign(a, a + m);
-  PetscCall(VecRestoreArrayRead(diag_root_, &a));
+  std::vector<double> owned(dofs_->OwnedLambda());
+  for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) owned[p] = active_[p] ? 0.0 : InactiveDiagonal(0.0);
+  PetscCall(ToRoot(owned, d));
   PetscFunctionReturn(0);
 }
 
@@ -250,34 +271,20 @@ PetscErrorCode SaddlePointSystem::SolveCondensed(const std::vector<double> &bm, 
   PetscCheck(reuse_ && factored_ && stab_ == 0, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
              "a condensed solve needs the kept factorisation and no stabilisation");
   std::vector<PetscScalar> d, y;
+  std::vector<double> x;
   PetscCall(MultiplierDiagonal(d));
-  // b_m to rank 0 (through the diagonal's vector and scatter), the dense solve there, x_m back.
-  PetscScalar *a;
-  PetscCall(VecGetArray(diag_lambda_, &a));
-  for (PetscInt p = 0; p < nl; ++p) a[p] = bm[p];
-  PetscCall(VecRestoreArray(diag_lambda_, &a));
-  PetscCall(VecScatterBegin(to_root_, diag_lambda_, diag_root_, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(to_root_, diag_lambda_, diag_root_, INSERT_VALUES, SCATTER_FORWARD));
-  PetscInt m;
-  PetscCall(VecGetLocalSize(diag_root_, &m));
-  PetscCall(VecGetArray(diag_root_, &a));
-  y.assign(a, a + m);
+  // b_m to rank 0, the dense solve there, x_m back.
+  PetscCall(ToRoot(bm, y));
   PetscCall(mumps_schur_.SolveReduced(d, y));
-  for (PetscInt i = 0; i < m; ++i) a[i] = y[i];
-  PetscCall(VecRestoreArray(diag_root_, &a));
-  PetscCall(VecScatterBegin(to_root_, diag_root_, diag_lambda_, INSERT_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(to_root_, diag_root_, diag_lambda_, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(FromRoot(y, x));
   // Row p: -B_p du + D_p x_p = b_p, so B_p du = D_p x_p - b_p; an active row's multiplier is x_p + r b_p.
-  const PetscScalar *x;
   lambda.assign(nl, 0.0);
   shift.assign(nl, 0.0);
-  PetscCall(VecGetArrayRead(diag_lambda_, &x));
   for (PetscInt p = 0; p < nl; ++p) {
     const double dp = active_[p] ? 0.0 : InactiveDiagonal(0.0);
     shift[p] = dp * x[p] - bm[p];
     lambda[p] = active_[p] ? x[p] + aug_ * bm[p] : 0.0;
   }
-  PetscCall(VecRestoreArrayRead(diag_lambda_, &x));
   PetscFunctionReturn(0);
 }
 

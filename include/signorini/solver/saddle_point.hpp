@@ -95,6 +95,9 @@ private:
   /// Reuse mode: the multiplier diagonal D of A (from the active flags) on rank 0, in the order of schur_rows_.
   /// Collective.
   [[nodiscard]] PetscErrorCode MultiplierDiagonal(std::vector<PetscScalar> &d);
+  /// Reuse mode: a value per owned multiplier row to rank 0 (Schur order; empty elsewhere), and back. Collective.
+  [[nodiscard]] PetscErrorCode ToRoot(const std::vector<double> &owned, std::vector<PetscScalar> &root);
+  [[nodiscard]] PetscErrorCode FromRoot(const std::vector<PetscScalar> &root, std::vector<double> &owned);
   /// The start of the next solve in x_: zero for a direct solver; the last multipliers for an iterative one.
   [[nodiscard]] PetscErrorCode InitialGuess();
   /// What to use instead after a failed KSP solve (": ...; expected ..."), from the preconditioner that failed.
