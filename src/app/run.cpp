@@ -69,11 +69,15 @@ PetscErrorCode HelpKsp(MPI_Comm comm) {
   PetscMPIInt rank;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  // The stand-in matrix's own options (-mat_*, unprefixed) are PETSc's generic ones: they join the held text that is
+  // listed last, so that the solver's groups follow the program's.
+  PetscHelpPrintf = HoldHelpPrintf;
   PetscCall(MatCreateAIJ(comm, 3, 3, PETSC_DETERMINE, PETSC_DETERMINE, 1, nullptr, 0, nullptr, A.out()));
   for (PetscInt i = 0; i < 3; ++i) PetscCall(MatSetValue(A, 3 * rank + i, 3 * rank + i, i < 2 ? 1.0 : -1.0,
                                                           INSERT_VALUES));
   PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  PetscHelpPrintf = PetscHelpPrintfDefault;
   ISH u, lambda;
   PetscCall(ISCreateStride(comm, 2, 3 * rank, 1, u.out()));
   PetscCall(ISCreateStride(comm, 1, 3 * rank + 2, 1, lambda.out()));
@@ -180,6 +184,12 @@ PetscErrorCode Run() {
   PetscCall(PetscLogStageRegister("Setup", &stage_setup));
   PetscCall(PetscLogStageRegister("ContactSolve", &stage_solve));
   PetscCall(PetscLogStageRegister("Output", &stage_output));
+  PetscBool help;
+  PetscCall(PetscOptionsHasHelp(nullptr, &help));
+  if (help)
+    PetscCall(PetscPrintf(comm, "signorini: frictionless (Signorini) contact of elastic bodies against rigid "
+                          "obstacles.\nEvery input is a PETSc option; without -mesh_file the built-in 2D Hertz case "
+                          "runs.\n\n"));
   PetscCall(ApplyDefaultCase());
   PetscCall(ReadProgressOptions(comm));
 
@@ -197,8 +207,6 @@ PetscErrorCode Run() {
   PetscCall(ReadSolverOptions(comm, solver_opts));
   PetscCall(ReadOutputOptions(comm, output_opts));
   PetscCall(ReadReportOptions(comm, hertz));
-  PetscBool help;
-  PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (help) {
     PetscCall(ReadBoundaryConditions(comm, 0, bc));
     PetscCall(ReadContactOptions(comm, 1.0, material.E * material.thickness, contact));

@@ -42,6 +42,14 @@ if TEST == "help":
     check(out.find("Mesh options:") < out.find("Options for all PETSc programs"),
           "-help lists the program's groups before PETSc's generic options")
     check("-contact_mat_mumps_icntl_24" in out, "-help lists the MUMPS options of the default solver")
+    # The program's description, then its groups: no empty group, and the solver's groups come before any generic
+    # group of PETSc (the stand-in matrix's -mat_* options belong to PETSc's generic list at the end).
+    lines = out.splitlines()
+    check(lines[0].startswith("signorini: ") and lines[3:5] == ["-" * 40, "Progress:"],
+          "-help starts with the program's description and its first group")
+    check(out.find("Contact options:") < out.find("Preconditioner (PC) options:")
+          < out.find("PETSc's own options") < out.find("Options for SEQAIJ matrix"),
+          "-help lists the program's groups, then the solver's, then PETSc's generic ones (the -mat_* group last)")
     check("-contact_search_radius <now 0.1 x body diagonal" in out, "-help gives a ratio default with its unit")
     rc, out = run(["-help", "-options_file", "options/solver/fieldsplit_gamg.yml"])
     check(rc == 0 and "-contact_fieldsplit_u_pc_gamg_threshold" in out,
