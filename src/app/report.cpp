@@ -196,6 +196,7 @@ std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &s
   j.BeginObject("certificate")
       .Bool("satisfied", cert.Satisfied())
       .Number("max_penetration", cert.max_penetration)
+      .Number("unpaired_penetration", cert.unpaired_penetration)
       .Number("gap_tol", cert.gap_tol)
       .Number("min_active_lambda", cert.min_active_lambda)
       .Number("max_inactive_lambda", cert.max_inactive_lambda)

@@ -47,10 +47,16 @@ void ProposeSet(const std::vector<PairState> &states, double c, double tol, doub
 bool Certificate::Satisfied() const { return Violation().empty(); }
 
 std::string Certificate::Violation() const {
-  char text[256] = "";
+  char text[512] = "";
   if (!(max_penetration <= gap_tol))
     std::snprintf(text, sizeof(text), "a node penetrates the obstacle by %g (-contact_gap_tol %g)", max_penetration,
                   gap_tol);
+  else if (!(unpaired_penetration <= gap_tol))
+    std::snprintf(text, sizeof(text),
+                  "node %" PetscInt_FMT " (at %g, %g, %g) penetrates the obstacle by %g but has no contact pair: it "
+                  "was farther than -contact_search_radius %g from the obstacle when the pairs were found; raise "
+                  "-contact_search_radius", unpaired_node, unpaired_x[0], unpaired_x[1], unpaired_x[2],
+                  unpaired_penetration, search_radius);
   else if (!(min_active_lambda >= -lambda_tol))
     std::snprintf(text, sizeof(text), "an active pair carries a tensile multiplier %g (tolerance %g)",
                   min_active_lambda, lambda_tol);

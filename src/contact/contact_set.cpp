@@ -185,6 +185,54 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
+                               const std::vector<char> &candidate, const std::vector<ContactPair> &pairs,
+                               const double *u_local, double &depth, PetscInt &node, double position[3]) {
+  const int dim = mesh.Dim();
+  const PetscInt nv = mesh.NumLocalVertices();
+  PetscFunctionBeginUser;
+  std::vector<char> paired(nv, 0);
+  for (const auto &p : pairs) paired[p.vertex] = 1;
+  double reach = 0;
+  for (PetscInt v = 0; v < nv; ++v)
+    if (candidate[v] && !paired[v] && mesh.Owned(v)) {
+      double u2 = 0;
+      for (int k = 0; k < dim; ++k) u2 += u_local[v * dim + k] * u_local[v * dim + k];
+      reach = std::max(reach, std::sqrt(u2));
+    }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &reach, 1, MPI_DOUBLE, MPI_MAX, mesh.Comm()));
+  // The deepest local one; the global deepest, from the lowest rank at a tie.
+  struct {
+    double depth;
+    int rank;
+  } mine{0.0, 0}, deepest;
+  double where[4] = {-1, 0, 0, 0}; // file number, reference position
+  PetscCallMPI(MPI_Comm_rank(mesh.Comm(), &mine.rank));
+  if (reach > 0) {
+    const FacetBins bins(obstacle, dim, opts.search_radius + reach);
+    std::vector<PetscInt> near;
+    for (PetscInt v = 0; v < nv; ++v) {
+      if (!candidate[v] || paired[v] || !mesh.Owned(v)) continue;
+      double x[3] = {0, 0, 0};
+      for (int k = 0; k < dim; ++k) x[k] = mesh.X(v)[k] + u_local[v * dim + k];
+      bins.Find(x, near);
+      for (PetscInt f : near) {
+        const Projection p = obstacle.facets[f]->Project(x, opts.alpha_tol);
+        if (!p.inside || -p.gap <= mine.depth) continue;
+        mine.depth = -p.gap;
+        where[0] = (double)mesh.VertexOriginal(v) + 1;
+        for (int k = 0; k < dim; ++k) where[1 + k] = mesh.X(v)[k];
+      }
+    }
+  }
+  PetscCallMPI(MPI_Allreduce(&mine, &deepest, 1, MPI_DOUBLE_INT, MPI_MAXLOC, mesh.Comm()));
+  PetscCallMPI(MPI_Bcast(where, 4, MPI_DOUBLE, deepest.rank, mesh.Comm()));
+  depth = deepest.depth;
+  node = depth > 0 ? (PetscInt)where[0] : -1;
+  for (int k = 0; k < 3; ++k) position[k] = where[1 + k];
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode TributaryLengths(const Mesh &mesh, const std::vector<char> &candidate, std::vector<double> &length) {
   const int dim = mesh.Dim();
   std::vector<Face> faces;

@@ -383,7 +383,7 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt c
       PetscCall(PetscInfo(nullptr, "candidate state: equilibrium residual %g (tolerance %g)\n", st.rnorm, tol));
       if (st.rnorm <= tol || !st.large) {
         Certificate cert;
-        PetscCall(active_set_.Certify(states_, keys_, normals_, st.rnorm, tol, cert));
+        PetscCall(Certify(st.u_eval, st.rnorm, tol, cert));
         if (cert.Satisfied()) {
           stats_.reason = st.large ? "CONVERGED_ACTIVE_SET_AND_RESIDUAL" : "CONVERGED_ACTIVE_SET_UNCHANGED";
           outcome = Outcome::CONVERGED;
@@ -554,6 +554,17 @@ PetscErrorCode ContactSolver::Materialise(StepState &st, PetscInt it) {
   st.condensed = false;
   PetscCall(EvaluateIterate(st, it));
   for (std::size_t p = 0; p < pairs_.size(); ++p) states_[p].lambda = lambda_[p];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::Certify(const std::vector<double> &u_eval, double rnorm, double tol, Certificate &cert) {
+  PetscFunctionBeginUser;
+  PetscCall(active_set_.Certify(states_, keys_, normals_, rnorm, tol, cert));
+  // The pairs cover the nodes that were within the search radius: a node that was not and went through the obstacle
+  // would otherwise pass unseen.
+  PetscCall(DeepestUnpaired(mesh_, obstacle_, contact_, candidate_, pairs_, u_eval.data(), cert.unpaired_penetration,
+                            cert.unpaired_node, cert.unpaired_x));
+  cert.search_radius = contact_.search_radius;
   PetscFunctionReturn(0);
 }
 
@@ -737,8 +748,7 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     states_[p].lambda = lambda_[p], states_[p].active = active_set_.Flags()[p];
   double rnorm, rscale;
   PetscCall(Residual(lambda_, rnorm, rscale));
-  PetscCall(active_set_.Certify(states_, keys_, normals_, rnorm, EquilibriumTol(rscale),
-                                certificate_));
+  PetscCall(Certify(u_local_, rnorm, EquilibriumTol(rscale), certificate_));
   PetscCheck(certificate_.Satisfied(), comm, PETSC_ERR_NOT_CONVERGED,
              "the final state is not a contact solution: %s", certificate_.Violation().c_str());
   PetscFunctionReturn(0);

@@ -265,6 +265,13 @@ CASES = {
     # Held by contact alone, but pulled up out of the notch: no active set can hold it.
     "pulled_out_of_notch": (["-options_file", "{root}/options/block_in_notch.yml", "-bc_traction", "top:0:1"],
                             ["DIVERGED_NOT_HELD", "not held", "away from every obstacle"], {}),
+    # Nodes farther than the search radius from the wall at the start get no pair, and the cylinder sinks through it:
+    # the certificate must refuse that state (it used to be reported converged with a contact half as wide).
+    "search_radius_too_small": (["-contact_search_radius", "0.01"],
+                                ["DIVERGED_CERTIFICATE", "penetrates the obstacle", "has no contact pair",
+                                 "-contact_search_radius 0.01", "raise -contact_search_radius"], {"previous": HERTZ}),
+    "search_radius_too_small_3d": (["-options_file", "{root}/options/hertz3d.yml", "-contact_search_radius", "0.02"],
+                                   ["DIVERGED_CERTIFICATE", "has no contact pair", "-contact_search_radius 0.02"], {}),
     "active_set_max_it": (["-contact_max_it", "1"], ["did not converge", "-contact_max_it"], {"previous": HERTZ}),
     "newton_diverges": (BEAM + ["-material_model", "svk", "-newton_max_it", "1", "-load_max_cuts", "0",
                                 "-bc_pressure", "top:50"], ["did not converge", "-load_max_cuts"], {"previous": BEAM}),

@@ -61,6 +61,11 @@ void ProposeSet(const std::vector<PairState> &states, double c, double tol, doub
 /// thresholds they are held to. Satisfied() is the only way the loop reports convergence.
 struct Certificate {
   double max_penetration = 0;     ///< max -g over the pairs in their zone (0 when none penetrates)
+  double unpaired_penetration = 0; ///< deepest penetration of the obstacle by a candidate node without any pair
+                                   ///< (farther than the search radius when the pairs were found)
+  PetscInt unpaired_node = -1;     ///< that node (file numbering, from 1), -1 when none penetrates
+  double unpaired_x[3] = {0, 0, 0}; ///< its reference position
+  double search_radius = 0;        ///< -contact_search_radius, for the message
   double gap_tol = 0;             ///< -contact_gap_tol
   double min_active_lambda = 0;   ///< min lambda over the active pairs (0 when none)
   double lambda_tol = 0;          ///< c gap_tol: a multiplier above -lambda_tol counts as compressive

@@ -55,6 +55,16 @@ struct ContactPair {
                                               const std::vector<char> &fixed, std::vector<ContactPair> &pairs,
                                               std::vector<char> &candidate, const double *u_local = nullptr);
 
+/// The deepest penetration of the obstacle, at the positions X + u_local, by an owned candidate node that has no
+/// pair at all (it was farther than the search radius from every facet when the pairs were found): depth 0 and node
+/// -1 when none penetrates; node in file numbering (from 1) and its reference position, the same on every rank. Every
+/// facet within
+/// search radius + max |u| of a node is examined, so none that the node can have reached is missed. Collective.
+[[nodiscard]] PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
+                                             const std::vector<char> &candidate,
+                                             const std::vector<ContactPair> &pairs, const double *u_local,
+                                             double &depth, PetscInt &node, double position[3]);
+
 /// Tributary length (2D) or area (3D) of every local candidate vertex: the integral of its shape function over each
 /// adjacent boundary face whose every vertex is a candidate (half of an edge, a third of a triangle, a quarter of a
 /// parallelogram), summed over ranks. Collective.

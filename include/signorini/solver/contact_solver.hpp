@@ -92,6 +92,9 @@ private:
   [[nodiscard]] PetscErrorCode CreateSystem();
   /// svk: searches the pairs again at the current configuration u_eval (force, or when a candidate moved more than
   /// half the search radius since the last search); new pairs rebuild the system (rebuilt). Collective.
+  /// The certificate of the current state (states_ and the displacement u_eval, dim values per local vertex): the
+  /// active-set conditions over the pairs, and no candidate node without a pair inside the obstacle. Collective.
+  [[nodiscard]] PetscErrorCode Certify(const std::vector<double> &u_eval, double rnorm, double tol, Certificate &cert);
   [[nodiscard]] PetscErrorCode Repair(const std::vector<double> &u_eval, bool force, bool &rebuilt);
   /// Takes new pairs (with their multipliers and active flags), keeping the displacement. Collective.
   [[nodiscard]] PetscErrorCode AdoptPairs(std::vector<ContactPair> pairs, const std::vector<double> &lambda,
