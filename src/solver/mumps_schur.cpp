@@ -51,21 +51,48 @@ PetscErrorCode MumpsSchur::Call(int job, const char *phase) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MumpsSchur::NestedDissection(PetscInt n) {
+PetscErrorCode MumpsSchur::NestedDissection(PetscInt n, PetscInt rstart, PetscInt owned_u, PetscInt node_size) {
+  const MPI_Datatype IDX_T_MPI = sizeof(idx_t) == 8 ? MPI_INT64_T : MPI_INT32_T;
   PetscMPIInt size;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(EV_ORDERING, 0, 0, 0, 0));
   PetscCallMPI(MPI_Comm_size(comm_, &size));
-  // The off-diagonal entries (one triangle for LDL^T, both for LU: the graph is symmetrised below) on rank 0.
-  std::vector<MUMPS_INT> edges;
-  edges.reserve(2 * irn_.size());
-  for (std::size_t e = 0; e < irn_.size(); ++e)
-    if (irn_[e] != jcn_[e]) edges.push_back(irn_[e] - 1), edges.push_back(jcn_[e] - 1);
+  // The graph of the nodes: a node's displacement rows are node_size consecutive rows of one rank, and the rows of
+  // two nodes are coupled all or not at all. The multiplier rows are left out: MUMPS puts them last (they are the
+  // Schur rows), and each couples the rows of one node only. Node numbers: by rank, in row order.
+  PetscInt mine[3] = {rstart, owned_u, owned_u / node_size};
+  std::vector<PetscInt> ranges(3 * size);
+  PetscCallMPI(MPI_Allgather(mine, 3, MPIU_INT, ranges.data(), 3, MPIU_INT, comm_));
+  std::vector<PetscInt> first_node(size + 1, 0);
+  for (PetscMPIInt r = 0; r < size; ++r) first_node[r + 1] = first_node[r] + ranges[3 * r + 2];
+  const PetscInt num_nodes = first_node[size];
+  const auto node_of = [&](PetscInt row) -> PetscInt { // -1 for a multiplier row
+    PetscMPIInt r = 0;
+    while (r + 1 < size && ranges[3 * (r + 1)] <= row) ++r;
+    const PetscInt offset = row - ranges[3 * r];
+    return offset < ranges[3 * r + 1] ? first_node[r] + offset / node_size : -1;
+  };
+  // The edges from every row of a node (one triangle holds every coupled pair in the rows of its earlier node; a row
+  // alone may have none: a Dirichlet row holds its diagonal only), one per row and neighbour.
+  std::vector<idx_t> edges;
+  PetscInt last_row = -1, last_node = -1, row_node = -1;
+  for (std::size_t e = 0; e < irn_.size(); ++e) {
+    const PetscInt i = irn_[e] - 1, j = jcn_[e] - 1;
+    if (i != last_row) {
+      last_row = i, last_node = -1;
+      row_node = i - rstart < owned_u ? first_node[rank_] + (i - rstart) / node_size : -1;
+    }
+    if (row_node < 0) continue;
+    const PetscInt col_node = node_of(j);
+    if (col_node < 0 || col_node == row_node || col_node == last_node) continue;
+    last_node = col_node;
+    edges.push_back((idx_t)row_node), edges.push_back((idx_t)col_node);
+  }
   PetscMPIInt count = 0;
   PetscCall(PetscMPIIntCast((PetscInt)edges.size(), &count));
   std::vector<PetscMPIInt> counts(size), displs(size, 0);
   PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_));
-  std::vector<MUMPS_INT> all;
+  std::vector<idx_t> all;
   if (rank_ == 0) {
     std::size_t total = counts[0];
     for (PetscMPIInt r = 1; r < size; ++r) {
@@ -76,17 +103,18 @@ PetscErrorCode MumpsSchur::NestedDissection(PetscInt n) {
     }
     all.resize(total);
   }
-  PetscCallMPI(MPI_Gatherv(edges.data(), count, MPI_INT, all.data(), counts.data(), displs.data(), MPI_INT, 0, comm_));
+  PetscCallMPI(MPI_Gatherv(edges.data(), count, IDX_T_MPI, all.data(), counts.data(), displs.data(), IDX_T_MPI, 0,
+                           comm_));
   edges.clear();
   edges.shrink_to_fit();
   int status = METIS_OK;
   if (rank_ == 0) {
-    // Compressed adjacency of the symmetrised graph (duplicates of an LU pattern's two triangles removed), then
+    // Compressed adjacency of the symmetrised node graph (an LU pattern's two triangles give each edge twice), then
     // METIS's nested dissection; MUMPS takes the position of each variable in the pivot order (1-based).
-    std::vector<idx_t> xadj(n + 1, 0), adjncy;
+    std::vector<idx_t> xadj(num_nodes + 1, 0), adjncy;
     for (std::size_t e = 0; e < all.size(); e += 2) ++xadj[all[e] + 1], ++xadj[all[e + 1] + 1];
-    for (PetscInt i = 0; i < n; ++i) xadj[i + 1] += xadj[i];
-    adjncy.resize(xadj[n]);
+    for (PetscInt i = 0; i < num_nodes; ++i) xadj[i + 1] += xadj[i];
+    adjncy.resize(xadj[num_nodes]);
     {
       std::vector<idx_t> next(xadj.begin(), xadj.end() - 1);
       for (std::size_t e = 0; e < all.size(); e += 2) {
@@ -97,28 +125,33 @@ PetscErrorCode MumpsSchur::NestedDissection(PetscInt n) {
     all.clear();
     all.shrink_to_fit();
     idx_t w = 0;
-    for (PetscInt i = 0; i < n; ++i) {
+    for (PetscInt i = 0; i < num_nodes; ++i) {
       const idx_t begin = w;
       std::sort(adjncy.begin() + xadj[i], adjncy.begin() + xadj[i + 1]);
       for (idx_t k = xadj[i]; k < xadj[i + 1]; ++k)
         if (k == xadj[i] || adjncy[k] != adjncy[k - 1]) adjncy[w++] = adjncy[k];
       xadj[i] = begin;
     }
-    xadj[n] = w;
-    // METIS compresses the rows of one node (same closed neighbourhood) into one vertex itself (METIS_OPTION_COMPRESS).
-    idx_t nv = (idx_t)n, options[METIS_NOPTIONS];
+    xadj[num_nodes] = w;
+    idx_t nv = (idx_t)num_nodes, options[METIS_NOPTIONS];
     METIS_SetDefaultOptions(options);
     options[METIS_OPTION_SEED] = 7;
-    std::vector<idx_t> perm(n), iperm(n);
-    status = METIS_NodeND(&nv, xadj.data(), adjncy.data(), nullptr, options, perm.data(), iperm.data());
-    // MUMPS wants the Schur variables last in the pivot order (else INFOG(1) = -4); the others keep METIS's order.
-    std::vector<char> schur(n, 0);
-    for (MUMPS_INT v : listvar_) schur[v - 1] = 1;
-    perm_in_.resize(n);
+    std::vector<idx_t> perm(num_nodes), iperm(num_nodes);
+    if (num_nodes > 0) status = METIS_NodeND(&nv, xadj.data(), adjncy.data(), nullptr, options, perm.data(),
+                                             iperm.data());
+    // Each node's rows in METIS's order of the nodes, then the Schur rows (MUMPS wants them last: INFOG(1) = -4).
+    perm_in_.assign(n, 0);
     MUMPS_INT position = 0;
-    for (PetscInt k = 0; k < n; ++k)
-      if (!schur[perm[k]]) perm_in_[perm[k]] = ++position;
+    PetscMPIInt r = 0;
+    std::vector<PetscInt> node_row(num_nodes);
+    for (PetscInt k = 0; k < num_nodes; ++k) {
+      while (first_node[r + 1] <= k) ++r;
+      node_row[k] = ranges[3 * r] + (k - first_node[r]) * node_size;
+    }
+    for (PetscInt k = 0; k < num_nodes; ++k)
+      for (PetscInt c = 0; c < node_size; ++c) perm_in_[node_row[perm[k]] + c] = ++position;
     for (MUMPS_INT v : listvar_) perm_in_[v - 1] = ++position;
+    status = status == METIS_OK && position == (MUMPS_INT)n ? METIS_OK : METIS_ERROR;
   }
   PetscCallMPI(MPI_Bcast(&status, 1, MPI_INT, 0, comm_));
   PetscCheck(status == METIS_OK, comm_, PETSC_ERR_LIB, "METIS nested dissection of the saddle-point matrix failed (%d)",
@@ -128,7 +161,7 @@ PetscErrorCode MumpsSchur::NestedDissection(PetscInt n) {
 }
 
 PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows, const std::vector<PetscScalar> &d0,
-                                  bool symmetric) {
+                                  bool symmetric, PetscInt owned_u, PetscInt node_size) {
   PetscInt rstart, rend, N;
   PetscFunctionBeginUser;
   PetscCall(RegisterEvents());
@@ -210,7 +243,7 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   id_.schur = schur_raw_.data();
   id_.schur_lld = (MUMPS_INT)m_all;
   if (id_.ICNTL(7) == 1) {
-    PetscCall(NestedDissection(N));
+    PetscCall(NestedDissection(N, rstart, owned_u, node_size));
     if (rank_ == 0) id_.perm_in = perm_in_.data();
   }
   PetscCall(PetscLogEventBegin(EV_ANALYSIS, 0, 0, 0, 0));
@@ -222,6 +255,9 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   PetscCall(Call(2, "factorisation"));
   PetscCall(PetscLogEventEnd(EV_FACTOR, 0, 0, 0, 0));
   null_pivots_ = id_.INFOG(28);
+  PetscCall(PetscInfo(nullptr, "MUMPS factors: ordering ICNTL(7) = %d, %g entries, %g flops in the elimination\n",
+                      (int)id_.ICNTL(7), (double)(id_.INFOG(29) >= 0 ? id_.INFOG(29) : -1e6 * id_.INFOG(29)),
+                      (double)id_.rinfog[2]));
 
   // The Schur complement is complete for ICNTL(19) = 3; should a MUMPS version return only one triangle (the other
   // then stays zero), the full matrix is rebuilt from the filled one.

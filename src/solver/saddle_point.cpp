@@ -327,7 +327,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
     PetscCall(MultiplierDiagonal(d));
     if (!factored_) {
       ProgressBegin("analysis and factorisation (MUMPS with the Schur complement on the candidates)");
-      PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_));
+      PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_, dofs_->OwnedU(), dofs_->Dim()));
       ProgressEnd();
     }
     factored_ = true;

@@ -30,9 +30,11 @@ public:
 
   /// Analyses and factors A (parallel AIJ, symmetric; its values now are the ones factored) with the Schur
   /// complement on the global rows `schur_rows`; d0: A's diagonal on those rows (both on rank 0 only, in the order of
-  /// D in Solve). symmetric: LDL^T (MUMPS SYM = 2, LAPACK sytrf for S) or LU (SYM = 0, getrf). Collective.
+  /// D in Solve). symmetric: LDL^T (MUMPS SYM = 2, LAPACK sytrf for S) or LU (SYM = 0, getrf). The first owned_u
+  /// owned rows of each rank are displacements, node_size consecutive rows per node (for the ordering). Collective.
   [[nodiscard]] PetscErrorCode Factor(Mat A, const std::vector<PetscInt> &schur_rows,
-                                      const std::vector<PetscScalar> &d0, bool symmetric);
+                                      const std::vector<PetscScalar> &d0, bool symmetric, PetscInt owned_u,
+                                      PetscInt node_size);
   /// Solves with the factored matrix whose multiplier diagonal is replaced by d (rank 0, Schur order). Collective.
   [[nodiscard]] PetscErrorCode Solve(const std::vector<PetscScalar> &d, Vec b, Vec x);
   /// Solves with the multiplier diagonal d for a right-hand side [b_u; y] whose displacement part b_u is that of the
@@ -48,9 +50,10 @@ private:
   [[nodiscard]] PetscErrorCode FactorSchur(const std::vector<PetscScalar> &d);
   /// y = S^-1 y with the factored Schur complement (rank 0).
   [[nodiscard]] PetscErrorCode DenseSolve(std::vector<PetscScalar> &y) const;
-  /// METIS nested dissection of the graph of the matrix entries in irn_/jcn_ (n rows), computed on rank 0 into
-  /// perm_in_ (MUMPS's PERM_IN). Collective.
-  [[nodiscard]] PetscErrorCode NestedDissection(PetscInt n);
+  /// METIS nested dissection of the graph of the nodes coupled by the entries in irn_/jcn_ (n rows; this rank's start at
+  /// rstart, its first owned_u rows displacements, node_size per node), computed on rank 0 into perm_in_ (MUMPS's
+  /// PERM_IN: each node's rows together, the Schur rows last). Collective.
+  [[nodiscard]] PetscErrorCode NestedDissection(PetscInt n, PetscInt rstart, PetscInt owned_u, PetscInt node_size);
 
   DMUMPS_STRUC_C id_{};
   bool initialised_ = false;
