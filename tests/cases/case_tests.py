@@ -503,11 +503,11 @@ def solver_preset(runner, preset):
 
 
 @test("iterative_on_contact")
-def iterative_on_contact(runner, preset):
+def iterative_on_contact(runner, preset, case="hertz"):
     """The Hertz case, whose stiffness K alone is singular (the cylinder is held vertically only by contact), with a
     Schur fieldsplit preset: built on the augmented block K + r B_C^T B_C it gives the active set, multipliers and
     displacements of the default MUMPS solver to 1e-8."""
-    base = ["-options_file", "options/hertz.yml"]
+    base = ["-options_file", "options/%s.yml" % case]
     ref = runner.run(base, "hertz mumps")
     r = runner.run(base + ["-options_file", "options/solver/%s.yml" % preset], "hertz %s" % preset,
                    heap_check=runner.np == 1)
@@ -520,6 +520,12 @@ def iterative_on_contact(runner, preset):
     its, krylov = r.get("iterations.active_set"), r.get("iterations.krylov")
     print("  %s: %d active-set iterations, %d Krylov iterations (%.0f per solve)" % (preset, its, krylov,
                                                                                       krylov / max(its, 1)))
+
+
+@test("iterative_on_contact_3d")
+def iterative_on_contact_3d(runner, preset):
+    """The same in 3D: the octant of a ball of options/hertz3d.yml (16k dofs), held vertically only by the plane."""
+    iterative_on_contact(runner, preset, "hertz3d")
 
 
 # Lame cylinder (options/lame_cylinder.yml): radii, internal pressure; size factors of meshes/lame*.geo.
