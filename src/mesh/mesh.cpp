@@ -121,9 +121,14 @@ PetscErrorCode Mesh::BuildSerialDM(DM *out) {
   for (PetscInt c = 0; c < nc; ++c) {
     const int n = serial_.CellSize(c);
     for (int j = 0; j < n; ++j) cone[j] = nc + serial_.cell_nodes[serial_.cell_offsets[c] + j];
-    // DMPlex orders the vertices of a tetrahedron and a hexahedron differently from gmsh (its first face points
-    // inwards); the element loops keep gmsh's order (cell_vertices_).
-    if (dim_ == 3) PetscCall(DMPlexInvertCell(n == 4 ? DM_POLYTOPE_TETRAHEDRON : DM_POLYTOPE_HEXAHEDRON, cone.data()));
+    // DMPlex orders the vertices of a tetrahedron, a pyramid and a hexahedron differently from gmsh (its first face
+    // points inwards: the base of a pyramid clockwise seen from the apex); the element loops keep gmsh's order
+    // (cell_vertices_).
+    if (dim_ == 3)
+      PetscCall(DMPlexInvertCell(n == 4   ? DM_POLYTOPE_TETRAHEDRON
+                                 : n == 5 ? DM_POLYTOPE_PYRAMID
+                                          : DM_POLYTOPE_HEXAHEDRON,
+                                 cone.data()));
     PetscCall(DMPlexSetCone(dm, c, cone.data()));
   }
   PetscCall(DMPlexSymmetrize(dm));
@@ -222,11 +227,11 @@ PetscErrorCode Mesh::Partition(DM dm, const std::string &partitioner) {
   std::vector<PetscInt> sizes(size, 0), points;
   if (rank == 0) {
     // Cells are neighbours when they share a face: 2 nodes in 2D, 3 for a tetrahedron, 4 for a hexahedron (3 when
-    // tetrahedra are present, so that a mixed mesh connects through its triangular faces).
-    bool tets = false;
-    for (int c = 0; c < serial_.NumCells(); ++c) tets = tets || serial_.CellSize(c) == 4;
+    // tetrahedra or pyramids are present, so that a mixed mesh connects through its triangular faces).
+    bool triangles = false;
+    for (int c = 0; c < serial_.NumCells(); ++c) triangles = triangles || serial_.CellSize(c) < 8;
     idx_t ne = serial_.NumCells(), nn = serial_.NumNodes(), nparts = size, objval = 0;
-    idx_t ncommon = dim_ == 2 ? 2 : tets ? 3 : 4;
+    idx_t ncommon = dim_ == 2 ? 2 : triangles ? 3 : 4;
     std::vector<idx_t> eptr(serial_.cell_offsets.begin(), serial_.cell_offsets.end());
     std::vector<idx_t> eind(serial_.cell_nodes.begin(), serial_.cell_nodes.end());
     std::vector<idx_t> epart(ne), npart(nn);

@@ -72,7 +72,7 @@ CASES = {
                                   ["inverted_tet.msh", "inverted element", "element 2", "expected"], {}),
     # The surfaces of meshes/cube_tet.geo (gmsh -2): triangles in 3D space without the tetrahedra.
     "mesh_surface_3d": (mesh("surface_3d.msh"), ["surface_3d.msh", "no volume cells", "surface mesh cannot be the body",
-                                                 "expected tetrahedra or hexahedra"], {}),
+                                                 "expected tetrahedra, pyramids or hexahedra"], {}),
     "mesh_bowtie_quad": (mesh("bowtie.msh"), ["bowtie.msh", "element 1 is not convex", "expected"], {}),
     "mesh_curve_not_edges": (mesh("curve_not_edge.msh") + ["-bc_traction", "diagonal:0:1"],
                              ["'diagonal'", "not an edge", "expected"], {}),
