@@ -112,12 +112,12 @@ PetscErrorCode OutputWriter::Open(const Mesh &mesh, const OutputOptions &opts) {
   PetscFunctionReturn(0);
 }
 
-void OutputWriter::SetObstacle(const Obstacle &obstacle) {
+void OutputWriter::SetObstacle(const Obstacle &obstacle, const Box &body) {
   obstacle_points_.clear();
   obstacle_cell_size_ = mesh_ && mesh_->Dim() == 3 ? 3 : 2;
   for (const auto &facet : obstacle.facets) {
     if (obstacle_cell_size_ == 3) {
-      const auto corners = facet->Surface();
+      const auto corners = facet->Surface(body);
       obstacle_points_.insert(obstacle_points_.end(), corners.begin(), corners.end());
       continue;
     }

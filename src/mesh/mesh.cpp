@@ -444,6 +444,17 @@ PetscErrorCode Mesh::BoundaryFaces(std::vector<Face> &faces) const {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Mesh::BoundingBox(double *lo, double *hi) const {
+  double l[3] = {0, 0, 0}, h[3] = {0, 0, 0};
+  PetscFunctionBeginUser;
+  for (int d = 0; d < dim_; ++d) l[d] = 1e300, h[d] = -1e300;
+  for (PetscInt v = 0; v < NumLocalVertices(); ++v)
+    for (int d = 0; d < dim_; ++d) l[d] = std::min(l[d], X(v)[d]), h[d] = std::max(h[d], X(v)[d]);
+  PetscCallMPI(MPI_Allreduce(l, lo, 3, MPI_DOUBLE, MPI_MIN, comm_));
+  PetscCallMPI(MPI_Allreduce(h, hi, 3, MPI_DOUBLE, MPI_MAX, comm_));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Mesh::SumShared(std::vector<double> &per_vertex) const {
   PetscInt pstart, pend, nroots;
   PetscSF sf;

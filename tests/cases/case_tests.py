@@ -1115,26 +1115,39 @@ def nonlinear_sliding_repair(runner):
                         1e-8)
 
 
+def paraview_dump(runner, results):
+    """What each ParaView XDMF reader shows of each result's solution.xdmf (paraview_dump.py under pvpython, one call
+    for all): per result, a dict reader -> blocks, or None when pvpython failed (a recorded check). Skips the test
+    when pvpython is not installed."""
+    pvpython = shutil.which("pvpython")
+    if not pvpython:
+        from run_case import Skipped
+        raise Skipped("pvpython not found (Debian package python3-paraview; scripts/bootstrap.sh installs it)")
+    args = []
+    for r in results:
+        args += [os.path.join(r.dir, "solution.xdmf"), os.path.join(r.dir, "paraview.json")]
+    proc = subprocess.run([pvpython, os.path.join(os.path.dirname(os.path.abspath(__file__)), "paraview_dump.py")] +
+                          args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    runner.expect_equal("pvpython exit status (output: %s)" % proc.stdout[-2000:], proc.returncode, 0)
+    if proc.returncode != 0:
+        return [None] * len(results)
+    dumps = []
+    for r in results:
+        with open(os.path.join(r.dir, "paraview.json")) as f:
+            dumps.append(json.load(f))
+    return dumps
+
+
 @test("paraview_view")
 def paraview_view(runner):
     """What ParaView shows of block_on_floor, through each of its XDMF readers: stress and strain under the right
     component names, the floor as its own grid, the contact fields on a grid of the contact boundary (finite gap
     everywhere), and node and cell tags that match nodes.csv."""
-    pvpython = shutil.which("pvpython")
-    if not pvpython:
-        from run_case import Skipped
-        raise Skipped("pvpython not found (Debian package python3-paraview; scripts/bootstrap.sh installs it)")
     q = 2.0
     r = runner.run(["-options_file", "options/block_on_floor.yml"], "block_on_floor")
-    dump = os.path.join(r.dir, "paraview.json")
-    proc = subprocess.run([pvpython, os.path.join(os.path.dirname(os.path.abspath(__file__)), "paraview_dump.py"),
-                           os.path.join(r.dir, "solution.xdmf"), dump], stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT, text=True)
-    runner.expect_equal("pvpython exit status (output: %s)" % proc.stdout[-2000:], proc.returncode, 0)
-    if proc.returncode != 0:
+    readers = paraview_dump(runner, [r])[0]
+    if readers is None:
         return
-    with open(dump) as f:
-        readers = json.load(f)
     nodes = r.nodes()
     by_tag = {int(t): (x, y) for t, x, y in zip(nodes["node_tag"], nodes["x"], nodes["y"])}
     bottom = nodes[nodes["y"] == 0.0]
@@ -1160,11 +1173,11 @@ def paraview_view(runner):
         # node_tags on the body: the tag a selection shows is the nodes.csv row at the same coordinates.
         tags = [int(t[0]) for t in body["point_data"]["node_tags"]["values"]]
         runner.expect_close("%s: nodes.csv coordinates of the body's node_tags" % reader,
-                            [by_tag[t] for t in tags], body["points"], 0, 1e-12)
+                            [by_tag[t] for t in tags], [p[:2] for p in body["points"]], 0, 1e-12)
         runner.expect_equal("%s: cell_tags on every cell" % reader, len(body["cell_data"]["cell_tags"]["values"]),
                             len(body["cells"]))
         # The floor, -obstacle_segments -1,0,3,0 of the case: one segment.
-        runner.expect_close("%s: obstacle points" % reader, floor["points"], [[-1, 0], [3, 0]], 0, 1e-12)
+        runner.expect_close("%s: obstacle points" % reader, floor["points"], [[-1, 0, 0], [3, 0, 0]], 0, 1e-12)
         runner.expect_equal("%s: obstacle cells" % reader, floor["cells"], [[0, 1]])
         # The contact boundary: the bottom nodes (the group 'bottom') and the edges between them.
         cx = sorted(p[0] for p in contact["points"])
@@ -1178,7 +1191,57 @@ def paraview_view(runner):
                             np.full(len(gap), q), 1e-10)
         ctags = [int(t[0]) for t in contact["point_data"]["node_tags"]["values"]]
         runner.expect_close("%s: nodes.csv coordinates of the contact boundary's node_tags" % reader,
-                            [by_tag[t] for t in ctags], contact["points"], 0, 1e-12)
+                            [by_tag[t] for t in ctags], [p[:2] for p in contact["points"]], 0, 1e-12)
+
+
+@test("paraview_view_3d")
+def paraview_view_3d(runner):
+    """What ParaView shows of a 3D output, through each of its XDMF readers: the conforming mesh of tetrahedra,
+    pyramids and hexahedra (a Mixed topology) cell by cell, and the analytic obstacles drawn as triangles in the
+    obstacle grid, each with the bounds its options give: the plane z = 0 as the rectangle under the body, a cylinder
+    over the body's extent along its axis, a whole sphere (placed apart, below the body, so that they do not touch
+    it)."""
+    plane, cylinder, sphere = [0, 0, 0, 0, 0, 1], [0, 0.5, -4, 1, 0, 0, 0.5], [1, 0.5, -10, 2]
+    r = runner.run(["-options_file", "options/cube_on_plane.yml", "-mesh_file", "meshes/cube_mixed_conforming.msh",
+                    "-obstacle_planes", ",".join(map(str, plane)), "-obstacle_cylinders",
+                    ",".join(map(str, cylinder)), "-obstacle_spheres", ",".join(map(str, sphere))],
+                   "cube_mixed_conforming with a plane, a cylinder and a sphere")
+    readers = paraview_dump(runner, [r])[0]
+    if readers is None:
+        return
+    xyz, cells, _ = r.solution()
+    kinds = {n: sum(len(c) == n for c in cells) for n in (4, 5, 8)}
+    # The body's box [0, 2] x [0, 1] x [0, 1] bounds the unbounded shapes: the plane's rectangle is the box's
+    # projection, the cylinder (axis x, centre line y = 0.5, z = -4, radius 0.5) spans x in [0, 2]. Triangles: 2 for
+    # the plane, 2 x 64 for the cylinder (64 sides), 2 x 64 x 31 for the sphere (64 meridians, 32 bands).
+    shapes = {"plane": (lambda z: z > -1, 2, [[0, 0, 0], [2, 1, 0]]),
+              "cylinder": (lambda z: -5 < z < -3, 2 * 64, [[0, 0, -4.5], [2, 1, -3.5]]),
+              "sphere": (lambda z: z < -7, 2 * 64 * 31, [[-1, -1.5, -12], [3, 2.5, -8]])}
+    for reader, blocks in readers.items():
+        runner.expect_equal("%s: blocks (body, obstacle)" % reader, len(blocks), 2)
+        if len(blocks) != 2:
+            continue
+        body, obstacle = blocks
+        runner.expect_equal("%s: body points" % reader, len(body["points"]), len(xyz))
+        shown = {n: sum(len(c) == n for c in body["cells"]) for n in (4, 5, 8)}
+        runner.expect_equal("%s: body cells by vertices (tetrahedra, pyramids, hexahedra)" % reader, shown, kinds)
+        runner.expect_equal("%s: cell_tags on every cell" % reader, len(body["cell_data"]["cell_tags"]["values"]),
+                            len(cells))
+        # The cells' vertices as ParaView shows them are the file's (pyramids: the base, then the apex).
+        runner.expect_close("%s: cell vertices" % reader,
+                            [body["points"][v] for c in body["cells"] for v in c],
+                            [list(xyz[v]) for c in cells for v in c], 0, 1e-14)
+        points = np.array(obstacle["points"])
+        runner.expect_true("%s: obstacle cells are triangles" % reader, all(len(c) == 3 for c in obstacle["cells"]))
+        runner.expect_equal("%s: obstacle cells" % reader, len(obstacle["cells"]),
+                            sum(n for _, n, _ in shapes.values()))
+        for name, (where, count, bounds) in shapes.items():
+            tri = [c for c in obstacle["cells"] if where(points[c].mean(axis=0)[2])]
+            runner.expect_equal("%s: %s triangles" % (reader, name), len(tri), count)
+            if not tri:
+                continue
+            p = points[np.array(tri).ravel()]
+            runner.expect_close("%s: %s bounds" % (reader, name), [p.min(axis=0), p.max(axis=0)], bounds, 0, 1e-12)
 
 
 @test("monitor_after_header")

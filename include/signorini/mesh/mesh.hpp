@@ -72,6 +72,8 @@ public:
   [[nodiscard]] PetscErrorCode BoundaryFaces(std::vector<Face> &faces) const;
   /// Outward normal of a face scaled by its length (2D) or its area (3D; exact for a planar face).
   void FaceNormal(const Face &f, double *normal) const;
+  /// The bounding box of the whole body: lo and hi, three values each (0 for z in 2D). Collective.
+  [[nodiscard]] PetscErrorCode BoundingBox(double *lo, double *hi) const;
   /// Sums a per-vertex quantity over the ranks that share a vertex, so that every copy holds the total. Collective.
   [[nodiscard]] PetscErrorCode SumShared(std::vector<double> &per_vertex) const;
 
