@@ -78,7 +78,13 @@ public:
   [[nodiscard]] PetscErrorCode SumShared(std::vector<double> &per_vertex) const;
 
 private:
-  [[nodiscard]] PetscErrorCode BuildSerialDM(DM *dm);
+  /// Builds the interpolated DMPlex of the serial mesh on rank 0 (empty elsewhere), labelled; errors name file.
+  /// Collective.
+  [[nodiscard]] PetscErrorCode BuildSerialDM(const std::string &file, DM *dm);
+  /// The first two cells of the interpolated serial DMPlex dm that lie on the same side of the face they share (a
+  /// folded mesh: cells overlapping, each of them valid), as an error message naming their element tags; empty when
+  /// there is none. Rank 0 (the serial mesh).
+  [[nodiscard]] PetscErrorCode FindFoldedCells(DM dm, PetscInt cstart, std::string &error) const;
   [[nodiscard]] PetscErrorCode Partition(DM dm, const std::string &partitioner);
   [[nodiscard]] PetscErrorCode Distribute(DMH &dm);
   [[nodiscard]] PetscErrorCode BuildLocalArrays();

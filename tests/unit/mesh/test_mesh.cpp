@@ -257,6 +257,33 @@ TEST(Mesh3D, ConformingMixedMeshJoinsItsCellsThroughEveryInteriorFace) {
   EXPECT_EQ(DMPlexCheckFaces(mesh.Dm(), 0), 0);
 }
 
+TEST(Mesh, FoldedCellsAreAnErrorNamingThem) {
+  // Two counter-clockwise triangles on the same side of the edge (1, 2) they share: each valid, together folded.
+  const char *folded = R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$Nodes
+4
+1 0 0 0
+2 1 0 0
+3 0 1 0
+4 0.4 0.3 0
+$EndNodes
+$Elements
+2
+7 2 2 0 1 1 2 3
+8 2 2 0 1 1 2 4
+$EndElements
+)";
+  TempDir dir;
+  Mesh mesh;
+  ErrorCapture capture;
+  EXPECT_NE(mesh.Create(PETSC_COMM_SELF, Options(dir.Write("folded.msh", folded))), 0);
+  EXPECT_NE(capture.Message().find("elements 7 and 8 overlap: they lie on the same side of the edge they share"),
+            std::string::npos)
+      << capture.Message();
+}
+
 TEST(Mesh, MissingFileIsAnError) {
   TempDir dir;
   Mesh mesh;
