@@ -257,6 +257,71 @@ TEST(Mesh3D, ConformingMixedMeshJoinsItsCellsThroughEveryInteriorFace) {
   EXPECT_EQ(DMPlexCheckFaces(mesh.Dm(), 0), 0);
 }
 
+TEST(Mesh3D, FacesOfAPyramidAreOrientedOutwards) {
+  // One pyramid (base the unit square at z = 0, apex (0.3, 0.6, 0.8)), its base and its four sides as physical
+  // surfaces, each given in a node order against the outward one: the faces come back outwards, closing the surface.
+  const char *pyramid = R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+3
+2 1 "base"
+2 2 "sides"
+3 3 "body"
+$EndPhysicalNames
+$Nodes
+5
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+5 0.3 0.6 0.8
+$EndNodes
+$Elements
+6
+1 3 2 1 1 1 2 3 4
+2 2 2 2 2 1 5 2
+3 2 2 2 2 2 5 3
+4 2 2 2 2 3 5 4
+5 2 2 2 2 4 5 1
+6 7 2 3 3 1 2 3 4 5
+$EndElements
+)";
+  TempDir dir;
+  Mesh mesh;
+  ASSERT_EQ(mesh.Create(PETSC_COMM_SELF, Options(dir.Write("pyramid.msh", pyramid))), 0);
+  ASSERT_EQ(mesh.NumLocalCells(), 1);
+  std::vector<Face> base, sides, boundary;
+  ASSERT_EQ(mesh.GroupFaces("base", base), 0);
+  ASSERT_EQ(mesh.GroupFaces("sides", sides), 0);
+  ASSERT_EQ(mesh.BoundaryFaces(boundary), 0);
+  ASSERT_EQ(base.size(), 1u);
+  EXPECT_EQ(base[0].n, 4);
+  ASSERT_EQ(sides.size(), 4u);
+  EXPECT_EQ(boundary.size(), 5u);
+  double n[3], sum[3] = {0, 0, 0};
+  mesh.FaceNormal(base[0], n);
+  EXPECT_NEAR(n[0], 0.0, 1e-15);
+  EXPECT_NEAR(n[1], 0.0, 1e-15);
+  EXPECT_NEAR(n[2], -1.0, 1e-15); // outward: -z, area 1
+  for (const Face &f : sides) {
+    EXPECT_EQ(f.n, 3);
+    mesh.FaceNormal(f, n);
+    double out = 0; // from the base's centre (0.5, 0.5, 0) to the face's centroid
+    for (int d = 0; d < 3; ++d) {
+      double c = 0;
+      for (int a = 0; a < 3; ++a)
+        c += mesh.X(f.v[a])[d] / 3;
+      out += n[d] * (c - (d < 2 ? 0.5 : 0.0));
+      sum[d] += n[d];
+    }
+    EXPECT_GT(out, 0.0);
+  }
+  EXPECT_NEAR(sum[0], 0.0, 1e-15);
+  EXPECT_NEAR(sum[1], 0.0, 1e-15);
+  EXPECT_NEAR(sum[2], 1.0, 1e-15); // the sides close the surface with the base
+}
+
 TEST(Mesh, FoldedCellsAreAnErrorNamingThem) {
   // Two counter-clockwise triangles on the same side of the edge (1, 2) they share: each valid, together folded.
   const char *folded = R"($MeshFormat
