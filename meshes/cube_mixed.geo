@@ -1,7 +1,7 @@
 // Two unit cubes in one mesh for the mixed-cell case: the hexahedra of cube.geo (x in [0, 1]) and a cube of
-// tetrahedra at x in [2, 3], finer towards its corner (3, 1, 0). They do not touch: gmsh joins a conforming
-// tetrahedron/hexahedron interface with pyramids, which signorini does not read, and a shared face of
-// quadrilaterals against triangles would not be conforming.
+// tetrahedra at x in [2, 3], finer towards its corner (3, 1, 0). They do not touch (a shared face of
+// quadrilaterals against triangles would not be conforming; cube_mixed_conforming.geo joins a tetrahedral half to
+// the hexahedra with pyramids).
 // Physical groups as in cube.geo, each covering both cubes: body, bottom (z = 0), top (z = 1), left (x = 0 and
 // x = 2), front (y = 0).
 Include "cube.geo";

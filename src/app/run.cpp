@@ -99,20 +99,6 @@ PetscErrorCode HelpKsp(MPI_Comm comm) {
   PetscFunctionReturn(0);
 }
 
-/// Length scale of the body (diagonal of its bounding box). Collective.
-PetscErrorCode BodyDiagonal(const Mesh &mesh, double &L) {
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, glo[3], ghi[3];
-  PetscFunctionBeginUser;
-  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v)
-    for (int d = 0; d < mesh.Dim(); ++d) lo[d] = std::min(lo[d], mesh.X(v)[d]), hi[d] = std::max(hi[d], mesh.X(v)[d]);
-  PetscCallMPI(MPI_Allreduce(lo, glo, 3, MPI_DOUBLE, MPI_MIN, mesh.Comm()));
-  PetscCallMPI(MPI_Allreduce(hi, ghi, 3, MPI_DOUBLE, MPI_MAX, mesh.Comm()));
-  L = 0;
-  for (int d = 0; d < mesh.Dim(); ++d) L += (ghi[d] - glo[d]) * (ghi[d] - glo[d]);
-  L = std::sqrt(L);
-  PetscFunctionReturn(0);
-}
-
 /// Vertex and cell fields of the current state, for the HDF5 file (vectors padded to 3 components for ParaView).
 PetscErrorCode CollectFields(ContactSolver &solver, const NodeContact &nodes, std::vector<Field> &fields,
                              std::vector<Field> &table) {
@@ -230,8 +216,11 @@ PetscErrorCode Run() {
   PetscCall(CheckObstacleDimension(comm, obstacle, mesh.Dim()));
   PetscCall(LoadObstacleMeshes(comm, mesh.Dim(), obstacle));
 
-  double L = 1;
-  PetscCall(BodyDiagonal(mesh, L));
+  // The body's bounding box: its diagonal L is the length scale of the problem's checks and tolerances.
+  Box body;
+  PetscCall(mesh.BoundingBox(body.lo, body.hi));
+  const double L = std::sqrt(std::pow(body.hi[0] - body.lo[0], 2) + std::pow(body.hi[1] - body.lo[1], 2) +
+                             std::pow(body.hi[2] - body.lo[2], 2));
   PetscCall(CheckLoadScale(comm, bc, L, material.E, material.thickness));
   PetscCall(ReadContactOptions(comm, L, material.E * material.thickness, contact));
   OutputWriter output;
@@ -245,7 +234,7 @@ PetscErrorCode Run() {
   ProgressEnd();
   PetscCall(PetscLogStagePop());
   info.timings["setup"] = MPI_Wtime() - t;
-  output.SetObstacle(obstacle);
+  output.SetObstacle(obstacle, body);
   PetscCall(output.SetContactBoundary(solver.Candidates()));
   PetscCall(PrintHeader(comm, info, material, solver));
 

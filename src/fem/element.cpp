@@ -25,6 +25,24 @@ void ReferenceShape(int dim, int nodes, const double *xi, double *N, double (*dN
     N[0] = 1 - xi[0] - xi[1] - xi[2], N[1] = xi[0], N[2] = xi[1], N[3] = xi[2];
     for (int a = 0; a < 4; ++a)
       for (int i = 0; i < 3; ++i) dN[a][i] = a == 0 ? -1.0 : a == i + 1 ? 1.0 : 0.0;
+  } else if (dim == 3 && nodes == 5) {
+    // The linear pyramid (gmsh's: base 0-3 counter-clockwise seen from the apex 4) as the trilinear hexahedron with
+    // its four top vertices collapsed onto the apex. In the pyramid's own coordinates (base [-1, 1]^2 at z = 0, apex
+    // at z = 1; x = xi (1 - z), y = eta (1 - z), z = (1 + zeta) / 2) these are the rational functions of Bedrosian
+    // (1992), N_a = ((1 - z) + s_a x + t_a y + s_a t_a x y / (1 - z)) / 4, N_apex = z: bilinear on the quadrilateral
+    // base (conforming with hexahedra), linear on the triangular sides (conforming with tetrahedra), and they
+    // reproduce every linear field. The collapsed map's Jacobian vanishes only at the apex (zeta = 1), which the
+    // Gauss points of ReferenceQuadrature avoid.
+    const double s[4] = {-1, 1, 1, -1}, t[4] = {-1, -1, 1, 1};
+    for (int a = 0; a < 4; ++a) {
+      const double fs = 1 + s[a] * xi[0], ft = 1 + t[a] * xi[1], fr = 1 - xi[2];
+      N[a] = 0.125 * fs * ft * fr;
+      dN[a][0] = 0.125 * s[a] * ft * fr;
+      dN[a][1] = 0.125 * t[a] * fs * fr;
+      dN[a][2] = -0.125 * fs * ft;
+    }
+    N[4] = 0.5 * (1 + xi[2]);
+    dN[4][0] = dN[4][1] = 0, dN[4][2] = 0.5;
   } else if (dim == 3 && nodes == 8) {
     // gmsh's hexahedron: bottom (zeta = -1) and top counter-clockwise seen from +zeta, vertex a + 4 above a.
     const double s[8] = {-1, 1, 1, -1, -1, 1, 1, -1}, t[8] = {-1, -1, 1, 1, -1, -1, 1, 1},
@@ -40,7 +58,10 @@ void ReferenceShape(int dim, int nodes, const double *xi, double *N, double (*dN
 }
 
 /// Quadrature rule on the reference cell: exact for quadratics on the triangle and the tetrahedron, 2x2 (2x2x2)
-/// Gauss on the quadrilateral (hexahedron).
+/// Gauss on the quadrilateral (hexahedron), and on the pyramid the 2x2x2 Gauss rule of the collapsed hexahedron: it
+/// integrates the gradients of the shape functions exactly (their integrands adj(J)^T grad N are polynomials of
+/// degree <= 2 in each reference coordinate, as on the hexahedron), so the patch test is passed on any pyramid, and
+/// the volume of a pyramid exactly (det J is a polynomial of degree <= 2 in each coordinate).
 int ReferenceQuadrature(int dim, int nodes, double (*xi)[MAX_DIM], double *w) {
   if (dim == 2 && nodes == 3) {
     const double p[3][2] = {{1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6}, {1.0 / 6, 2.0 / 3}};
@@ -62,7 +83,7 @@ int ReferenceQuadrature(int dim, int nodes, double (*xi)[MAX_DIM], double *w) {
     }
     return 4;
   }
-  if (dim == 3 && nodes == 8) {
+  if (dim == 3 && (nodes == 5 || nodes == 8)) {
     const double g = 1.0 / std::sqrt(3.0);
     for (int q = 0; q < 8; ++q) {
       xi[q][0] = q & 1 ? g : -g, xi[q][1] = q & 2 ? g : -g, xi[q][2] = q & 4 ? g : -g;

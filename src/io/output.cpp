@@ -71,14 +71,16 @@ bool UniformCells(const SerialMesh &sm) {
 
 std::string HdfError(const std::string &path) { return "cannot write HDF5 file '" + path + "'"; }
 
-/// XDMF name and mixed-topology id of a cell with n vertices in dimension dim.
+/// XDMF name and mixed-topology id of a cell with n vertices in dimension dim. XDMF's pyramid (VTK's) has gmsh's
+/// vertex order: the base, then the apex.
 const char *XdmfCellName(int dim, int n) {
   if (dim == 2) return n == 3 ? "Triangle" : "Quadrilateral";
-  return n == 4 ? "Tetrahedron" : "Hexahedron";
+  return n == 4 ? "Tetrahedron" : n == 5 ? "Pyramid" : "Hexahedron";
 }
 int XdmfCellId(int dim, int n) {
-  if (dim == 2) return n == 3 ? 4 : 5; // XDMF: 4 triangle, 5 quadrilateral, 6 tetrahedron, 9 hexahedron
-  return n == 4 ? 6 : 9;
+  // XDMF: 4 triangle, 5 quadrilateral, 6 tetrahedron, 7 pyramid, 9 hexahedron.
+  if (dim == 2) return n == 3 ? 4 : 5;
+  return n == 4 ? 6 : n == 5 ? 7 : 9;
 }
 
 /// Writes a 2D dataset (rows x cols) of doubles or ints into an open HDF5 location.
@@ -110,12 +112,12 @@ PetscErrorCode OutputWriter::Open(const Mesh &mesh, const OutputOptions &opts) {
   PetscFunctionReturn(0);
 }
 
-void OutputWriter::SetObstacle(const Obstacle &obstacle) {
+void OutputWriter::SetObstacle(const Obstacle &obstacle, const Box &body) {
   obstacle_points_.clear();
   obstacle_cell_size_ = mesh_ && mesh_->Dim() == 3 ? 3 : 2;
   for (const auto &facet : obstacle.facets) {
     if (obstacle_cell_size_ == 3) {
-      const auto corners = facet->Surface();
+      const auto corners = facet->Surface(body);
       obstacle_points_.insert(obstacle_points_.end(), corners.begin(), corners.end());
       continue;
     }

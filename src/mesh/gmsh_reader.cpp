@@ -24,13 +24,14 @@ bool EndsWith(const std::string &s, const std::string &suffix) {
 }
 
 /// Gmsh element types signorini reads: 1 line (2 nodes), 2 triangle (3), 3 quadrangle (4), 4 tetrahedron (4),
-/// 5 hexahedron (8).
-constexpr int GMSH_LINE = 1, GMSH_TRIANGLE = 2, GMSH_QUADRANGLE = 3, GMSH_TETRAHEDRON = 4, GMSH_HEXAHEDRON = 5;
+/// 5 hexahedron (8), 7 pyramid (5; gmsh puts them between tetrahedra and the quadrilateral faces of hexahedra).
+constexpr int GMSH_LINE = 1, GMSH_TRIANGLE = 2, GMSH_QUADRANGLE = 3, GMSH_TETRAHEDRON = 4, GMSH_HEXAHEDRON = 5,
+              GMSH_PYRAMID = 7;
 
 /// Number of vertices of a cell type signorini reads in dimension dim, 0 for any other type.
 int CellVertices(int dim, int type) {
   if (dim == 2) return type == GMSH_TRIANGLE ? 3 : type == GMSH_QUADRANGLE ? 4 : 0;
-  return type == GMSH_TETRAHEDRON ? 4 : type == GMSH_HEXAHEDRON ? 8 : 0;
+  return type == GMSH_TETRAHEDRON ? 4 : type == GMSH_PYRAMID ? 5 : type == GMSH_HEXAHEDRON ? 8 : 0;
 }
 
 std::string ReadModel(const std::string &path, SerialMesh &mesh) {
@@ -44,7 +45,7 @@ std::string ReadModel(const std::string &path, SerialMesh &mesh) {
   const int dim = mesh.dim;
   if (dim == 2) gmsh::model::mesh::getElements(types, elem_tags, elem_nodes, 2, -1);
   const char *expected = dim == 2 ? "linear triangles (3 nodes) and quadrilaterals (4 nodes)"
-                                  : "linear tetrahedra (4 nodes) and hexahedra (8 nodes)";
+                                  : "linear tetrahedra (4 nodes), pyramids (5 nodes) and hexahedra (8 nodes)";
   std::size_t ncells = 0;
   for (std::size_t k = 0; k < types.size(); ++k) {
     if (CellVertices(dim, types[k]) == 0) {
@@ -90,7 +91,7 @@ std::string ReadModel(const std::string &path, SerialMesh &mesh) {
     if (used[i] >= 0) zmin = std::min(zmin, all_coords[3 * i + 2]), zmax = std::max(zmax, all_coords[3 * i + 2]);
   if (dim == 2 && zmax - zmin > 1e-12 * (1.0 + std::abs(zmax)))
     return "mesh '" + path + "' has no volume cells and is not planar (z varies): a surface mesh cannot be the body; "
-           "expected tetrahedra or hexahedra (3D) or a 2D mesh in the x-y plane";
+           "expected tetrahedra, pyramids or hexahedra (3D) or a 2D mesh in the x-y plane";
 
   auto node_index = [&](std::size_t tag) { return used[tag_pos.at(tag)]; };
   std::unordered_map<std::size_t, int> cell_of_tag;
@@ -356,8 +357,8 @@ std::string ReadGmshElements(const std::string &path, int dim, const std::string
 namespace {
 
 /// Signed measures at the corners of cell c: twice the area of each corner triangle in 2D, the determinant of the
-/// three edges leaving each corner in 3D (one for a tetrahedron); positive for a counter-clockwise (2D) or
-/// right-handed (3D) cell. Returns the number of corners.
+/// three edges leaving each corner in 3D (one for a tetrahedron; the four base corners of a pyramid); positive for a
+/// counter-clockwise (2D) or right-handed (3D) cell. Returns the number of measures.
 int CornerMeasures(const SerialMesh &mesh, int c, double *m) {
   const int n = mesh.CellSize(c), dim = mesh.dim;
   const int *v = &mesh.cell_nodes[mesh.cell_offsets[c]];
@@ -379,6 +380,14 @@ int CornerMeasures(const SerialMesh &mesh, int c, double *m) {
     m[0] = det(0, 1, 2, 3);
     return 1;
   }
+  if (n == 5) {
+    // Pyramid (gmsh order: base 0-3 counter-clockwise seen from the apex 4): the edges to the next and previous base
+    // corner and to the apex. As the collapsed hexahedron of the element (element.cpp), its Jacobian is
+    // (1 - z)^2 det(B_xi, B_eta, apex - B) over the base B(xi, eta); at the base corners that is these measures (the
+    // apex, where it vanishes, has none).
+    for (int k = 0; k < 4; ++k) m[k] = det(k, (k + 1) % 4, (k + 3) % 4, 4);
+    return 4;
+  }
   // Hexahedron (gmsh order: bottom 0-3 and top 4-7 counter-clockwise seen from above, k + 4 above k): the edges to
   // the next and previous corner of its quadrilateral and to the corner above (below, with the sign turned).
   for (int k = 0; k < 4; ++k) {
@@ -388,12 +397,13 @@ int CornerMeasures(const SerialMesh &mesh, int c, double *m) {
   return 8;
 }
 
-/// Turns cell c inside out: reverses a polygon; swaps two vertices of a tetrahedron; reverses both quadrilaterals of
-/// a hexahedron, keeping each top vertex above its bottom one.
+/// Turns cell c inside out: reverses a polygon; swaps two vertices of a tetrahedron; reverses the base of a pyramid;
+/// reverses both quadrilaterals of a hexahedron, keeping each top vertex above its bottom one.
 void FlipCell(SerialMesh &mesh, int c) {
   int *v = &mesh.cell_nodes[mesh.cell_offsets[c]];
   if (mesh.dim == 2) std::reverse(v, v + mesh.CellSize(c));
   else if (mesh.CellSize(c) == 4) std::swap(v[1], v[2]);
+  else if (mesh.CellSize(c) == 5) std::swap(v[1], v[3]);
   else std::swap(v[1], v[3]), std::swap(v[5], v[7]);
 }
 
@@ -409,7 +419,6 @@ std::string CheckAndOrientCells(SerialMesh &mesh) {
   // A corner measure below 1e-14 of the bounding box's diagonal to the power dim is zero (round-off).
   const double tol = 1e-14 * std::pow(diag2, 0.5 * dim);
   const std::string measure = dim == 2 ? "area" : "volume";
-  const std::string shape = dim == 2 ? "quadrilateral" : "hexahedron";
   std::vector<int> sign(nc, 0);
   int npos = 0, nneg = 0;
   for (int c = 0; c < nc; ++c) {
@@ -425,7 +434,8 @@ std::string CheckAndOrientCells(SerialMesh &mesh) {
              " (or a degenerate corner); expected a valid mesh";
     if (pos && neg)
       return "element " + std::to_string(mesh.cell_tags[c]) + " is not convex (self-intersecting or inverted " +
-             shape + "); expected convex elements";
+             (dim == 2 ? "quadrilateral" : mesh.CellSize(c) == 5 ? "pyramid" : "hexahedron") +
+             "); expected convex elements";
     sign[c] = pos ? 1 : -1;
     (pos ? npos : nneg)++;
   }

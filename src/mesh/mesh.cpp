@@ -44,6 +44,56 @@ PetscErrorCode BroadcastGroups(MPI_Comm comm, const SerialMesh &serial, std::vec
   PetscFunctionReturn(0);
 }
 
+/// The vertices of face `face` of an interpolated DMPlex in cyclic order, as vertex indices (point - vstart): the two
+/// ends of an edge in 2D; in 3D the face's edges chained into a cycle (its orientation is the caller's to fix).
+PetscErrorCode FaceCycle(DM dm, int dim, PetscInt vstart, PetscInt face, Face &f) {
+  const PetscInt *cone;
+  PetscInt ncone;
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetConeSize(dm, face, &ncone));
+  PetscCall(DMPlexGetCone(dm, face, &cone));
+  if (dim == 2) {
+    f.n = 2, f.v[0] = cone[0] - vstart, f.v[1] = cone[1] - vstart;
+    PetscFunctionReturn(0);
+  }
+  std::array<std::array<PetscInt, 2>, 4> edges;
+  PetscCheck(ncone == 3 || ncone == 4, PETSC_COMM_SELF, PETSC_ERR_PLIB, "a face with %" PetscInt_FMT " edges", ncone);
+  for (PetscInt k = 0; k < ncone; ++k) {
+    const PetscInt *ev;
+    PetscCall(DMPlexGetCone(dm, cone[k], &ev));
+    edges[k] = {ev[0] - vstart, ev[1] - vstart};
+  }
+  f.n = (int)ncone;
+  f.v[0] = edges[0][0], f.v[1] = edges[0][1];
+  std::array<char, 4> used{1, 0, 0, 0};
+  for (int k = 2; k < f.n; ++k)
+    for (PetscInt e = 0; e < ncone; ++e) {
+      if (used[e] || (edges[e][0] != f.v[k - 1] && edges[e][1] != f.v[k - 1])) continue;
+      f.v[k] = edges[e][0] == f.v[k - 1] ? edges[e][1] : edges[e][0];
+      used[e] = 1;
+      break;
+    }
+  PetscFunctionReturn(0);
+}
+
+/// Normal of a face with vertices x(f.v[k]) (dim values each), scaled by its length (2D: the right normal of
+/// v0 -> v1) or area (3D: Newell's vector area, of the projections for a warped quadrilateral).
+template <typename Coordinates>
+void FaceVectorArea(int dim, const Face &f, const Coordinates &x, double *normal) {
+  normal[0] = normal[1] = normal[2] = 0;
+  if (dim == 2) {
+    const double *a = x(f.v[0]), *b = x(f.v[1]);
+    normal[0] = b[1] - a[1], normal[1] = -(b[0] - a[0]);
+    return;
+  }
+  for (int k = 0; k < f.n; ++k) {
+    const double *a = x(f.v[k]), *b = x(f.v[(k + 1) % f.n]);
+    normal[0] += 0.5 * (a[1] - b[1]) * (a[2] + b[2]);
+    normal[1] += 0.5 * (a[2] - b[2]) * (a[0] + b[0]);
+    normal[2] += 0.5 * (a[0] - b[0]) * (a[1] + b[1]);
+  }
+}
+
 } // namespace
 
 /// Bounds of -mesh_size_factor: 1e-3 already multiplies the element count of a .geo by a million.
@@ -96,7 +146,7 @@ PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
   PetscCallMPI(MPI_Bcast(&dim_, 1, MPI_INT, 0, comm));
   PetscCall(BroadcastGroups(comm, serial_, group_names_, group_dims_));
   DMH dm;
-  PetscCall(BuildSerialDM(dm.out()));
+  PetscCall(BuildSerialDM(opts.file, dm.out()));
   ProgressBegin("partition and distribution");
   PetscCall(Partition(dm, opts.partitioner));
   PetscCall(Distribute(dm));
@@ -106,7 +156,7 @@ PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Mesh::BuildSerialDM(DM *out) {
+PetscErrorCode Mesh::BuildSerialDM(const std::string &file, DM *out) {
   PetscMPIInt rank;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
@@ -121,9 +171,14 @@ PetscErrorCode Mesh::BuildSerialDM(DM *out) {
   for (PetscInt c = 0; c < nc; ++c) {
     const int n = serial_.CellSize(c);
     for (int j = 0; j < n; ++j) cone[j] = nc + serial_.cell_nodes[serial_.cell_offsets[c] + j];
-    // DMPlex orders the vertices of a tetrahedron and a hexahedron differently from gmsh (its first face points
-    // inwards); the element loops keep gmsh's order (cell_vertices_).
-    if (dim_ == 3) PetscCall(DMPlexInvertCell(n == 4 ? DM_POLYTOPE_TETRAHEDRON : DM_POLYTOPE_HEXAHEDRON, cone.data()));
+    // DMPlex orders the vertices of a tetrahedron, a pyramid and a hexahedron differently from gmsh (its first face
+    // points inwards: the base of a pyramid clockwise seen from the apex); the element loops keep gmsh's order
+    // (cell_vertices_).
+    if (dim_ == 3)
+      PetscCall(DMPlexInvertCell(n == 4   ? DM_POLYTOPE_TETRAHEDRON
+                                 : n == 5 ? DM_POLYTOPE_PYRAMID
+                                          : DM_POLYTOPE_HEXAHEDRON,
+                                 cone.data()));
     PetscCall(DMPlexSetCone(dm, c, cone.data()));
   }
   PetscCall(DMPlexSymmetrize(dm));
@@ -136,6 +191,9 @@ PetscErrorCode Mesh::BuildSerialDM(DM *out) {
   PetscCall(DMPlexGetDepthStratum(idm, 0, &vstart, &vend));
   PetscCall(DMPlexGetHeightStratum(idm, 0, &cstart, &cend));
   PetscCheck(vend - vstart == nv && cend - cstart == nc, comm_, PETSC_ERR_PLIB, "interpolation changed the mesh");
+  std::string folded;
+  if (rank == 0) PetscCall(FindFoldedCells(idm, cstart, folded));
+  PetscCall(RaiseFromRoot(comm_, folded.empty() ? "" : "mesh '" + file + "': " + folded));
 
   // One label per physical group, value 1, completed to the closure of what the group holds.
   for (std::size_t g = 0; g < group_names_.size(); ++g) {
@@ -202,6 +260,63 @@ PetscErrorCode Mesh::BuildSerialDM(DM *out) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Mesh::FindFoldedCells(DM dm, PetscInt cstart, std::string &error) const {
+  PetscFunctionBeginUser;
+  error.clear();
+  const int dim = serial_.dim, nc = serial_.NumCells();
+  const auto x = [&](int v) { return &serial_.coords[dim * v]; };
+  std::vector<double> centroid(3 * nc, 0.0);
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, diag2 = 0;
+  for (int c = 0; c < nc; ++c) {
+    const int n = serial_.CellSize(c);
+    for (int k = serial_.cell_offsets[c]; k < serial_.cell_offsets[c + 1]; ++k)
+      for (int d = 0; d < dim; ++d) centroid[3 * c + d] += x(serial_.cell_nodes[k])[d] / n;
+  }
+  for (int v = 0; v < serial_.NumNodes(); ++v)
+    for (int d = 0; d < dim; ++d)
+      lo[d] = v ? std::min(lo[d], x(v)[d]) : x(v)[d], hi[d] = v ? std::max(hi[d], x(v)[d]) : x(v)[d];
+  for (int d = 0; d < dim; ++d) diag2 += (hi[d] - lo[d]) * (hi[d] - lo[d]);
+  // A distance below 1e-12 of the bounding box's diagonal counts as zero (a degenerate cell is caught before).
+  const double tol = 1e-12 * std::sqrt(diag2);
+  PetscInt fstart, fend;
+  PetscCall(DMPlexGetHeightStratum(dm, 1, &fstart, &fend));
+  for (PetscInt face = fstart; face < fend && error.empty(); ++face) {
+    PetscInt nsupport;
+    const PetscInt *support;
+    PetscCall(DMPlexGetSupportSize(dm, face, &nsupport));
+    if (nsupport != 2) continue;
+    PetscCall(DMPlexGetSupport(dm, face, &support));
+    const int a = (int)(support[0] - cstart), b = (int)(support[1] - cstart);
+    // The face's first dim vertices (those the two cells share) span its plane (a warped quadrilateral's nearly).
+    int p[3], np = 0;
+    for (int i = serial_.cell_offsets[a]; i < serial_.cell_offsets[a + 1] && np < dim; ++i)
+      for (int j = serial_.cell_offsets[b]; j < serial_.cell_offsets[b + 1]; ++j)
+        if (serial_.cell_nodes[i] == serial_.cell_nodes[j]) {
+          p[np++] = serial_.cell_nodes[i];
+          break;
+        }
+    PetscCheck(np == dim, PETSC_COMM_SELF, PETSC_ERR_PLIB, "cells sharing a face share fewer than %d vertices", dim);
+    double n[3] = {0, 0, 0};
+    if (dim == 2) {
+      n[0] = x(p[1])[1] - x(p[0])[1], n[1] = -(x(p[1])[0] - x(p[0])[0]);
+    } else {
+      double e1[3], e2[3];
+      for (int d = 0; d < 3; ++d) e1[d] = x(p[1])[d] - x(p[0])[d], e2[d] = x(p[2])[d] - x(p[0])[d];
+      n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    }
+    const double norm = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    double side[2] = {0, 0};
+    for (int s = 0; s < 2; ++s)
+      for (int d = 0; d < dim; ++d) side[s] += n[d] * (centroid[3 * (s ? b : a) + d] - x(p[0])[d]) / norm;
+    if (std::min(std::abs(side[0]), std::abs(side[1])) > tol && (side[0] > 0) == (side[1] > 0))
+      error = "elements " + std::to_string(serial_.cell_tags[a]) + " and " + std::to_string(serial_.cell_tags[b]) +
+              " overlap: they lie on the same side of the " + (dim == 2 ? "edge" : "face") +
+              " they share (a folded mesh); expected the cells around each interior " + (dim == 2 ? "edge" : "face") +
+              " on either side of it";
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Mesh::Partition(DM dm, const std::string &partitioner) {
   PetscMPIInt rank, size;
   PetscPartitioner part;
@@ -222,11 +337,11 @@ PetscErrorCode Mesh::Partition(DM dm, const std::string &partitioner) {
   std::vector<PetscInt> sizes(size, 0), points;
   if (rank == 0) {
     // Cells are neighbours when they share a face: 2 nodes in 2D, 3 for a tetrahedron, 4 for a hexahedron (3 when
-    // tetrahedra are present, so that a mixed mesh connects through its triangular faces).
-    bool tets = false;
-    for (int c = 0; c < serial_.NumCells(); ++c) tets = tets || serial_.CellSize(c) == 4;
+    // tetrahedra or pyramids are present, so that a mixed mesh connects through its triangular faces).
+    bool triangles = false;
+    for (int c = 0; c < serial_.NumCells(); ++c) triangles = triangles || serial_.CellSize(c) < 8;
     idx_t ne = serial_.NumCells(), nn = serial_.NumNodes(), nparts = size, objval = 0;
-    idx_t ncommon = dim_ == 2 ? 2 : tets ? 3 : 4;
+    idx_t ncommon = dim_ == 2 ? 2 : triangles ? 3 : 4;
     std::vector<idx_t> eptr(serial_.cell_offsets.begin(), serial_.cell_offsets.end());
     std::vector<idx_t> eind(serial_.cell_nodes.begin(), serial_.cell_nodes.end());
     std::vector<idx_t> epart(ne), npart(nn);
@@ -439,6 +554,17 @@ PetscErrorCode Mesh::BoundaryFaces(std::vector<Face> &faces) const {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Mesh::BoundingBox(double *lo, double *hi) const {
+  double l[3] = {0, 0, 0}, h[3] = {0, 0, 0};
+  PetscFunctionBeginUser;
+  for (int d = 0; d < dim_; ++d) l[d] = 1e300, h[d] = -1e300;
+  for (PetscInt v = 0; v < NumLocalVertices(); ++v)
+    for (int d = 0; d < dim_; ++d) l[d] = std::min(l[d], X(v)[d]), h[d] = std::max(h[d], X(v)[d]);
+  PetscCallMPI(MPI_Allreduce(l, lo, 3, MPI_DOUBLE, MPI_MIN, comm_));
+  PetscCallMPI(MPI_Allreduce(h, hi, 3, MPI_DOUBLE, MPI_MAX, comm_));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Mesh::SumShared(std::vector<double> &per_vertex) const {
   PetscInt pstart, pend, nroots;
   PetscSF sf;
@@ -476,33 +602,10 @@ PetscErrorCode Mesh::LabelFaces(const std::string &label_name, std::vector<Face>
   PetscCall(ISGetIndices(is, &pts));
   for (PetscInt i = 0; i < n; ++i) {
     if (pts[i] < fstart || pts[i] >= fend || point_leaf_[pts[i] - pstart]) continue;
-    const PetscInt *cone, *support;
-    PetscInt ncone, nsupport;
-    PetscCall(DMPlexGetConeSize(dm_, pts[i], &ncone));
-    PetscCall(DMPlexGetCone(dm_, pts[i], &cone));
+    const PetscInt *support;
+    PetscInt nsupport;
     Face f;
-    if (dim_ == 2) {
-      f.n = 2, f.v[0] = cone[0] - vstart_, f.v[1] = cone[1] - vstart_;
-    } else {
-      // The face's edges chained into a cycle of vertices.
-      std::vector<std::array<PetscInt, 2>> edges(ncone);
-      for (PetscInt k = 0; k < ncone; ++k) {
-        const PetscInt *ev;
-        PetscCall(DMPlexGetCone(dm_, cone[k], &ev));
-        edges[k] = {ev[0] - vstart_, ev[1] - vstart_};
-      }
-      f.n = (int)ncone;
-      f.v[0] = edges[0][0], f.v[1] = edges[0][1];
-      std::vector<char> used(ncone, 0);
-      used[0] = 1;
-      for (int k = 2; k < f.n; ++k)
-        for (PetscInt e = 0; e < ncone; ++e) {
-          if (used[e] || (edges[e][0] != f.v[k - 1] && edges[e][1] != f.v[k - 1])) continue;
-          f.v[k] = edges[e][0] == f.v[k - 1] ? edges[e][1] : edges[e][0];
-          used[e] = 1;
-          break;
-        }
-    }
+    PetscCall(FaceCycle(dm_, dim_, vstart_, pts[i], f));
     PetscCall(DMPlexGetSupportSize(dm_, pts[i], &nsupport));
     PetscCall(DMPlexGetSupport(dm_, pts[i], &support));
     if (nsupport >= 1) {
@@ -527,19 +630,7 @@ PetscErrorCode Mesh::LabelFaces(const std::string &label_name, std::vector<Face>
 }
 
 void Mesh::FaceNormal(const Face &f, double *normal) const {
-  normal[0] = normal[1] = normal[2] = 0;
-  if (dim_ == 2) {
-    const double *a = X(f.v[0]), *b = X(f.v[1]);
-    normal[0] = b[1] - a[1], normal[1] = -(b[0] - a[0]);
-    return;
-  }
-  // Newell's formula: the vector area of the polygon (of its projections for a warped quadrilateral).
-  for (int k = 0; k < f.n; ++k) {
-    const double *a = X(f.v[k]), *b = X(f.v[(k + 1) % f.n]);
-    normal[0] += 0.5 * (a[1] - b[1]) * (a[2] + b[2]);
-    normal[1] += 0.5 * (a[2] - b[2]) * (a[0] + b[0]);
-    normal[2] += 0.5 * (a[0] - b[0]) * (a[1] + b[1]);
-  }
+  FaceVectorArea(dim_, f, [this](PetscInt v) { return X(v); }, normal);
 }
 
 } // namespace signorini

@@ -64,6 +64,29 @@ std::vector<std::array<double, 2>> Ball::Polyline() const {
   return points;
 }
 
+TriangleSoup Ball::Surface(const Box &) const {
+  TriangleSoup out;
+  if (dim_ != 3) return out;
+  const int meridians = SPHERE_MERIDIANS, bands = SPHERE_MERIDIANS / 2;
+  // Point of latitude band boundary i (0: the north pole, bands: the south pole) on meridian j.
+  const auto point = [&](int i, int j) {
+    const double theta = M_PI * i / bands, phi = 2 * M_PI * (j % meridians) / meridians;
+    const bool pole = i == 0 || i == bands;
+    const double ct = pole ? (i == 0 ? 1.0 : -1.0) : std::cos(theta), st = pole ? 0.0 : std::sin(theta);
+    return std::array<double, 3>{c_[0] + r_ * st * std::cos(phi), c_[1] + r_ * st * std::sin(phi), c_[2] + r_ * ct};
+  };
+  for (int i = 0; i < bands; ++i)
+    for (int j = 0; j < meridians; ++j) {
+      const auto a = point(i, j), b = point(i + 1, j), c = point(i + 1, j + 1), d = point(i, j + 1);
+      // Outwards (the body is outside): along the centroid's direction from the centre.
+      double out_of[3];
+      for (int k = 0; k < 3; ++k) out_of[k] = a[k] + b[k] + c[k] + d[k] - 4 * c_[k];
+      if (i > 0) AppendTriangle(out, a, b, d, out_of);
+      if (i < bands - 1) AppendTriangle(out, b, c, d, out_of);
+    }
+  return out;
+}
+
 ShapeType DiscsShape() { return {"-obstacle_discs", "Rigid discs CX,CY,R,... (the body is outside)", 3, BuildBall(2), 2}; }
 
 ShapeType SpheresShape() {

@@ -48,6 +48,28 @@ std::string Cylinder::Describe() const {
   return s.str();
 }
 
+TriangleSoup Cylinder::Surface(const Box &body) const {
+  double t1[3], t2[3], lo, hi;
+  TangentFrame(a_, t1, t2);
+  BoxExtent(body, p_, a_, lo, hi);
+  const auto point = [&](int k, double along, double *radial) {
+    const double phi = 2 * M_PI * (k % CYLINDER_SEGMENTS) / CYLINDER_SEGMENTS, c = std::cos(phi), s = std::sin(phi);
+    std::array<double, 3> x;
+    for (int i = 0; i < 3; ++i) radial[i] = c * t1[i] + s * t2[i], x[i] = p_[i] + along * a_[i] + r_ * radial[i];
+    return x;
+  };
+  TriangleSoup out;
+  for (int k = 0; k < CYLINDER_SEGMENTS; ++k) {
+    double radial[3], next[3], out_of[3];
+    const auto a0 = point(k, lo, radial), a1 = point(k, hi, radial), b0 = point(k + 1, lo, next),
+               b1 = point(k + 1, hi, next);
+    for (int i = 0; i < 3; ++i) out_of[i] = radial[i] + next[i]; // the body is outside
+    AppendTriangle(out, a0, b0, b1, out_of);
+    AppendTriangle(out, a0, b1, a1, out_of);
+  }
+  return out;
+}
+
 ShapeType CylindersShape() {
   return {"-obstacle_cylinders", "Infinite rigid cylinders PX,PY,PZ,AX,AY,AZ,R,... (point on the axis, axis, radius; "
           "the body is outside)", 7,

@@ -5,6 +5,9 @@
 #include "signorini/core/options.hpp"
 #include "signorini/core/parse.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 
 namespace signorini {
@@ -13,6 +16,35 @@ const std::vector<ShapeType> &ShapeRegistry() {
   static const std::vector<ShapeType> registry = {SegmentsShape(), ArcsShape(),     DiscsShape(),
                                                   PlanesShape(),   SpheresShape(), CylindersShape()};
   return registry;
+}
+
+void TangentFrame(const double *n, double *t1, double *t2) {
+  int k = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(n[i]) < std::abs(n[k])) k = i;
+  // t1 = n x e_k, normalised; t2 = n x t1.
+  const double e[3] = {k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
+  t1[0] = n[1] * e[2] - n[2] * e[1], t1[1] = n[2] * e[0] - n[0] * e[2], t1[2] = n[0] * e[1] - n[1] * e[0];
+  const double norm = std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+  for (int i = 0; i < 3; ++i) t1[i] /= norm;
+  t2[0] = n[1] * t1[2] - n[2] * t1[1], t2[1] = n[2] * t1[0] - n[0] * t1[2], t2[2] = n[0] * t1[1] - n[1] * t1[0];
+}
+
+void BoxExtent(const Box &box, const double *origin, const double *d, double &lo, double &hi) {
+  lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (int corner = 0; corner < 8; ++corner) {
+    double t = 0;
+    for (int i = 0; i < 3; ++i) t += d[i] * ((corner >> i & 1 ? box.hi[i] : box.lo[i]) - origin[i]);
+    lo = std::min(lo, t), hi = std::max(hi, t);
+  }
+}
+
+void AppendTriangle(TriangleSoup &out, const std::array<double, 3> &a, const std::array<double, 3> &b,
+                    const std::array<double, 3> &c, const double *into) {
+  const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+  const bool along = n[0] * into[0] + n[1] * into[1] + n[2] * into[2] >= 0;
+  out.insert(out.end(), {a, along ? b : c, along ? c : b});
 }
 
 PetscErrorCode ReadObstacle(MPI_Comm comm, Obstacle &obstacle) {

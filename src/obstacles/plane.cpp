@@ -33,6 +33,21 @@ std::string Plane::Describe() const {
   return s.str();
 }
 
+TriangleSoup Plane::Surface(const Box &body) const {
+  double t1[3], t2[3], s[2], t[2];
+  TangentFrame(n_, t1, t2);
+  BoxExtent(body, p_, t1, s[0], s[1]);
+  BoxExtent(body, p_, t2, t[0], t[1]);
+  const auto corner = [&](int i, int j) {
+    return std::array<double, 3>{p_[0] + s[i] * t1[0] + t[j] * t2[0], p_[1] + s[i] * t1[1] + t[j] * t2[1],
+                                 p_[2] + s[i] * t1[2] + t[j] * t2[2]};
+  };
+  TriangleSoup out;
+  AppendTriangle(out, corner(0, 0), corner(1, 0), corner(1, 1), n_);
+  AppendTriangle(out, corner(0, 0), corner(1, 1), corner(0, 1), n_);
+  return out;
+}
+
 ShapeType PlanesShape() {
   return {"-obstacle_planes", "Unbounded planes PX,PY,PZ,NX,NY,NZ,... (point and normal; the normal points into the "
           "body)", 6,

@@ -110,7 +110,7 @@ std::string Triangle::Describe() const {
   return s.str();
 }
 
-std::vector<std::array<double, 3>> Triangle::Surface() const {
+TriangleSoup Triangle::Surface(const Box &) const {
   return {{p_[0][0], p_[0][1], p_[0][2]}, {p_[1][0], p_[1][1], p_[1][2]}, {p_[2][0], p_[2][1], p_[2][2]}};
 }
 

@@ -72,8 +72,11 @@ CASES = {
                                   ["inverted_tet.msh", "inverted element", "element 2", "expected"], {}),
     # The surfaces of meshes/cube_tet.geo (gmsh -2): triangles in 3D space without the tetrahedra.
     "mesh_surface_3d": (mesh("surface_3d.msh"), ["surface_3d.msh", "no volume cells", "surface mesh cannot be the body",
-                                                 "expected tetrahedra or hexahedra"], {}),
+                                                 "expected tetrahedra, pyramids or hexahedra"], {}),
     "mesh_bowtie_quad": (mesh("bowtie.msh"), ["bowtie.msh", "element 1 is not convex", "expected"], {}),
+    # Two positive tetrahedra on the same side of the face they share (gmsh 4.8 makes such folds next to pyramids).
+    "mesh_folded_cells": (mesh("folded_tet.msh"), ["folded_tet.msh", "elements 1 and 2 overlap", "folded mesh",
+                                                   "expected"], {}),
     "mesh_curve_not_edges": (mesh("curve_not_edge.msh") + ["-bc_traction", "diagonal:0:1"],
                              ["'diagonal'", "not an edge", "expected"], {}),
     "mesh_geo_gmsh_crash": (mesh("gmsh_crash.geo"), ["gmsh_crash.geo", "gmsh crashed", "Mesh.Algorithm = 8",

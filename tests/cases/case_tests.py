@@ -290,6 +290,46 @@ def mixed_cells(runner):
     runner.expect_close("hexahedral cube: lambda", hexes["lambda"], ref["lambda"], 0, 1e-12 * ref["lambda"].max())
 
 
+@test("mixed_conforming")
+def mixed_conforming(runner):
+    """The conforming mesh of hexahedra, pyramids and tetrahedra (meshes/cube_mixed_conforming.msh, a 2 x 1 x 1 box)
+    under uniform pressure on a rigid plane: every bottom node active, lambda_i = q w_i, no penetration, the exact
+    field and its uniform stress in every cell, pyramids included."""
+    q = 2.0
+    r = runner.run(["-options_file", "options/cube_on_plane.yml", "-mesh_file", "meshes/cube_mixed_conforming.msh"],
+                   "cube_on_plane cube_mixed_conforming")
+    xyz, cells, _ = r.solution()
+    kinds = {n: sum(len(c) == n for c in cells) for n in sorted(set(len(c) for c in cells))}
+    # gmsh put one pyramid on each of the 5 x 4 quadrilaterals of the face x = 1 between the 100 hexahedra and the
+    # tetrahedra.
+    runner.expect_equal("cell kinds (nodes per cell)", sorted(kinds), [4, 5, 8])
+    runner.expect_equal("pyramids", kinds.get(5), 20)
+    runner.expect_equal("hexahedra", kinds.get(8), 100)
+    nodes = r.nodes()
+    bottom = nodes[nodes["z"] == 0.0]
+    n = len(bottom)
+    runner.expect_equal("candidate pairs", r.get("contact.pairs"), n)
+    runner.expect_equal("active pairs: every bottom node", r.get("contact.active_pairs"), n)
+    runner.expect_equal("active-set iterations", r.get("iterations.active_set"), 1)
+    runner.expect_equal("active nodes off the bottom", int(nodes["active"].sum()) - int(bottom["active"].sum()), 0)
+    # As cube_on_plane: the field is linear, reproduced exactly (round-off) by the conforming cells.
+    w = bottom_tributary_areas(r, bottom["node_tag"])
+    runner.expect_close("sum of tributary areas = 2", w.sum(), 2.0, 1e-14)
+    runner.expect_close("lambda_i = q w_i", bottom["lambda"], q * w, 1e-10)
+    runner.expect_close("contact pressure = q", bottom["pressure"], np.full(n, q), 1e-10)
+    runner.expect_close("contact area", r.get("contact.contact_length"), 2.0, 1e-12)
+    runner.expect_close("contact force", r.get("contact.contact_force"), [0, 0, 2 * q], 0, 1e-10 * q)
+    runner.expect_true("no penetration beyond round-off (%g)" % r.get("contact.max_penetration"),
+                       r.get("contact.max_penetration") <= 1e-15)
+    E, nu = r.get("material.E"), r.get("material.nu")
+    exact = np.column_stack([nu * q / E * nodes["x"], nu * q / E * nodes["y"], -q / E * nodes["z"]])
+    runner.expect_close("displacement = exact linear field", displacement(nodes), exact, 0,
+                        1e-10 * np.abs(exact).max())
+    stress = r.cell_field("stress")
+    runner.expect_close("stress = (0, 0, -q, 0, 0, 0) in every cell", stress,
+                        np.tile([0, 0, -q, 0, 0, 0], (len(stress), 1)), 0, 1e-10 * q)
+
+
 @test("forces_3d")
 def forces_3d(runner):
     """Point forces and a body force with three components on the mixed mesh: the applied load is their sum, and
@@ -416,7 +456,11 @@ RANK_CASES = {"hertz": [], "beam_on_floor": ["-options_file", "options/beam_on_f
               "punch_on_plate": ["-options_file", "options/punch_on_plate.yml"],
               "punch_on_plate_svk": ["-options_file", "options/punch_on_plate.yml", "-material_model", "svk"],
               "hertz3d": ["-options_file", "options/hertz3d.yml"],
-              "block_on_cylinder": ["-options_file", "options/block_on_cylinder.yml"]}
+              "block_on_cylinder": ["-options_file", "options/block_on_cylinder.yml"],
+              "cube_mixed_conforming": ["-options_file", "options/cube_on_plane.yml", "-mesh_file",
+                                        "meshes/cube_mixed_conforming.msh"],
+              "cube_mixed_conforming_svk": ["-options_file", "options/cube_on_plane.yml", "-mesh_file",
+                                            "meshes/cube_mixed_conforming.msh", "-material_model", "svk"]}
 
 
 @test("rank_independence")
@@ -627,8 +671,11 @@ def lame_sphere_exact(x, E, nu):
 
 
 def l2_error_3d(xyz, cells, u, exact):
-    """||u_h - u||_L2 over a mesh of tetrahedra and hexahedra, u_h interpolated with the P1/Q1 shape functions."""
+    """||u_h - u||_L2 over a mesh of tetrahedra, pyramids and hexahedra, u_h interpolated with the P1/Q1 shape
+    functions; a pyramid is the hexahedron with its top four vertices collapsed onto its apex (its shape functions and
+    its map are those of the collapsed hexahedron, whose Jacobian vanishes only at the apex, off the Gauss points)."""
     total = 0.0
+    cells = [c if len(c) != 5 else np.concatenate([c, [c[4]] * 3]) for c in cells]
     for n in (4, 8):
         c = np.array([c for c in cells if len(c) == n], dtype=int)
         if not len(c):
@@ -674,6 +721,52 @@ def lame3d_convergence(runner, kind):
                                                                           errors[-1]))
     rates = rate(np.array(sizes), np.array(errors))
     # As in 2D: O(h^2) for linear elements and for the faceted spheres; the +-0.2 band for unstructured meshes.
+    for i, p in enumerate(rates):
+        runner.expect_true("rate h %.4f -> %.4f: %.3f in [1.8, 2.2]" % (sizes[i], sizes[i + 1], p), 1.8 <= p <= 2.2)
+
+
+# A column under its own weight on the conforming mesh of meshes/cube_mixed_conforming.geo: body force b per unit
+# volume along -z, the bottom z = 0 pushed up by the traction b H (H = 1 its height), u_x = 0 on x = 0, u_y = 0 on
+# y = 0 and u_z = 0 at the origin. Exact: sigma_zz = b (z - H), every other stress component zero, and the quadratic
+# displacement u_x = -nu b x (z - H) / E, u_y = -nu b y (z - H) / E, u_z = b ((z - H)^2 - H^2 + nu (x^2 + y^2)) / (2 E).
+COLUMN_B, COLUMN_H, COLUMN_VOLUME = 1.0, 1.0, 2.0
+# gmsh 4.8 folds some tetrahedra near the pyramids at factor 0.25 (cells overlapping across a face, each with a
+# positive volume: the volume of the cells exceeds the box's by 5.8e-5); the volume check below catches that.
+COLUMN_FACTORS = [0.7, 0.5, 0.35]
+
+
+def column_exact(x, E, nu):
+    b, H = COLUMN_B, COLUMN_H
+    s = x[:, 2] - H
+    return np.column_stack([-nu * b * x[:, 0] * s / E, -nu * b * x[:, 1] * s / E,
+                            b * (s * s - H * H + nu * (x[:, 0] ** 2 + x[:, 1] ** 2)) / (2 * E)])
+
+
+@test("mixed_conforming_convergence")
+def mixed_conforming_convergence(runner):
+    """The column under its own weight on the conforming mesh of hexahedra, pyramids and tetrahedra
+    (meshes/cube_mixed_conforming.geo) at size factors 0.7, 0.5, 0.35: the L2 displacement error falls as h^2."""
+    errors, sizes = [], []
+    for f in COLUMN_FACTORS:
+        r = runner.run(["-mesh_file", "meshes/cube_mixed_conforming.geo", "-mesh_size_factor", f,
+                        "-material_E", 1000, "-material_nu", 0.3, "-bc_dirichlet", "left:x,front:y,origin:z",
+                        "-bc_body_force", "0,0,%g" % -COLUMN_B, "-bc_traction", "bottom:0:0:%g" % (COLUMN_B * COLUMN_H)],
+                       "column factor %g" % f, heap_check=False)
+        # The cells fill the box exactly once: the body force (b x their volume) balances the bottom traction (b H x
+        # the bottom's area 2), both integrated exactly.
+        runner.expect_close("factor %g: applied load = 0" % f, r.get("contact.applied_force"), [0, 0, 0], 0,
+                            1e-12 * COLUMN_B * COLUMN_VOLUME)
+        xyz, cells, u = r.solution()
+        kinds = {n: sum(len(c) == n for c in cells) for n in (4, 5, 8)}
+        runner.expect_true("factor %g: tetrahedra, pyramids and hexahedra %s" % (f, kinds), min(kinds.values()) > 0)
+        E, nu = r.get("material.E"), r.get("material.nu")
+        errors.append(l2_error_3d(xyz, cells, u, lambda x: column_exact(x, E, nu)))
+        # The mean node spacing (volume / nodes)^(1/3): the halves refine alike (the hexahedra's divisions and the
+        # tetrahedra's size both scale with the factor), but the cell counts of the kinds do not compare.
+        sizes.append((COLUMN_VOLUME / len(xyz)) ** (1 / 3))
+        print("  factor %g: %d nodes, cells %s, h %.4f, L2 error %.4e" % (f, len(xyz), kinds, sizes[-1], errors[-1]))
+    rates = rate(np.array(sizes), np.array(errors))
+    # O(h^2) for linear elements on a quadratic field; the +-0.2 band of the other 3D convergence tests.
     for i, p in enumerate(rates):
         runner.expect_true("rate h %.4f -> %.4f: %.3f in [1.8, 2.2]" % (sizes[i], sizes[i + 1], p), 1.8 <= p <= 2.2)
 
@@ -1028,26 +1121,39 @@ def nonlinear_sliding_repair(runner):
                         1e-8)
 
 
+def paraview_dump(runner, results):
+    """What each ParaView XDMF reader shows of each result's solution.xdmf (paraview_dump.py under pvpython, one call
+    for all): per result, a dict reader -> blocks, or None when pvpython failed (a recorded check). Skips the test
+    when pvpython is not installed."""
+    pvpython = shutil.which("pvpython")
+    if not pvpython:
+        from run_case import Skipped
+        raise Skipped("pvpython not found (Debian package python3-paraview; scripts/bootstrap.sh installs it)")
+    args = []
+    for r in results:
+        args += [os.path.join(r.dir, "solution.xdmf"), os.path.join(r.dir, "paraview.json")]
+    proc = subprocess.run([pvpython, os.path.join(os.path.dirname(os.path.abspath(__file__)), "paraview_dump.py")] +
+                          args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    runner.expect_equal("pvpython exit status (output: %s)" % proc.stdout[-2000:], proc.returncode, 0)
+    if proc.returncode != 0:
+        return [None] * len(results)
+    dumps = []
+    for r in results:
+        with open(os.path.join(r.dir, "paraview.json")) as f:
+            dumps.append(json.load(f))
+    return dumps
+
+
 @test("paraview_view")
 def paraview_view(runner):
     """What ParaView shows of block_on_floor, through each of its XDMF readers: stress and strain under the right
     component names, the floor as its own grid, the contact fields on a grid of the contact boundary (finite gap
     everywhere), and node and cell tags that match nodes.csv."""
-    pvpython = shutil.which("pvpython")
-    if not pvpython:
-        from run_case import Skipped
-        raise Skipped("pvpython not found (Debian package python3-paraview; scripts/bootstrap.sh installs it)")
     q = 2.0
     r = runner.run(["-options_file", "options/block_on_floor.yml"], "block_on_floor")
-    dump = os.path.join(r.dir, "paraview.json")
-    proc = subprocess.run([pvpython, os.path.join(os.path.dirname(os.path.abspath(__file__)), "paraview_dump.py"),
-                           os.path.join(r.dir, "solution.xdmf"), dump], stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT, text=True)
-    runner.expect_equal("pvpython exit status (output: %s)" % proc.stdout[-2000:], proc.returncode, 0)
-    if proc.returncode != 0:
+    readers = paraview_dump(runner, [r])[0]
+    if readers is None:
         return
-    with open(dump) as f:
-        readers = json.load(f)
     nodes = r.nodes()
     by_tag = {int(t): (x, y) for t, x, y in zip(nodes["node_tag"], nodes["x"], nodes["y"])}
     bottom = nodes[nodes["y"] == 0.0]
@@ -1073,11 +1179,11 @@ def paraview_view(runner):
         # node_tags on the body: the tag a selection shows is the nodes.csv row at the same coordinates.
         tags = [int(t[0]) for t in body["point_data"]["node_tags"]["values"]]
         runner.expect_close("%s: nodes.csv coordinates of the body's node_tags" % reader,
-                            [by_tag[t] for t in tags], body["points"], 0, 1e-12)
+                            [by_tag[t] for t in tags], [p[:2] for p in body["points"]], 0, 1e-12)
         runner.expect_equal("%s: cell_tags on every cell" % reader, len(body["cell_data"]["cell_tags"]["values"]),
                             len(body["cells"]))
         # The floor, -obstacle_segments -1,0,3,0 of the case: one segment.
-        runner.expect_close("%s: obstacle points" % reader, floor["points"], [[-1, 0], [3, 0]], 0, 1e-12)
+        runner.expect_close("%s: obstacle points" % reader, floor["points"], [[-1, 0, 0], [3, 0, 0]], 0, 1e-12)
         runner.expect_equal("%s: obstacle cells" % reader, floor["cells"], [[0, 1]])
         # The contact boundary: the bottom nodes (the group 'bottom') and the edges between them.
         cx = sorted(p[0] for p in contact["points"])
@@ -1091,7 +1197,57 @@ def paraview_view(runner):
                             np.full(len(gap), q), 1e-10)
         ctags = [int(t[0]) for t in contact["point_data"]["node_tags"]["values"]]
         runner.expect_close("%s: nodes.csv coordinates of the contact boundary's node_tags" % reader,
-                            [by_tag[t] for t in ctags], contact["points"], 0, 1e-12)
+                            [by_tag[t] for t in ctags], [p[:2] for p in contact["points"]], 0, 1e-12)
+
+
+@test("paraview_view_3d")
+def paraview_view_3d(runner):
+    """What ParaView shows of a 3D output, through each of its XDMF readers: the conforming mesh of tetrahedra,
+    pyramids and hexahedra (a Mixed topology) cell by cell, and the analytic obstacles drawn as triangles in the
+    obstacle grid, each with the bounds its options give: the plane z = 0 as the rectangle under the body, a cylinder
+    over the body's extent along its axis, a whole sphere (placed apart, below the body, so that they do not touch
+    it)."""
+    plane, cylinder, sphere = [0, 0, 0, 0, 0, 1], [0, 0.5, -4, 1, 0, 0, 0.5], [1, 0.5, -10, 2]
+    r = runner.run(["-options_file", "options/cube_on_plane.yml", "-mesh_file", "meshes/cube_mixed_conforming.msh",
+                    "-obstacle_planes", ",".join(map(str, plane)), "-obstacle_cylinders",
+                    ",".join(map(str, cylinder)), "-obstacle_spheres", ",".join(map(str, sphere))],
+                   "cube_mixed_conforming with a plane, a cylinder and a sphere")
+    readers = paraview_dump(runner, [r])[0]
+    if readers is None:
+        return
+    xyz, cells, _ = r.solution()
+    kinds = {n: sum(len(c) == n for c in cells) for n in (4, 5, 8)}
+    # The body's box [0, 2] x [0, 1] x [0, 1] bounds the unbounded shapes: the plane's rectangle is the box's
+    # projection, the cylinder (axis x, centre line y = 0.5, z = -4, radius 0.5) spans x in [0, 2]. Triangles: 2 for
+    # the plane, 2 x 64 for the cylinder (64 sides), 2 x 64 x 31 for the sphere (64 meridians, 32 bands).
+    shapes = {"plane": (lambda z: z > -1, 2, [[0, 0, 0], [2, 1, 0]]),
+              "cylinder": (lambda z: -5 < z < -3, 2 * 64, [[0, 0, -4.5], [2, 1, -3.5]]),
+              "sphere": (lambda z: z < -7, 2 * 64 * 31, [[-1, -1.5, -12], [3, 2.5, -8]])}
+    for reader, blocks in readers.items():
+        runner.expect_equal("%s: blocks (body, obstacle)" % reader, len(blocks), 2)
+        if len(blocks) != 2:
+            continue
+        body, obstacle = blocks
+        runner.expect_equal("%s: body points" % reader, len(body["points"]), len(xyz))
+        shown = {n: sum(len(c) == n for c in body["cells"]) for n in (4, 5, 8)}
+        runner.expect_equal("%s: body cells by vertices (tetrahedra, pyramids, hexahedra)" % reader, shown, kinds)
+        runner.expect_equal("%s: cell_tags on every cell" % reader, len(body["cell_data"]["cell_tags"]["values"]),
+                            len(cells))
+        # The cells' vertices as ParaView shows them are the file's (pyramids: the base, then the apex).
+        runner.expect_close("%s: cell vertices" % reader,
+                            [body["points"][v] for c in body["cells"] for v in c],
+                            [list(xyz[v]) for c in cells for v in c], 0, 1e-14)
+        points = np.array(obstacle["points"])
+        runner.expect_true("%s: obstacle cells are triangles" % reader, all(len(c) == 3 for c in obstacle["cells"]))
+        runner.expect_equal("%s: obstacle cells" % reader, len(obstacle["cells"]),
+                            sum(n for _, n, _ in shapes.values()))
+        for name, (where, count, bounds) in shapes.items():
+            tri = [c for c in obstacle["cells"] if where(points[c].mean(axis=0)[2])]
+            runner.expect_equal("%s: %s triangles" % (reader, name), len(tri), count)
+            if not tri:
+                continue
+            p = points[np.array(tri).ravel()]
+            runner.expect_close("%s: %s bounds" % (reader, name), [p.min(axis=0), p.max(axis=0)], bounds, 0, 1e-12)
 
 
 @test("monitor_after_header")

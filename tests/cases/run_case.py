@@ -81,10 +81,10 @@ class Result:
             u = f["step_%06d/displacement" % step][:, :dim]
         if topo.ndim == 2:
             cells = list(topo)
-        else:  # XDMF mixed topology: a type id (4 triangle, 5 quadrilateral, 6 tetrahedron, 9 hexahedron) before
-            cells, i = [], 0  # each cell's nodes
+        else:  # XDMF mixed topology: a type id (4 triangle, 5 quadrilateral, 6 tetrahedron, 7 pyramid, 9 hexahedron)
+            cells, i = [], 0  # before each cell's nodes
             while i < len(topo):
-                n = {4: 3, 5: 4, 6: 4, 9: 8}[int(topo[i])]
+                n = {4: 3, 5: 4, 6: 4, 7: 5, 9: 8}[int(topo[i])]
                 cells.append(topo[i + 1:i + 1 + n])
                 i += n + 1
         return xyz, cells, u

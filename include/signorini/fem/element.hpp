@@ -1,5 +1,6 @@
-// Reference elements (P1 triangle and tetrahedron, Q1 quadrilateral and hexahedron), quadrature, and the element
-// kernels: linear small-strain elasticity and St. Venant-Kirchhoff with Green-Lagrange strain, in 2D and 3D.
+// Reference elements (P1 triangle and tetrahedron, Q1 quadrilateral and hexahedron, the linear pyramid), quadrature,
+// and the element kernels: linear small-strain elasticity and St. Venant-Kirchhoff with Green-Lagrange strain, in 2D
+// and 3D.
 #pragma once
 
 #include "signorini/fem/material.hpp"
@@ -23,9 +24,10 @@ struct ElementGeometry {
   double min_detJ = 0, max_detJ = 0;
 };
 
-/// Fills the geometry of a cell with `nodes` vertices (3 triangle, 4 quadrilateral in 2D; 4 tetrahedron, 8 hexahedron
-/// in 3D) at coordinates X (dim values per vertex, in gmsh's order: cyclic in 2D, the hexahedron's top face above its
-/// bottom face). Returns false for an unknown cell.
+/// Fills the geometry of a cell with `nodes` vertices (3 triangle, 4 quadrilateral in 2D; 4 tetrahedron, 5 pyramid,
+/// 8 hexahedron in 3D) at coordinates X (dim values per vertex, in gmsh's order: cyclic in 2D, the hexahedron's top
+/// face above its bottom face, the pyramid's base counter-clockwise seen from its apex, the apex last). Returns false
+/// for an unknown cell.
 bool ComputeGeometry(int dim, int nodes, const double *X, double thickness, ElementGeometry &g);
 
 /// Element stiffness (tangent, Eq. 17) and internal force (Eq. 15 without contact and loads) at the element

@@ -42,9 +42,10 @@ public:
   /// Prepares DIR/incomplete (removing a stale one); checks that DIR can be written. Collective.
   [[nodiscard]] PetscErrorCode Open(const Mesh &mesh, const OutputOptions &opts);
   bool Enabled() const { return !opts_.dir.empty(); }
-  /// Records the obstacle's facets for the obstacle grid: polylines in 2D, the triangles of meshed surfaces in 3D
-  /// (analytic 3D shapes are not drawn). Call on every rank before WriteStep.
-  void SetObstacle(const Obstacle &obstacle);
+  /// Records the obstacle's facets for the obstacle grid: polylines in 2D, triangulated surfaces in 3D (the triangles
+  /// of meshed surfaces; planes and cylinders over the extent of the body's bounding box `body`, spheres whole). Call
+  /// on every rank before WriteStep.
+  void SetObstacle(const Obstacle &obstacle, const Box &body);
   /// Records the contact boundary: the boundary edges whose two vertices are candidates (candidate: per local
   /// vertex), the edges that carry contact pressure. Collective; call before WriteStep.
   [[nodiscard]] PetscErrorCode SetContactBoundary(const std::vector<char> &candidate);

@@ -72,11 +72,19 @@ public:
   [[nodiscard]] PetscErrorCode BoundaryFaces(std::vector<Face> &faces) const;
   /// Outward normal of a face scaled by its length (2D) or its area (3D; exact for a planar face).
   void FaceNormal(const Face &f, double *normal) const;
+  /// The bounding box of the whole body: lo and hi, three values each (0 for z in 2D). Collective.
+  [[nodiscard]] PetscErrorCode BoundingBox(double *lo, double *hi) const;
   /// Sums a per-vertex quantity over the ranks that share a vertex, so that every copy holds the total. Collective.
   [[nodiscard]] PetscErrorCode SumShared(std::vector<double> &per_vertex) const;
 
 private:
-  [[nodiscard]] PetscErrorCode BuildSerialDM(DM *dm);
+  /// Builds the interpolated DMPlex of the serial mesh on rank 0 (empty elsewhere), labelled; errors name file.
+  /// Collective.
+  [[nodiscard]] PetscErrorCode BuildSerialDM(const std::string &file, DM *dm);
+  /// The first two cells of the interpolated serial DMPlex dm that lie on the same side of the face they share (a
+  /// folded mesh: cells overlapping, each of them valid), as an error message naming their element tags; empty when
+  /// there is none. Rank 0 (the serial mesh).
+  [[nodiscard]] PetscErrorCode FindFoldedCells(DM dm, PetscInt cstart, std::string &error) const;
   [[nodiscard]] PetscErrorCode Partition(DM dm, const std::string &partitioner);
   [[nodiscard]] PetscErrorCode Distribute(DMH &dm);
   [[nodiscard]] PetscErrorCode BuildLocalArrays();

@@ -22,8 +22,8 @@ struct PhysicalGroup {
 
 /// The serial mesh. Nodes are the nodes used by cells, in the order gmsh returns them (the file order for format
 /// 4.1, grouped by entity for 2.2); each keeps its file tag. Cells keep gmsh's vertex order, counter-clockwise in 2D and
-/// with a positive Jacobian in 3D (tetrahedra, and hexahedra with two counter-clockwise quadrilaterals seen from
-/// above, bottom first).
+/// with a positive Jacobian in 3D (tetrahedra; pyramids with their base counter-clockwise seen from the apex, the apex
+/// last; hexahedra with two counter-clockwise quadrilaterals seen from above, bottom first).
 struct SerialMesh {
   int dim = 2;
   std::vector<double> coords;              ///< dim values per node

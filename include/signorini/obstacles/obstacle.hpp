@@ -14,6 +14,15 @@
 
 namespace signorini {
 
+/// An axis-aligned box, lo and hi corners (the body's bounding box, over which unbounded obstacles are drawn).
+struct Box {
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+};
+
+/// A triangulated surface for output: three corners per triangle, each triangle's right-hand normal (corner order)
+/// pointing into the body.
+using TriangleSoup = std::vector<std::array<double, 3>>;
+
 /// Closest-point data of a point x with respect to one facet.
 struct Projection {
   double gap = 0;          ///< signed gap n . (x - P)
@@ -33,11 +42,11 @@ public:
   /// Axis-aligned bounding box (lo, hi: dim values each; infinite for an unbounded facet).
   virtual void Bounds(double *lo, double *hi) const = 0;
   virtual std::string Describe() const = 0;
-  /// The facet's shape for output in 2D: a polyline; a closed curve repeats its first point. 3D facets are not drawn
-  /// yet (empty).
+  /// The facet's shape for output in 2D: a polyline; a closed curve repeats its first point (empty in 3D).
   virtual std::vector<std::array<double, 2>> Polyline() const { return {}; }
-  /// The facet's shape for output in 3D: triangles, three corners each (empty for the analytic shapes).
-  virtual std::vector<std::array<double, 3>> Surface() const { return {}; }
+  /// The facet's shape for output in 3D, triangulated (empty in 2D); an unbounded shape is drawn over the extent of
+  /// the body's bounding box `body`.
+  virtual TriangleSoup Surface(const Box &body) const = 0;
 };
 
 /// An oriented segment P0 -> P1; its normal is the left normal of the direction.
@@ -49,6 +58,7 @@ public:
   void Bounds(double *lo, double *hi) const override;
   std::string Describe() const override;
   std::vector<std::array<double, 2>> Polyline() const override;
+  TriangleSoup Surface(const Box &) const override { return {}; }
   double Length() const { return length_; }
 
 private:
@@ -67,7 +77,7 @@ public:
   double Distance(const double *x) const override;
   void Bounds(double *lo, double *hi) const override;
   std::string Describe() const override;
-  std::vector<std::array<double, 3>> Surface() const override;
+  TriangleSoup Surface(const Box &body) const override;
   /// The point of the triangle closest to x.
   void ClosestPoint(const double *x, double *c) const;
   double Area() const { return area_; }
@@ -90,7 +100,12 @@ public:
   std::string Describe() const override;
   /// The circle as a polygon of POLYGON_SIDES sides (output only; the gap is exact).
   std::vector<std::array<double, 2>> Polyline() const override;
+  /// The sphere as a UV sphere about the z axis (output only): SPHERE_MERIDIANS meridians, SPHERE_MERIDIANS / 2
+  /// bands of latitude, 2 SPHERE_MERIDIANS (SPHERE_MERIDIANS / 2 - 1) triangles; its vertices include the six points
+  /// of the sphere on the axes through its centre, so its bounds are the sphere's.
+  TriangleSoup Surface(const Box &body) const override;
   static constexpr int POLYGON_SIDES = 128;
+  static constexpr int SPHERE_MERIDIANS = 64;
 
 private:
   double CentreDistance(const double *x) const;
@@ -106,6 +121,8 @@ public:
   double Distance(const double *x) const override;
   void Bounds(double *lo, double *hi) const override;
   std::string Describe() const override;
+  /// The rectangle of the plane that covers the projection of the body's bounding box (two triangles).
+  TriangleSoup Surface(const Box &body) const override;
 
 private:
   double p_[3], n_[3];
@@ -119,12 +136,27 @@ public:
   double Distance(const double *x) const override;
   void Bounds(double *lo, double *hi) const override;
   std::string Describe() const override;
+  /// The cylinder over the extent of the body's bounding box along its axis, as CYLINDER_SEGMENTS rectangles
+  /// (2 CYLINDER_SEGMENTS triangles); the polygon of its section has a vertex on each side of both axes normal to
+  /// the axis that TangentFrame gives.
+  TriangleSoup Surface(const Box &body) const override;
+  static constexpr int CYLINDER_SEGMENTS = 64;
 
 private:
   /// The part r of x - P normal to the axis, and its length.
   double Radial(const double *x, double *r) const;
   double p_[3], a_[3], r_;
 };
+
+/// Two unit vectors t1, t2 completing the unit vector n to the right-handed orthonormal frame (t1, t2, n): t1 normal
+/// to n and to the coordinate axis along which n has its smallest component, t2 = n x t1.
+void TangentFrame(const double *n, double *t1, double *t2);
+/// The range [lo, hi] of d . (x - origin) over the corners x of the box.
+void BoxExtent(const Box &box, const double *origin, const double *d, double &lo, double &hi);
+/// Appends the triangle (a, b, c) to out, in the corner order whose right-hand normal points along `into` (the
+/// direction into the body).
+void AppendTriangle(TriangleSoup &out, const std::array<double, 3> &a, const std::array<double, 3> &b,
+                    const std::array<double, 3> &c, const double *into);
 
 /// A shape type of the registry: the option that lists its items, how many numbers one item takes, how an item
 /// becomes facets (an empty return is success, else the reason the item is invalid), and the mesh dimension it is for.

@@ -1,6 +1,7 @@
-// Element kernels in 3D (P1 tetrahedron, Q1 hexahedron with 2x2x2 Gauss): volume, symmetry, the six rigid modes
-// and the rank of the stiffness, patch tests, the St. Venant-Kirchhoff tangent against finite differences, the
-// small-load limit, frame indifference, det F, and the consistent face integrals of loads and tributary areas.
+// Element kernels in 3D (P1 tetrahedron, Q1 hexahedron and the linear pyramid with 2x2x2 Gauss): volume, symmetry,
+// the six rigid modes and the rank of the stiffness, patch tests (mixed with pyramids too), the St. Venant-Kirchhoff
+// tangent against finite differences, the small-load limit, frame indifference, det F, and the consistent face
+// integrals of loads and tributary areas.
 #include "signorini/fem/element.hpp"
 
 #include "fem/element_test_util.hpp"
@@ -60,7 +61,22 @@ Cell DistortedHex() {
   return c;
 }
 const Cell DISTORTED_HEX = DistortedHex();
-const Cell CELLS[] = {TETRAHEDRON, CUBE, DISTORTED_HEX};
+// Pyramid (gmsh order: base counter-clockwise seen from the apex, apex last) on the unit square with its apex at
+// height 0.8 off the centre: volume 0.8 / 3.
+const Cell PYRAMID{"pyramid", 5, {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0.3, 0.6, 0.8}, 0.8 / 3};
+/// A pyramid with a warped (non-planar), non-parallelogram base and an oblique apex. Its volume, that of the
+/// collapsed hexahedron x = (1 - z) B(xi, eta) + z apex over the bilinear base B, is 2x2x2 Gauss's own (exact).
+Cell DistortedPyramid() {
+  Cell c{"distorted pyramid", 5, PYRAMID.X, -1};
+  const double shift[5][3] = {{0.05, -0.1, 0.02}, {0.2, 0.05, -0.1}, {0.1, 0.15, 0.08}, {-0.1, 0.05, -0.05},
+                              {0.4, -0.2, 0.1}};
+  for (int a = 0; a < 5; ++a)
+    for (int d = 0; d < 3; ++d)
+      c.X[3 * a + d] += shift[a][d];
+  return c;
+}
+const Cell DISTORTED_PYRAMID = DistortedPyramid();
+const Cell CELLS[] = {TETRAHEDRON, CUBE, DISTORTED_HEX, PYRAMID, DISTORTED_PYRAMID};
 
 Material MakeMaterial(MaterialModel model = MaterialModel::LINEAR) {
   Material m;
@@ -173,6 +189,28 @@ TEST(ElementGeometry3D, WeightsSumToTheVolumeAndShapeFunctionsArePartitionsOfUni
   EXPECT_FALSE(ComputeGeometry(3, 6, TETRAHEDRON.X.data(), 1.0, g)); // a prism is not a cell of signorini
 }
 
+TEST(ElementGeometry3D, PyramidVolumeIsThatEnclosedByItsFaces) {
+  // Divergence theorem: V = 1/3 of the flux of x through the boundary, sum over the faces of x_a . int N_a n dA
+  // (FaceIntegrals, exact on the bilinear base), the faces oriented outwards.
+  const int faces[5][4] = {{0, 3, 2, 1}, {0, 1, 4, -1}, {1, 2, 4, -1}, {2, 3, 4, -1}, {3, 0, 4, -1}};
+  for (const Cell &cell : {PYRAMID, DISTORTED_PYRAMID}) {
+    SCOPED_TRACE(cell.name);
+    double flux = 0;
+    for (const auto &face : faces) {
+      const int n = face[3] < 0 ? 3 : 4;
+      double X[12], w[4], an[4][3];
+      for (int a = 0; a < n; ++a)
+        for (int d = 0; d < 3; ++d)
+          X[3 * a + d] = cell.X[3 * face[a] + d];
+      FaceIntegrals(3, n, X, w, an);
+      for (int a = 0; a < n; ++a)
+        for (int d = 0; d < 3; ++d)
+          flux += X[3 * a + d] * an[a][d];
+    }
+    EXPECT_NEAR(Volume(cell), flux / 3, 1e-14);
+  }
+}
+
 TEST(LinearElement3D, StiffnessIsSymmetricWithExactlySixZeroEigenvaluesTheRigidModes) {
   for (const Cell &cell : CELLS) {
     const Material m = MakeMaterial();
@@ -220,15 +258,24 @@ TEST(LinearElement3D, PatchTestGivesExactConstantStrainAndStress) {
   }
 }
 
-/// A 2x2x2 block of cells on [0,2]^3 whose centre node is moved off the grid: eight distorted hexahedra, or each of
-/// them cut into six tetrahedra along its diagonal (Kuhn's subdivision, conforming between neighbours).
+/// A 2x2x2 block of cells on [0,2]^3 whose centre node is moved off the grid: eight distorted hexahedra; or each of
+/// them cut into six tetrahedra along its diagonal (Kuhn's subdivision, conforming between neighbours); or the
+/// hexahedra with every other one cut into six pyramids on its faces around a node near its centre (their bases,
+/// warped by the moved centre node, are conforming with the neighbouring hexahedra's faces, their triangular sides
+/// with each other).
+enum class PatchCells { HEXAHEDRA, TETRAHEDRA, HEXAHEDRA_AND_PYRAMIDS };
+
 struct Patch {
   Vector X;
   std::vector<std::vector<int>> cells;
-  int centre = 13;
+  std::vector<int> interior{13};
 };
 
-Patch MakePatch(bool tetrahedra) {
+/// The faces of a hexahedron (gmsh order) as pyramid bases, counter-clockwise seen from the hexahedron's inside.
+constexpr int HEX_FACES_INWARD[6][4] = {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1},
+                                        {3, 2, 6, 7}, {0, 3, 7, 4}, {1, 5, 6, 2}};
+
+Patch MakePatch(PatchCells kind) {
   Patch p;
   for (int k = 0; k < 3; ++k)
     for (int j = 0; j < 3; ++j)
@@ -241,10 +288,19 @@ Patch MakePatch(bool tetrahedra) {
   for (int k = 0; k < 2; ++k)
     for (int j = 0; j < 2; ++j)
       for (int i = 0; i < 2; ++i) {
-        if (!tetrahedra) {
-          p.cells.push_back({node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k), node(i, j + 1, k),
-                             node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1),
-                             node(i, j + 1, k + 1)});
+        const std::vector<int> hex{node(i, j, k),         node(i + 1, j, k),         node(i + 1, j + 1, k),
+                                   node(i, j + 1, k),     node(i, j, k + 1),         node(i + 1, j, k + 1),
+                                   node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)};
+        if (kind == PatchCells::HEXAHEDRA || (kind == PatchCells::HEXAHEDRA_AND_PYRAMIDS && (i + j + k) % 2 == 0)) {
+          p.cells.push_back(hex);
+          continue;
+        }
+        if (kind == PatchCells::HEXAHEDRA_AND_PYRAMIDS) {
+          const int apex = (int)p.X.size() / 3;
+          p.X.insert(p.X.end(), {i + 0.47, j + 0.55, k + 0.52});
+          p.interior.push_back(apex);
+          for (const auto &face : HEX_FACES_INWARD)
+            p.cells.push_back({hex[face[0]], hex[face[1]], hex[face[2]], hex[face[3]], apex});
           continue;
         }
         for (const auto &perm : perms) {
@@ -260,14 +316,23 @@ Patch MakePatch(bool tetrahedra) {
   return p;
 }
 
+/// The patch's cell e with its vertices' coordinates.
+Cell PatchCell(const Patch &p, const std::vector<int> &nodes) {
+  Cell cell{"patch cell", (int)nodes.size(), {}, -1};
+  for (int v : nodes)
+    for (int d = 0; d < 3; ++d)
+      cell.X.push_back(p.X[3 * v + d]);
+  return cell;
+}
+
 Vector AssemblePatchForce(const Material &m, const Patch &p, const Vector &u) {
   Vector f(p.X.size(), 0.0);
   for (const auto &nodes : p.cells) {
-    Cell cell{"patch cell", (int)nodes.size(), {}, -1};
+    const Cell cell = PatchCell(p, nodes);
     Vector ue;
     for (int v : nodes)
       for (int d = 0; d < 3; ++d)
-        cell.X.push_back(p.X[3 * v + d]), ue.push_back(u[3 * v + d]);
+        ue.push_back(u[3 * v + d]);
     const Vector fe = Force(m, cell, ue);
     for (std::size_t a = 0; a < nodes.size(); ++a)
       for (int d = 0; d < 3; ++d)
@@ -279,16 +344,28 @@ Vector AssemblePatchForce(const Material &m, const Patch &p, const Vector &u) {
 TEST(Element3D, PatchTestInteriorForcesCancelForLinearAndSvk) {
   const double a[3] = {0.3, -0.2, 0.1};
   const Matrix3 B{{{0.15, 0.1, -0.05}, {-0.05, -0.12, 0.08}, {0.06, 0.04, 0.1}}};
-  for (bool tetrahedra : {false, true})
+  const char *names[] = {"hexahedra", "tetrahedra", "hexahedra and pyramids"};
+  for (PatchCells kind : {PatchCells::HEXAHEDRA, PatchCells::TETRAHEDRA, PatchCells::HEXAHEDRA_AND_PYRAMIDS})
     for (MaterialModel model : {MaterialModel::LINEAR, MaterialModel::SVK}) {
-      const Patch patch = MakePatch(tetrahedra);
+      const Patch patch = MakePatch(kind);
       const Material m = MakeMaterial(model);
-      SCOPED_TRACE(std::string(tetrahedra ? "tetrahedra, " : "hexahedra, ") + m.ModelName());
+      SCOPED_TRACE(std::string(names[(int)kind]) + ", " + m.ModelName());
+      double volume = 0;
+      for (const auto &nodes : patch.cells) {
+        const ElementGeometry g = Geometry(PatchCell(patch, nodes));
+        // No cell folded (Kuhn's tetrahedra alternate in orientation, which the kernels do not mind); the pyramids
+        // are in gmsh's order.
+        EXPECT_GT(nodes.size() == 5 ? g.min_detJ : g.min_detJ * g.max_detJ, 0.0);
+        for (int q = 0; q < g.nqp; ++q)
+          volume += g.w[q];
+      }
+      EXPECT_NEAR(volume, 8.0, 1e-13); // the cells tile the block
       const Vector f = AssemblePatchForce(m, patch, LinearField(patch.X, a, B));
       const double scale = MaxAbs(f);
       ASSERT_GT(scale, 0.0);
-      for (int d = 0; d < 3; ++d)
-        EXPECT_NEAR(f[3 * patch.centre + d], 0.0, 1e-12 * scale) << "component " << d;
+      for (int v : patch.interior)
+        for (int d = 0; d < 3; ++d)
+          EXPECT_NEAR(f[3 * v + d], 0.0, 1e-12 * scale) << "node " << v << ", component " << d;
     }
 }
 
@@ -303,7 +380,7 @@ Vector RandomDisplacement(const Cell &cell, Random &random) {
 
 TEST(SvkElement3D, TangentMatchesCentralFiniteDifferenceOfTheForce) {
   Random random;
-  for (const Cell &cell : {TETRAHEDRON, DISTORTED_HEX}) {
+  for (const Cell &cell : {TETRAHEDRON, DISTORTED_HEX, DISTORTED_PYRAMID}) {
     const Material m = MakeMaterial(MaterialModel::SVK);
     SCOPED_TRACE(Describe(cell, m));
     const int n = 3 * cell.nodes;

@@ -6,6 +6,7 @@
 
 #include "mesh/mesh_files.hpp"
 
+#include <gmsh.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -201,6 +202,71 @@ TEST(ReadGmsh, RepositoryMeshes) {
   EXPECT_NEAR(hertz.coords[2 * centre->nodes[0] + 1], 0.0, 1e-12);
 }
 
+/// The cells as lists of their vertices' coordinates in their order, sorted (what a mesh is, whatever the file's
+/// numbering of nodes and elements: format 2.2 numbers the elements anew).
+std::vector<std::vector<double>> CellCoordinates(const SerialMesh &mesh) {
+  std::vector<std::vector<double>> cells(mesh.NumCells());
+  for (int c = 0; c < mesh.NumCells(); ++c)
+    for (int k = mesh.cell_offsets[c]; k < mesh.cell_offsets[c + 1]; ++k)
+      for (int d = 0; d < mesh.dim; ++d)
+        cells[c].push_back(mesh.coords[mesh.dim * mesh.cell_nodes[k] + d]);
+  std::sort(cells.begin(), cells.end());
+  return cells;
+}
+
+/// Number of cells of each size (vertices per cell).
+std::map<int, int> CellKinds(const SerialMesh &mesh) {
+  std::map<int, int> kinds;
+  for (int c = 0; c < mesh.NumCells(); ++c)
+    kinds[mesh.CellSize(c)]++;
+  return kinds;
+}
+
+TEST(ReadGmsh, ConformingTetrahedraPyramidsAndHexahedraInEveryFormat) {
+  const std::string msh = SIGNORINI_SOURCE_DIR "/meshes/cube_mixed_conforming.msh";
+  SerialMesh ref;
+  ASSERT_EQ(ReadGmsh(msh, 1.0, ref), "");
+  // Hexahedra on x in [0, 1] (5 x 5 x 4), tetrahedra on x in [1, 2], and one pyramid on each quadrilateral of the
+  // shared face x = 1 (5 x 4), its apex among the tetrahedra.
+  const auto kinds = CellKinds(ref);
+  EXPECT_EQ(kinds.at(8), 100);
+  EXPECT_EQ(kinds.at(5), 20);
+  EXPECT_GT(kinds.at(4), 100);
+  EXPECT_EQ(kinds.size(), 3u);
+  for (int c = 0; c < ref.NumCells(); ++c) {
+    if (ref.CellSize(c) != 5) continue;
+    const int *v = &ref.cell_nodes[ref.cell_offsets[c]];
+    for (int a = 0; a < 4; ++a)
+      EXPECT_EQ(ref.coords[3 * v[a]], 1.0) << "base vertex " << a << " of pyramid " << ref.cell_tags[c];
+    EXPECT_GT(ref.coords[3 * v[4]], 1.0) << "apex of pyramid " << ref.cell_tags[c];
+  }
+  // The same mesh written by gmsh in format 2.2 (ASCII and binary) and 4.1 binary reads the same.
+  TempDir dir;
+  const std::vector<std::pair<double, int>> formats = {{2.2, 0}, {2.2, 1}, {4.1, 1}};
+  gmsh::initialize(0, nullptr, false);
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::open(msh);
+  for (const auto &[version, binary] : formats) {
+    gmsh::option::setNumber("Mesh.MshFileVersion", version);
+    gmsh::option::setNumber("Mesh.Binary", binary);
+    gmsh::write(dir.Path("v" + std::to_string(version) + "_" + std::to_string(binary) + ".msh"));
+  }
+  gmsh::finalize();
+  for (const auto &[version, binary] : formats) {
+    SCOPED_TRACE("format " + std::to_string(version) + (binary ? " binary" : " ASCII"));
+    SerialMesh mesh;
+    ASSERT_EQ(ReadGmsh(dir.Path("v" + std::to_string(version) + "_" + std::to_string(binary) + ".msh"), 1.0, mesh),
+              "");
+    EXPECT_EQ(CellCoordinates(mesh), CellCoordinates(ref));
+    EXPECT_EQ(mesh.groups.size(), ref.groups.size());
+  }
+  // The .geo, meshed in a child process, has the same hexahedra and pyramids.
+  SerialMesh geo;
+  ASSERT_EQ(ReadGmsh(SIGNORINI_SOURCE_DIR "/meshes/cube_mixed_conforming.geo", 1.0, geo), "");
+  EXPECT_EQ(CellKinds(geo).at(5), 20);
+  EXPECT_EQ(CellKinds(geo).at(8), 100);
+}
+
 TEST(ReadGmsh, UnreadableFilesAreErrors) {
   TempDir dir;
   SerialMesh mesh;
@@ -351,6 +417,29 @@ TEST(CheckAndOrientCells3D, NegativeTetrahedraAndHexahedraAreFlippedAndAMinority
   SerialMesh mixed = MakeMesh3D({hex, tet, tet_mirrored});
   const std::string error = CheckAndOrientCells(mixed);
   EXPECT_NE(error.find("1 inverted element(s) of 3 (e.g. element 12)"), std::string::npos) << error;
+}
+
+TEST(CheckAndOrientCells3D, PyramidsAreFlippedWithTheMeshAndChecked) {
+  // On the unit cube's corners (node = x + 2 y + 4 z): base 0 1 3 2 (z = 0, counter-clockwise seen from above), apex
+  // 4 above; mirrored: its base reversed.
+  const std::vector<int> pyramid = {0, 1, 3, 2, 4}, pyramid_mirrored = {0, 2, 3, 1, 4};
+  const std::vector<int> tet = {0, 1, 2, 4}, tet_mirrored = {0, 2, 1, 4};
+  SerialMesh good = MakeMesh3D({pyramid, tet});
+  EXPECT_EQ(CheckAndOrientCells(good), "");
+  EXPECT_EQ(good.cell_nodes, MakeMesh3D({pyramid, tet}).cell_nodes);
+  SerialMesh mirrored = MakeMesh3D({pyramid_mirrored, tet_mirrored});
+  EXPECT_EQ(CheckAndOrientCells(mirrored), "");
+  EXPECT_EQ(mirrored.cell_nodes, MakeMesh3D({pyramid, tet}).cell_nodes);
+  SerialMesh minority = MakeMesh3D({pyramid_mirrored, tet});
+  EXPECT_NE(CheckAndOrientCells(minority).find("1 inverted element(s) of 2"), std::string::npos)
+      << CheckAndOrientCells(minority);
+  SerialMesh flat = MakeMesh3D({{0, 1, 3, 2, 1}}); // apex on the base
+  EXPECT_NE(CheckAndOrientCells(flat).find("element 10 has zero volume"), std::string::npos)
+      << CheckAndOrientCells(flat);
+  SerialMesh bowtie = MakeMesh3D({{0, 1, 2, 3, 4}}); // self-intersecting base
+  EXPECT_NE(CheckAndOrientCells(bowtie).find("element 10 is not convex (self-intersecting or inverted pyramid)"),
+            std::string::npos)
+      << CheckAndOrientCells(bowtie);
 }
 
 TEST(CheckAndOrientCells3D, FlatAndTwistedCellsAreErrors) {

@@ -175,6 +175,25 @@ TEST(Mesh, BeamGroupsSitOnTheirEdges) {
     EXPECT_LT(mesh.X(e.v[1])[0], mesh.X(e.v[0])[0]); // top edge runs in -x, body below
 }
 
+/// Sums the outward vector areas of faces on the sides of the box [0, hi] (sum) and the absolute values of their
+/// components (total), checking that each face lies on the side its normal points to.
+void SumBoxFaces(const Mesh &mesh, const std::vector<Face> &faces, const double hi[3], double sum[3], double &total) {
+  sum[0] = sum[1] = sum[2] = total = 0;
+  for (const Face &f : faces) {
+    double n[3], centre[3] = {0, 0, 0};
+    mesh.FaceNormal(f, n);
+    for (int a = 0; a < f.n; ++a)
+      for (int d = 0; d < 3; ++d)
+        centre[d] += mesh.X(f.v[a])[d] / f.n;
+    // On the side with outward normal e_d (or -e_d), the centre lies at hi[d] (or 0) along d.
+    for (int d = 0; d < 3; ++d) {
+      sum[d] += n[d];
+      total += std::abs(n[d]);
+      if (std::abs(n[d]) > 1e-12) EXPECT_NEAR(centre[d], n[d] > 0 ? hi[d] : 0.0, 1e-14);
+    }
+  }
+}
+
 TEST(Mesh3D, CubeFacesAreOrientedOutwardsAndTileTheBoundary) {
   for (const char *file : {"cube.msh", "cube_tet.msh"}) {
     SCOPED_TRACE(file);
@@ -183,22 +202,12 @@ TEST(Mesh3D, CubeFacesAreOrientedOutwardsAndTileTheBoundary) {
     EXPECT_EQ(mesh.Dim(), 3);
     std::vector<Face> faces;
     ASSERT_EQ(mesh.BoundaryFaces(faces), 0);
-    // Six unit faces: the outward vector areas cancel and their absolute values sum to 6.
-    double sum[3] = {0, 0, 0}, total = 0;
-    for (const Face &f : faces) {
+    for (const Face &f : faces)
       EXPECT_EQ(f.n, std::string(file) == "cube.msh" ? 4 : 3);
-      double n[3], centre[3] = {0, 0, 0};
-      mesh.FaceNormal(f, n);
-      for (int a = 0; a < f.n; ++a)
-        for (int d = 0; d < 3; ++d)
-          centre[d] += mesh.X(f.v[a])[d] / f.n;
-      // On the face of the unit cube with outward normal e_d (or -e_d), the centre lies at 1 (or 0) along d.
-      for (int d = 0; d < 3; ++d) {
-        sum[d] += n[d];
-        total += std::abs(n[d]);
-        if (std::abs(n[d]) > 1e-12) EXPECT_NEAR(centre[d], n[d] > 0 ? 1.0 : 0.0, 1e-14);
-      }
-    }
+    // Six unit faces: the outward vector areas cancel and their absolute values sum to 6.
+    const double one[3] = {1, 1, 1};
+    double sum[3], total;
+    SumBoxFaces(mesh, faces, one, sum, total);
     for (int d = 0; d < 3; ++d)
       EXPECT_NEAR(sum[d], 0.0, 1e-13);
     EXPECT_NEAR(total, 6.0, 1e-13);
@@ -215,6 +224,129 @@ TEST(Mesh3D, CubeFacesAreOrientedOutwardsAndTileTheBoundary) {
     EXPECT_NE(capture.Message().find("expected a physical surface (dimension 2)"), std::string::npos)
         << capture.Message();
   }
+}
+
+TEST(Mesh3D, ConformingMixedMeshJoinsItsCellsThroughEveryInteriorFace) {
+  // meshes/cube_mixed_conforming.msh: the box [0, 2] x [0, 1] x [0, 1] of hexahedra, pyramids and tetrahedra. DMPlex
+  // joins two cells through a face when both have a face on the same vertices: the boundary faces are then exactly
+  // the box's faces, of total area 10, oriented outwards (a pyramid's face not joined to its neighbour's would be a
+  // boundary face inside the box).
+  Mesh mesh;
+  ASSERT_EQ(mesh.Create(PETSC_COMM_SELF, Options(SIGNORINI_SOURCE_DIR "/meshes/cube_mixed_conforming.msh")), 0);
+  std::vector<Face> faces;
+  ASSERT_EQ(mesh.BoundaryFaces(faces), 0);
+  const double hi[3] = {2, 1, 1};
+  double sum[3], total;
+  SumBoxFaces(mesh, faces, hi, sum, total);
+  for (int d = 0; d < 3; ++d)
+    EXPECT_NEAR(sum[d], 0.0, 1e-13);
+  EXPECT_NEAR(total, 10.0, 1e-13);
+  // Every vertex on the box's surface is a boundary vertex, and no other.
+  std::vector<PetscInt> boundary;
+  ASSERT_EQ(mesh.BoundaryVertices(boundary), 0);
+  std::size_t on_surface = 0;
+  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) {
+    bool surface = false;
+    for (int d = 0; d < 3; ++d)
+      surface = surface || mesh.X(v)[d] == 0.0 || mesh.X(v)[d] == hi[d];
+    on_surface += surface;
+  }
+  EXPECT_EQ(boundary.size(), on_surface);
+  // DMPlex's own checks: cones of the right size for each cell type, faces consistent with their cells' cones.
+  EXPECT_EQ(DMPlexCheckSkeleton(mesh.Dm(), 0), 0);
+  EXPECT_EQ(DMPlexCheckFaces(mesh.Dm(), 0), 0);
+}
+
+TEST(Mesh3D, FacesOfAPyramidAreOrientedOutwards) {
+  // One pyramid (base the unit square at z = 0, apex (0.3, 0.6, 0.8)), its base and its four sides as physical
+  // surfaces, each given in a node order against the outward one: the faces come back outwards, closing the surface.
+  const char *pyramid = R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+3
+2 1 "base"
+2 2 "sides"
+3 3 "body"
+$EndPhysicalNames
+$Nodes
+5
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+5 0.3 0.6 0.8
+$EndNodes
+$Elements
+6
+1 3 2 1 1 1 2 3 4
+2 2 2 2 2 1 5 2
+3 2 2 2 2 2 5 3
+4 2 2 2 2 3 5 4
+5 2 2 2 2 4 5 1
+6 7 2 3 3 1 2 3 4 5
+$EndElements
+)";
+  TempDir dir;
+  Mesh mesh;
+  ASSERT_EQ(mesh.Create(PETSC_COMM_SELF, Options(dir.Write("pyramid.msh", pyramid))), 0);
+  ASSERT_EQ(mesh.NumLocalCells(), 1);
+  std::vector<Face> base, sides, boundary;
+  ASSERT_EQ(mesh.GroupFaces("base", base), 0);
+  ASSERT_EQ(mesh.GroupFaces("sides", sides), 0);
+  ASSERT_EQ(mesh.BoundaryFaces(boundary), 0);
+  ASSERT_EQ(base.size(), 1u);
+  EXPECT_EQ(base[0].n, 4);
+  ASSERT_EQ(sides.size(), 4u);
+  EXPECT_EQ(boundary.size(), 5u);
+  double n[3], sum[3] = {0, 0, 0};
+  mesh.FaceNormal(base[0], n);
+  EXPECT_NEAR(n[0], 0.0, 1e-15);
+  EXPECT_NEAR(n[1], 0.0, 1e-15);
+  EXPECT_NEAR(n[2], -1.0, 1e-15); // outward: -z, area 1
+  for (const Face &f : sides) {
+    EXPECT_EQ(f.n, 3);
+    mesh.FaceNormal(f, n);
+    double out = 0; // from the base's centre (0.5, 0.5, 0) to the face's centroid
+    for (int d = 0; d < 3; ++d) {
+      double c = 0;
+      for (int a = 0; a < 3; ++a)
+        c += mesh.X(f.v[a])[d] / 3;
+      out += n[d] * (c - (d < 2 ? 0.5 : 0.0));
+      sum[d] += n[d];
+    }
+    EXPECT_GT(out, 0.0);
+  }
+  EXPECT_NEAR(sum[0], 0.0, 1e-15);
+  EXPECT_NEAR(sum[1], 0.0, 1e-15);
+  EXPECT_NEAR(sum[2], 1.0, 1e-15); // the sides close the surface with the base
+}
+
+TEST(Mesh, FoldedCellsAreAnErrorNamingThem) {
+  // Two counter-clockwise triangles on the same side of the edge (1, 2) they share: each valid, together folded.
+  const char *folded = R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$Nodes
+4
+1 0 0 0
+2 1 0 0
+3 0 1 0
+4 0.4 0.3 0
+$EndNodes
+$Elements
+2
+7 2 2 0 1 1 2 3
+8 2 2 0 1 1 2 4
+$EndElements
+)";
+  TempDir dir;
+  Mesh mesh;
+  ErrorCapture capture;
+  EXPECT_NE(mesh.Create(PETSC_COMM_SELF, Options(dir.Write("folded.msh", folded))), 0);
+  EXPECT_NE(capture.Message().find("elements 7 and 8 overlap: they lie on the same side of the edge they share"),
+            std::string::npos)
+      << capture.Message();
 }
 
 TEST(Mesh, MissingFileIsAnError) {

@@ -1,10 +1,12 @@
-// Obstacle facets (gap, normal, projection parameter, distance), the shape registry and the -obstacle_ options.
+// Obstacle facets (gap, normal, projection parameter, distance, their drawing in 3D), the shape registry and the
+// -obstacle_ options.
 #include "signorini/obstacles/obstacle.hpp"
 
 #include "petsc_helpers.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -208,6 +210,121 @@ TEST(Cylinder, GapIgnoresThePositionAlongTheAxis) {
     EXPECT_NEAR(b.gap, -0.3, 1e-14);
     EXPECT_NEAR(b.normal[2], -1.0, 1e-15);
     EXPECT_NEAR(cylinder.Distance(in), 0.3, 1e-14);
+  }
+}
+
+/// Bounds of a drawn surface, and whether every triangle's right-hand normal points into the body: for a plane along
+/// `into`, for a sphere or cylinder away from `centre` (its centroid's direction, minus the part along `axis`).
+struct Drawn {
+  std::size_t triangles = 0;
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  bool oriented = true;
+};
+
+Drawn Draw(const TriangleSoup &soup, const double *into, const double *centre, const double *axis = nullptr) {
+  Drawn d;
+  EXPECT_EQ(soup.size() % 3, 0u);
+  d.triangles = soup.size() / 3;
+  for (std::size_t t = 0; t + 2 < soup.size(); t += 3) {
+    const auto &a = soup[t], &b = soup[t + 1], &c = soup[t + 2];
+    const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    double dir[3], along = 0;
+    for (int i = 0; i < 3; ++i)
+      dir[i] = into ? into[i] : (a[i] + b[i] + c[i]) / 3 - centre[i];
+    for (int i = 0; axis && i < 3; ++i)
+      along += dir[i] * axis[i];
+    for (int i = 0; axis && i < 3; ++i)
+      dir[i] -= along * axis[i];
+    d.oriented = d.oriented && n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2] > 0;
+    for (const auto *p : {&a, &b, &c})
+      for (int i = 0; i < 3; ++i)
+        d.lo[i] = std::min(d.lo[i], (*p)[i]), d.hi[i] = std::max(d.hi[i], (*p)[i]);
+  }
+  return d;
+}
+
+TEST(Surface, PlaneIsTheRectangleOverTheBodysProjection) {
+  Box body;
+  const double lo[3] = {-1, 2, 0.5}, hi[3] = {3, 4, 1.5};
+  for (int i = 0; i < 3; ++i)
+    body.lo[i] = lo[i], body.hi[i] = hi[i];
+  // The plane z = 0.2 with its normal +z: the rectangle [-1, 3] x [2, 4] at z = 0.2.
+  const double p[3] = {7, -5, 0.2}, n[3] = {0, 0, 1};
+  const Drawn d = Draw(Plane(p, n).Surface(body), n, nullptr);
+  EXPECT_EQ(d.triangles, 2u);
+  EXPECT_TRUE(d.oriented);
+  const double want_lo[3] = {-1, 2, 0.2}, want_hi[3] = {3, 4, 0.2};
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(d.lo[i], want_lo[i], 1e-14) << i;
+    EXPECT_NEAR(d.hi[i], want_hi[i], 1e-14) << i;
+  }
+  // An oblique plane through the box's centre: its rectangle holds the projection of every corner of the box, and
+  // lies in the plane.
+  const double q[3] = {1, 3, 1}, m[3] = {1, -2, 2};
+  const TriangleSoup soup = Plane(q, m).Surface(body);
+  const double unit[3] = {1.0 / 3, -2.0 / 3, 2.0 / 3};
+  const Drawn oblique = Draw(soup, unit, nullptr);
+  EXPECT_TRUE(oblique.oriented);
+  for (const auto &x : soup)
+    EXPECT_NEAR(unit[0] * (x[0] - q[0]) + unit[1] * (x[1] - q[1]) + unit[2] * (x[2] - q[2]), 0.0, 1e-14);
+  double t1[3], t2[3];
+  TangentFrame(unit, t1, t2);
+  EXPECT_NEAR(t1[0] * t2[0] + t1[1] * t2[1] + t1[2] * t2[2], 0.0, 1e-15);
+  for (const double *t : {t1, t2}) {
+    double s_lo, s_hi, c_lo = 1e300, c_hi = -1e300;
+    BoxExtent(body, q, t, s_lo, s_hi);
+    for (const auto &x : soup) {
+      const double c = t[0] * (x[0] - q[0]) + t[1] * (x[1] - q[1]) + t[2] * (x[2] - q[2]);
+      c_lo = std::min(c_lo, c), c_hi = std::max(c_hi, c);
+    }
+    EXPECT_NEAR(c_lo, s_lo, 1e-14);
+    EXPECT_NEAR(c_hi, s_hi, 1e-14);
+  }
+}
+
+TEST(Surface, SphereIsClosedAroundItsCentreWithItsBounds) {
+  const double c[4] = {1, -2, 0.5, 3};
+  const Ball sphere(c, c[3], 3);
+  const TriangleSoup soup = sphere.Surface(Box{});
+  const Drawn d = Draw(soup, nullptr, c);
+  EXPECT_EQ(d.triangles, 2u * Ball::SPHERE_MERIDIANS * (Ball::SPHERE_MERIDIANS / 2 - 1));
+  EXPECT_TRUE(d.oriented); // outwards: into the body
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(d.lo[i], c[i] - c[3], 1e-14) << i;
+    EXPECT_NEAR(d.hi[i], c[i] + c[3], 1e-14) << i;
+  }
+  for (const auto &x : soup)
+    EXPECT_NEAR(std::hypot(x[0] - c[0], x[1] - c[1], x[2] - c[2]), c[3], 1e-14);
+  // Closed: the vector areas of its triangles cancel.
+  double area[3] = {0, 0, 0};
+  for (std::size_t t = 0; t < soup.size(); t += 3)
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      const auto &a = soup[t], &b = soup[t + 1], &e = soup[t + 2];
+      area[i] += 0.5 * ((b[j] - a[j]) * (e[k] - a[k]) - (b[k] - a[k]) * (e[j] - a[j]));
+    }
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(area[i], 0.0, 1e-12) << i;
+  const double disc[3] = {0, 0, 1};
+  EXPECT_TRUE(Ball(disc, 1, 2).Surface(Box{}).empty()); // a disc is drawn as a polyline
+}
+
+TEST(Surface, CylinderSpansTheBodyAlongItsAxis) {
+  Box body;
+  const double lo[3] = {-1, 2, 0.5}, hi[3] = {3, 4, 1.5};
+  for (int i = 0; i < 3; ++i)
+    body.lo[i] = lo[i], body.hi[i] = hi[i];
+  // Axis along y through (1, 0, -2), radius 0.5: x in [0.5, 1.5], z in [-2.5, -1.5], y over the body's [2, 4].
+  const double p[3] = {1, 0, -2}, a[3] = {0, 1, 0};
+  const Cylinder cylinder(p, a, 0.5);
+  const Drawn d = Draw(cylinder.Surface(body), nullptr, p, a);
+  EXPECT_EQ(d.triangles, 2u * Cylinder::CYLINDER_SEGMENTS);
+  EXPECT_TRUE(d.oriented); // outwards: into the body
+  const double want_lo[3] = {0.5, 2, -2.5}, want_hi[3] = {1.5, 4, -1.5};
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(d.lo[i], want_lo[i], 1e-14) << i;
+    EXPECT_NEAR(d.hi[i], want_hi[i], 1e-14) << i;
   }
 }
 

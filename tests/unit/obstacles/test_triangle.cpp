@@ -106,7 +106,7 @@ TEST(Triangle, BoundsAndSurface) {
   EXPECT_EQ(hi[0], 4);
   EXPECT_EQ(hi[1], 5);
   EXPECT_EQ(hi[2], 3);
-  const auto s = t.Surface();
+  const auto s = t.Surface(Box{});
   ASSERT_EQ(s.size(), 3u);
   EXPECT_EQ(s[1][0], 4);
   EXPECT_EQ(s[2][1], 5);
