@@ -121,20 +121,20 @@ private:
     PetscInt step;
     double factor;
     bool first, large;
-    std::vector<double> delta, u_eval; ///< prescribed-displacement increment still to apply; u + delta
-    std::vector<char> next;            ///< the active set of the next solve
+    std::vector<double> delta{}, u_eval{}; ///< prescribed-displacement increment still to apply; u + delta
+    std::vector<char> next{};          ///< the active set of the next solve
     PetscInt krylov = 0;
     double last_solve_time = 0, solve_residual = 0, rnorm = 0, rscale = 0;
     bool moving = false;     ///< some prescribed displacement is still to apply
     bool stabilised = false; ///< the last solve carried the stabilisation springs
-    std::vector<double> gap_before; ///< the gaps before the last stabilised solve
+    std::vector<double> gap_before{}; ///< the gaps before the last stabilised solve
     /// Condensed solves (linear material, kept factorisation): the active-set iterations after a full solve run in the
     /// multiplier space against that solve's right-hand side (its base: u_base, the gaps g_base), the displacement
     /// staying at the base's until a state may be the solution (Materialise).
     bool base = false;      ///< the last full solve can be a base (reuse mode, linear, not stabilised)
     bool condensed = false; ///< the last solve was condensed: states from g_base + shift, u not updated
-    VecH u_base;
-    std::vector<double> g_base, shift;
+    VecH u_base{};
+    std::vector<double> g_base{}, shift{};
   };
   enum class Outcome { SOLVE, EXTENDED, CONVERGED, STOP };
   [[nodiscard]] PetscErrorCode LoadStep(PetscInt step, double factor, bool first, bool &ok);
