@@ -136,12 +136,17 @@ PetscErrorCode OutputWriter::SetContactBoundary(const std::vector<char> &candida
   MPI_Comm comm = mesh_->Comm();
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  // The contact boundary as a polyline of boundary edges (2D); 3D contact surfaces are not written yet.
+  // The contact boundary: the boundary faces whose every vertex is a candidate, edges in 2D, triangles and
+  // quadrilaterals in 3D; per face its vertex count, then its vertices (file order).
   PetscCall(mesh_->BoundaryFaces(faces));
   std::vector<PetscInt> send;
-  for (const auto &f : faces)
-    if (f.n == 2 && candidate[f.v[0]] && candidate[f.v[1]])
-      send.insert(send.end(), {mesh_->VertexOriginal(f.v[0]), mesh_->VertexOriginal(f.v[1])});
+  for (const auto &f : faces) {
+    bool all = true;
+    for (int a = 0; a < f.n; ++a) all = all && candidate[f.v[a]];
+    if (!all) continue;
+    send.push_back(f.n);
+    for (int a = 0; a < f.n; ++a) send.push_back(mesh_->VertexOriginal(f.v[a]));
+  }
   PetscMPIInt count = (PetscMPIInt)send.size();
   std::vector<PetscMPIInt> counts(size), displs(size, 0);
   PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
@@ -151,12 +156,26 @@ PetscErrorCode OutputWriter::SetContactBoundary(const std::vector<char> &candida
     all.resize(displs[size - 1] + counts[size - 1]);
   }
   PetscCallMPI(MPI_Gatherv(send.data(), count, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT, 0, comm));
-  contact_nodes_.assign(all.begin(), all.end());
+  contact_nodes_.clear();
+  contact_faces_.clear();
+  contact_num_faces_ = 0;
+  int size_seen = -1;
+  bool uniform = true;
+  for (std::size_t k = 0; k < all.size(); k += all[k] + 1) {
+    contact_nodes_.insert(contact_nodes_.end(), all.begin() + k + 1, all.begin() + k + 1 + all[k]);
+    uniform = uniform && (size_seen < 0 || size_seen == (int)all[k]);
+    size_seen = (int)all[k];
+  }
   std::sort(contact_nodes_.begin(), contact_nodes_.end());
   contact_nodes_.erase(std::unique(contact_nodes_.begin(), contact_nodes_.end()), contact_nodes_.end());
-  contact_edges_.clear();
-  for (PetscInt v : all)
-    contact_edges_.push_back(std::lower_bound(contact_nodes_.begin(), contact_nodes_.end(), v) - contact_nodes_.begin());
+  // XDMF: a uniform topology, or a Mixed one with the cell type before each face's vertices.
+  contact_face_size_ = uniform ? std::max(size_seen, 0) : 0;
+  for (std::size_t k = 0; k < all.size(); k += all[k] + 1, ++contact_num_faces_) {
+    if (!uniform) contact_faces_.push_back(XdmfCellId(2, (int)all[k]));
+    for (PetscInt a = 0; a < all[k]; ++a)
+      contact_faces_.push_back(std::lower_bound(contact_nodes_.begin(), contact_nodes_.end(), all[k + 1 + a]) -
+                               contact_nodes_.begin());
+  }
   PetscFunctionReturn(0);
 }
 
@@ -215,11 +234,6 @@ PetscErrorCode OutputWriter::WriteStep(PetscInt step, double t, const std::vecto
 bool OutputWriter::WriteGeometry(std::int64_t file) const {
   const SerialMesh &sm = mesh_->Serial();
   hid_t g = H5Gcreate2(file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  const auto xyz = [](const std::vector<std::array<double, 2>> &points) {
-    std::vector<double> out;
-    for (const auto &p : points) out.insert(out.end(), {p[0], p[1], 0.0});
-    return out;
-  };
   std::vector<double> coords(3 * sm.NumNodes(), 0.0);
   for (int i = 0; i < sm.NumNodes(); ++i)
     for (int d = 0; d < sm.dim; ++d) coords[3 * i + d] = sm.coords[sm.dim * i + d];
@@ -245,12 +259,14 @@ bool OutputWriter::WriteGeometry(std::int64_t file) const {
     if (g >= 0) H5Gclose(g);
   }
   if (ok && !contact_nodes_.empty()) {
-    std::vector<std::array<double, 2>> points;
+    std::vector<double> contact_coords;
     std::vector<long long> tags;
     for (PetscInt v : contact_nodes_)
-      points.push_back({coords[3 * v], coords[3 * v + 1]}), tags.push_back((long long)sm.node_tags[v]);
+      contact_coords.insert(contact_coords.end(), coords.begin() + 3 * v, coords.begin() + 3 * v + 3),
+          tags.push_back((long long)sm.node_tags[v]);
     g = H5Gcreate2(file, "contact_boundary", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    ok = g >= 0 && WriteDataset(g, "coordinates", xyz(points), 3) && WriteDataset(g, "topology", contact_edges_, 2) &&
+    ok = g >= 0 && WriteDataset(g, "coordinates", contact_coords, 3) &&
+         WriteDataset(g, "topology", contact_faces_, contact_face_size_ ? (hsize_t)contact_face_size_ : 1) &&
          WriteDataset(g, "node_tags", tags, 1);
     if (g >= 0) H5Gclose(g);
   }
@@ -327,7 +343,12 @@ PetscErrorCode OutputWriter::WriteXdmf() const {
           << "    </Grid>\n";
       if (nb > 0) {
         x << "    <Grid Name=\"contact_boundary\" GridType=\"Uniform\">\n"
-          << Shape("contact_boundary", "Polyline", (int)contact_edges_.size() / 2, 2, 0, nb)
+          << Shape("contact_boundary",
+                   contact_face_size_ == 2   ? "Polyline"
+                   : contact_face_size_ == 3 ? "Triangle"
+                   : contact_face_size_ == 4 ? "Quadrilateral"
+                                             : "Mixed",
+                   contact_num_faces_, contact_face_size_, contact_face_size_ ? 0 : contact_faces_.size(), nb)
           << Attribute("node_tags", 1, false, nb, true, "/contact_boundary/node_tags");
         for (const auto &f : s.layout)
           if (f.on_contact)

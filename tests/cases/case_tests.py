@@ -1223,11 +1223,25 @@ def paraview_view_3d(runner):
     shapes = {"plane": (lambda z: z > -1, 2, [[0, 0, 0], [2, 1, 0]]),
               "cylinder": (lambda z: -5 < z < -3, 2 * 64, [[0, 0, -4.5], [2, 1, -3.5]]),
               "sphere": (lambda z: z < -7, 2 * 64 * 31, [[-1, -1.5, -12], [3, 2.5, -8]])}
+    # The contact surface: the bottom faces (z = 0), quadrilaterals of the hexahedra and triangles of the tetrahedra
+    # (and of a pyramid whose apex lies on the bottom), a Mixed topology; its multipliers carry the load q * area.
+    bottom = {3: 0, 4: 0}
+    for c in cells:
+        on = sum(abs(xyz[v][2]) < 1e-12 for v in c)
+        if (len(c), on) in ((4, 3), (5, 3), (8, 4)):
+            bottom[on] += 1
     for reader, blocks in readers.items():
-        runner.expect_equal("%s: blocks (body, obstacle)" % reader, len(blocks), 2)
-        if len(blocks) != 2:
+        runner.expect_equal("%s: blocks (body, obstacle, contact_boundary)" % reader, len(blocks), 3)
+        if len(blocks) != 3:
             continue
-        body, obstacle = blocks
+        body, obstacle, contact = blocks
+        runner.expect_equal("%s: contact faces by vertices (triangles, quadrilaterals)" % reader,
+                            {n: sum(len(c) == n for c in contact["cells"]) for n in (3, 4)}, bottom)
+        runner.expect_close("%s: contact surface at z = 0" % reader,
+                            [p[2] for p in contact["points"]], [0.0] * len(contact["points"]), 0, 1e-14)
+        lam = contact["point_data"].get("contact_lambda", {"values": [[0.0]]})["values"]
+        runner.expect_close("%s: contact multipliers sum to q * area" % reader, sum(v[0] for v in lam), 2.0 * 2.0,
+                            1e-10, 0)
         runner.expect_equal("%s: body points" % reader, len(body["points"]), len(xyz))
         shown = {n: sum(len(c) == n for c in body["cells"]) for n in (4, 5, 8)}
         runner.expect_equal("%s: body cells by vertices (tetrahedra, pyramids, hexahedra)" % reader, shown, kinds)

@@ -76,7 +76,10 @@ private:
   std::vector<std::array<double, 3>> obstacle_points_; ///< the corners of each obstacle cell (x, y, z)
   int obstacle_cell_size_ = 2;                         ///< 2: segments of polylines (2D), 3: triangles (3D)
   std::vector<PetscInt> contact_nodes_;                ///< rank 0: file indices of the contact-boundary nodes
-  std::vector<long long> contact_edges_;               ///< rank 0: two positions in contact_nodes_ per edge
+  std::vector<long long> contact_faces_; ///< rank 0: the contact faces' vertices (positions in contact_nodes_), each
+                                         ///< preceded by its XDMF type when contact_face_size_ is 0 (mixed sizes)
+  int contact_face_size_ = 0;            ///< vertices per contact face (2 edges, 3 triangles, 4 quadrilaterals)
+  int contact_num_faces_ = 0;
 };
 
 } // namespace signorini
