@@ -14,7 +14,8 @@ namespace signorini {
 
 const std::vector<ShapeType> &ShapeRegistry() {
   static const std::vector<ShapeType> registry = {SegmentsShape(), ArcsShape(),     DiscsShape(),
-                                                  PlanesShape(),   SpheresShape(), CylindersShape()};
+                                                  PlanesShape(),   SpheresShape(), CylindersShape(),
+                                                  RectanglesShape()};
   return registry;
 }
 

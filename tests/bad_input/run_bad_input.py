@@ -270,6 +270,11 @@ CASES = {
                             ["DIVERGED_NOT_HELD", "not held", "away from every obstacle"], {}),
     # Nodes farther than the search radius from the wall at the start get no pair, and the cylinder sinks through it:
     # the certificate must refuse that state (it used to be reported converged with a contact half as wide).
+    "rectangle_zero_size": (CUBE + ["-obstacle_rectangles", "0.5,0.5,0,0,0,1,1,0,0,0,1"],
+                            ["-obstacle_rectangles item 1", "half-size", "expected A > 0 and B > 0"], {}),
+    "rectangle_direction_along_normal": (CUBE + ["-obstacle_rectangles", "0.5,0.5,0,0,0,1,0,0,2,1,1"],
+                                         ["-obstacle_rectangles item 1", "along the normal", "in the plane"], {}),
+    "rectangle_on_2d_mesh": (["-obstacle_rectangles", "0,0,0,0,0,1,1,0,0,1,1"], ["-obstacle_rectangles", "3D"], {}),
     "search_radius_too_small": (["-contact_search_radius", "0.01"],
                                 ["DIVERGED_CERTIFICATE", "penetrates the obstacle", "has no contact pair",
                                  "-contact_search_radius 0.01", "raise -contact_search_radius"], {"previous": HERTZ}),

@@ -1314,6 +1314,22 @@ def obstacle_mesh_plane(runner):
         expect_same_state(runner, plane, runner.run(case + extra, "cube on " + " ".join(extra)))
 
 
+@test("obstacle_rectangles")
+def obstacle_rectangles(runner):
+    """The cube on a bounded plane (-obstacle_rectangles: two triangles) that covers its bottom gives the state of the
+    unbounded plane, whatever the in-plane direction (turned 30 degrees, or given out of the plane and projected onto
+    it); a rectangle under half of the bottom carries the load on that half only."""
+    case = options_args(runner, "options/cube_on_plane.yml", drop=("obstacle_planes",))
+    plane = runner.run(["-options_file", "options/cube_on_plane.yml"], "cube on a plane")
+    for rect in ("0.5,0.5,0,0,0,1,0.866,0.5,0,1,1", "0.5,0.5,0,0,0,2,1,0,3,0.8,0.9"):
+        r = runner.run(case + ["-obstacle_rectangles", rect], "cube on the rectangle " + rect)
+        expect_same_state(runner, plane, r)
+    # Rectangles reaching only x <= 0.5 and the strip 0.5 <= x <= 1 side by side: the same as the plane.
+    halves = runner.run(case + ["-obstacle_rectangles", "0.25,0.5,0,0,0,1,1,0,0,0.25,1,0.75,0.5,0,0,0,1,0,1,0,1,0.25"],
+                        "cube on two rectangles")
+    expect_same_state(runner, plane, halves)
+
+
 @test("obstacle_mesh_corner")
 def obstacle_mesh_corner(runner):
     """The cube pushed by a body force into a concave corner (floor and two walls, meshes/corner_obstacle.geo): equal

@@ -176,6 +176,7 @@ ShapeType DiscsShape();
 ShapeType PlanesShape();
 ShapeType SpheresShape();
 ShapeType CylindersShape();
+ShapeType RectanglesShape();
 
 /// A meshed rigid surface given by -obstacle_mesh FILE[:GROUP]: the file as given, the physical group (empty: every
 /// element of the obstacle's dimension) and where the file is looked for.

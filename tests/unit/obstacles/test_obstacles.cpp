@@ -30,7 +30,7 @@ const ShapeType &Shape(const std::string &option) {
   for (const ShapeType &shape : ShapeRegistry())
     if (option == shape.option) return shape;
   ADD_FAILURE() << "no shape type " << option << " in the registry";
-  static const ShapeType none{"", "", 0, nullptr};
+  static const ShapeType none{"", "", 0, nullptr, 0};
   return none;
 }
 
