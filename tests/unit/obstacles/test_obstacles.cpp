@@ -329,7 +329,8 @@ TEST(Surface, CylinderSpansTheBodyAlongItsAxis) {
 }
 
 TEST(ShapeRegistry, ListsThe2DAnd3DShapes) {
-  EXPECT_EQ(ShapeRegistry().size(), 6u);
+  EXPECT_EQ(ShapeRegistry().size(), 7u);
+  EXPECT_EQ(Shape("-obstacle_rectangles").numbers, 11);
   EXPECT_EQ(Shape("-obstacle_segments").numbers, 4);
   EXPECT_EQ(Shape("-obstacle_arcs").numbers, 6);
   EXPECT_EQ(Shape("-obstacle_discs").numbers, 3);
@@ -338,7 +339,7 @@ TEST(ShapeRegistry, ListsThe2DAnd3DShapes) {
   EXPECT_EQ(Shape("-obstacle_cylinders").numbers, 7);
   for (const char *option : {"-obstacle_segments", "-obstacle_arcs", "-obstacle_discs"})
     EXPECT_EQ(Shape(option).dim, 2) << option;
-  for (const char *option : {"-obstacle_planes", "-obstacle_spheres", "-obstacle_cylinders"})
+  for (const char *option : {"-obstacle_planes", "-obstacle_spheres", "-obstacle_cylinders", "-obstacle_rectangles"})
     EXPECT_EQ(Shape(option).dim, 3) << option;
   for (const ShapeType &shape : ShapeRegistry()) {
     EXPECT_TRUE(shape.build) << shape.option;
@@ -457,6 +458,33 @@ TEST(ObstacleOptions, BadItemsAreErrors) {
     EXPECT_NE(capture.Message().find(c.expected), std::string::npos) << capture.Message();
     EXPECT_NE(capture.Message().find(c.option), std::string::npos) << capture.Message();
   }
+}
+
+TEST(Rectangle, TwoTrianglesOrientedIntoTheBodyCoverIt) {
+  // Centre (1, 2, 3), normal along -y (scaled), U given partly along the normal (projected away), half-sizes 2 and 0.5.
+  const double v[11] = {1, 2, 3, 0, -3, 0, 1, 1, 0, 2, 0.5};
+  std::vector<std::unique_ptr<Facet>> facets;
+  EXPECT_EQ(Shape("-obstacle_rectangles").build(v, facets), "");
+  ASSERT_EQ(facets.size(), 2u);
+  double area = 0;
+  for (const auto &f : facets) area += dynamic_cast<const Triangle &>(*f).Area();
+  EXPECT_NEAR(area, 4 * 2 * 0.5, 1e-14);
+  // A point 0.25 on the body's side, inside the rectangle (within 2 of the centre along x, 0.5 along z): gap 0.25,
+  // normal (0, -1, 0), on exactly one or both triangles; beyond the half-size along x it is on neither.
+  const double x[3] = {2.9, 1.75, 3.4}, out[3] = {3.1, 1.75, 3};
+  int on = 0;
+  for (const auto &f : facets) {
+    const Projection p = f->Project(x, 1e-8);
+    if (!p.inside) continue;
+    ++on;
+    EXPECT_NEAR(p.gap, 0.25, 1e-14);
+    EXPECT_NEAR(p.normal[1], -1, 1e-14);
+  }
+  EXPECT_GE(on, 1);
+  for (const auto &f : facets) EXPECT_FALSE(f->Project(out, 1e-8).inside);
+  const double zero[11] = {0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 1}, along[11] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 1, 1};
+  EXPECT_NE(Shape("-obstacle_rectangles").build(zero, facets), "");
+  EXPECT_NE(Shape("-obstacle_rectangles").build(along, facets), "");
 }
 
 } // namespace
