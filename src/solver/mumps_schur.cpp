@@ -215,9 +215,11 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   // The user's MUMPS controls under the solver's prefix (-contact_mat_mumps_icntl_<k>, -contact_mat_mumps_cntl_<k>),
   // as PETSc's interface reads them, except the ones this class relies on (input/Schur/right-hand-side layout).
   const auto control = [](const char *array, int k) { return "-mat_mumps_" + std::string(array) + "_" + std::to_string(k); };
-  // Ordering: METIS's nested dissection of the matrix graph, given to MUMPS (ICNTL(7) = 1; Debian's MUMPS has only
-  // AMD, AMF, QAMD and PORD built in), unless -contact_mat_mumps_icntl_7 picks one of those.
-  id_.ICNTL(7) = 1;
+  // Ordering: METIS's nested dissection of the node graph, given to MUMPS (ICNTL(7) = 1; Debian's MUMPS has only
+  // AMD, AMF, QAMD and PORD built in), unless -contact_mat_mumps_icntl_7 picks one of those. A small 2D matrix gets
+  // MUMPS's automatic choice: there the ordering costs more than it saves (measured on the Hertz meshes: 35 ms of
+  // METIS at 20k rows for a factorisation of 50 ms either way; even at 50k); in 3D METIS pays from 6k rows on.
+  id_.ICNTL(7) = node_size == 3 || N >= METIS_MIN_ROWS_2D ? 1 : 7;
   for (int k = 1; k <= 60; ++k) {
     PetscInt v;
     PetscBool set;

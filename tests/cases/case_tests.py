@@ -1314,6 +1314,19 @@ def obstacle_mesh_plane(runner):
         expect_same_state(runner, plane, runner.run(case + extra, "cube on " + " ".join(extra)))
 
 
+@test("orderings")
+def orderings(runner):
+    """The pivot orders of the kept factorisation give the same state: MUMPS's automatic choice (the default for a
+    small 2D matrix), METIS's nested dissection of the node graph (the default from 50k rows and in 3D) and PORD, on
+    the 2D Hertz case and on the 3D cube with symmetry supports (a node's first row then holds only its diagonal)."""
+    for case, what in ((["-options_file", "options/hertz.yml"], "hertz"),
+                       (["-options_file", "options/cube_on_plane.yml"], "cube")):
+        ref = runner.run(case + ["-contact_mat_mumps_icntl_7", "7"], "%s, automatic ordering" % what)
+        for order, name in (("1", "METIS node graph"), ("4", "PORD")):
+            r = runner.run(case + ["-contact_mat_mumps_icntl_7", order], "%s, %s" % (what, name))
+            expect_same_state(runner, ref, r)
+
+
 @test("obstacle_rectangles")
 def obstacle_rectangles(runner):
     """The cube on a bounded plane (-obstacle_rectangles: two triangles) that covers its bottom gives the state of the

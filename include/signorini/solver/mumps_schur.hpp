@@ -21,6 +21,9 @@ namespace signorini {
 /// above the analysis' estimate (MUMPS's default, 20, was exceeded by 2-rank LDL^T of 3D hexahedral meshes).
 constexpr int MUMPS_WORKSPACE_INCREASE = 50;
 
+/// Rows from which a 2D saddle-point matrix is ordered by METIS (below: MUMPS's automatic choice; 3D: always METIS).
+constexpr PetscInt METIS_MIN_ROWS_2D = 50000;
+
 class MumpsSchur {
 public:
   MumpsSchur() = default;
