@@ -43,7 +43,16 @@ PetscErrorCode MumpsSchur::Call(int job, const char *phase) {
   PetscFunctionBeginUser;
   id_.job = job;
   dmumps_c(&id_);
-  // INFOG is the same on every rank, so every rank takes the same branch.
+  // INFOG is the same on every rank, so every rank takes the same branch. -13: an allocation failed; INFOG(2) is its
+  // size in entries, or in millions of entries when negative.
+  if (id_.INFOG(1) == -13) {
+    const double entries = id_.INFOG(2) < 0 ? -1e6 * id_.INFOG(2) : (double)id_.INFOG(2);
+    SETERRQ(comm_, PETSC_ERR_MEM,
+            "MUMPS could not allocate %.3g GB in the %s of the saddle-point system (INFOG(1) = -13): the factors do "
+            "not fit in this machine's memory; expected a smaller mesh, more ranks on more memory, or an iterative "
+            "preset (-options_file options/solver/fieldsplit_gamg.yml)",
+            8e-9 * entries, phase);
+  }
   PetscCheck(id_.INFOG(1) >= 0, comm_, PETSC_ERR_LIB,
              "MUMPS failed in the %s of the saddle-point system: INFOG(1) = %d, INFOG(2) = %d (see the MUMPS users' "
              "guide; -8/-9/-17/-20: out of workspace, -10: the matrix is singular)",
