@@ -10,9 +10,8 @@ Families (each run is the executable with a case options file, a solver preset a
          regular, so every preset, the Schur fieldsplits included, applies)
   svk    the nonlinear line: hertz with -material_model svk -load_steps 3 and the default solver (mumps_cholesky)
   hertz3d  options/hertz3d.yml on meshes/hertz3d.geo (3D Hertz: an octant of a ball on a plane, graded towards the
-         contact; K is singular as in 2D). Its largest level (about 760k displacement dofs) is the largest expected
-         to fit in 24 GiB with the default solver: one MUMPS LDL^T of a 3D cube took 17.4 GiB at 681k dofs on the
-         2-core machine, so 1M dofs would not fit.
+         contact; K is singular as in 2D). Levels up to 556k displacement dofs (F = 0.4: 14.7 GB on one rank) fit
+         in 24 GiB with the default solver; the largest, F = 0.35 (822k dofs), does not (MUMPS asks for 31 GB).
 
 Per run it records: displacement dofs, multipliers, active-set iterations, Krylov iterations, the time per phase,
 the peak memory, the Hertz errors and the ratio (contact solve) / (one elastic solve).
@@ -91,7 +90,7 @@ BEAM_LEVELS = [0.2, 0.1, 0.05, 0.025, 0.0177, 0.0125]  # 8.4k, 33k, 130k, 516k, 
 BEAM_QUICK = [0.4]
 SVK_LEVELS = [1.0, 0.25]
 SVK_QUICK = [1.0]
-HERTZ3D_LEVELS = [2.0, 1.4, 1.0, 0.7, 0.5, 0.4, 0.35]  # 6.2k, 16k, 40k, 110k; estimated 280k, 530k, 760k dofs
+HERTZ3D_LEVELS = [2.0, 1.4, 1.0, 0.7, 0.5, 0.4, 0.35]  # 6.2k, 16k, 40k, 110k, 290k, 556k, 823k dofs (the last does not fit in 24 GiB)
 HERTZ3D_QUICK = [2.0]
 
 
