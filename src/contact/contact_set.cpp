@@ -186,8 +186,9 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
 }
 
 PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
-                               const std::vector<char> &candidate, const std::vector<ContactPair> &pairs,
-                               const double *u_local, double &depth, PetscInt &node, double position[3]) {
+                               const std::vector<char> &candidate, const std::vector<char> &fixed,
+                               const std::vector<ContactPair> &pairs, const double *u_local, double &depth,
+                               PetscInt &node, double position[3]) {
   const int dim = mesh.Dim();
   const PetscInt nv = mesh.NumLocalVertices();
   PetscFunctionBeginUser;
@@ -219,6 +220,11 @@ PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const
       for (PetscInt f : near) {
         const Projection p = obstacle.facets[f]->Project(x, opts.alpha_tol);
         if (!p.inside || -p.gap <= mine.depth) continue;
+        // As in FindContactPairs: a facet whose normal lies in the node's fixed components is the supports' business.
+        double free2 = 0;
+        for (int k = 0; k < dim; ++k)
+          if (!fixed[v * dim + k]) free2 += p.normal[k] * p.normal[k];
+        if (free2 < 1e-12) continue;
         mine.depth = -p.gap;
         where[0] = (double)mesh.VertexOriginal(v) + 1;
         for (int k = 0; k < dim; ++k) where[1 + k] = mesh.X(v)[k];

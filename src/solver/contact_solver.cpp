@@ -562,8 +562,8 @@ PetscErrorCode ContactSolver::Certify(const std::vector<double> &u_eval, double 
   PetscCall(active_set_.Certify(states_, keys_, normals_, rnorm, tol, cert));
   // The pairs cover the nodes that were within the search radius: a node that was not and went through the obstacle
   // would otherwise pass unseen.
-  PetscCall(DeepestUnpaired(mesh_, obstacle_, contact_, candidate_, pairs_, u_eval.data(), cert.unpaired_penetration,
-                            cert.unpaired_node, cert.unpaired_x));
+  PetscCall(DeepestUnpaired(mesh_, obstacle_, contact_, candidate_, dirichlet_.fixed, pairs_, u_eval.data(),
+                            cert.unpaired_penetration, cert.unpaired_node, cert.unpaired_x));
   cert.search_radius = contact_.search_radius;
   PetscFunctionReturn(0);
 }

@@ -57,11 +57,12 @@ struct ContactPair {
 
 /// The deepest penetration of the obstacle, at the positions X + u_local, by an owned candidate node that has no
 /// pair at all (it was farther than the search radius from every facet when the pairs were found): depth 0 and node
-/// -1 when none penetrates; node in file numbering (from 1) and its reference position, the same on every rank. Every
-/// facet within
-/// search radius + max |u| of a node is examined, so none that the node can have reached is missed. Collective.
+/// -1 when none penetrates; node in file numbering (from 1) and its reference position, the same on every rank.
+/// Every facet within search radius + max |u| of a node is examined, so none that the node can have reached is
+/// missed; a facet whose normal lies in the node's fixed components (fixed: as for FindContactPairs) is skipped, as
+/// it is when pairing. Collective.
 [[nodiscard]] PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
-                                             const std::vector<char> &candidate,
+                                             const std::vector<char> &candidate, const std::vector<char> &fixed,
                                              const std::vector<ContactPair> &pairs, const double *u_local,
                                              double &depth, PetscInt &node, double position[3]);
 
