@@ -214,6 +214,35 @@ def bottom_tributary_areas(result, tags):
     return np.array([by_tag[t] for t in tags])
 
 
+def expect_pressed_box(runner, r, nodes, bottom, q, area):
+    """A box of base `area` on the rigid plane z = 0 under a uniform pressure q on its top (options/cube_on_plane.yml):
+    every bottom node is a candidate and active after one solve, lambda_i = q w_i (w_i its tributary area), no
+    penetration, the exact linear field u = (nu q x / E, nu q y / E, -q z / E) and the uniform stress sigma_zz = -q
+    in every cell (VTK order: xx, yy, zz, xy, yz, xz), to round-off. Returns the tributary areas."""
+    n = len(bottom)
+    runner.expect_equal("candidate pairs", r.get("contact.pairs"), n)
+    runner.expect_equal("active pairs: every bottom node", r.get("contact.active_pairs"), n)
+    runner.expect_equal("active-set iterations", r.get("iterations.active_set"), 1)
+    runner.expect_equal("active nodes off the bottom", int(nodes["active"].sum()) - int(bottom["active"].sum()), 0)
+    # The consistent nodal forces of the pressure are q w_i (1e-10 leaves room for the conditioning of K).
+    w = bottom_tributary_areas(r, bottom["node_tag"])
+    runner.expect_close("sum of tributary areas = %g" % area, w.sum(), area, 1e-14)
+    runner.expect_close("lambda_i = q w_i", bottom["lambda"], q * w, 1e-10)
+    runner.expect_close("contact pressure = q", bottom["pressure"], np.full(n, q), 1e-10)
+    runner.expect_close("contact area", r.get("contact.contact_length"), area, 1e-12)
+    runner.expect_close("contact force", r.get("contact.contact_force"), [0, 0, q * area], 0, 1e-10 * q)
+    runner.expect_true("no penetration beyond round-off (%g)" % r.get("contact.max_penetration"),
+                       r.get("contact.max_penetration") <= 1e-15)
+    E, nu = r.get("material.E"), r.get("material.nu")
+    exact = np.column_stack([nu * q / E * nodes["x"], nu * q / E * nodes["y"], -q / E * nodes["z"]])
+    runner.expect_close("displacement = exact linear field", displacement(nodes), exact, 0,
+                        1e-10 * np.abs(exact).max())
+    stress = r.cell_field("stress")
+    runner.expect_close("stress = (0, 0, -q, 0, 0, 0) in every cell", stress,
+                        np.tile([0, 0, -q, 0, 0, 0], (len(stress), 1)), 0, 1e-10 * q)
+    return w
+
+
 @test("cube_on_plane")
 def cube_on_plane(runner, mesh):
     """Unit cube (hexahedra or tetrahedra) under uniform pressure on a rigid plane: every bottom node active,
@@ -227,30 +256,10 @@ def cube_on_plane(runner, mesh):
     runner.expect_true("bottom nodes found (%d)" % n, n >= 9)
     # Every bottom node touches the plane at the start and stays in compression: one solve settles it. The
     # supports u_x = 0, u_y = 0 fix one component only, so every bottom node is a candidate.
-    runner.expect_equal("candidate pairs", r.get("contact.pairs"), n)
-    runner.expect_equal("active pairs", r.get("contact.active_pairs"), n)
-    runner.expect_equal("active-set iterations", r.get("iterations.active_set"), 1)
     runner.expect_equal("active flags of the bottom nodes", int(bottom["active"].sum()), n)
-    runner.expect_equal("active nodes off the bottom", int(nodes["active"].sum()) - n, 0)
-    # The exact solution is linear (uniform stress sigma_zz = -q), reproduced by P1/Q1 up to round-off; the
-    # consistent nodal forces of the pressure are q w_i (1e-10 leaves room for the conditioning of K).
-    w = bottom_tributary_areas(r, bottom["node_tag"])
+    w = expect_pressed_box(runner, r, nodes, bottom, q, 1.0)
     runner.expect_true("tributary areas differ (graded mesh)", w.max() > 1.5 * w.min())
-    runner.expect_close("sum of tributary areas = 1", w.sum(), 1.0, 1e-14)
-    runner.expect_close("lambda_i = q w_i", bottom["lambda"], q * w, 1e-10)
-    runner.expect_close("contact pressure = q", bottom["pressure"], np.full(n, q), 1e-10)
-    runner.expect_close("contact area", r.get("contact.contact_length"), 1.0, 1e-12)
-    runner.expect_close("contact force", r.get("contact.contact_force"), [0, 0, q], 0, 1e-10 * q)
-    runner.expect_true("no penetration beyond round-off (%g)" % r.get("contact.max_penetration"),
-                       r.get("contact.max_penetration") <= 1e-15)
-    E, nu = r.get("material.E"), r.get("material.nu")
-    exact = np.column_stack([nu * q / E * nodes["x"], nu * q / E * nodes["y"], -q / E * nodes["z"]])
-    runner.expect_close("displacement = exact linear field", displacement(nodes), exact, 0,
-                        1e-10 * np.abs(exact).max())
-    # Uniform Cauchy stress sigma_zz = -q in every cell (VTK order: xx, yy, zz, xy, yz, xz), von Mises q.
     stress = r.cell_field("stress")
-    runner.expect_close("stress = (0, 0, -q, 0, 0, 0)", stress, np.tile([0, 0, -q, 0, 0, 0], (len(stress), 1)), 0,
-                        1e-10 * q)
     runner.expect_close("von Mises = q", r.cell_field("von_mises"), np.full(len(stress), q), 1e-10)
 
 
@@ -307,27 +316,8 @@ def mixed_conforming(runner):
     runner.expect_equal("hexahedra", kinds.get(8), 100)
     nodes = r.nodes()
     bottom = nodes[nodes["z"] == 0.0]
-    n = len(bottom)
-    runner.expect_equal("candidate pairs", r.get("contact.pairs"), n)
-    runner.expect_equal("active pairs: every bottom node", r.get("contact.active_pairs"), n)
-    runner.expect_equal("active-set iterations", r.get("iterations.active_set"), 1)
-    runner.expect_equal("active nodes off the bottom", int(nodes["active"].sum()) - int(bottom["active"].sum()), 0)
     # As cube_on_plane: the field is linear, reproduced exactly (round-off) by the conforming cells.
-    w = bottom_tributary_areas(r, bottom["node_tag"])
-    runner.expect_close("sum of tributary areas = 2", w.sum(), 2.0, 1e-14)
-    runner.expect_close("lambda_i = q w_i", bottom["lambda"], q * w, 1e-10)
-    runner.expect_close("contact pressure = q", bottom["pressure"], np.full(n, q), 1e-10)
-    runner.expect_close("contact area", r.get("contact.contact_length"), 2.0, 1e-12)
-    runner.expect_close("contact force", r.get("contact.contact_force"), [0, 0, 2 * q], 0, 1e-10 * q)
-    runner.expect_true("no penetration beyond round-off (%g)" % r.get("contact.max_penetration"),
-                       r.get("contact.max_penetration") <= 1e-15)
-    E, nu = r.get("material.E"), r.get("material.nu")
-    exact = np.column_stack([nu * q / E * nodes["x"], nu * q / E * nodes["y"], -q / E * nodes["z"]])
-    runner.expect_close("displacement = exact linear field", displacement(nodes), exact, 0,
-                        1e-10 * np.abs(exact).max())
-    stress = r.cell_field("stress")
-    runner.expect_close("stress = (0, 0, -q, 0, 0, 0) in every cell", stress,
-                        np.tile([0, 0, -q, 0, 0, 0], (len(stress), 1)), 0, 1e-10 * q)
+    expect_pressed_box(runner, r, nodes, bottom, q, 2.0)
 
 
 @test("forces_3d")
