@@ -175,10 +175,10 @@ TEST(Mesh, BeamGroupsSitOnTheirEdges) {
     EXPECT_LT(mesh.X(e.v[1])[0], mesh.X(e.v[0])[0]); // top edge runs in -x, body below
 }
 
-/// Sums the outward vector areas of faces on the sides of the box [0, hi] (sum) and the absolute values of their
-/// components (total), checking that each face lies on the side its normal points to.
-void SumBoxFaces(const Mesh &mesh, const std::vector<Face> &faces, const double hi[3], double sum[3], double &total) {
-  sum[0] = sum[1] = sum[2] = total = 0;
+/// Checks that faces tile the surface of the box [0, hi] outwards: each lies on the side its normal points to, their
+/// outward vector areas cancel and the absolute values of their components sum to the box's surface area.
+void ExpectBoxFaces(const Mesh &mesh, const std::vector<Face> &faces, const double hi[3], double area) {
+  double sum[3] = {0, 0, 0}, total = 0;
   for (const Face &f : faces) {
     double n[3], centre[3] = {0, 0, 0};
     mesh.FaceNormal(f, n);
@@ -189,9 +189,14 @@ void SumBoxFaces(const Mesh &mesh, const std::vector<Face> &faces, const double 
     for (int d = 0; d < 3; ++d) {
       sum[d] += n[d];
       total += std::abs(n[d]);
-      if (std::abs(n[d]) > 1e-12) EXPECT_NEAR(centre[d], n[d] > 0 ? hi[d] : 0.0, 1e-14);
+      if (std::abs(n[d]) > 1e-12) {
+        EXPECT_NEAR(centre[d], n[d] > 0 ? hi[d] : 0.0, 1e-14);
+      }
     }
   }
+  for (int d = 0; d < 3; ++d)
+    EXPECT_NEAR(sum[d], 0.0, 1e-13);
+  EXPECT_NEAR(total, area, 1e-13);
 }
 
 TEST(Mesh3D, CubeFacesAreOrientedOutwardsAndTileTheBoundary) {
@@ -206,11 +211,7 @@ TEST(Mesh3D, CubeFacesAreOrientedOutwardsAndTileTheBoundary) {
       EXPECT_EQ(f.n, std::string(file) == "cube.msh" ? 4 : 3);
     // Six unit faces: the outward vector areas cancel and their absolute values sum to 6.
     const double one[3] = {1, 1, 1};
-    double sum[3], total;
-    SumBoxFaces(mesh, faces, one, sum, total);
-    for (int d = 0; d < 3; ++d)
-      EXPECT_NEAR(sum[d], 0.0, 1e-13);
-    EXPECT_NEAR(total, 6.0, 1e-13);
+    ExpectBoxFaces(mesh, faces, one, 6.0);
     ASSERT_EQ(mesh.GroupFaces("bottom", faces), 0);
     double bottom = 0;
     for (const Face &f : faces) {
@@ -236,11 +237,7 @@ TEST(Mesh3D, ConformingMixedMeshJoinsItsCellsThroughEveryInteriorFace) {
   std::vector<Face> faces;
   ASSERT_EQ(mesh.BoundaryFaces(faces), 0);
   const double hi[3] = {2, 1, 1};
-  double sum[3], total;
-  SumBoxFaces(mesh, faces, hi, sum, total);
-  for (int d = 0; d < 3; ++d)
-    EXPECT_NEAR(sum[d], 0.0, 1e-13);
-  EXPECT_NEAR(total, 10.0, 1e-13);
+  ExpectBoxFaces(mesh, faces, hi, 10.0);
   // Every vertex on the box's surface is a boundary vertex, and no other.
   std::vector<PetscInt> boundary;
   ASSERT_EQ(mesh.BoundaryVertices(boundary), 0);
