@@ -34,6 +34,41 @@ int CellVertices(int dim, int type) {
   return type == GMSH_TETRAHEDRON ? 4 : type == GMSH_PYRAMID ? 5 : type == GMSH_HEXAHEDRON ? 8 : 0;
 }
 
+/// Positions of unique tags (gmsh's node or element tags): a table indexed by tag when the tags are compact (gmsh
+/// numbers from 1 without gaps), a hash map otherwise. Reading a 1M-dof mesh spent 0.8 s in hash look-ups.
+class TagIndex {
+public:
+  /// Indexes tags[i] -> i; returns false and sets duplicate when a tag occurs twice.
+  bool Build(const std::vector<std::size_t> &tags, std::size_t &duplicate) {
+    std::size_t max_tag = 0;
+    for (std::size_t t : tags) max_tag = std::max(max_tag, t);
+    dense_ = max_tag <= 4 * tags.size() + 1024;
+    if (dense_) table_.assign(max_tag + 1, NONE);
+    else map_.reserve(tags.size());
+    for (std::size_t i = 0; i < tags.size(); ++i) {
+      const bool fresh = dense_ ? table_[tags[i]] == NONE : map_.emplace(tags[i], i).second;
+      if (!fresh) {
+        duplicate = tags[i];
+        return false;
+      }
+      if (dense_) table_[tags[i]] = i;
+    }
+    return true;
+  }
+  /// The position of tag, or NONE.
+  std::size_t Find(std::size_t tag) const {
+    if (dense_) return tag < table_.size() ? table_[tag] : NONE;
+    const auto it = map_.find(tag);
+    return it == map_.end() ? NONE : it->second;
+  }
+  static constexpr std::size_t NONE = ~std::size_t(0);
+
+private:
+  bool dense_ = true;
+  std::vector<std::size_t> table_;
+  std::unordered_map<std::size_t, std::size_t> map_;
+};
+
 std::string ReadModel(const std::string &path, SerialMesh &mesh) {
   // The mesh's dimension is that of its highest-dimensional elements: 3 when it has any volume element.
   std::vector<int> types;
@@ -64,20 +99,24 @@ std::string ReadModel(const std::string &path, SerialMesh &mesh) {
   std::vector<std::size_t> all_tags;
   std::vector<double> all_coords, params;
   gmsh::model::mesh::getNodes(all_tags, all_coords, params, -1, -1, false, false);
-  std::unordered_map<std::size_t, std::size_t> tag_pos;
-  tag_pos.reserve(all_tags.size());
-  for (std::size_t i = 0; i < all_tags.size(); ++i) {
-    if (!tag_pos.emplace(all_tags[i], i).second)
-      return "mesh '" + path + "' has duplicate node tag " + std::to_string(all_tags[i]) + "; expected unique node tags";
-  }
+  TagIndex tag_pos;
+  std::size_t duplicate = 0;
+  if (!tag_pos.Build(all_tags, duplicate))
+    return "mesh '" + path + "' has duplicate node tag " + std::to_string(duplicate) + "; expected unique node tags";
+  // The position of a node tag among the nodes used by cells, -1 for an unknown tag or an unused node.
+  std::vector<int> used(all_tags.size(), -1);
+  const auto used_index = [&](std::size_t tag) {
+    const std::size_t pos = tag_pos.Find(tag);
+    return pos == TagIndex::NONE ? -1 : used[pos];
+  };
 
   // Nodes used by cells, numbered in the order they appear in the file.
-  std::vector<int> used(all_tags.size(), -1);
   for (auto &nodes : elem_nodes)
     for (std::size_t t : nodes) {
-      auto it = tag_pos.find(t);
-      if (it == tag_pos.end()) return "mesh '" + path + "' has an element referring to unknown node " + std::to_string(t);
-      used[it->second] = 0;
+      const std::size_t pos = tag_pos.Find(t);
+      if (pos == TagIndex::NONE)
+        return "mesh '" + path + "' has an element referring to unknown node " + std::to_string(t);
+      used[pos] = 0;
     }
   for (std::size_t i = 0; i < all_tags.size(); ++i)
     if (used[i] == 0) {
@@ -93,18 +132,17 @@ std::string ReadModel(const std::string &path, SerialMesh &mesh) {
     return "mesh '" + path + "' has no volume cells and is not planar (z varies): a surface mesh cannot be the body; "
            "expected tetrahedra, pyramids or hexahedra (3D) or a 2D mesh in the x-y plane";
 
-  auto node_index = [&](std::size_t tag) { return used[tag_pos.at(tag)]; };
-  std::unordered_map<std::size_t, int> cell_of_tag;
   for (std::size_t k = 0; k < types.size(); ++k) {
     const int nv = CellVertices(dim, types[k]);
     for (std::size_t e = 0; e < elem_tags[k].size(); ++e) {
-      for (int j = 0; j < nv; ++j) mesh.cell_nodes.push_back(node_index(elem_nodes[k][nv * e + j]));
+      for (int j = 0; j < nv; ++j) mesh.cell_nodes.push_back(used_index(elem_nodes[k][nv * e + j]));
       mesh.cell_offsets.push_back((int)mesh.cell_nodes.size());
-      if (!cell_of_tag.emplace(elem_tags[k][e], mesh.NumCells()).second)
-        return "mesh '" + path + "' has duplicate element tag " + std::to_string(elem_tags[k][e]);
       mesh.cell_tags.push_back(elem_tags[k][e]);
     }
   }
+  TagIndex cell_of_tag;
+  if (!cell_of_tag.Build(mesh.cell_tags, duplicate))
+    return "mesh '" + path + "' has duplicate element tag " + std::to_string(duplicate);
 
   gmsh::vectorpair groups;
   gmsh::model::getPhysicalGroups(groups, -1);
@@ -125,13 +163,12 @@ std::string ReadModel(const std::string &path, SerialMesh &mesh) {
           if (et[k] != GMSH_LINE)
             return "physical curve '" + g.name + "' has non-linear line elements; expected 2-node lines";
           for (std::size_t t : enodes[k]) {
-            auto it = tag_pos.find(t);
-            if (it == tag_pos.end() || used[it->second] < 0)
-              return "physical curve '" + g.name + "' has a node that belongs to no cell";
-            g.edges.push_back(used[it->second]);
+            const int v = used_index(t);
+            if (v < 0) return "physical curve '" + g.name + "' has a node that belongs to no cell";
+            g.edges.push_back(v);
           }
         } else if (dim == mesh.dim) {
-          for (std::size_t t : etags[k]) g.cells.push_back(cell_of_tag.at(t));
+          for (std::size_t t : etags[k]) g.cells.push_back((int)cell_of_tag.Find(t));
         } else if (dim == 2) {
           // A physical surface of a 3D mesh: its triangles and quadrilaterals are boundary faces (checked when the
           // DMPlex is labelled).
@@ -141,31 +178,28 @@ std::string ReadModel(const std::string &path, SerialMesh &mesh) {
                    "and 4-node quadrilaterals";
           for (std::size_t e = 0; e < etags[k].size(); ++e) {
             for (int j = 0; j < nv; ++j) {
-              auto it = tag_pos.find(enodes[k][nv * e + j]);
-              if (it == tag_pos.end() || used[it->second] < 0)
-                return "physical surface '" + g.name + "' has a node that belongs to no cell";
-              g.face_nodes.push_back(used[it->second]);
+              const int v = used_index(enodes[k][nv * e + j]);
+              if (v < 0) return "physical surface '" + g.name + "' has a node that belongs to no cell";
+              g.face_nodes.push_back(v);
             }
             g.face_offsets.push_back((int)g.face_nodes.size());
           }
         }
         // The nodes of the group's elements: a format 2.2 file classifies each node on one entity only, so the
         // entity's own nodes (below) miss those it shares with neighbouring entities (corners, curve ends).
-        for (std::size_t t : enodes[k]) {
-          auto it = tag_pos.find(t);
-          if (it != tag_pos.end() && used[it->second] >= 0) g.nodes.push_back(used[it->second]);
-        }
+        for (std::size_t t : enodes[k])
+          if (used_index(t) >= 0) g.nodes.push_back(used_index(t));
       }
       std::vector<std::size_t> ntags;
       std::vector<double> nc, np;
       gmsh::model::mesh::getNodes(ntags, nc, np, dim, ent, true, false);
       for (std::size_t t : ntags) {
-        auto it = tag_pos.find(t);
-        if (it == tag_pos.end() || used[it->second] < 0) {
+        const int v = used_index(t);
+        if (v < 0) {
           if (dim == 0) return "physical point '" + g.name + "' is a node that belongs to no cell";
           continue;
         }
-        g.nodes.push_back(used[it->second]);
+        g.nodes.push_back(v);
       }
     }
     std::sort(g.nodes.begin(), g.nodes.end());

@@ -10,6 +10,7 @@
 #include <metis.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <unordered_map>
@@ -44,36 +45,44 @@ PetscErrorCode BroadcastGroups(MPI_Comm comm, const SerialMesh &serial, std::vec
   PetscFunctionReturn(0);
 }
 
-/// The vertices of face `face` of an interpolated DMPlex in cyclic order, as vertex indices (point - vstart): the two
-/// ends of an edge in 2D; in 3D the face's edges chained into a cycle (its orientation is the caller's to fix).
-PetscErrorCode FaceCycle(DM dm, int dim, PetscInt vstart, PetscInt face, Face &f) {
-  const PetscInt *cone;
-  PetscInt ncone;
-  PetscFunctionBeginUser;
-  PetscCall(DMPlexGetConeSize(dm, face, &ncone));
-  PetscCall(DMPlexGetCone(dm, face, &cone));
-  if (dim == 2) {
-    f.n = 2, f.v[0] = cone[0] - vstart, f.v[1] = cone[1] - vstart;
-    PetscFunctionReturn(0);
+/// The faces (codimension 1) of a cell with n vertices, as positions in gmsh's vertex order, each oriented outwards
+/// for a cell of positive orientation (CheckAndOrientCells) as Face is: the edges of a counter-clockwise triangle or
+/// quadrilateral; the triangles and quadrilaterals of a tetrahedron, pyramid (base 0-3, apex 4) or hexahedron (bottom
+/// 0-3, top 4-7), in cyclic order with their right-hand normal pointing out of the cell.
+struct CellFaceTable {
+  int count;
+  std::array<int, 6> size;
+  std::array<std::array<int, 4>, 6> v;
+};
+const CellFaceTable &CellFaces(int dim, int n) {
+  static const CellFaceTable triangle{3, {2, 2, 2}, {{{0, 1}, {1, 2}, {2, 0}}}};
+  static const CellFaceTable quadrilateral{4, {2, 2, 2, 2}, {{{0, 1}, {1, 2}, {2, 3}, {3, 0}}}};
+  static const CellFaceTable tetrahedron{4, {3, 3, 3, 3}, {{{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}}}};
+  static const CellFaceTable pyramid{5, {4, 3, 3, 3, 3}, {{{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}}}};
+  static const CellFaceTable hexahedron{
+      6, {4, 4, 4, 4, 4, 4}, {{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}};
+  if (dim == 2) return n == 3 ? triangle : quadrilateral;
+  return n == 4 ? tetrahedron : n == 5 ? pyramid : hexahedron;
+}
+
+/// A face of the serial mesh found through one of its cells: its sorted vertices (padded with INT_MAX), the cell and
+/// the face's position in CellFaces.
+struct FaceEntry {
+  std::array<int, 4> key;
+  int cell, local;
+  bool operator<(const FaceEntry &o) const {
+    return key != o.key ? key < o.key : cell != o.cell ? cell < o.cell : local < o.local;
   }
-  std::array<std::array<PetscInt, 2>, 4> edges;
-  PetscCheck(ncone == 3 || ncone == 4, PETSC_COMM_SELF, PETSC_ERR_PLIB, "a face with %" PetscInt_FMT " edges", ncone);
-  for (PetscInt k = 0; k < ncone; ++k) {
-    const PetscInt *ev;
-    PetscCall(DMPlexGetCone(dm, cone[k], &ev));
-    edges[k] = {ev[0] - vstart, ev[1] - vstart};
+};
+
+std::array<int, 4> FaceKey(const int *nodes, int n) {
+  std::array<int, 4> key{INT_MAX, INT_MAX, INT_MAX, INT_MAX};
+  for (int i = 0; i < n; ++i) { // insertion sort of at most 4 values
+    int j = i;
+    for (; j > 0 && key[j - 1] > nodes[i]; --j) key[j] = key[j - 1];
+    key[j] = nodes[i];
   }
-  f.n = (int)ncone;
-  f.v[0] = edges[0][0], f.v[1] = edges[0][1];
-  std::array<char, 4> used{1, 0, 0, 0};
-  for (int k = 2; k < f.n; ++k)
-    for (PetscInt e = 0; e < ncone; ++e) {
-      if (used[e] || (edges[e][0] != f.v[k - 1] && edges[e][1] != f.v[k - 1])) continue;
-      f.v[k] = edges[e][0] == f.v[k - 1] ? edges[e][1] : edges[e][0];
-      used[e] = 1;
-      break;
-    }
-  PetscFunctionReturn(0);
+  return key;
 }
 
 /// Normal of a face with vertices x(f.v[k]) (dim values each), scaled by its length (2D: the right normal of
@@ -92,6 +101,28 @@ void FaceVectorArea(int dim, const Face &f, const Coordinates &x, double *normal
     normal[1] += 0.5 * (a[2] - b[2]) * (a[0] + b[0]);
     normal[2] += 0.5 * (a[0] - b[0]) * (a[1] + b[1]);
   }
+}
+
+/// The error naming the cells of a and b, two entries of one face of serial, if they lie on the same side of it (a
+/// folded mesh), else empty.
+std::string FoldedCells(const SerialMesh &serial, const FaceEntry &a, const FaceEntry &b) {
+  // Both cells are positively oriented (CheckAndOrientCells) and their faces are listed outwards (CellFaces), so
+  // cells on either side of their shared face run through it in opposite directions, and cells on the same side
+  // (overlapping, each of them valid) in the same direction.
+  const int dim = serial.dim;
+  const CellFaceTable &fa = CellFaces(dim, serial.CellSize(a.cell)), &fb = CellFaces(dim, serial.CellSize(b.cell));
+  const int n = fa.size[a.local];
+  const auto vertex = [&](const FaceEntry &e, const CellFaceTable &t, int k) {
+    return serial.cell_nodes[serial.cell_offsets[e.cell] + t.v[e.local][k % n]];
+  };
+  // The same direction: the same start in 2D, one a rotation of the other in 3D.
+  int j = 0;
+  while (vertex(b, fb, j) != vertex(a, fa, 0)) ++j;
+  if (n == 2 ? j != 0 : vertex(b, fb, j + 1) != vertex(a, fa, 1)) return "";
+  const char *what = dim == 2 ? "edge" : "face";
+  return "elements " + std::to_string(serial.cell_tags[a.cell]) + " and " + std::to_string(serial.cell_tags[b.cell]) +
+         " overlap: they lie on the same side of the " + what + " they share (a folded mesh); expected the cells " +
+         "around each interior " + what + " on either side of it";
 }
 
 } // namespace
@@ -161,6 +192,9 @@ PetscErrorCode Mesh::BuildSerialDM(const std::string &file, DM *out) {
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   const PetscInt nc = serial_.NumCells(), nv = serial_.NumNodes();
+  // Cells and vertices only: nothing uses the edges (and faces) of an interpolated DMPlex, whose construction took
+  // 5 s of the mesh stage at 1M dofs. The faces the program needs (the boundary and the groups of dimension dim-1)
+  // come from FaceTable and travel with their cells (Distribute).
   DMH dm;
   PetscCall(DMPlexCreate(comm_, dm.out()));
   PetscCall(DMSetDimension(dm, dim_));
@@ -184,63 +218,52 @@ PetscErrorCode Mesh::BuildSerialDM(const std::string &file, DM *out) {
   PetscCall(DMPlexSymmetrize(dm));
   PetscCall(DMPlexStratify(dm));
   PetscCall(DMPlexComputeCellTypes(dm));
-  DMH idm;
-  PetscCall(DMPlexInterpolate(dm, idm.out()));
-  PetscCall(DMPlexBuildCoordinatesFromCellList(idm, dim_, serial_.coords.data()));
-  PetscInt vstart, vend, cstart, cend;
-  PetscCall(DMPlexGetDepthStratum(idm, 0, &vstart, &vend));
-  PetscCall(DMPlexGetHeightStratum(idm, 0, &cstart, &cend));
-  PetscCheck(vend - vstart == nv && cend - cstart == nc, comm_, PETSC_ERR_PLIB, "interpolation changed the mesh");
-  std::string folded;
-  if (rank == 0) PetscCall(FindFoldedCells(idm, cstart, folded));
-  PetscCall(RaiseFromRoot(comm_, folded.empty() ? "" : "mesh '" + file + "': " + folded));
+  PetscCall(DMPlexBuildCoordinatesFromCellList(dm, dim_, serial_.coords.data()));
+  const PetscInt cstart = 0, vstart = nc;
 
-  // One label per physical group, value 1, completed to the closure of what the group holds.
-  for (std::size_t g = 0; g < group_names_.size(); ++g) {
-    const std::string label_name = LABEL_PREFIX + group_names_[g];
-    PetscCall(DMCreateLabel(idm, label_name.c_str()));
-    DMLabel label;
-    PetscCall(DMGetLabel(idm, label_name.c_str(), &label));
-    if (rank == 0) {
-      const PhysicalGroup &group = serial_.groups[g];
-      for (int v : group.nodes) PetscCall(DMLabelSetValue(label, vstart + v, 1));
-      for (int c : group.cells) PetscCall(DMLabelSetValue(label, cstart + c, 1));
-      for (std::size_t e = 0; e + 1 < group.edges.size(); e += 2) {
-        const PetscInt pts[2] = {vstart + group.edges[e], vstart + group.edges[e + 1]};
-        PetscInt njoin;
-        const PetscInt *join;
-        PetscCall(DMPlexGetJoin(idm, 2, pts, &njoin, &join));
-        const PetscInt edge = njoin == 1 ? join[0] : -1;
-        PetscCall(DMPlexRestoreJoin(idm, 2, pts, &njoin, &join));
-        PetscCheck(edge >= 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
-                   "a line element of physical curve '%s' is not an edge of any cell; expected the lines of a "
-                   "physical curve to be cell edges", group.name.c_str());
-        PetscCall(DMLabelSetValue(label, edge, 1));
-      }
-      for (std::size_t f = 0; f + 1 < group.face_offsets.size(); ++f) {
-        std::vector<PetscInt> pts;
-        for (int k = group.face_offsets[f]; k < group.face_offsets[f + 1]; ++k)
-          pts.push_back(vstart + group.face_nodes[k]);
-        PetscInt njoin;
-        const PetscInt *join;
-        PetscCall(DMPlexGetFullJoin(idm, (PetscInt)pts.size(), pts.data(), &njoin, &join));
-        const PetscInt face = njoin == 1 ? join[0] : -1;
-        PetscCall(DMPlexRestoreJoin(idm, (PetscInt)pts.size(), pts.data(), &njoin, &join));
-        PetscCheck(face >= 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
-                   "a surface element of physical surface '%s' is not a face of any cell; expected the triangles and "
-                   "quadrilaterals of a physical surface to be cell faces", group.name.c_str());
-        PetscCall(DMLabelSetValue(label, face, 1));
-      }
+  // Faces: the boundary, the groups of dimension dim-1 (each element matched to a cell face), folded cells.
+  std::string error;
+  std::vector<std::vector<PetscInt>> label_points(group_names_.size() + 1);
+  cell_face_offsets_.assign(1, 0);
+  cell_face_codes_.clear();
+  if (rank == 0) {
+    std::vector<std::pair<int, PetscInt>> tags; // (cell, code)
+    PetscCall(FaceTable(tags, error));
+    std::sort(tags.begin(), tags.end());
+    tags.erase(std::unique(tags.begin(), tags.end()), tags.end());
+    cell_face_offsets_.assign(nc + 1, 0);
+    for (const auto &t : tags) cell_face_offsets_[t.first + 1]++;
+    for (PetscInt c = 0; c < nc; ++c) cell_face_offsets_[c + 1] += cell_face_offsets_[c];
+    for (const auto &t : tags) cell_face_codes_.push_back(t.second);
+    // Vertex labels: the nodes of each group (the groups of cells are found through their cells, LabelVertices),
+    // and the vertices of the boundary faces.
+    const PetscInt nlabels = (PetscInt)group_names_.size() + 1;
+    for (std::size_t g = 0; g < serial_.groups.size(); ++g) {
+      for (int v : serial_.groups[g].nodes) label_points[g].push_back(vstart + v);
+      for (int c : serial_.groups[g].cells) label_points[g].push_back(cstart + c);
     }
-    // A group of cells is not completed to its closure (for the body of a 1M-cell mesh that took 4.7 s of the mesh
-    // set-up): LabelVertices finds its vertices through the cells.
-    if (group_dims_[g] < dim_) PetscCall(DMPlexLabelComplete(idm, label));
+    for (const auto &t : tags)
+      if (t.second % nlabels == nlabels - 1) {
+        const CellFaceTable &cf = CellFaces(dim_, serial_.CellSize(t.first));
+        const int lf = (int)(t.second / nlabels);
+        for (int k = 0; k < cf.size[lf]; ++k)
+          label_points.back().push_back(vstart + serial_.cell_nodes[serial_.cell_offsets[t.first] + cf.v[lf][k]]);
+      }
   }
-  PetscCall(DMCreateLabel(idm, BOUNDARY_LABEL));
-  DMLabel boundary;
-  PetscCall(DMGetLabel(idm, BOUNDARY_LABEL, &boundary));
-  PetscCall(DMPlexMarkBoundaryFaces(idm, 1, boundary));
-  PetscCall(DMPlexLabelComplete(idm, boundary));
+  PetscCall(RaiseFromRoot(comm_, error.empty() ? "" : "mesh '" + file + "': " + error));
+  for (std::size_t g = 0; g < label_points.size(); ++g) {
+    const std::string name = g < group_names_.size() ? LABEL_PREFIX + group_names_[g] : std::string(BOUNDARY_LABEL);
+    PetscCall(DMCreateLabel(dm, name.c_str()));
+    auto &pts = label_points[g];
+    std::sort(pts.begin(), pts.end());
+    pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+    if (pts.empty()) continue;
+    DMLabel label;
+    ISH is;
+    PetscCall(DMGetLabel(dm, name.c_str(), &label));
+    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)pts.size(), pts.data(), PETSC_COPY_VALUES, is.out()));
+    PetscCall(DMLabelSetStratumIS(label, 1, is));
+  }
 
   // The file's node and cell order travels with the points as a field: 1 dof on every cell and vertex.
   vertex_orig_.resize(nv);
@@ -255,64 +278,58 @@ PetscErrorCode Mesh::BuildSerialDM(const std::string &file, DM *out) {
   PetscCallMPI(MPI_Bcast(ng, 2, MPIU_INT, 0, comm_));
   num_global_nodes_ = ng[0];
   num_global_cells_ = ng[1];
-  *out = idm.get();
+  *out = dm.get();
   PetscCall(PetscObjectReference((PetscObject)*out));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Mesh::FindFoldedCells(DM dm, PetscInt cstart, std::string &error) const {
+PetscErrorCode Mesh::FaceTable(std::vector<std::pair<int, PetscInt>> &tags, std::string &error) const {
   PetscFunctionBeginUser;
-  error.clear();
-  const int dim = serial_.dim, nc = serial_.NumCells();
-  const auto x = [&](int v) { return &serial_.coords[dim * v]; };
-  std::vector<double> centroid(3 * nc, 0.0);
-  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, diag2 = 0;
+  const int nc = serial_.NumCells();
+  const PetscInt nlabels = (PetscInt)group_names_.size() + 1;
+  std::vector<FaceEntry> faces;
+  std::size_t total = 0;
+  for (int c = 0; c < nc; ++c) total += CellFaces(dim_, serial_.CellSize(c)).count;
+  faces.reserve(total);
+  int nodes[4];
   for (int c = 0; c < nc; ++c) {
-    const int n = serial_.CellSize(c);
-    for (int k = serial_.cell_offsets[c]; k < serial_.cell_offsets[c + 1]; ++k)
-      for (int d = 0; d < dim; ++d) centroid[3 * c + d] += x(serial_.cell_nodes[k])[d] / n;
-  }
-  for (int v = 0; v < serial_.NumNodes(); ++v)
-    for (int d = 0; d < dim; ++d)
-      lo[d] = v ? std::min(lo[d], x(v)[d]) : x(v)[d], hi[d] = v ? std::max(hi[d], x(v)[d]) : x(v)[d];
-  for (int d = 0; d < dim; ++d) diag2 += (hi[d] - lo[d]) * (hi[d] - lo[d]);
-  // A distance below 1e-12 of the bounding box's diagonal counts as zero (a degenerate cell is caught before).
-  const double tol = 1e-12 * std::sqrt(diag2);
-  PetscInt fstart, fend;
-  PetscCall(DMPlexGetHeightStratum(dm, 1, &fstart, &fend));
-  for (PetscInt face = fstart; face < fend && error.empty(); ++face) {
-    PetscInt nsupport;
-    const PetscInt *support;
-    PetscCall(DMPlexGetSupportSize(dm, face, &nsupport));
-    if (nsupport != 2) continue;
-    PetscCall(DMPlexGetSupport(dm, face, &support));
-    const int a = (int)(support[0] - cstart), b = (int)(support[1] - cstart);
-    // The face's first dim vertices (those the two cells share) span its plane (a warped quadrilateral's nearly).
-    int p[3], np = 0;
-    for (int i = serial_.cell_offsets[a]; i < serial_.cell_offsets[a + 1] && np < dim; ++i)
-      for (int j = serial_.cell_offsets[b]; j < serial_.cell_offsets[b + 1]; ++j)
-        if (serial_.cell_nodes[i] == serial_.cell_nodes[j]) {
-          p[np++] = serial_.cell_nodes[i];
-          break;
-        }
-    PetscCheck(np == dim, PETSC_COMM_SELF, PETSC_ERR_PLIB, "cells sharing a face share fewer than %d vertices", dim);
-    double n[3] = {0, 0, 0};
-    if (dim == 2) {
-      n[0] = x(p[1])[1] - x(p[0])[1], n[1] = -(x(p[1])[0] - x(p[0])[0]);
-    } else {
-      double e1[3], e2[3];
-      for (int d = 0; d < 3; ++d) e1[d] = x(p[1])[d] - x(p[0])[d], e2[d] = x(p[2])[d] - x(p[0])[d];
-      n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    const int *cv = &serial_.cell_nodes[serial_.cell_offsets[c]];
+    const CellFaceTable &cf = CellFaces(dim_, serial_.CellSize(c));
+    for (int f = 0; f < cf.count; ++f) {
+      for (int k = 0; k < cf.size[f]; ++k) nodes[k] = cv[cf.v[f][k]];
+      faces.push_back({FaceKey(nodes, cf.size[f]), c, f});
     }
-    const double norm = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    double side[2] = {0, 0};
-    for (int s = 0; s < 2; ++s)
-      for (int d = 0; d < dim; ++d) side[s] += n[d] * (centroid[3 * (s ? b : a) + d] - x(p[0])[d]) / norm;
-    if (std::min(std::abs(side[0]), std::abs(side[1])) > tol && (side[0] > 0) == (side[1] > 0))
-      error = "elements " + std::to_string(serial_.cell_tags[a]) + " and " + std::to_string(serial_.cell_tags[b]) +
-              " overlap: they lie on the same side of the " + (dim == 2 ? "edge" : "face") +
-              " they share (a folded mesh); expected the cells around each interior " + (dim == 2 ? "edge" : "face") +
-              " on either side of it";
+  }
+  std::sort(faces.begin(), faces.end());
+  // A face of one cell is on the boundary; a face of two must have them on either side (FoldedCells).
+  for (std::size_t i = 0; i < faces.size();) {
+    std::size_t j = i + 1;
+    while (j < faces.size() && faces[j].key == faces[i].key) ++j;
+    if (j == i + 1) tags.emplace_back(faces[i].cell, faces[i].local * nlabels + nlabels - 1);
+    else if (j == i + 2 && error.empty()) error = FoldedCells(serial_, faces[i], faces[i + 1]);
+    i = j;
+  }
+  // Each element of a group of dimension dim-1 is a face of a cell (the first of the cells it bounds).
+  for (std::size_t g = 0; g < serial_.groups.size() && error.empty(); ++g) {
+    const PhysicalGroup &group = serial_.groups[g];
+    if (group.dim != dim_ - 1) continue;
+    const bool lines = dim_ == 2;
+    const std::size_t count = lines ? group.edges.size() / 2 : group.face_offsets.size() - 1;
+    for (std::size_t e = 0; e < count; ++e) {
+      const int n = lines ? 2 : group.face_offsets[e + 1] - group.face_offsets[e];
+      const int *en = lines ? &group.edges[2 * e] : &group.face_nodes[group.face_offsets[e]];
+      const FaceEntry probe{FaceKey(en, n), -1, -1};
+      const auto it = std::lower_bound(faces.begin(), faces.end(), probe);
+      if (it == faces.end() || it->key != probe.key) {
+        error = lines ? "a line element of physical curve '" + group.name +
+                            "' is not an edge of any cell; expected the lines of a physical curve to be cell edges"
+                      : "a surface element of physical surface '" + group.name +
+                            "' is not a face of any cell; expected the triangles and quadrilaterals of a physical "
+                            "surface to be cell faces";
+        break;
+      }
+      tags.emplace_back(it->cell, it->local * nlabels + (PetscInt)g);
+    }
   }
   PetscFunctionReturn(0);
 }
@@ -375,7 +392,8 @@ PetscErrorCode Mesh::Distribute(DMH &dm) {
   PetscCall(PetscSectionSetChart(sec, pstart, pend));
   const PetscInt nv = (PetscInt)vertex_orig_.size(), nc = (PetscInt)cell_orig_.size();
   for (PetscInt c = 0; c < nc; ++c)
-    PetscCall(PetscSectionSetDof(sec, cstart_ + c, 1 + cell_offsets_[c + 1] - cell_offsets_[c]));
+    PetscCall(PetscSectionSetDof(sec, cstart_ + c, 2 + cell_offsets_[c + 1] - cell_offsets_[c] +
+                                                       cell_face_offsets_[c + 1] - cell_face_offsets_[c]));
   for (PetscInt v = 0; v < nv; ++v) PetscCall(PetscSectionSetDof(sec, vstart_ + v, 1));
   PetscCall(PetscSectionSetUp(sec));
   VecH orig;
@@ -387,8 +405,10 @@ PetscErrorCode Mesh::Distribute(DMH &dm) {
   for (PetscInt c = 0; c < nc; ++c) {
     PetscInt off;
     PetscCall(PetscSectionGetOffset(sec, cstart_ + c, &off));
-    a[off] = cell_orig_[c];
-    for (PetscInt k = cell_offsets_[c]; k < cell_offsets_[c + 1]; ++k) a[off + 1 + k - cell_offsets_[c]] = cell_vertices_[k];
+    a[off++] = cell_orig_[c];
+    a[off++] = cell_offsets_[c + 1] - cell_offsets_[c];
+    for (PetscInt k = cell_offsets_[c]; k < cell_offsets_[c + 1]; ++k) a[off++] = cell_vertices_[k];
+    for (PetscInt k = cell_face_offsets_[c]; k < cell_face_offsets_[c + 1]; ++k) a[off++] = cell_face_codes_[k];
   }
   for (PetscInt v = 0; v < nv; ++v) {
     PetscInt off;
@@ -419,13 +439,18 @@ PetscErrorCode Mesh::Distribute(DMH &dm) {
   }
   cell_offsets_.assign(1, 0);
   cell_vertices_.clear();
+  cell_face_offsets_.assign(1, 0);
+  cell_face_codes_.clear();
   for (PetscInt c = 0; c < (PetscInt)cell_orig_.size(); ++c) {
     PetscInt off, ndof;
     PetscCall(PetscSectionGetOffset(new_sec, cstart_ + c, &off));
     PetscCall(PetscSectionGetDof(new_sec, cstart_ + c, &ndof));
     cell_orig_[c] = (PetscInt)PetscRealPart(b[off]);
-    for (PetscInt k = 1; k < ndof; ++k) cell_vertices_.push_back((PetscInt)PetscRealPart(b[off + k]));
+    const PetscInt nvert = (PetscInt)PetscRealPart(b[off + 1]);
+    for (PetscInt k = 2; k < ndof; ++k)
+      (k < 2 + nvert ? cell_vertices_ : cell_face_codes_).push_back((PetscInt)PetscRealPart(b[off + k]));
     cell_offsets_.push_back((PetscInt)cell_vertices_.size());
+    cell_face_offsets_.push_back((PetscInt)cell_face_codes_.size());
   }
   PetscCall(VecRestoreArrayRead(new_orig, &b));
   dm = std::move(dist);
@@ -442,16 +467,16 @@ PetscErrorCode Mesh::BuildLocalArrays() {
   PetscCheck((PetscInt)vertex_orig_.size() == nv && (PetscInt)cell_orig_.size() == nc, comm_, PETSC_ERR_PLIB,
              "inconsistent distributed mesh");
 
-  point_leaf_.assign(pend - pstart, 0);
+  std::vector<char> point_leaf(pend - pstart, 0);
   PetscSF sf;
   PetscInt nroots, nleaves;
   const PetscInt *ilocal;
   PetscCall(DMGetPointSF(dm_, &sf));
   PetscCall(PetscSFGetGraph(sf, &nroots, &nleaves, &ilocal, nullptr));
   if (nroots >= 0)
-    for (PetscInt i = 0; i < nleaves; ++i) point_leaf_[(ilocal ? ilocal[i] : i) - pstart] = 1;
+    for (PetscInt i = 0; i < nleaves; ++i) point_leaf[(ilocal ? ilocal[i] : i) - pstart] = 1;
   vertex_owned_.resize(nv);
-  for (PetscInt v = 0; v < nv; ++v) vertex_owned_[v] = !point_leaf_[vstart_ + v - pstart];
+  for (PetscInt v = 0; v < nv; ++v) vertex_owned_[v] = !point_leaf[vstart_ + v - pstart];
 
   Vec coords;
   PetscSection csec;
@@ -474,6 +499,22 @@ PetscErrorCode Mesh::BuildLocalArrays() {
     const auto it = local_of.find(v);
     PetscCheck(it != local_of.end(), PETSC_COMM_SELF, PETSC_ERR_PLIB, "a cell's vertex is not on its rank");
     v = it->second;
+  }
+
+  // The faces of each label, from the faces the cells carry, oriented outwards by CellFaces.
+  const PetscInt nlabels = (PetscInt)group_names_.size() + 1;
+  label_faces_.assign(nlabels, {});
+  for (PetscInt c = 0; c < nc; ++c) {
+    PetscInt n;
+    const PetscInt *cv = CellVertices(c, n);
+    const CellFaceTable &cf = CellFaces(dim_, (int)n);
+    for (PetscInt k = cell_face_offsets_[c]; k < cell_face_offsets_[c + 1]; ++k) {
+      const PetscInt code = cell_face_codes_[k], lf = code / nlabels;
+      Face f;
+      f.n = cf.size[lf];
+      for (int j = 0; j < f.n; ++j) f.v[j] = cv[cf.v[lf][j]];
+      label_faces_[code % nlabels].push_back(f);
+    }
   }
   PetscFunctionReturn(0);
 }
@@ -544,13 +585,13 @@ PetscErrorCode Mesh::BoundaryVertices(std::vector<PetscInt> &vertices) const {
 PetscErrorCode Mesh::GroupFaces(const std::string &name, std::vector<Face> &faces) const {
   PetscFunctionBeginUser;
   PetscCall(CheckGroup(name, dim_ - 1));
-  PetscCall(LabelFaces(LABEL_PREFIX + name, faces));
+  LabelFaces(std::find(group_names_.begin(), group_names_.end(), name) - group_names_.begin(), faces);
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode Mesh::BoundaryFaces(std::vector<Face> &faces) const {
   PetscFunctionBeginUser;
-  PetscCall(LabelFaces(BOUNDARY_LABEL, faces));
+  LabelFaces(group_names_.size(), faces);
   PetscFunctionReturn(0);
 }
 
@@ -582,50 +623,6 @@ PetscErrorCode Mesh::SumShared(std::vector<double> &per_vertex) const {
   PetscCall(PetscSFBcastBegin(sf, MPI_DOUBLE, root.data(), leaf.data(), MPI_REPLACE));
   PetscCall(PetscSFBcastEnd(sf, MPI_DOUBLE, root.data(), leaf.data(), MPI_REPLACE));
   for (PetscInt v = 0; v < NumLocalVertices(); ++v) per_vertex[v] = (Owned(v) ? root : leaf)[vstart_ + v - pstart];
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode Mesh::LabelFaces(const std::string &label_name, std::vector<Face> &faces) const {
-  PetscFunctionBeginUser;
-  faces.clear();
-  DMLabel label;
-  PetscCall(DMGetLabel(dm_, label_name.c_str(), &label));
-  if (!label) PetscFunctionReturn(0);
-  ISH is;
-  PetscCall(DMLabelGetStratumIS(label, 1, is.out()));
-  if (!is) PetscFunctionReturn(0);
-  PetscInt n, fstart, fend, pstart, pend;
-  const PetscInt *pts;
-  PetscCall(DMPlexGetHeightStratum(dm_, 1, &fstart, &fend));
-  PetscCall(DMPlexGetChart(dm_, &pstart, &pend));
-  PetscCall(ISGetLocalSize(is, &n));
-  PetscCall(ISGetIndices(is, &pts));
-  for (PetscInt i = 0; i < n; ++i) {
-    if (pts[i] < fstart || pts[i] >= fend || point_leaf_[pts[i] - pstart]) continue;
-    const PetscInt *support;
-    PetscInt nsupport;
-    Face f;
-    PetscCall(FaceCycle(dm_, dim_, vstart_, pts[i], f));
-    PetscCall(DMPlexGetSupportSize(dm_, pts[i], &nsupport));
-    PetscCall(DMPlexGetSupport(dm_, pts[i], &support));
-    if (nsupport >= 1) {
-      // Orient the face outwards: its outward normal (the right normal of v0 -> v1 in 2D, the right-hand normal
-      // in 3D) points away from its cell's centroid.
-      PetscInt nc;
-      const PetscInt *cv = CellVertices(support[0] - cstart_, nc);
-      double out[3] = {0, 0, 0}, normal[3];
-      for (PetscInt k = 0; k < nc; ++k)
-        for (int d = 0; d < dim_; ++d) out[d] -= X(cv[k])[d] / nc;
-      for (int k = 0; k < f.n; ++k)
-        for (int d = 0; d < dim_; ++d) out[d] += X(f.v[k])[d] / f.n;
-      FaceNormal(f, normal);
-      double dot = 0;
-      for (int d = 0; d < dim_; ++d) dot += normal[d] * out[d];
-      if (dot < 0) std::reverse(f.v.begin(), f.v.begin() + f.n);
-    }
-    faces.push_back(f);
-  }
-  PetscCall(ISRestoreIndices(is, &pts));
   PetscFunctionReturn(0);
 }
 

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace signorini {
@@ -78,20 +79,22 @@ public:
   [[nodiscard]] PetscErrorCode SumShared(std::vector<double> &per_vertex) const;
 
 private:
-  /// Builds the interpolated DMPlex of the serial mesh on rank 0 (empty elsewhere), labelled; errors name file.
-  /// Collective.
+  /// Builds the DMPlex (cells and vertices) of the serial mesh on rank 0 (empty elsewhere), with vertex and cell
+  /// labels, and the faces each cell carries; errors name file. Collective.
   [[nodiscard]] PetscErrorCode BuildSerialDM(const std::string &file, DM *dm);
-  /// The first two cells of the interpolated serial DMPlex dm that lie on the same side of the face they share (a
-  /// folded mesh: cells overlapping, each of them valid), as an error message naming their element tags; empty when
-  /// there is none. Rank 0 (the serial mesh).
-  [[nodiscard]] PetscErrorCode FindFoldedCells(DM dm, PetscInt cstart, std::string &error) const;
+  /// The faces of the serial mesh that the program needs, as (cell, code) with code = local face * (groups + 1) +
+  /// label (a group's index, or the number of groups for the boundary): boundary faces (of one cell), and the
+  /// elements of each group of dimension dim-1, each matched to a face of a cell. error: the first group element
+  /// that is no cell face, or the first pair of folded cells (FoldedCells). Rank 0.
+  [[nodiscard]] PetscErrorCode FaceTable(std::vector<std::pair<int, PetscInt>> &tags, std::string &error) const;
   [[nodiscard]] PetscErrorCode Partition(DM dm, const std::string &partitioner);
   [[nodiscard]] PetscErrorCode Distribute(DMH &dm);
   [[nodiscard]] PetscErrorCode BuildLocalArrays();
   /// Local vertices of a label; cells: the label holds cells (a group of the mesh's dimension, not completed to its
   /// closure), whose vertices are gathered over the ranks. Collective when cells.
   [[nodiscard]] PetscErrorCode LabelVertices(const std::string &label, bool cells, std::vector<PetscInt> &vertices) const;
-  [[nodiscard]] PetscErrorCode LabelFaces(const std::string &label, std::vector<Face> &faces) const;
+  /// The faces of label l (a group's index, or the number of groups for the boundary) on this rank's cells.
+  void LabelFaces(std::size_t l, std::vector<Face> &faces) const { faces = label_faces_[l]; }
   [[nodiscard]] PetscErrorCode CheckGroup(const std::string &name, int required_dim) const;
 
   MPI_Comm comm_ = MPI_COMM_NULL;
@@ -100,9 +103,12 @@ private:
   PetscInt vstart_ = 0, cstart_ = 0;
   PetscInt num_global_nodes_ = 0, num_global_cells_ = 0;
   std::vector<PetscInt> vertex_orig_, cell_orig_;
-  std::vector<char> vertex_owned_, point_leaf_;
+  std::vector<char> vertex_owned_;
   std::vector<double> coords_;
   std::vector<PetscInt> cell_offsets_, cell_vertices_;
+  /// Faces each local cell carries (FaceTable's codes, CSR), and the faces of each label built from them.
+  std::vector<PetscInt> cell_face_offsets_, cell_face_codes_;
+  std::vector<std::vector<Face>> label_faces_;
   std::vector<std::string> group_names_;
   std::vector<int> group_dims_;
   SerialMesh serial_;

@@ -346,6 +346,39 @@ $EndElements
       << capture.Message();
 }
 
+TEST(Mesh, GroupLineThatIsNoCellEdgeIsAnError) {
+  // A unit square of two triangles split along (1, 3); the physical curve's line (2, 4) crosses it.
+  const char *crossing = R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+2
+1 5 "cut"
+2 6 "body"
+$EndPhysicalNames
+$Nodes
+4
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+$EndNodes
+$Elements
+3
+7 2 2 6 1 1 2 3
+8 2 2 6 1 1 3 4
+9 1 2 5 1 2 4
+$EndElements
+)";
+  TempDir dir;
+  Mesh mesh;
+  ErrorCapture capture;
+  EXPECT_NE(mesh.Create(PETSC_COMM_SELF, Options(dir.Write("crossing.msh", crossing))), 0);
+  EXPECT_NE(capture.Message().find("crossing.msh': a line element of physical curve 'cut' is not an edge of any cell"),
+            std::string::npos)
+      << capture.Message();
+}
+
 TEST(Mesh, MissingFileIsAnError) {
   TempDir dir;
   Mesh mesh;
