@@ -186,10 +186,13 @@ std::string ReadModel(const std::string &path, SerialMesh &mesh) {
           }
         }
         // The nodes of the group's elements: a format 2.2 file classifies each node on one entity only, so the
-        // entity's own nodes (below) miss those it shares with neighbouring entities (corners, curve ends).
-        for (std::size_t t : enodes[k])
-          if (used_index(t) >= 0) g.nodes.push_back(used_index(t));
+        // entity's own nodes (below) miss those it shares with neighbouring entities (corners, curve ends). A group
+        // of cells has its nodes through its cells.
+        if (dim < mesh.dim)
+          for (std::size_t t : enodes[k])
+            if (used_index(t) >= 0) g.nodes.push_back(used_index(t));
       }
+      if (dim == mesh.dim) continue;
       std::vector<std::size_t> ntags;
       std::vector<double> nc, np;
       gmsh::model::mesh::getNodes(ntags, nc, np, dim, ent, true, false);

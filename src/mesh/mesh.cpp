@@ -287,20 +287,28 @@ PetscErrorCode Mesh::FaceTable(std::vector<std::pair<int, PetscInt>> &tags, std:
   PetscFunctionBeginUser;
   const int nc = serial_.NumCells();
   const PetscInt nlabels = (PetscInt)group_names_.size() + 1;
-  std::vector<FaceEntry> faces;
-  std::size_t total = 0;
-  for (int c = 0; c < nc; ++c) total += CellFaces(dim_, serial_.CellSize(c)).count;
-  faces.reserve(total);
-  int nodes[4];
-  for (int c = 0; c < nc; ++c) {
-    const int *cv = &serial_.cell_nodes[serial_.cell_offsets[c]];
-    const CellFaceTable &cf = CellFaces(dim_, serial_.CellSize(c));
-    for (int f = 0; f < cf.count; ++f) {
-      for (int k = 0; k < cf.size[f]; ++k) nodes[k] = cv[cf.v[f][k]];
-      faces.push_back({FaceKey(nodes, cf.size[f]), c, f});
+  // Every face of every cell, sorted by its key: a counting sort on the smallest vertex, then each bucket (the few
+  // faces around one vertex) sorted on its own.
+  const auto each_face = [&](auto &&visit) {
+    int nodes[4];
+    for (int c = 0; c < nc; ++c) {
+      const int *cv = &serial_.cell_nodes[serial_.cell_offsets[c]];
+      const CellFaceTable &cf = CellFaces(dim_, serial_.CellSize(c));
+      for (int f = 0; f < cf.count; ++f) {
+        for (int k = 0; k < cf.size[f]; ++k) nodes[k] = cv[cf.v[f][k]];
+        visit(FaceEntry{FaceKey(nodes, cf.size[f]), c, f});
+      }
     }
+  };
+  std::vector<std::size_t> bucket(serial_.NumNodes() + 1, 0);
+  each_face([&](const FaceEntry &e) { bucket[e.key[0] + 1]++; });
+  for (int v = 0; v < serial_.NumNodes(); ++v) bucket[v + 1] += bucket[v];
+  std::vector<FaceEntry> faces(bucket.back());
+  {
+    std::vector<std::size_t> next(bucket.begin(), bucket.end() - 1);
+    each_face([&](const FaceEntry &e) { faces[next[e.key[0]]++] = e; });
   }
-  std::sort(faces.begin(), faces.end());
+  for (int v = 0; v < serial_.NumNodes(); ++v) std::sort(faces.begin() + bucket[v], faces.begin() + bucket[v + 1]);
   // A face of one cell is on the boundary; a face of two must have them on either side (FoldedCells).
   for (std::size_t i = 0; i < faces.size();) {
     std::size_t j = i + 1;

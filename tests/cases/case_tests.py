@@ -453,14 +453,32 @@ RANK_CASES = {"hertz": [], "beam_on_floor": ["-options_file", "options/beam_on_f
                                             "meshes/cube_mixed_conforming.msh", "-material_model", "svk"]}
 
 
+def accepted_step_iterations(result):
+    """[load factor, iterations] of each accepted load step: the last attempt of each step in the history."""
+    last = {}
+    for r in result.get("iterations.history"):
+        if r["step"] not in last or last[r["step"]][0] != r["load_factor"]:
+            last[r["step"]] = [r["load_factor"], 0]
+        last[r["step"]][1] += 1
+    return [last[k] for k in sorted(last)]
+
+
 @test("rank_independence")
 def rank_independence(runner, case):
-    """The same case on 1 and 2 ranks: identical active set and iteration counts, equal displacements."""
+    """The same case on 1 and 2 ranks: identical active set and iteration counts, equal displacements. An attempt
+    that failed and was cut (svk punch: its first step cycles) amplifies round-off, which on 2 ranks varies from run
+    to run (MUMPS's parallel factorisation sums contributions in the order messages arrive: 24, 27 or 29 iterations
+    in all, the same state): there the accepted steps' iterations and the number of cuts must agree."""
     one = runner.run(RANK_CASES[case], case, np_=1)
     two = runner.run(RANK_CASES[case], case, np_=2)
+    counts = ("iterations.step_cuts",) if one.get("iterations.step_cuts") else ("iterations.active_set",
+                                                                                 "iterations.solves")
     for key in ("mesh.nodes", "contact.pairs", "contact.active_pairs", "contact.active_nodes",
-                "iterations.active_set", "iterations.solves", "iterations.load_steps"):
+                "iterations.load_steps") + counts:
         runner.expect_equal("%s on 2 ranks" % key, two.get(key), one.get(key))
+    if one.get("iterations.step_cuts"):
+        runner.expect_equal("iterations of the accepted steps on 2 ranks", accepted_step_iterations(two),
+                            accepted_step_iterations(one))
     a, b = one.nodes(), two.nodes()
     check_same_mesh(runner, "1 and 2 ranks", a, b)
     runner.expect_true("same active nodes", np.array_equal(a["active"], b["active"]))

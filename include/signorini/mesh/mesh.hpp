@@ -85,7 +85,7 @@ private:
   /// The faces of the serial mesh that the program needs, as (cell, code) with code = local face * (groups + 1) +
   /// label (a group's index, or the number of groups for the boundary): boundary faces (of one cell), and the
   /// elements of each group of dimension dim-1, each matched to a face of a cell. error: the first group element
-  /// that is no cell face, or the first pair of folded cells (FoldedCells). Rank 0.
+  /// that is no cell face, or the first pair of folded cells. Rank 0.
   [[nodiscard]] PetscErrorCode FaceTable(std::vector<std::pair<int, PetscInt>> &tags, std::string &error) const;
   [[nodiscard]] PetscErrorCode Partition(DM dm, const std::string &partitioner);
   [[nodiscard]] PetscErrorCode Distribute(DMH &dm);

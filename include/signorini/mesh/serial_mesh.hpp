@@ -13,7 +13,8 @@ struct PhysicalGroup {
   std::string name;
   int dim = 0;
   int tag = 0;
-  std::vector<int> nodes;          ///< every node of the group (sorted, unique)
+  std::vector<int> nodes;          ///< every node of a group of points, curves or surfaces (sorted, unique; empty
+                                   ///< for a group of cells, whose nodes are those of its cells)
   std::vector<int> edges;          ///< dim 1: node pairs of its line elements, flattened
   std::vector<int> cells;          ///< dimension of the mesh: cells of the group
   std::vector<int> face_offsets{0}; ///< dim 2 of a 3D mesh: CSR offsets into face_nodes
