@@ -1,7 +1,10 @@
 // Output (prefix -output_): HDF5 + XDMF for ParaView (one step per load step; the body, the obstacle and the contact
 // boundary as three grids), the per-node CSV table keyed by the mesh file's node tags, and summary.json. Everything
 // is written into DIR/incomplete/ and published with one rename only when the run succeeds (output_directory.hpp),
-// so a failed or killed run never leaves files that look complete nor replaces a good earlier output.
+// so a failed or killed run never leaves files that look complete nor replaces a good earlier output. Every rank writes
+// its block of the file's node and cell order (HDF5 collectively through MPI-IO, nodes.csv with MPI-IO), so the files
+// are the same for any number of ranks and no rank holds a whole table; the obstacle and the contact boundary are small
+// and rank 0 writes them.
 #pragma once
 
 #include "signorini/io/file_rows.hpp"
@@ -45,7 +48,8 @@ public:
   /// on every rank before WriteStep.
   void SetObstacle(const Obstacle &obstacle, const Box &body);
   /// Records the contact boundary: the boundary edges whose two vertices are candidates (candidate: per local
-  /// vertex), the edges that carry contact pressure. Collective; call before WriteStep.
+  /// vertex), the edges that carry contact pressure, gathered on rank 0 in the order of their vertices' file indices.
+  /// Collective; call before WriteStep.
   [[nodiscard]] PetscErrorCode SetContactBoundary(const std::vector<char> &candidate);
   /// Writes the fields of one load step (load factor t) and rewrites the XDMF. Collective.
   [[nodiscard]] PetscErrorCode WriteStep(PetscInt step, double t, const std::vector<Field> &fields);
