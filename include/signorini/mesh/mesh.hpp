@@ -58,7 +58,7 @@ public:
   }
   const std::vector<std::string> &GroupNames() const { return group_names_; }
   /// The file's tags of the nodes (cells) of this rank's block of file indices (BlockOf over NumGlobalNodes(),
-  /// NumGlobalCells()): node_tags[i] is the tag of node start + i.
+  /// NumGlobalCells()): NodeTagsBlock()[i] is the tag of the file's node start + i.
   const std::vector<std::size_t> &NodeTagsBlock() const { return node_tags_; }
   const std::vector<std::size_t> &CellTagsBlock() const { return cell_tags_; }
 
