@@ -8,6 +8,8 @@
 #include "signorini/obstacles/obstacle_mesh.hpp"
 #include "signorini/solver/contact_solver.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -100,38 +102,46 @@ PetscErrorCode HelpKsp(MPI_Comm comm) {
 }
 
 /// Vertex and cell fields of the current state, for the HDF5 file (vectors padded to 3 components for ParaView).
-PetscErrorCode CollectFields(ContactSolver &solver, const NodeContact &nodes, std::vector<Field> &fields,
-                             std::vector<Field> &table) {
+PetscErrorCode StepFields(ContactSolver &solver, const NodeContact &nodes, std::vector<Field> &fields) {
   const Mesh &mesh = solver.GetMesh();
   const int dim = mesh.Dim();
-  const PetscInt nv = mesh.NumLocalVertices();
+  const PetscInt nv = mesh.NumLocalVertices(), nc = mesh.NumLocalCells();
   PetscFunctionBeginUser;
   Field disp{"displacement", 3, false, std::vector<double>(3 * nv, 0.0)};
-  Field disp2{"u", dim, false, solver.ULocal()};
   for (PetscInt v = 0; v < nv; ++v)
     for (int k = 0; k < dim; ++k) disp.values[3 * v + k] = solver.ULocal()[v * dim + k];
   std::vector<CellStress> cells;
   PetscCall(solver.GetAssembler().CellResults(solver.ULocal().data(), cells));
-  Field strain{"strain", 6, true, {}}, stress{"stress", 6, true, {}}, vm{"von_mises", 1, true, {}};
-  for (const auto &c : cells) {
+  Field strain{"strain", 6, true, std::vector<double>(6 * nc)}, stress{"stress", 6, true, std::vector<double>(6 * nc)},
+      vm{"von_mises", 1, true, std::vector<double>(nc)};
+  for (PetscInt c = 0; c < nc; ++c) {
     // VTK's order of a symmetric tensor (xx, yy, zz, xy, yz, xz): ParaView names six components so (output.cpp). The
     // kernels' Voigt order is (xx, yy, xy) in 2D and (xx, yy, zz, yz, xz, xy) in 3D.
-    const auto &e = c.strain, &s = c.stress;
-    if (dim == 2) {
-      strain.values.insert(strain.values.end(), {e[0], e[1], 0, e[2], 0, 0});
-      stress.values.insert(stress.values.end(), {s[0], s[1], c.stress_zz, s[2], 0, 0});
-    } else {
-      strain.values.insert(strain.values.end(), {e[0], e[1], e[2], e[5], e[3], e[4]});
-      stress.values.insert(stress.values.end(), {s[0], s[1], s[2], s[5], s[3], s[4]});
-    }
-    vm.values.push_back(c.von_mises);
+    const auto &e = cells[c].strain, &s = cells[c].stress;
+    const std::array<double, 6> e6 = dim == 2 ? std::array<double, 6>{e[0], e[1], 0, e[2], 0, 0}
+                                              : std::array<double, 6>{e[0], e[1], e[2], e[5], e[3], e[4]},
+                                s6 = dim == 2 ? std::array<double, 6>{s[0], s[1], cells[c].stress_zz, s[2], 0, 0}
+                                              : std::array<double, 6>{s[0], s[1], s[2], s[5], s[3], s[4]};
+    std::copy(e6.begin(), e6.end(), strain.values.begin() + 6 * c);
+    std::copy(s6.begin(), s6.end(), stress.values.begin() + 6 * c);
+    vm.values[c] = cells[c].von_mises;
   }
-  Field lambda{"contact_lambda", 1, false, nodes.lambda, true}, pressure{"contact_pressure", 1, false, nodes.pressure,
-      true}, gap{"contact_gap", 1, false, nodes.gap, true}, active{"contact_active", 1, false, nodes.active, true};
-  fields = {disp, lambda, pressure, gap, active, strain, stress, vm};
-  table = {disp2, {"lambda", 1, false, nodes.lambda}, {"pressure", 1, false, nodes.pressure},
-           {"gap", 1, false, nodes.gap}, {"active", 1, false, nodes.active}};
+  fields.clear();
+  fields.push_back(std::move(disp));
+  fields.push_back({"contact_lambda", 1, false, nodes.lambda, true});
+  fields.push_back({"contact_pressure", 1, false, nodes.pressure, true});
+  fields.push_back({"contact_gap", 1, false, nodes.gap, true});
+  fields.push_back({"contact_active", 1, false, nodes.active, true});
+  fields.push_back(std::move(strain));
+  fields.push_back(std::move(stress));
+  fields.push_back(std::move(vm));
   PetscFunctionReturn(0);
+}
+
+/// The columns of the node table of the current state: the displacement and the contact fields.
+std::vector<Field> NodeTableFields(ContactSolver &solver, const NodeContact &nodes) {
+  return {{"u", solver.GetMesh().Dim(), false, solver.ULocal()}, {"lambda", 1, false, nodes.lambda},
+          {"pressure", 1, false, nodes.pressure}, {"gap", 1, false, nodes.gap}, {"active", 1, false, nodes.active}};
 }
 
 /// Reports options that were set but never read (a misspelled option must not pass silently).
@@ -241,7 +251,7 @@ PetscErrorCode Run() {
   double t_output = 0;
   NodeContact nodes;
   ContactSummary summary;
-  std::vector<Field> fields, table;
+  std::vector<Field> fields;
   auto step_done = [&](PetscInt step, double factor) -> PetscErrorCode {
     PetscFunctionBeginUser;
     if (!output.Enabled()) PetscFunctionReturn(0);
@@ -249,7 +259,7 @@ PetscErrorCode Run() {
     PetscCall(PetscLogStagePush(stage_output));
     ProgressBegin("output of load step");
     PetscCall(ComputeContactResults(solver, material, nodes, summary));
-    PetscCall(CollectFields(solver, nodes, fields, table));
+    PetscCall(StepFields(solver, nodes, fields));
     PetscCall(output.WriteStep(step, factor, fields));
     ProgressEnd();
     PetscCall(PetscLogStagePop());
@@ -273,10 +283,7 @@ PetscErrorCode Run() {
   PetscCall(ComputeContactResults(solver, material, nodes, summary));
   PetscCall(ComputeHertz(solver, material, nodes, summary, hertz));
   PetscCall(PrintSummary(comm, solver, summary, hertz));
-  if (output.Enabled()) {
-    PetscCall(CollectFields(solver, nodes, fields, table));
-    PetscCall(output.WriteNodeTable(table));
-  }
+  if (output.Enabled()) PetscCall(output.WriteNodeTable(NodeTableFields(solver, nodes)));
   PetscCall(PetscLogStagePop());
   info.timings["output"] = t_output + MPI_Wtime() - t;
   info.timings["total"] = MPI_Wtime() - t_start;

@@ -1,12 +1,12 @@
-// HDF5/XDMF, CSV and JSON output through a staging directory.
+// HDF5/XDMF, CSV and JSON output through a staging directory: every rank writes its block of the file's order.
 #include "signorini/io/output.hpp"
 
 #include "signorini/core/errors.hpp"
 #include "signorini/core/options.hpp"
-
-#include <hdf5.h>
+#include "signorini/io/ordered_text.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -26,47 +26,18 @@ PetscErrorCode ReadOutputOptions(MPI_Comm comm, OutputOptions &opts) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode GatherToRoot(const Mesh &mesh, const Field &field, std::vector<double> &out) {
-  MPI_Comm comm = mesh.Comm();
-  PetscMPIInt rank, size;
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  const PetscInt n = field.on_cells ? mesh.NumLocalCells() : mesh.NumLocalVertices();
-  const int nc = field.ncomp;
-  std::vector<double> send;
-  for (PetscInt i = 0; i < n; ++i) {
-    if (!field.on_cells && !mesh.Owned(i)) continue;
-    send.push_back((double)(field.on_cells ? mesh.CellOriginal(i) : mesh.VertexOriginal(i)));
-    for (int k = 0; k < nc; ++k) send.push_back(field.values[i * nc + k]);
-  }
-  int count = (int)send.size();
-  std::vector<int> counts(size), displs(size, 0);
-  PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
-  std::vector<double> recv;
-  if (rank == 0) {
-    for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
-    recv.resize(displs[size - 1] + counts[size - 1]);
-  }
-  PetscCallMPI(MPI_Gatherv(send.data(), count, MPI_DOUBLE, recv.data(), counts.data(), displs.data(), MPI_DOUBLE, 0,
-                           comm));
-  if (rank == 0) {
-    const PetscInt total = field.on_cells ? mesh.NumGlobalCells() : mesh.NumGlobalNodes();
-    out.assign(total * nc, 0.0);
-    for (std::size_t i = 0; i + nc < recv.size() + 1; i += nc + 1) {
-      const PetscInt orig = (PetscInt)recv[i];
-      for (int k = 0; k < nc; ++k) out[orig * nc + k] = recv[i + 1 + k];
-    }
-  }
-  PetscFunctionReturn(0);
-}
-
 namespace {
 
-bool UniformCells(const SerialMesh &sm) {
-  for (int c = 1; c < sm.NumCells(); ++c)
-    if (sm.CellSize(c) != sm.CellSize(0)) return false;
-  return true;
+PetscLogEvent EV_HDF5 = 0, EV_XDMF = 0, EV_CSV = 0;
+PetscErrorCode RegisterEvents() {
+  PetscClassId id;
+  PetscFunctionBeginUser;
+  if (EV_HDF5) PetscFunctionReturn(0);
+  PetscCall(PetscClassIdRegister("signorini output", &id));
+  PetscCall(PetscLogEventRegister("SigWriteHDF5", id, &EV_HDF5));
+  PetscCall(PetscLogEventRegister("SigWriteXDMF", id, &EV_XDMF));
+  PetscCall(PetscLogEventRegister("SigWriteCSV", id, &EV_CSV));
+  PetscFunctionReturn(0);
 }
 
 std::string HdfError(const std::string &path) { return "cannot write HDF5 file '" + path + "'"; }
@@ -83,18 +54,15 @@ int XdmfCellId(int dim, int n) {
   return n == 4 ? 6 : n == 5 ? 7 : 9;
 }
 
-/// Writes a 2D dataset (rows x cols) of doubles or ints into an open HDF5 location.
-template <typename T>
-bool WriteDataset(hid_t loc, const std::string &name, const std::vector<T> &data, hsize_t cols) {
-  const hsize_t dims[2] = {cols ? data.size() / cols : 0, cols};
-  const hid_t type = std::is_same<T, double>::value ? H5T_NATIVE_DOUBLE : H5T_NATIVE_LLONG;
-  hid_t space = H5Screate_simple(cols == 1 ? 1 : 2, dims, nullptr);
-  if (space < 0) return false;
-  hid_t set = H5Dcreate2(loc, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  bool ok = set >= 0 && H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) >= 0;
-  if (set >= 0) H5Dclose(set);
-  H5Sclose(space);
-  return ok;
+/// Appends v as printf's "%.17g" writes it (std::to_chars is specified so), "nan" for every NaN.
+void AppendNumber(std::string &out, double v) {
+  char buf[32];
+  if (std::isnan(v)) {
+    out += "nan";
+    return;
+  }
+  const auto end = std::to_chars(buf, buf + sizeof(buf), v, std::chars_format::general, 17).ptr;
+  out.append(buf, end);
 }
 
 } // namespace
@@ -105,10 +73,41 @@ PetscErrorCode OutputWriter::Open(const Mesh &mesh, const OutputOptions &opts) {
   mesh_ = &mesh;
   opts_ = opts;
   if (!Enabled()) PetscFunctionReturn(0);
+  PetscCall(RegisterEvents());
   PetscCallMPI(MPI_Comm_rank(mesh.Comm(), &rank));
   std::string error;
   if (rank == 0) error = PrepareOutputDirectory(opts_.dir);
   PetscCall(RaiseFromRoot(mesh.Comm(), error));
+  PetscCall(BuildRows());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode OutputWriter::BuildRows() {
+  const Mesh &mesh = *mesh_;
+  MPI_Comm comm = mesh.Comm();
+  PetscFunctionBeginUser;
+  // Each vertex is written by the rank that owns it, each cell by its rank, at their places in the file's order.
+  std::vector<PetscInt> local, file;
+  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v)
+    if (mesh.Owned(v)) local.push_back(v), file.push_back(mesh.VertexOriginal(v));
+  PetscCall(node_rows_.Create(comm, mesh.NumGlobalNodes(), local, file));
+  file.clear();
+  PetscInt sizes[2] = {MAX_CELL_VERTICES, 0}, topology = 0;
+  for (PetscInt c = 0; c < mesh.NumLocalCells(); ++c) {
+    PetscInt n;
+    (void)mesh.CellVertices(c, n);
+    sizes[0] = std::min(sizes[0], n), sizes[1] = std::min(sizes[1], -n); // min and -max
+    topology += n + 1;
+    file.push_back(mesh.CellOriginal(c));
+  }
+  PetscCall(cell_rows_.Create(comm, mesh.NumGlobalCells(), {}, file));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sizes, 2, MPIU_INT, MPI_MIN, comm));
+  PetscCallMPI(MPI_Allreduce(&topology, &mixed_topology_size_, 1, MPIU_INT, MPI_SUM, comm));
+  cell_size_ = (int)sizes[0];
+  uniform_ = sizes[0] == -sizes[1];
+  PetscCheck((PetscInt)mesh.NodeTagsBlock().size() == node_rows_.Size() &&
+                 (PetscInt)mesh.CellTagsBlock().size() == cell_rows_.Size(),
+             PETSC_COMM_SELF, PETSC_ERR_PLIB, "the mesh's blocks of tags are not the output's blocks");
   PetscFunctionReturn(0);
 }
 
@@ -137,7 +136,7 @@ PetscErrorCode OutputWriter::SetContactBoundary(const std::vector<char> &candida
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   // The contact boundary: the boundary faces whose every vertex is a candidate, edges in 2D, triangles and
-  // quadrilaterals in 3D; per face its vertex count, then its vertices (file order).
+  // quadrilaterals in 3D; per face its vertex count, then its vertices (file order). It is small: rank 0 holds it.
   PetscCall(mesh_->BoundaryFaces(faces));
   std::vector<PetscInt> send;
   for (const auto &f : faces) {
@@ -156,121 +155,154 @@ PetscErrorCode OutputWriter::SetContactBoundary(const std::vector<char> &candida
     all.resize(displs[size - 1] + counts[size - 1]);
   }
   PetscCallMPI(MPI_Gatherv(send.data(), count, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT, 0, comm));
+  // The faces in the order of their vertices' file indices, whichever ranks held them.
+  std::vector<std::vector<PetscInt>> sorted;
+  for (std::size_t k = 0; k < all.size(); k += all[k] + 1)
+    sorted.emplace_back(all.begin() + k + 1, all.begin() + k + 1 + all[k]);
+  std::sort(sorted.begin(), sorted.end());
   contact_nodes_.clear();
   contact_faces_.clear();
-  contact_num_faces_ = 0;
+  contact_num_faces_ = (int)sorted.size();
   int size_seen = -1;
   bool uniform = true;
-  for (std::size_t k = 0; k < all.size(); k += all[k] + 1) {
-    contact_nodes_.insert(contact_nodes_.end(), all.begin() + k + 1, all.begin() + k + 1 + all[k]);
-    uniform = uniform && (size_seen < 0 || size_seen == (int)all[k]);
-    size_seen = (int)all[k];
+  for (const auto &face : sorted) {
+    contact_nodes_.insert(contact_nodes_.end(), face.begin(), face.end());
+    uniform = uniform && (size_seen < 0 || size_seen == (int)face.size());
+    size_seen = (int)face.size();
   }
   std::sort(contact_nodes_.begin(), contact_nodes_.end());
   contact_nodes_.erase(std::unique(contact_nodes_.begin(), contact_nodes_.end()), contact_nodes_.end());
   // XDMF: a uniform topology, or a Mixed one with the cell type before each face's vertices.
   contact_face_size_ = uniform ? std::max(size_seen, 0) : 0;
-  for (std::size_t k = 0; k < all.size(); k += all[k] + 1, ++contact_num_faces_) {
-    if (!uniform) contact_faces_.push_back(XdmfCellId(2, (int)all[k]));
-    for (PetscInt a = 0; a < all[k]; ++a)
-      contact_faces_.push_back(std::lower_bound(contact_nodes_.begin(), contact_nodes_.end(), all[k + 1 + a]) -
+  for (const auto &face : sorted) {
+    if (!uniform) contact_faces_.push_back(XdmfCellId(2, (int)face.size()));
+    for (PetscInt v : face)
+      contact_faces_.push_back(std::lower_bound(contact_nodes_.begin(), contact_nodes_.end(), v) -
                                contact_nodes_.begin());
   }
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode OutputWriter::GatherFields(const std::vector<Field> &fields, std::vector<std::vector<double>> &gathered,
-                                          PetscMPIInt &rank) const {
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(mesh_->Comm(), &rank));
-  gathered.resize(fields.size());
-  for (std::size_t f = 0; f < fields.size(); ++f) PetscCall(GatherToRoot(*mesh_, fields[f], gathered[f]));
+  // Every rank takes part in writing the contact boundary's datasets (rank 0's rows): they need their shapes.
+  PetscInt shape[4] = {(PetscInt)contact_nodes_.size(), (PetscInt)contact_faces_.size(), contact_face_size_,
+                       contact_num_faces_};
+  PetscCallMPI(MPI_Bcast(shape, 4, MPIU_INT, 0, comm));
+  contact_num_nodes_ = shape[0], contact_topology_size_ = shape[1];
+  contact_face_size_ = (int)shape[2], contact_num_faces_ = (int)shape[3];
+  PetscCall(contact_rows_.Create(comm, mesh_->NumGlobalNodes(), {}, contact_nodes_));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode OutputWriter::WriteStep(PetscInt step, double t, const std::vector<Field> &fields) {
   PetscMPIInt rank;
-  std::vector<std::vector<double>> gathered;
   PetscFunctionBeginUser;
   if (!Enabled()) PetscFunctionReturn(0);
-  PetscCall(GatherFields(fields, gathered, rank));
-  std::string error;
-  if (rank == 0) {
-    const std::string path = Staging() + "/solution.h5";
-    const bool first = steps_.empty();
-    hid_t file = first ? H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)
-                       : H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-    bool ok = file >= 0;
-    ok = ok && (!first || WriteGeometry(file));
-    char name[32];
-    std::snprintf(name, sizeof(name), "step_%06d", (int)step);
-    hid_t g = ok ? H5Gcreate2(file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
-    ok = ok && g >= 0;
-    for (std::size_t f = 0; ok && f < fields.size(); ++f)
-      ok = WriteDataset(g, fields[f].name, gathered[f], (hsize_t)fields[f].ncomp);
-    hid_t boundary = ok && !contact_nodes_.empty()
-                         ? H5Gcreate2(g, "contact_boundary", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
-    for (std::size_t f = 0; boundary >= 0 && ok && f < fields.size(); ++f) {
-      if (!fields[f].on_contact) continue;
-      const int nc = fields[f].ncomp;
-      std::vector<double> restricted;
-      for (PetscInt v : contact_nodes_)
-        restricted.insert(restricted.end(), gathered[f].begin() + v * nc, gathered[f].begin() + (v + 1) * nc);
-      ok = WriteDataset(boundary, fields[f].name, restricted, (hsize_t)nc);
-    }
-    if (boundary >= 0) H5Gclose(boundary);
-    if (g >= 0) H5Gclose(g);
-    if (file >= 0) ok = H5Fclose(file) >= 0 && ok;
-    if (!ok) error = HdfError(path);
+  MPI_Comm comm = mesh_->Comm();
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(PetscLogEventBegin(EV_HDF5, 0, 0, 0, 0));
+  Hdf5File file;
+  PetscCall(file.Open(comm, Staging() + "/solution.h5", steps_.empty()));
+  if (steps_.empty()) PetscCall(WriteGeometry(file));
+  char name[32];
+  std::snprintf(name, sizeof(name), "/step_%06d", (int)step);
+  const std::string group = name, boundary = group + "/contact_boundary";
+  PetscCall(file.CreateGroup(group));
+  if (contact_num_nodes_ > 0) PetscCall(file.CreateGroup(boundary));
+  for (const auto &f : fields) {
+    const FileRows &rows = f.on_cells ? cell_rows_ : node_rows_;
+    std::vector<double> block, restricted;
+    PetscCall(rows.ToBlocks(f.values, f.ncomp, block));
+    PetscCall(file.WriteRows(group + "/" + f.name, rows.Global(), f.ncomp, rows.Start(), block));
+    if (!f.on_contact || contact_num_nodes_ == 0) continue;
+    PetscCall(contact_rows_.FromBlocks(block, f.ncomp, restricted));
+    PetscCall(file.WriteRows(boundary + "/" + f.name, contact_num_nodes_, f.ncomp, 0, restricted));
   }
-  PetscCall(RaiseFromRoot(mesh_->Comm(), error));
+  PetscCall(file.Close());
+  PetscCall(CheckCollective(comm, file.Ok(), HdfError(file.Path())));
+  PetscCall(PetscLogEventEnd(EV_HDF5, 0, 0, 0, 0));
   StepInfo info{step, t, {}};
   for (const auto &f : fields) info.layout.push_back({f.name, f.ncomp, f.on_cells, {}, f.on_contact});
   steps_.push_back(info);
+  PetscCall(PetscLogEventBegin(EV_XDMF, 0, 0, 0, 0));
   PetscCall(WriteXdmf());
+  PetscCall(PetscLogEventEnd(EV_XDMF, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
-bool OutputWriter::WriteGeometry(std::int64_t file) const {
-  const SerialMesh &sm = mesh_->Serial();
-  hid_t g = H5Gcreate2(file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  std::vector<double> coords(3 * sm.NumNodes(), 0.0);
-  for (int i = 0; i < sm.NumNodes(); ++i)
-    for (int d = 0; d < sm.dim; ++d) coords[3 * i + d] = sm.coords[sm.dim * i + d];
-  const bool uniform = UniformCells(sm);
-  std::vector<long long> topo, ntags(sm.node_tags.begin(), sm.node_tags.end()),
-      ctags(sm.cell_tags.begin(), sm.cell_tags.end());
-  for (int c = 0; c < sm.NumCells(); ++c) {
-    if (!uniform) topo.push_back(XdmfCellId(sm.dim, sm.CellSize(c)));
-    for (int k = sm.cell_offsets[c]; k < sm.cell_offsets[c + 1]; ++k) topo.push_back(sm.cell_nodes[k]);
+PetscErrorCode OutputWriter::NodeBlocks(std::vector<double> &xyz, std::vector<long long> &tags) const {
+  PetscFunctionBeginUser;
+  std::vector<double> local(3 * mesh_->NumLocalVertices(), 0.0);
+  for (PetscInt v = 0; v < mesh_->NumLocalVertices(); ++v)
+    for (int d = 0; d < mesh_->Dim(); ++d) local[3 * v + d] = mesh_->X(v)[d];
+  PetscCall(node_rows_.ToBlocks(local, 3, xyz));
+  tags.assign(mesh_->NodeTagsBlock().begin(), mesh_->NodeTagsBlock().end());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode OutputWriter::WriteTopology(Hdf5File &file) const {
+  const Mesh &mesh = *mesh_;
+  PetscFunctionBeginUser;
+  // Rows of the cells' vertices in the file's node numbering; for a mixed mesh each row starts with the cell's XDMF
+  // type and is padded with -1 to the largest cell, and the rows of the blocks are then joined end to end.
+  const int width = uniform_ ? cell_size_ : MAX_CELL_VERTICES + 1;
+  std::vector<long long> local(mesh.NumLocalCells() * width, -1), block;
+  for (PetscInt c = 0; c < mesh.NumLocalCells(); ++c) {
+    PetscInt n;
+    const PetscInt *cv = mesh.CellVertices(c, n);
+    long long *row = &local[c * width];
+    if (!uniform_) *row++ = XdmfCellId(mesh.Dim(), (int)n);
+    for (PetscInt k = 0; k < n; ++k) row[k] = mesh.VertexOriginal(cv[k]);
   }
-  bool ok = g >= 0 && WriteDataset(g, "coordinates", coords, 3) &&
-            WriteDataset(g, "topology", topo, uniform ? (hsize_t)sm.CellSize(0) : 1) &&
-            WriteDataset(g, "node_tags", ntags, 1) && WriteDataset(g, "cell_tags", ctags, 1);
-  if (g >= 0) H5Gclose(g);
-  if (ok && !obstacle_points_.empty()) {
-    std::vector<long long> cells(obstacle_points_.size());
-    for (std::size_t k = 0; k < cells.size(); ++k) cells[k] = (long long)k;
-    g = H5Gcreate2(file, "obstacle", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  PetscCall(cell_rows_.ToBlocks(local, width, block));
+  if (uniform_) {
+    PetscCall(file.WriteRows("/mesh/topology", cell_rows_.Global(), width, cell_rows_.Start(), block));
+    PetscFunctionReturn(0);
+  }
+  block.erase(std::remove(block.begin(), block.end(), -1LL), block.end());
+  long long size = (long long)block.size(), offset = 0;
+  PetscCallMPI(MPI_Exscan(&size, &offset, 1, MPI_LONG_LONG, MPI_SUM, mesh.Comm()));
+  PetscMPIInt rank;
+  PetscCallMPI(MPI_Comm_rank(mesh.Comm(), &rank));
+  if (rank == 0) offset = 0; // MPI_Exscan leaves rank 0's result undefined
+  PetscCall(file.WriteRows("/mesh/topology", mixed_topology_size_, 1, offset, block));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode OutputWriter::WriteGeometry(Hdf5File &file) const {
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(mesh_->Comm(), &rank));
+  std::vector<double> xyz;
+  std::vector<long long> node_tags;
+  PetscCall(NodeBlocks(xyz, node_tags));
+  const std::vector<long long> cell_tags(mesh_->CellTagsBlock().begin(), mesh_->CellTagsBlock().end());
+  PetscCall(file.CreateGroup("/mesh"));
+  PetscCall(file.WriteRows("/mesh/coordinates", node_rows_.Global(), 3, node_rows_.Start(), xyz));
+  PetscCall(WriteTopology(file));
+  PetscCall(file.WriteRows("/mesh/node_tags", node_rows_.Global(), 1, node_rows_.Start(), node_tags));
+  PetscCall(file.WriteRows("/mesh/cell_tags", cell_rows_.Global(), 1, cell_rows_.Start(), cell_tags));
+  // The obstacle (known on every rank) and the contact boundary (gathered on rank 0) are small: rank 0 writes them.
+  if (!obstacle_points_.empty()) {
     std::vector<double> coords;
-    for (const auto &p : obstacle_points_) coords.insert(coords.end(), p.begin(), p.end());
-    ok = g >= 0 && WriteDataset(g, "coordinates", coords, 3) &&
-         WriteDataset(g, "topology", cells, (hsize_t)obstacle_cell_size_);
-    if (g >= 0) H5Gclose(g);
+    std::vector<long long> cells;
+    if (rank == 0) {
+      for (const auto &p : obstacle_points_) coords.insert(coords.end(), p.begin(), p.end());
+      for (std::size_t k = 0; k < obstacle_points_.size(); ++k) cells.push_back((long long)k);
+    }
+    const PetscInt n = (PetscInt)obstacle_points_.size();
+    PetscCall(file.CreateGroup("/obstacle"));
+    PetscCall(file.WriteRows("/obstacle/coordinates", n, 3, 0, coords));
+    PetscCall(file.WriteRows("/obstacle/topology", n / obstacle_cell_size_, obstacle_cell_size_, 0, cells));
   }
-  if (ok && !contact_nodes_.empty()) {
-    std::vector<double> contact_coords;
-    std::vector<long long> tags;
-    for (PetscInt v : contact_nodes_)
-      contact_coords.insert(contact_coords.end(), coords.begin() + 3 * v, coords.begin() + 3 * v + 3),
-          tags.push_back((long long)sm.node_tags[v]);
-    g = H5Gcreate2(file, "contact_boundary", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    ok = g >= 0 && WriteDataset(g, "coordinates", contact_coords, 3) &&
-         WriteDataset(g, "topology", contact_faces_, contact_face_size_ ? (hsize_t)contact_face_size_ : 1) &&
-         WriteDataset(g, "node_tags", tags, 1);
-    if (g >= 0) H5Gclose(g);
+  if (contact_num_nodes_ > 0) {
+    std::vector<double> contact_xyz;
+    std::vector<long long> contact_tags;
+    PetscCall(contact_rows_.FromBlocks(xyz, 3, contact_xyz));
+    PetscCall(contact_rows_.FromBlocks(node_tags, 1, contact_tags));
+    const int cols = contact_face_size_ ? contact_face_size_ : 1;
+    PetscCall(file.CreateGroup("/contact_boundary"));
+    PetscCall(file.WriteRows("/contact_boundary/coordinates", contact_num_nodes_, 3, 0, contact_xyz));
+    PetscCall(file.WriteRows("/contact_boundary/topology", contact_topology_size_ / cols, cols, 0, contact_faces_));
+    PetscCall(file.WriteRows("/contact_boundary/node_tags", contact_num_nodes_, 1, 0, contact_tags));
   }
-  return ok;
+  PetscFunctionReturn(0);
 }
 
 namespace {
@@ -315,11 +347,7 @@ PetscErrorCode OutputWriter::WriteXdmf() const {
   PetscCallMPI(MPI_Comm_rank(mesh_->Comm(), &rank));
   std::string error;
   if (rank == 0) {
-    const SerialMesh &sm = mesh_->Serial();
-    const bool uniform = UniformCells(sm);
-    std::size_t topo_size = 0;
-    for (int c = 0; c < sm.NumCells(); ++c) topo_size += sm.CellSize(c) + 1;
-    const int nn = sm.NumNodes(), nc = sm.NumCells(), nb = (int)contact_nodes_.size();
+    const int nn = (int)mesh_->NumGlobalNodes(), nc = (int)mesh_->NumGlobalCells(), nb = (int)contact_num_nodes_;
     std::ostringstream x;
     x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
       << "  <Grid Name=\"signorini\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
@@ -328,8 +356,8 @@ PetscErrorCode OutputWriter::WriteXdmf() const {
       std::snprintf(group, sizeof(group), "step_%06d", (int)s.step);
       x << "   <Grid Name=\"" << group << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
         << "    <Time Value=\"" << s.t << "\"/>\n    <Grid Name=\"body\" GridType=\"Uniform\">\n"
-        << Shape("mesh", uniform ? XdmfCellName(sm.dim, sm.CellSize(0)) : "Mixed", nc,
-                 sm.CellSize(0), uniform ? 0 : topo_size, nn)
+        << Shape("mesh", uniform_ ? XdmfCellName(mesh_->Dim(), cell_size_) : "Mixed", nc, cell_size_,
+                 uniform_ ? 0 : (std::size_t)mixed_topology_size_, nn)
         << Attribute("node_tags", 1, false, nn, true, "/mesh/node_tags")
         << Attribute("cell_tags", 1, true, nc, true, "/mesh/cell_tags");
       for (const auto &f : s.layout)
@@ -348,7 +376,7 @@ PetscErrorCode OutputWriter::WriteXdmf() const {
                    : contact_face_size_ == 3 ? "Triangle"
                    : contact_face_size_ == 4 ? "Quadrilateral"
                                              : "Mixed",
-                   contact_num_faces_, contact_face_size_, contact_face_size_ ? 0 : contact_faces_.size(), nb)
+                   contact_num_faces_, contact_face_size_, contact_face_size_ ? 0 : (std::size_t)contact_topology_size_, nb)
           << Attribute("node_tags", 1, false, nb, true, "/contact_boundary/node_tags");
         for (const auto &f : s.layout)
           if (f.on_contact)
@@ -373,39 +401,37 @@ PetscErrorCode OutputWriter::WriteXdmf() const {
 
 PetscErrorCode OutputWriter::WriteNodeTable(const std::vector<Field> &fields) {
   PetscMPIInt rank;
-  std::vector<std::vector<double>> gathered;
   PetscFunctionBeginUser;
   if (!Enabled()) PetscFunctionReturn(0);
-  PetscCall(GatherFields(fields, gathered, rank));
-  std::string error;
+  PetscCall(PetscLogEventBegin(EV_CSV, 0, 0, 0, 0));
+  PetscCallMPI(MPI_Comm_rank(mesh_->Comm(), &rank));
+  // Each rank formats the rows of its block of the file's node order; the blocks join in rank order.
+  std::vector<double> xyz;
+  std::vector<long long> tags;
+  PetscCall(NodeBlocks(xyz, tags));
+  std::vector<std::vector<double>> blocks(fields.size());
+  for (std::size_t f = 0; f < fields.size(); ++f)
+    PetscCall(node_rows_.ToBlocks(fields[f].values, fields[f].ncomp, blocks[f]));
+  std::string text;
   if (rank == 0) {
-    const SerialMesh &sm = mesh_->Serial();
-    const std::string path = Staging() + "/nodes.csv";
-    FILE *out = std::fopen(path.c_str(), "w");
-    if (!out) error = "cannot write '" + path + "'";
-    else {
-      std::fprintf(out, sm.dim == 2 ? "node_tag,x,y" : "node_tag,x,y,z");
-      for (const auto &f : fields) {
-        if (f.ncomp == 1) std::fprintf(out, ",%s", f.name.c_str());
-        else
-          for (int k = 0; k < f.ncomp; ++k) std::fprintf(out, ",%s_%c", f.name.c_str(), "xyz"[k]);
-      }
-      std::fprintf(out, "\n");
-      for (int i = 0; i < sm.NumNodes(); ++i) {
-        std::fprintf(out, "%zu", sm.node_tags[i]);
-        for (int d = 0; d < sm.dim; ++d) std::fprintf(out, ",%.17g", sm.coords[sm.dim * i + d]);
-        for (std::size_t f = 0; f < fields.size(); ++f)
-          for (int k = 0; k < fields[f].ncomp; ++k) {
-            const double v = gathered[f][i * fields[f].ncomp + k];
-            if (std::isnan(v)) std::fprintf(out, ",nan");
-            else std::fprintf(out, ",%.17g", v);
-          }
-        std::fprintf(out, "\n");
-      }
-      if (std::fclose(out) != 0) error = "cannot write '" + path + "'";
+    text = mesh_->Dim() == 2 ? "node_tag,x,y" : "node_tag,x,y,z";
+    for (const auto &f : fields) {
+      if (f.ncomp == 1) text += "," + f.name;
+      else
+        for (int k = 0; k < f.ncomp; ++k) text += "," + f.name + "_" + "xyz"[k];
     }
+    text += "\n";
   }
-  PetscCall(RaiseFromRoot(mesh_->Comm(), error));
+  for (PetscInt i = 0; i < node_rows_.Size(); ++i) {
+    char buf[24];
+    text.append(buf, std::to_chars(buf, buf + sizeof(buf), (unsigned long long)tags[i]).ptr);
+    for (int d = 0; d < mesh_->Dim(); ++d) text += ',', AppendNumber(text, xyz[3 * i + d]);
+    for (std::size_t f = 0; f < fields.size(); ++f)
+      for (int k = 0; k < fields[f].ncomp; ++k) text += ',', AppendNumber(text, blocks[f][i * fields[f].ncomp + k]);
+    text += '\n';
+  }
+  PetscCall(WriteInRankOrder(mesh_->Comm(), Staging() + "/nodes.csv", text));
+  PetscCall(PetscLogEventEnd(EV_CSV, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

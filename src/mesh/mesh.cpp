@@ -1,6 +1,7 @@
 // Building, labelling, partitioning and distributing the DMPlex, and the per-rank arrays of the element loops.
 #include "signorini/mesh/mesh.hpp"
 
+#include "signorini/core/blocks.hpp"
 #include "signorini/core/errors.hpp"
 #include "signorini/core/options.hpp"
 #include "signorini/core/parse.hpp"
@@ -184,6 +185,10 @@ PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
   ProgressEnd();
   dm_ = std::move(dm);
   PetscCall(BuildLocalArrays());
+  // The file's tags in blocks of file indices (written with the output); nothing needs the serial mesh any more.
+  PetscCall(ScatterBlocks(comm, serial_.node_tags, node_tags_));
+  PetscCall(ScatterBlocks(comm, serial_.cell_tags, cell_tags_));
+  serial_ = SerialMesh{};
   PetscFunctionReturn(0);
 }
 

@@ -58,8 +58,10 @@ public:
     return &cell_vertices_[cell_offsets_[c]];
   }
   const std::vector<std::string> &GroupNames() const { return group_names_; }
-  /// The serial mesh as read (filled on rank 0 only; group names everywhere).
-  const SerialMesh &Serial() const { return serial_; }
+  /// The file's tags of the nodes (cells) of this rank's block of file indices (BlockOf over NumGlobalNodes(),
+  /// NumGlobalCells()): NodeTagsBlock()[i] is the tag of the file's node start + i.
+  const std::vector<std::size_t> &NodeTagsBlock() const { return node_tags_; }
+  const std::vector<std::size_t> &CellTagsBlock() const { return cell_tags_; }
 
   /// Local vertices (owned and ghost) of the physical group `name`; an unknown name is an error listing the names.
   /// Collective.
@@ -111,7 +113,8 @@ private:
   std::vector<std::vector<Face>> label_faces_;
   std::vector<std::string> group_names_;
   std::vector<int> group_dims_;
-  SerialMesh serial_;
+  SerialMesh serial_; ///< the mesh as read, on rank 0 while Create runs
+  std::vector<std::size_t> node_tags_, cell_tags_;
 };
 
 } // namespace signorini

@@ -47,7 +47,11 @@ TEST_F(MixedMesh, SizesAndFileOrder) {
   EXPECT_EQ(mesh_.NumGlobalCells(), 3);
   ASSERT_EQ(mesh_.NumLocalVertices(), 6);
   ASSERT_EQ(mesh_.NumLocalCells(), 3);
-  const SerialMesh &serial = mesh_.Serial();
+  // The file as read on its own: the distributed mesh must hold its nodes and cells, and its tags in file order.
+  SerialMesh serial;
+  ASSERT_EQ(ReadGmsh(dir_.Write("mixed_again.msh", test::MIXED_MESH_22), 1.0, serial), "");
+  EXPECT_EQ(mesh_.NodeTagsBlock(), serial.node_tags);
+  EXPECT_EQ(mesh_.CellTagsBlock(), serial.cell_tags);
   for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v) {
     EXPECT_TRUE(mesh_.Owned(v));
     const PetscInt o = mesh_.VertexOriginal(v);
