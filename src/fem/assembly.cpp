@@ -44,8 +44,8 @@ PetscErrorCode Assembler::CheckCells() const {
   PetscFunctionBeginUser;
   bool ok = true;
   PetscInt bad = -1;
+  ElementGeometry g;
   for (PetscInt c = 0; c < mesh_.NumLocalCells() && ok; ++c) {
-    ElementGeometry g;
     PetscInt nn;
     const PetscInt *v;
     ok = Geometry(c, g, nn, v) && g.min_detJ * g.max_detJ > 0;
@@ -150,30 +150,51 @@ PetscErrorCode Assembler::PatternCounts(std::vector<PetscInt> &d_nnz, std::vecto
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::AddLocal(const std::vector<double> &f_local, Vec f) const {
+  const int dim = mesh_.Dim();
+  PetscScalar *a;
+  PetscFunctionBeginUser;
+  // Owned rows straight into the array; the rows of ghost vertices through the stash to their owners.
+  PetscCall(VecGetArray(f, &a));
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    if (mesh_.Owned(v))
+      for (int k = 0; k < dim; ++k) a[dofs_.LocalOffset(v, k)] += f_local[v * dim + k];
+  PetscCall(VecRestoreArray(f, &a));
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    if (!mesh_.Owned(v))
+      for (int k = 0; k < dim; ++k)
+        if (f_local[v * dim + k] != 0) PetscCall(VecSetValue(f, dofs_.Row(v, k), f_local[v * dim + k], ADD_VALUES));
+  PetscCall(VecAssemblyBegin(f));
+  PetscCall(VecAssemblyEnd(f));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichlet_diag, Vec fint,
                                    double *min_J) const {
   const int dim = mesh_.Dim();
-  std::array<PetscInt, MAX_EDOF> rows, all;
+  std::array<PetscInt, MAX_EDOF> rows;
   std::array<double, MAX_EDOF * MAX_EDOF> Ke;
   std::array<double, MAX_EDOF> fe, ue;
+  std::vector<double> f_local(fint ? mesh_.NumLocalVertices() * dim : 0, 0.0);
+  ElementGeometry g;
   double jmin = 1e300;
   PetscFunctionBeginUser;
   for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
-    ElementGeometry g;
     PetscInt nn;
     const PetscInt *v;
     Geometry(c, g, nn, v);
     GatherElement(u_local, v, nn, dim, ue.data());
-    for (PetscInt a = 0; a < nn; ++a)
-      for (int k = 0; k < dim; ++k) {
-        all[a * dim + k] = dofs_.Row(v[a], k);
-        rows[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : all[a * dim + k];
-      }
     ElementTangentAndForce(material_, g, ue.data(), A ? Ke.data() : nullptr, fe.data());
     // det F at the quadrature points (svk): the deformation must stay invertible.
     if (material_.model == MaterialModel::SVK) jmin = std::min(jmin, MinDeformationJacobian(g, ue.data()));
-    if (A) PetscCall(MatSetValues(A, nn * dim, rows.data(), nn * dim, rows.data(), Ke.data(), ADD_VALUES));
-    if (fint) PetscCall(VecSetValues(fint, nn * dim, all.data(), fe.data(), ADD_VALUES));
+    if (A) {
+      for (PetscInt a = 0; a < nn; ++a)
+        for (int k = 0; k < dim; ++k) rows[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : dofs_.Row(v[a], k);
+      PetscCall(MatSetValues(A, nn * dim, rows.data(), nn * dim, rows.data(), Ke.data(), ADD_VALUES));
+    }
+    if (fint)
+      for (PetscInt a = 0; a < nn; ++a)
+        for (int k = 0; k < dim; ++k) f_local[v[a] * dim + k] += fe[a * dim + k];
   }
   if (A)
     for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
@@ -182,10 +203,7 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
           const PetscInt r = dofs_.Row(v, k);
           PetscCall(MatSetValue(A, r, r, dirichlet_diag, ADD_VALUES));
         }
-  if (fint) {
-    PetscCall(VecAssemblyBegin(fint));
-    PetscCall(VecAssemblyEnd(fint));
-  }
+  if (fint) PetscCall(AddLocal(f_local, fint));
   if (min_J) PetscCallMPI(MPI_Allreduce(&jmin, min_J, 1, MPI_DOUBLE, MPI_MIN, mesh_.Comm()));
   PetscFunctionReturn(0);
 }
@@ -195,6 +213,7 @@ PetscErrorCode Assembler::AddStiffnessTimes(const double *u_local, const double 
   std::array<PetscInt, MAX_EDOF> rows;
   std::array<double, MAX_EDOF * MAX_EDOF> Ke;
   std::array<double, MAX_EDOF> fe, ue, ve, kv;
+  ElementGeometry g;
   PetscFunctionBeginUser;
   for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
     PetscInt nn;
@@ -203,7 +222,6 @@ PetscErrorCode Assembler::AddStiffnessTimes(const double *u_local, const double 
     bool any = false;
     for (PetscInt i = 0; i < nn * dim; ++i) any = any || ve[i] != 0;
     if (!any) continue;
-    ElementGeometry g;
     Geometry(c, g, nn, v);
     GatherElement(u_local, v, nn, dim, ue.data());
     ElementTangentAndForce(material_, g, ue.data(), Ke.data(), fe.data());
@@ -266,8 +284,8 @@ PetscErrorCode Assembler::AssembleLoads(const BoundaryConditions &bc, double fac
   if (!bc.body_force.empty()) {
     std::array<PetscInt, MAX_EDOF> rows;
     std::array<double, MAX_EDOF> fe;
+    ElementGeometry g;
     for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
-      ElementGeometry g;
       PetscInt nn;
       const PetscInt *v;
       Geometry(c, g, nn, v);
@@ -287,8 +305,8 @@ PetscErrorCode Assembler::CellResults(const double *u_local, std::vector<CellStr
   std::array<double, MAX_EDOF> ue;
   PetscFunctionBeginUser;
   cells.resize(mesh_.NumLocalCells());
+  ElementGeometry g;
   for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
-    ElementGeometry g;
     PetscInt nn;
     const PetscInt *v;
     Geometry(c, g, nn, v);
@@ -306,8 +324,8 @@ PetscErrorCode Assembler::StiffnessScale(double &scale) const {
   PetscFunctionBeginUser;
   Material linear = material_;
   linear.model = MaterialModel::LINEAR;
+  ElementGeometry g;
   for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
-    ElementGeometry g;
     PetscInt nn;
     const PetscInt *v;
     Geometry(c, g, nn, v);

@@ -51,6 +51,9 @@ public:
   [[nodiscard]] PetscErrorCode StiffnessScale(double &scale) const;
 
 private:
+  /// Adds f_local (dim values per local vertex, ghosts included) to the displacement rows of f and assembles f.
+  /// Collective.
+  [[nodiscard]] PetscErrorCode AddLocal(const std::vector<double> &f_local, Vec f) const;
   bool Geometry(PetscInt c, ElementGeometry &g, PetscInt &nn, const PetscInt *&vertices) const;
   const Mesh &mesh_;
   const Material &material_;
