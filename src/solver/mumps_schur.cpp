@@ -1,6 +1,8 @@
 // MUMPS with a Schur complement on the multipliers: one factorisation, then solves with a changing diagonal D.
 #include "signorini/solver/mumps_schur.hpp"
 
+#include "signorini/solver/nested_dissection.hpp"
+
 #include <metis.h>
 #include <petscblaslapack.h>
 
@@ -60,7 +62,8 @@ PetscErrorCode MumpsSchur::Call(int job, const char *phase) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MumpsSchur::NestedDissection(PetscInt n, PetscInt rstart, PetscInt owned_u, PetscInt node_size) {
+PetscErrorCode MumpsSchur::NestedDissection(PetscInt n, PetscInt rstart, PetscInt owned_u, PetscInt node_size,
+                                            const std::vector<double> &coords, GraphOrdering ordering) {
   const MPI_Datatype IDX_T_MPI = sizeof(idx_t) == 8 ? MPI_INT64_T : MPI_INT32_T;
   PetscMPIInt size;
   PetscFunctionBeginUser;
@@ -116,6 +119,18 @@ PetscErrorCode MumpsSchur::NestedDissection(PetscInt n, PetscInt rstart, PetscIn
                            comm_));
   edges.clear();
   edges.shrink_to_fit();
+  // The node coordinates for the coordinate cuts, in the same node numbering.
+  std::vector<double> x;
+  if (ordering == GraphOrdering::COORDINATES) {
+    std::vector<PetscMPIInt> xcounts(size), xdispls(size, 0);
+    for (PetscMPIInt r = 0; r < size; ++r) {
+      PetscCall(PetscMPIIntCast(ranges[3 * r + 2] * node_size, &xcounts[r]));
+      if (r > 0) xdispls[r] = xdispls[r - 1] + xcounts[r - 1];
+    }
+    if (rank_ == 0) x.resize(num_nodes * node_size);
+    PetscCallMPI(MPI_Gatherv(coords.data(), xcounts[rank_], MPI_DOUBLE, x.data(), xcounts.data(), xdispls.data(),
+                             MPI_DOUBLE, 0, comm_));
+  }
   int status = METIS_OK;
   if (rank_ == 0) {
     // Compressed adjacency of the symmetrised node graph (an LU pattern's two triangles give each edge twice), then
@@ -142,12 +157,18 @@ PetscErrorCode MumpsSchur::NestedDissection(PetscInt n, PetscInt rstart, PetscIn
       xadj[i] = begin;
     }
     xadj[num_nodes] = w;
-    idx_t nv = (idx_t)num_nodes, options[METIS_NOPTIONS];
-    METIS_SetDefaultOptions(options);
-    options[METIS_OPTION_SEED] = 7;
-    std::vector<idx_t> perm(num_nodes), iperm(num_nodes);
-    if (num_nodes > 0) status = METIS_NodeND(&nv, xadj.data(), adjncy.data(), nullptr, options, perm.data(),
-                                             iperm.data());
+    std::vector<int64_t> perm(num_nodes);
+    if (ordering == GraphOrdering::COORDINATES) {
+      perm = CoordinateNestedDissection(std::vector<int64_t>(xadj.begin(), xadj.begin() + num_nodes + 1),
+                                        std::vector<int64_t>(adjncy.begin(), adjncy.begin() + w), x, (int)node_size);
+    } else if (num_nodes > 0) {
+      idx_t nv = (idx_t)num_nodes, options[METIS_NOPTIONS];
+      METIS_SetDefaultOptions(options);
+      options[METIS_OPTION_SEED] = 7;
+      std::vector<idx_t> metis_perm(num_nodes), iperm(num_nodes);
+      status = METIS_NodeND(&nv, xadj.data(), adjncy.data(), nullptr, options, metis_perm.data(), iperm.data());
+      std::copy(metis_perm.begin(), metis_perm.end(), perm.begin());
+    }
     // Each node's rows in METIS's order of the nodes, then the Schur rows (MUMPS wants them last: INFOG(1) = -4).
     perm_in_.assign(n, 0);
     MUMPS_INT position = 0;
@@ -163,14 +184,15 @@ PetscErrorCode MumpsSchur::NestedDissection(PetscInt n, PetscInt rstart, PetscIn
     status = status == METIS_OK && position == (MUMPS_INT)n ? METIS_OK : METIS_ERROR;
   }
   PetscCallMPI(MPI_Bcast(&status, 1, MPI_INT, 0, comm_));
-  PetscCheck(status == METIS_OK, comm_, PETSC_ERR_LIB, "METIS nested dissection of the saddle-point matrix failed (%d)",
+  PetscCheck(status == METIS_OK, comm_, PETSC_ERR_LIB, "the nested dissection of the saddle-point matrix failed (%d)",
              status);
   PetscCall(PetscLogEventEnd(EV_ORDERING, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows, const std::vector<PetscScalar> &d0,
-                                  bool symmetric, PetscInt owned_u, PetscInt node_size) {
+                                  bool symmetric, PetscInt owned_u, PetscInt node_size,
+                                  const std::vector<double> &coords, GraphOrdering ordering) {
   PetscInt rstart, rend, N;
   PetscFunctionBeginUser;
   PetscCall(RegisterEvents());
@@ -224,11 +246,14 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   // The user's MUMPS controls under the solver's prefix (-contact_mat_mumps_icntl_<k>, -contact_mat_mumps_cntl_<k>),
   // as PETSc's interface reads them, except the ones this class relies on (input/Schur/right-hand-side layout).
   const auto control = [](const char *array, int k) { return "-mat_mumps_" + std::string(array) + "_" + std::to_string(k); };
-  // Ordering: METIS's nested dissection of the node graph, given to MUMPS (ICNTL(7) = 1; Debian's MUMPS has only
-  // AMD, AMF, QAMD and PORD built in), unless -contact_mat_mumps_icntl_7 picks one of those. A small 2D matrix gets
-  // MUMPS's automatic choice: there the ordering costs more than it saves (measured on the Hertz meshes: 35 ms of
-  // METIS at 20k rows for a factorisation of 50 ms either way; even at 50k); in 3D METIS pays from 6k rows on.
-  id_.ICNTL(7) = node_size == 3 || N >= METIS_MIN_ROWS_2D ? 1 : 7;
+  // Ordering: a nested dissection of the node graph, given to MUMPS (ICNTL(7) = 1; Debian's MUMPS has only AMD, AMF,
+  // QAMD and PORD built in), unless -contact_mat_mumps_icntl_7 picks one of those. With a Schur complement MUMPS's
+  // own choice (AMD) nearly doubles the elimination flops of the 2D Hertz matrices (3.8e8 at 20k rows, METIS 2.0e8).
+  // METIS's is the better one, but at 20k rows it takes 30 ms, more than its smaller factor saves: a small 2D matrix
+  // gets the coordinate cuts (2 ms, 2.6e8 flops); in 3D METIS pays from 6k rows on (measurements: README).
+  id_.ICNTL(7) = 1;
+  if (ordering == GraphOrdering::AUTO)
+    ordering = node_size == 3 || N >= METIS_MIN_ROWS_2D ? GraphOrdering::METIS : GraphOrdering::COORDINATES;
   for (int k = 1; k <= 60; ++k) {
     PetscInt v;
     PetscBool set;
@@ -254,7 +279,7 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   id_.schur = schur_raw_.data();
   id_.schur_lld = (MUMPS_INT)m_all;
   if (id_.ICNTL(7) == 1) {
-    PetscCall(NestedDissection(N, rstart, owned_u, node_size));
+    PetscCall(NestedDissection(N, rstart, owned_u, node_size, coords, ordering));
     if (rank_ == 0) id_.perm_in = perm_in_.data();
   }
   PetscCall(PetscLogEventBegin(EV_ANALYSIS, 0, 0, 0, 0));
@@ -266,9 +291,9 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   PetscCall(Call(2, "factorisation"));
   PetscCall(PetscLogEventEnd(EV_FACTOR, 0, 0, 0, 0));
   null_pivots_ = id_.INFOG(28);
-  PetscCall(PetscInfo(nullptr, "MUMPS factors: ordering ICNTL(7) = %d, %g entries, %g flops in the elimination\n",
-                      (int)id_.ICNTL(7), (double)(id_.INFOG(29) >= 0 ? id_.INFOG(29) : -1e6 * id_.INFOG(29)),
-                      (double)id_.rinfog[2]));
+  PetscCall(PetscInfo(nullptr, "MUMPS factors: ordering ICNTL(7) = %d (%s), %g entries, %g flops in the elimination\n",
+                      (int)id_.ICNTL(7), id_.ICNTL(7) == 1 ? GRAPH_ORDERING_NAMES[(int)ordering] : "MUMPS's",
+                      (double)(id_.INFOG(29) >= 0 ? id_.INFOG(29) : -1e6 * id_.INFOG(29)), (double)id_.rinfog[2]));
 
   // The Schur complement is complete for ICNTL(19) = 3; should a MUMPS version return only one triangle (the other
   // then stays zero), the full matrix is rebuilt from the filled one.

@@ -59,6 +59,13 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
                              "Factor once and follow active-set changes through MUMPS's Schur complement on the "
                              "multipliers (linear material with a MUMPS LU/Cholesky solver; default on there)",
                              "", opts.reuse_factorization, &opts.reuse_factorization, &opts.reuse_set));
+  PetscInt ordering = (PetscInt)opts.ordering;
+  PetscCall(PetscOptionsEList("-contact_nested_dissection",
+                              "Ordering of the kept factorisation (with -contact_mat_mumps_icntl_7 1, the default): "
+                              "METIS's nested dissection of the node graph, or cuts across coordinate axes; auto: METIS "
+                              "in 3D and from 50k rows in 2D, coordinate cuts below",
+                              "", GRAPH_ORDERING_NAMES, 3, GRAPH_ORDERING_NAMES[ordering], &ordering, nullptr));
+  opts.ordering = (GraphOrdering)ordering;
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -143,6 +150,8 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
     }
     PetscCallMPI(MPI_Gatherv(mine.data(), n, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT, 0, comm));
     schur_rows_ = all;
+    coords_ = coords;
+    ordering_ = opts.ordering;
     PetscCall(VecCreateMPI(comm, dofs_->OwnedLambda(), PETSC_DECIDE, diag_lambda_.out()));
     PetscCall(VecScatterCreateToZero(diag_lambda_, &to_root_, diag_root_.out()));
     active_.assign(dofs_->OwnedLambda(), 0);
@@ -327,7 +336,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
     PetscCall(MultiplierDiagonal(d));
     if (!factored_) {
       ProgressBegin("analysis and factorisation (MUMPS with the Schur complement on the candidates)");
-      PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_, dofs_->OwnedU(), dofs_->Dim()));
+      PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_, dofs_->OwnedU(), dofs_->Dim(), coords_, ordering_));
       ProgressEnd();
     }
     factored_ = true;

@@ -1306,14 +1306,17 @@ def obstacle_mesh_plane(runner):
 
 @test("orderings")
 def orderings(runner):
-    """The pivot orders of the kept factorisation give the same state: MUMPS's automatic choice (the default for a
-    small 2D matrix), METIS's nested dissection of the node graph (the default from 50k rows and in 3D) and PORD, on
-    the 2D Hertz case and on the 3D cube with symmetry supports (a node's first row then holds only its diagonal)."""
+    """The pivot orders of the kept factorisation give the same state: MUMPS's automatic choice, the nested dissections
+    of the node graph given to MUMPS (METIS's, the default from 50k rows and in 3D, and the coordinate cuts, the
+    default for a smaller 2D matrix) and PORD, on the 2D Hertz case and on the 3D cube with symmetry supports (a node's
+    first row then holds only its diagonal)."""
     for case, what in ((["-options_file", "options/hertz.yml"], "hertz"),
                        (["-options_file", "options/cube_on_plane.yml"], "cube")):
         ref = runner.run(case + ["-contact_mat_mumps_icntl_7", "7"], "%s, automatic ordering" % what)
-        for order, name in (("1", "METIS node graph"), ("4", "PORD")):
-            r = runner.run(case + ["-contact_mat_mumps_icntl_7", order], "%s, %s" % (what, name))
+        for order, name in ((["-contact_mat_mumps_icntl_7", "1", "-contact_nested_dissection", "metis"], "METIS"),
+                            (["-contact_nested_dissection", "coordinates"], "coordinate cuts"),
+                            (["-contact_mat_mumps_icntl_7", "4"], "PORD")):
+            r = runner.run(case + order, "%s, %s" % (what, name))
             expect_same_state(runner, ref, r)
 
 

@@ -32,10 +32,12 @@ struct ConstraintRow {
 /// tolerances rtol 1e-10); options given by the user override it at KSPSetFromOptions.
 [[nodiscard]] PetscErrorCode SetDefaultSolver(KSP ksp);
 
-/// Options of the saddle-point system: -contact_reuse_factorization (set tells whether the user gave it).
+/// Options of the saddle-point system: -contact_reuse_factorization (set tells whether the user gave it) and
+/// -contact_nested_dissection (the ordering of the kept factorisation).
 struct SaddlePointOptions {
   PetscBool reuse_factorization = PETSC_TRUE;
   PetscBool reuse_set = PETSC_FALSE;
+  GraphOrdering ordering = GraphOrdering::AUTO;
 };
 [[nodiscard]] PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts);
 
@@ -112,6 +114,8 @@ private:
   std::vector<char> active_;          ///< owned multiplier rows active in the current system
   std::vector<PetscInt> schur_rows_;  ///< rank 0: every multiplier row, in global order
   MumpsSchur mumps_schur_;
+  GraphOrdering ordering_ = GraphOrdering::AUTO; ///< -contact_nested_dissection
+  std::vector<double> coords_;                  ///< reuse mode: the coordinates of SetupKsp, for the ordering
   VecH diag_lambda_, diag_root_;
   VecScatter to_root_ = nullptr;      ///< multiplier diagonal to rank 0
   MatH A_;
