@@ -321,6 +321,7 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   irn_.shrink_to_fit(), jcn_.shrink_to_fit(), val_.shrink_to_fit();
   redrhs_.assign(m, 0.0);
   s_factored_ = false;
+  condensed_ = false;
   PetscFunctionReturn(0);
 }
 
@@ -370,25 +371,35 @@ PetscErrorCode MumpsSchur::DenseSolve(std::vector<PetscScalar> &y) const {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MumpsSchur::SolveReduced(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y) {
+PetscErrorCode MumpsSchur::SolveReduced(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y,
+                                        double &residual) {
   const PetscInt m = (PetscInt)d0_.size();
   PetscFunctionBeginUser;
+  PetscCheck(condensed_, comm_, PETSC_ERR_ORDER, "SolveReduced needs an earlier Condense");
   PetscCall(FactorSchur(d));
   PetscCall(PetscLogEventBegin(EV_REDUCED, 0, 0, 0, 0));
+  residual = 0;
   if (rank_ == 0 && m > 0) {
-    PetscCheck(condensed_u_.size() == (std::size_t)m, PETSC_COMM_SELF, PETSC_ERR_ORDER,
-               "SolveReduced needs an earlier Solve");
     for (PetscInt i = 0; i < m; ++i) y[i] -= condensed_u_[i];
+    const std::vector<PetscScalar> rhs = y;
     PetscCall(DenseSolve(y));
+    // ||rhs - S y||, S = S0 + (D - D0): the residual of the reduced system.
+    for (PetscInt i = 0; i < m; ++i) {
+      double r = rhs[i] - (d[i] - d0_[i]) * y[i];
+      for (PetscInt j = 0; j < m; ++j) r -= s0_[i + j * m] * y[j];
+      residual += r * r;
+    }
+    residual = std::sqrt(residual);
+    reduced_ = y;
   }
+  PetscCallMPI(MPI_Bcast(&residual, 1, MPI_DOUBLE, 0, comm_));
   PetscCall(PetscLogEventEnd(EV_REDUCED, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MumpsSchur::Solve(const std::vector<PetscScalar> &d, Vec b, Vec x) {
+PetscErrorCode MumpsSchur::Condense(Vec b) {
   const PetscInt m = (PetscInt)d0_.size();
   PetscFunctionBeginUser;
-  PetscCall(FactorSchur(d));
   PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
   PetscCall(VecScatterBegin(to_root_, b, root_, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(to_root_, b, root_, INSERT_VALUES, SCATTER_FORWARD));
@@ -401,25 +412,54 @@ PetscErrorCode MumpsSchur::Solve(const std::vector<PetscScalar> &d, Vec b, Vec x
   id_.lredrhs = (MUMPS_INT)std::max<PetscInt>(1, m);
   id_.ICNTL(20) = 0; // dense right-hand side on the host
   id_.ICNTL(21) = 0; // solution on the host
-  // Condensation onto the multipliers, their dense solve on rank 0, expansion.
-  id_.ICNTL(26) = 1;
+  id_.ICNTL(26) = 1; // the forward elimination, which MUMPS keeps for the expansion, and the reduced right-hand side
   PetscCall(Call(3, "solve (condensation)"));
   // The part of the reduced right-hand side that comes from the displacement rows, A21 A11^-1 b_u, for SolveReduced.
   if (rank_ == 0) {
     condensed_u_.resize(m);
     for (PetscInt i = 0; i < m; ++i) condensed_u_[i] = r[listvar_[i] - 1] - redrhs_[i];
   }
-  if (rank_ == 0 && m > 0) {
-    PetscCall(DenseSolve(redrhs_));
-  }
-  id_.ICNTL(26) = 2;
+  PetscCall(VecRestoreArray(root_, &r));
+  condensed_ = true;
+  reduced_.clear();
+  PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::Expand(Vec x) {
+  const PetscInt m = (PetscInt)d0_.size();
+  PetscFunctionBeginUser;
+  PetscCheck(condensed_ && (rank_ != 0 || reduced_.size() == (std::size_t)m), comm_, PETSC_ERR_ORDER,
+             "Expand needs a Condense and a reduced solution after it");
+  PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
+  PetscScalar *r;
+  PetscCall(VecGetArray(root_, &r));
+  if (rank_ == 0) std::copy(reduced_.begin(), reduced_.end(), redrhs_.begin());
+  id_.rhs = r;
+  id_.redrhs = redrhs_.data();
+  id_.ICNTL(26) = 2; // the backward substitution from the kept forward elimination and the reduced solution
   PetscCall(Call(3, "solve (expansion)"));
   if (rank_ == 0)
-    for (PetscInt i = 0; i < m; ++i) r[listvar_[i] - 1] = redrhs_[i];
+    for (PetscInt i = 0; i < m; ++i) r[listvar_[i] - 1] = reduced_[i];
   PetscCall(VecRestoreArray(root_, &r));
   PetscCall(VecScatterBegin(to_root_, root_, x, INSERT_VALUES, SCATTER_REVERSE));
   PetscCall(VecScatterEnd(to_root_, root_, x, INSERT_VALUES, SCATTER_REVERSE));
+  condensed_ = false;
   PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::Solve(const std::vector<PetscScalar> &d, Vec b, Vec x) {
+  const PetscInt m = (PetscInt)d0_.size();
+  PetscFunctionBeginUser;
+  PetscCall(FactorSchur(d));
+  PetscCall(Condense(b));
+  // The reduced system with the reduced right-hand side of the condensation as it is, then the expansion.
+  if (rank_ == 0) {
+    reduced_ = redrhs_;
+    if (m > 0) PetscCall(DenseSolve(reduced_));
+  }
+  PetscCall(Expand(x));
   PetscFunctionReturn(0);
 }
 

@@ -46,13 +46,20 @@ public:
   [[nodiscard]] PetscErrorCode Factor(Mat A, const std::vector<PetscInt> &schur_rows,
                                       const std::vector<PetscScalar> &d0, bool symmetric, PetscInt owned_u,
                                       PetscInt node_size, const std::vector<double> &coords, GraphOrdering ordering);
-  /// Solves with the factored matrix whose multiplier diagonal is replaced by d (rank 0, Schur order). Collective.
+  /// Solves with the factored matrix whose multiplier diagonal is replaced by d (rank 0, Schur order): Condense,
+  /// the reduced system, Expand. Collective.
   [[nodiscard]] PetscErrorCode Solve(const std::vector<PetscScalar> &d, Vec b, Vec x);
+  /// The forward elimination of the right-hand side b (MUMPS keeps it for Expand) and its part A21 A11^-1 b_u that
+  /// SolveReduced takes off. Collective.
+  [[nodiscard]] PetscErrorCode Condense(Vec b);
   /// Solves with the multiplier diagonal d for a right-hand side [b_u; y] whose displacement part b_u is that of the
-  /// last Solve: y (rank 0, Schur order) is replaced by the multiplier part of the solution. Only the dense m x m
-  /// system: the displacement part of the solution is not computed (a Solve with the same right-hand side gives it).
-  /// Collective.
-  [[nodiscard]] PetscErrorCode SolveReduced(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y);
+  /// last Condense: y (rank 0, Schur order) is replaced by the multiplier part of the solution, which is kept for
+  /// Expand; residual is ||y - A21 A11^-1 b_u - S y_solved|| (every rank). Only the dense m x m system. Collective.
+  [[nodiscard]] PetscErrorCode SolveReduced(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y,
+                                            double &residual);
+  /// The whole solution x for the right-hand side of the last Condense and the multiplier part of the last
+  /// SolveReduced (or Solve): MUMPS's backward substitution. A new Condense is needed after it. Collective.
+  [[nodiscard]] PetscErrorCode Expand(Vec x);
   /// Null pivots MUMPS met in A11 (INFOG(28)).
   PetscInt NullPivots() const { return null_pivots_; }
 
@@ -76,7 +83,9 @@ private:
   std::vector<MUMPS_INT> irn_, jcn_, listvar_, perm_in_;
   std::vector<double> val_;
   std::vector<double> schur_raw_, s0_, d0_, s_, d_factored_, redrhs_, work_;
-  std::vector<double> condensed_u_; ///< A21 A11^-1 b_u of the last Solve (rank 0)
+  std::vector<double> condensed_u_; ///< A21 A11^-1 b_u of the last Condense (rank 0)
+  std::vector<double> reduced_;     ///< the multiplier part of the last reduced solve, for Expand (rank 0)
+  bool condensed_ = false;          ///< MUMPS holds a forward elimination (Condense) that Expand has not used yet
   std::vector<PetscBLASInt> ipiv_;
   bool s_factored_ = false, symmetric_ = true;
   VecScatter to_root_ = nullptr;
