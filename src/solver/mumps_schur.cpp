@@ -202,19 +202,23 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   PetscCall(MatGetOwnershipRange(A, &rstart, &rend));
   PetscCall(MatGetSize(A, &N, nullptr));
   // The owned rows, 1-based; for LDL^T their upper triangle only (MUMPS sums duplicate entries of a symmetric matrix).
-  irn_.clear(), jcn_.clear(), val_.clear();
-  for (PetscInt i = rstart; i < rend; ++i) {
-    PetscInt ncols;
-    const PetscInt *cols;
-    const PetscScalar *vals;
-    PetscCall(MatGetRow(A, i, &ncols, &cols, &vals));
-    for (PetscInt k = 0; k < ncols; ++k)
-      if (cols[k] >= i || !symmetric) {
-        irn_.push_back((MUMPS_INT)(i + 1));
-        jcn_.push_back((MUMPS_INT)(cols[k] + 1));
-        val_.push_back(vals[k]);
-      }
-    PetscCall(MatRestoreRow(A, i, &ncols, &cols, &vals));
+  // Counted first, then written in place: growing the arrays entry by entry took a quarter of the contact solve at
+  // 20k rows (reallocations, copies, page faults).
+  std::size_t nnz = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) irn_.resize(nnz), jcn_.resize(nnz), val_.resize(nnz), nnz = 0;
+    for (PetscInt i = rstart; i < rend; ++i) {
+      PetscInt ncols;
+      const PetscInt *cols;
+      const PetscScalar *vals;
+      PetscCall(MatGetRow(A, i, &ncols, &cols, pass == 1 ? &vals : nullptr));
+      for (PetscInt k = 0; k < ncols; ++k)
+        if (cols[k] >= i || !symmetric) {
+          if (pass == 1) irn_[nnz] = (MUMPS_INT)(i + 1), jcn_[nnz] = (MUMPS_INT)(cols[k] + 1), val_[nnz] = vals[k];
+          ++nnz;
+        }
+      PetscCall(MatRestoreRow(A, i, &ncols, &cols, pass == 1 ? &vals : nullptr));
+    }
   }
   const PetscInt m = rank_ == 0 ? (PetscInt)schur_rows.size() : 0;
   PetscInt m_all = m;
