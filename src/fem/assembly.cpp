@@ -273,6 +273,15 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
   ElementMatrixAdder adder;
   double jmin = 1e300;
   PetscFunctionBeginUser;
+  if (!A) {
+    // The force alone at u = 0 (every rank): F_int(0) = 0 and det F = 1 for both models, no pass over the cells.
+    int zero = std::all_of(u_local, u_local + mesh_.NumLocalVertices() * dim, [](double x) { return x == 0; });
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &zero, 1, MPI_INT, MPI_LAND, mesh_.Comm()));
+    if (zero) {
+      if (min_J) *min_J = 1;
+      PetscFunctionReturn(0);
+    }
+  }
   if (A) PetscCall(adder.Begin(A));
   for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
     PetscInt nn;
