@@ -8,8 +8,8 @@ namespace signorini {
 
 namespace {
 
-constexpr std::size_t LEAF_NODES = 8;  ///< subgraphs this small are eliminated as they are
-constexpr double MIN_SIDE = 0.3;       ///< the smaller side of a cut holds at least this fraction of the nodes
+constexpr std::size_t LEAF_NODES = 8; ///< subgraphs this small are eliminated as they are
+constexpr double MIN_SIDE = 0.3;      ///< the smaller side of a cut holds at least this fraction of the nodes
 
 /// The recursion's state. order_[a][lo, hi) holds the nodes of the current subgraph sorted along axis a (the lists
 /// are split stably, so every subgraph keeps its nodes sorted along every axis without sorting again).
@@ -50,7 +50,8 @@ private:
   void BestCut(std::size_t lo, std::size_t hi, int a, int64_t id, Cut &best) {
     const std::size_t m = hi - lo;
     const int64_t *nodes = order_[a].data() + lo;
-    for (std::size_t i = 0; i < m; ++i) rank_[nodes[i]] = (int64_t)i;
+    for (std::size_t i = 0; i < m; ++i)
+      rank_[nodes[i]] = (int64_t)i;
     // Node i (in axis order) is on the boundary of the second side for the cuts c in (min rank of its neighbours, i]
     // and on the boundary of the first side for c in (i, max rank of its neighbours]: difference arrays give the
     // sizes of both boundaries for every cut in one pass.
@@ -84,12 +85,15 @@ private:
       return;
     }
     const int64_t id = ++subgraphs_;
-    for (std::size_t i = lo; i < hi; ++i) member_[order_[0][i]] = id;
+    for (std::size_t i = lo; i < hi; ++i)
+      member_[order_[0][i]] = id;
     Cut cut;
-    for (int a = 0; a < dim_; ++a) BestCut(lo, hi, a, id, cut);
+    for (int a = 0; a < dim_; ++a)
+      BestCut(lo, hi, a, id, cut);
     // Sides: 0 before the cut, 1 after it, 2 the separator (the boundary of the chosen side).
     const int64_t *nodes = order_[cut.axis].data() + lo;
-    for (std::size_t i = 0; i < m; ++i) rank_[nodes[i]] = (int64_t)i;
+    for (std::size_t i = 0; i < m; ++i)
+      rank_[nodes[i]] = (int64_t)i;
     for (std::size_t i = 0; i < m; ++i) {
       const int64_t v = nodes[i];
       const bool first = i < cut.position;

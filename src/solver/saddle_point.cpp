@@ -4,6 +4,7 @@
 #include "signorini/core/progress.hpp"
 
 #include <cmath>
+#include <string>
 
 namespace signorini {
 
@@ -60,11 +61,12 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
                              "multipliers (linear material with a MUMPS LU/Cholesky solver; default on there)",
                              "", opts.reuse_factorization, &opts.reuse_factorization, &opts.reuse_set));
   PetscInt ordering = (PetscInt)opts.ordering;
-  PetscCall(PetscOptionsEList("-contact_nested_dissection",
-                              "Ordering of the kept factorisation (with -contact_mat_mumps_icntl_7 1, the default): "
-                              "METIS's nested dissection of the node graph, or cuts across coordinate axes; auto: METIS "
-                              "in 3D and from 50k rows in 2D, coordinate cuts below",
-                              "", GRAPH_ORDERING_NAMES, 3, GRAPH_ORDERING_NAMES[ordering], &ordering, nullptr));
+  const std::string ordering_help = "Ordering of the kept factorisation (with -contact_mat_mumps_icntl_7 1, the "
+                                    "default): METIS's nested dissection of the node graph, or cuts across coordinate "
+                                    "axes; auto: METIS in 3D and from " + std::to_string(METIS_MIN_ROWS_2D) +
+                                    " rows in 2D, coordinate cuts below";
+  PetscCall(PetscOptionsEList("-contact_nested_dissection", ordering_help.c_str(), "", GRAPH_ORDERING_NAMES, 3,
+                              GRAPH_ORDERING_NAMES[ordering], &ordering, nullptr));
   opts.ordering = (GraphOrdering)ordering;
   PetscOptionsEnd();
   PetscFunctionReturn(0);

@@ -20,7 +20,8 @@ Grid MakeGrid(int k, int dim, double scale) {
   const int n = dim == 2 ? k * k : k * k * k;
   for (int v = 0; v < n; ++v) {
     int c[3] = {v % k, (v / k) % k, v / (k * k)};
-    for (int d = 0; d < dim; ++d) g.x.push_back((d == 0 ? scale : 1.0) * c[d]);
+    for (int d = 0; d < dim; ++d)
+      g.x.push_back((d == 0 ? scale : 1.0) * c[d]);
     for (int d = 0; d < dim; ++d)
       for (int s : {-1, 1}) {
         int w[3] = {c[0], c[1], c[2]};
@@ -38,7 +39,8 @@ Grid MakeGrid(int k, int dim, double scale) {
 double FactorEntries(const Grid &g, const std::vector<int64_t> &order) {
   const int64_t n = (int64_t)order.size();
   std::vector<int64_t> position(n), parent(n, -1), ancestor(n, -1), mark(n, -1);
-  for (int64_t k = 0; k < n; ++k) position[order[k]] = k;
+  for (int64_t k = 0; k < n; ++k)
+    position[order[k]] = k;
   for (int64_t k = 0; k < n; ++k)
     for (int64_t e = g.xadj[order[k]]; e < g.xadj[order[k] + 1]; ++e) {
       int64_t r = position[g.adjncy[e]];
@@ -54,7 +56,8 @@ double FactorEntries(const Grid &g, const std::vector<int64_t> &order) {
     mark[k] = k;
     ++entries;
     for (int64_t e = g.xadj[order[k]]; e < g.xadj[order[k] + 1]; ++e)
-      for (int64_t j = position[g.adjncy[e]]; j < k && mark[j] != k; j = parent[j]) mark[j] = k, ++entries;
+      for (int64_t j = position[g.adjncy[e]]; j < k && mark[j] != k; j = parent[j])
+        mark[j] = k, ++entries;
   }
   return entries;
 }
