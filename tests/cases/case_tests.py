@@ -514,6 +514,21 @@ def reuse_factorization(runner, preset):
     runner.expect_close("displacement", displacement(b), displacement(a), 0, 1e-8 * np.abs(displacement(a)).max())
     runner.expect_close("lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
     runner.expect_close("peak pressure", kept.get("hertz.p0_computed"), fresh.get("hertz.p0_computed"), 1e-8)
+    # A load step that starts by applying a prescribed displacement (the punch's bottom moves up): its first solve is a
+    # full one, the condensation starts from the second; the same state as refactorising.
+    punch = ["-options_file", "options/punch_on_plate.yml", "-options_file", "options/solver/%s.yml" % preset,
+             "-log_view"]
+    kept = runner.run(punch, "punch keep factorisation")
+    fresh = runner.run(punch + ["-contact_reuse_factorization", "false"], "punch refactorise")
+    for key in ("contact.active_pairs", "contact.active_nodes", "iterations.active_set"):
+        runner.expect_equal("punch: " + key, kept.get(key), fresh.get(key))
+    runner.expect_equal("punch kept: condensed solves", log_event_count(kept.output, "SigReducedSolve"),
+                        fresh.get("iterations.solves") - 1)
+    a, b = fresh.nodes(), kept.nodes()
+    runner.expect_true("punch: same active nodes", np.array_equal(a["active"], b["active"]))
+    runner.expect_close("punch: displacement", displacement(b), displacement(a), 0,
+                        1e-8 * np.abs(displacement(a)).max())
+    runner.expect_close("punch: lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
 
 
 @test("solver_preset")
