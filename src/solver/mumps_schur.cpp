@@ -254,7 +254,7 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   // QAMD and PORD built in), unless -contact_mat_mumps_icntl_7 picks one of those. With a Schur complement MUMPS's
   // own choice (AMD) nearly doubles the elimination flops of the 2D Hertz matrices (3.8e8 at 20k rows, METIS 2.0e8).
   // METIS's is the better one, but at 20k rows it takes 30 ms, more than its smaller factor saves: a small 2D matrix
-  // gets the coordinate cuts (2 ms, 2.6e8 flops); in 3D METIS pays from 6k rows on (measurements: README).
+  // gets the coordinate cuts (6-8 ms, 2.6e8 flops); in 3D METIS pays from 6k rows on (measurements: README).
   id_.ICNTL(7) = 1;
   if (ordering == GraphOrdering::AUTO)
     ordering = node_size == 3 || N >= METIS_MIN_ROWS_2D ? GraphOrdering::METIS : GraphOrdering::COORDINATES;
