@@ -57,30 +57,23 @@ void ReferenceShape(int dim, int nodes, const double *xi, double *N, double (*dN
   }
 }
 
-/// Quadrature rule on the reference cell: exact for quadratics on the triangle and the tetrahedron, 2x2 (2x2x2)
+/// Quadrature rule on the reference cell: the centroid on the triangle and the tetrahedron (their shape functions are
+/// linear, so every integrand here is constant on the cell (strain, stress, tangent and internal force, of both
+/// models) or linear (a constant body force times N_a): one point integrates them exactly), 2x2 (2x2x2)
 /// Gauss on the quadrilateral (hexahedron), and on the pyramid the 2x2x2 Gauss rule of the collapsed hexahedron: it
 /// integrates the gradients of the shape functions exactly (their integrands adj(J)^T grad N are polynomials of
 /// degree <= 2 in each reference coordinate, as on the hexahedron), so the patch test is passed on any pyramid, and
 /// the volume of a pyramid exactly (det J is a polynomial of degree <= 2 in each coordinate).
 int ReferenceQuadrature(int dim, int nodes, double (*xi)[MAX_DIM], double *w) {
-  if (dim == 2 && nodes == 3) {
-    const double p[3][2] = {{1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6}, {1.0 / 6, 2.0 / 3}};
-    for (int q = 0; q < 3; ++q) xi[q][0] = p[q][0], xi[q][1] = p[q][1], w[q] = 1.0 / 6;
-    return 3;
+  if (nodes == dim + 1) {
+    for (int i = 0; i < dim; ++i) xi[0][i] = 1.0 / (dim + 1);
+    w[0] = dim == 2 ? 1.0 / 2 : 1.0 / 6;
+    return 1;
   }
   if (dim == 2 && nodes == 4) {
     const double g = 1.0 / std::sqrt(3.0);
     const double p[4][2] = {{-g, -g}, {g, -g}, {g, g}, {-g, g}};
     for (int q = 0; q < 4; ++q) xi[q][0] = p[q][0], xi[q][1] = p[q][1], w[q] = 1.0;
-    return 4;
-  }
-  if (dim == 3 && nodes == 4) {
-    // Four points (a, b, b), ... with b = (5 - sqrt 5) / 20, a = 1 - 3 b, weights 1/24: exact for quadratics.
-    const double b = (5 - std::sqrt(5.0)) / 20, a = 1 - 3 * b;
-    for (int q = 0; q < 4; ++q) {
-      for (int i = 0; i < 3; ++i) xi[q][i] = q == i + 1 ? a : b;
-      w[q] = 1.0 / 24;
-    }
     return 4;
   }
   if (dim == 3 && (nodes == 5 || nodes == 8)) {

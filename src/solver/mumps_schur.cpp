@@ -1,6 +1,8 @@
 // MUMPS with a Schur complement on the multipliers: one factorisation, then solves with a changing diagonal D.
 #include "signorini/solver/mumps_schur.hpp"
 
+#include "signorini/solver/nested_dissection.hpp"
+
 #include <metis.h>
 #include <petscblaslapack.h>
 
@@ -60,7 +62,8 @@ PetscErrorCode MumpsSchur::Call(int job, const char *phase) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MumpsSchur::NestedDissection(PetscInt n, PetscInt rstart, PetscInt owned_u, PetscInt node_size) {
+PetscErrorCode MumpsSchur::NestedDissection(PetscInt n, PetscInt rstart, PetscInt owned_u, PetscInt node_size,
+                                            const std::vector<double> &coords, GraphOrdering ordering) {
   const MPI_Datatype IDX_T_MPI = sizeof(idx_t) == 8 ? MPI_INT64_T : MPI_INT32_T;
   PetscMPIInt size;
   PetscFunctionBeginUser;
@@ -116,6 +119,18 @@ PetscErrorCode MumpsSchur::NestedDissection(PetscInt n, PetscInt rstart, PetscIn
                            comm_));
   edges.clear();
   edges.shrink_to_fit();
+  // The node coordinates for the coordinate cuts, in the same node numbering.
+  std::vector<double> x;
+  if (ordering == GraphOrdering::COORDINATES) {
+    std::vector<PetscMPIInt> xcounts(size), xdispls(size, 0);
+    for (PetscMPIInt r = 0; r < size; ++r) {
+      PetscCall(PetscMPIIntCast(ranges[3 * r + 2] * node_size, &xcounts[r]));
+      if (r > 0) xdispls[r] = xdispls[r - 1] + xcounts[r - 1];
+    }
+    if (rank_ == 0) x.resize(num_nodes * node_size);
+    PetscCallMPI(MPI_Gatherv(coords.data(), xcounts[rank_], MPI_DOUBLE, x.data(), xcounts.data(), xdispls.data(),
+                             MPI_DOUBLE, 0, comm_));
+  }
   int status = METIS_OK;
   if (rank_ == 0) {
     // Compressed adjacency of the symmetrised node graph (an LU pattern's two triangles give each edge twice), then
@@ -142,12 +157,18 @@ PetscErrorCode MumpsSchur::NestedDissection(PetscInt n, PetscInt rstart, PetscIn
       xadj[i] = begin;
     }
     xadj[num_nodes] = w;
-    idx_t nv = (idx_t)num_nodes, options[METIS_NOPTIONS];
-    METIS_SetDefaultOptions(options);
-    options[METIS_OPTION_SEED] = 7;
-    std::vector<idx_t> perm(num_nodes), iperm(num_nodes);
-    if (num_nodes > 0) status = METIS_NodeND(&nv, xadj.data(), adjncy.data(), nullptr, options, perm.data(),
-                                             iperm.data());
+    std::vector<int64_t> perm(num_nodes);
+    if (ordering == GraphOrdering::COORDINATES) {
+      perm = CoordinateNestedDissection(std::vector<int64_t>(xadj.begin(), xadj.begin() + num_nodes + 1),
+                                        std::vector<int64_t>(adjncy.begin(), adjncy.begin() + w), x, (int)node_size);
+    } else if (num_nodes > 0) {
+      idx_t nv = (idx_t)num_nodes, options[METIS_NOPTIONS];
+      METIS_SetDefaultOptions(options);
+      options[METIS_OPTION_SEED] = 7;
+      std::vector<idx_t> metis_perm(num_nodes), iperm(num_nodes);
+      status = METIS_NodeND(&nv, xadj.data(), adjncy.data(), nullptr, options, metis_perm.data(), iperm.data());
+      std::copy(metis_perm.begin(), metis_perm.end(), perm.begin());
+    }
     // Each node's rows in METIS's order of the nodes, then the Schur rows (MUMPS wants them last: INFOG(1) = -4).
     perm_in_.assign(n, 0);
     MUMPS_INT position = 0;
@@ -163,14 +184,15 @@ PetscErrorCode MumpsSchur::NestedDissection(PetscInt n, PetscInt rstart, PetscIn
     status = status == METIS_OK && position == (MUMPS_INT)n ? METIS_OK : METIS_ERROR;
   }
   PetscCallMPI(MPI_Bcast(&status, 1, MPI_INT, 0, comm_));
-  PetscCheck(status == METIS_OK, comm_, PETSC_ERR_LIB, "METIS nested dissection of the saddle-point matrix failed (%d)",
+  PetscCheck(status == METIS_OK, comm_, PETSC_ERR_LIB, "the nested dissection of the saddle-point matrix failed (%d)",
              status);
   PetscCall(PetscLogEventEnd(EV_ORDERING, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows, const std::vector<PetscScalar> &d0,
-                                  bool symmetric, PetscInt owned_u, PetscInt node_size) {
+                                  bool symmetric, PetscInt owned_u, PetscInt node_size,
+                                  const std::vector<double> &coords, GraphOrdering ordering) {
   PetscInt rstart, rend, N;
   PetscFunctionBeginUser;
   PetscCall(RegisterEvents());
@@ -180,19 +202,23 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   PetscCall(MatGetOwnershipRange(A, &rstart, &rend));
   PetscCall(MatGetSize(A, &N, nullptr));
   // The owned rows, 1-based; for LDL^T their upper triangle only (MUMPS sums duplicate entries of a symmetric matrix).
-  irn_.clear(), jcn_.clear(), val_.clear();
-  for (PetscInt i = rstart; i < rend; ++i) {
-    PetscInt ncols;
-    const PetscInt *cols;
-    const PetscScalar *vals;
-    PetscCall(MatGetRow(A, i, &ncols, &cols, &vals));
-    for (PetscInt k = 0; k < ncols; ++k)
-      if (cols[k] >= i || !symmetric) {
-        irn_.push_back((MUMPS_INT)(i + 1));
-        jcn_.push_back((MUMPS_INT)(cols[k] + 1));
-        val_.push_back(vals[k]);
-      }
-    PetscCall(MatRestoreRow(A, i, &ncols, &cols, &vals));
+  // Counted first, then written in place: growing the arrays entry by entry took a quarter of the contact solve at
+  // 20k rows (reallocations, copies, page faults).
+  std::size_t nnz = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) irn_.resize(nnz), jcn_.resize(nnz), val_.resize(nnz), nnz = 0;
+    for (PetscInt i = rstart; i < rend; ++i) {
+      PetscInt ncols;
+      const PetscInt *cols;
+      const PetscScalar *vals;
+      PetscCall(MatGetRow(A, i, &ncols, &cols, pass == 1 ? &vals : nullptr));
+      for (PetscInt k = 0; k < ncols; ++k)
+        if (cols[k] >= i || !symmetric) {
+          if (pass == 1) irn_[nnz] = (MUMPS_INT)(i + 1), jcn_[nnz] = (MUMPS_INT)(cols[k] + 1), val_[nnz] = vals[k];
+          ++nnz;
+        }
+      PetscCall(MatRestoreRow(A, i, &ncols, &cols, pass == 1 ? &vals : nullptr));
+    }
   }
   const PetscInt m = rank_ == 0 ? (PetscInt)schur_rows.size() : 0;
   PetscInt m_all = m;
@@ -224,11 +250,14 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   // The user's MUMPS controls under the solver's prefix (-contact_mat_mumps_icntl_<k>, -contact_mat_mumps_cntl_<k>),
   // as PETSc's interface reads them, except the ones this class relies on (input/Schur/right-hand-side layout).
   const auto control = [](const char *array, int k) { return "-mat_mumps_" + std::string(array) + "_" + std::to_string(k); };
-  // Ordering: METIS's nested dissection of the node graph, given to MUMPS (ICNTL(7) = 1; Debian's MUMPS has only
-  // AMD, AMF, QAMD and PORD built in), unless -contact_mat_mumps_icntl_7 picks one of those. A small 2D matrix gets
-  // MUMPS's automatic choice: there the ordering costs more than it saves (measured on the Hertz meshes: 35 ms of
-  // METIS at 20k rows for a factorisation of 50 ms either way; even at 50k); in 3D METIS pays from 6k rows on.
-  id_.ICNTL(7) = node_size == 3 || N >= METIS_MIN_ROWS_2D ? 1 : 7;
+  // Ordering: a nested dissection of the node graph, given to MUMPS (ICNTL(7) = 1; Debian's MUMPS has only AMD, AMF,
+  // QAMD and PORD built in), unless -contact_mat_mumps_icntl_7 picks one of those. With a Schur complement MUMPS's
+  // own choice (AMD) nearly doubles the elimination flops of the 2D Hertz matrices (3.8e8 at 20k rows, METIS 2.0e8).
+  // METIS's is the better one, but at 20k rows it takes 30 ms, more than its smaller factor saves: a small 2D matrix
+  // gets the coordinate cuts (6-8 ms, 2.6e8 flops); in 3D METIS pays from 6k rows on (measurements: README).
+  id_.ICNTL(7) = 1;
+  if (ordering == GraphOrdering::AUTO)
+    ordering = node_size == 3 || N >= METIS_MIN_ROWS_2D ? GraphOrdering::METIS : GraphOrdering::COORDINATES;
   for (int k = 1; k <= 60; ++k) {
     PetscInt v;
     PetscBool set;
@@ -254,7 +283,7 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   id_.schur = schur_raw_.data();
   id_.schur_lld = (MUMPS_INT)m_all;
   if (id_.ICNTL(7) == 1) {
-    PetscCall(NestedDissection(N, rstart, owned_u, node_size));
+    PetscCall(NestedDissection(N, rstart, owned_u, node_size, coords, ordering));
     if (rank_ == 0) id_.perm_in = perm_in_.data();
   }
   PetscCall(PetscLogEventBegin(EV_ANALYSIS, 0, 0, 0, 0));
@@ -266,9 +295,9 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   PetscCall(Call(2, "factorisation"));
   PetscCall(PetscLogEventEnd(EV_FACTOR, 0, 0, 0, 0));
   null_pivots_ = id_.INFOG(28);
-  PetscCall(PetscInfo(nullptr, "MUMPS factors: ordering ICNTL(7) = %d, %g entries, %g flops in the elimination\n",
-                      (int)id_.ICNTL(7), (double)(id_.INFOG(29) >= 0 ? id_.INFOG(29) : -1e6 * id_.INFOG(29)),
-                      (double)id_.rinfog[2]));
+  PetscCall(PetscInfo(nullptr, "MUMPS factors: ordering ICNTL(7) = %d (%s), %g entries, %g flops in the elimination\n",
+                      (int)id_.ICNTL(7), id_.ICNTL(7) == 1 ? GRAPH_ORDERING_NAMES[(int)ordering] : "MUMPS's",
+                      (double)(id_.INFOG(29) >= 0 ? id_.INFOG(29) : -1e6 * id_.INFOG(29)), (double)id_.rinfog[2]));
 
   // The Schur complement is complete for ICNTL(19) = 3; should a MUMPS version return only one triangle (the other
   // then stays zero), the full matrix is rebuilt from the filled one.
@@ -296,6 +325,7 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   irn_.shrink_to_fit(), jcn_.shrink_to_fit(), val_.shrink_to_fit();
   redrhs_.assign(m, 0.0);
   s_factored_ = false;
+  condensed_ = false;
   PetscFunctionReturn(0);
 }
 
@@ -345,25 +375,35 @@ PetscErrorCode MumpsSchur::DenseSolve(std::vector<PetscScalar> &y) const {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MumpsSchur::SolveReduced(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y) {
+PetscErrorCode MumpsSchur::SolveReduced(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y,
+                                        double &residual) {
   const PetscInt m = (PetscInt)d0_.size();
   PetscFunctionBeginUser;
+  PetscCheck(condensed_, comm_, PETSC_ERR_ORDER, "SolveReduced needs an earlier Condense");
   PetscCall(FactorSchur(d));
   PetscCall(PetscLogEventBegin(EV_REDUCED, 0, 0, 0, 0));
+  residual = 0;
   if (rank_ == 0 && m > 0) {
-    PetscCheck(condensed_u_.size() == (std::size_t)m, PETSC_COMM_SELF, PETSC_ERR_ORDER,
-               "SolveReduced needs an earlier Solve");
     for (PetscInt i = 0; i < m; ++i) y[i] -= condensed_u_[i];
+    const std::vector<PetscScalar> rhs = y;
     PetscCall(DenseSolve(y));
+    // ||rhs - S y||, S = S0 + (D - D0): the residual of the reduced system.
+    for (PetscInt i = 0; i < m; ++i) {
+      double r = rhs[i] - (d[i] - d0_[i]) * y[i];
+      for (PetscInt j = 0; j < m; ++j) r -= s0_[i + j * m] * y[j];
+      residual += r * r;
+    }
+    residual = std::sqrt(residual);
+    reduced_ = y;
   }
+  PetscCallMPI(MPI_Bcast(&residual, 1, MPI_DOUBLE, 0, comm_));
   PetscCall(PetscLogEventEnd(EV_REDUCED, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MumpsSchur::Solve(const std::vector<PetscScalar> &d, Vec b, Vec x) {
+PetscErrorCode MumpsSchur::Condense(Vec b) {
   const PetscInt m = (PetscInt)d0_.size();
   PetscFunctionBeginUser;
-  PetscCall(FactorSchur(d));
   PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
   PetscCall(VecScatterBegin(to_root_, b, root_, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(to_root_, b, root_, INSERT_VALUES, SCATTER_FORWARD));
@@ -376,25 +416,54 @@ PetscErrorCode MumpsSchur::Solve(const std::vector<PetscScalar> &d, Vec b, Vec x
   id_.lredrhs = (MUMPS_INT)std::max<PetscInt>(1, m);
   id_.ICNTL(20) = 0; // dense right-hand side on the host
   id_.ICNTL(21) = 0; // solution on the host
-  // Condensation onto the multipliers, their dense solve on rank 0, expansion.
-  id_.ICNTL(26) = 1;
+  id_.ICNTL(26) = 1; // the forward elimination, which MUMPS keeps for the expansion, and the reduced right-hand side
   PetscCall(Call(3, "solve (condensation)"));
   // The part of the reduced right-hand side that comes from the displacement rows, A21 A11^-1 b_u, for SolveReduced.
   if (rank_ == 0) {
     condensed_u_.resize(m);
     for (PetscInt i = 0; i < m; ++i) condensed_u_[i] = r[listvar_[i] - 1] - redrhs_[i];
   }
-  if (rank_ == 0 && m > 0) {
-    PetscCall(DenseSolve(redrhs_));
-  }
-  id_.ICNTL(26) = 2;
+  PetscCall(VecRestoreArray(root_, &r));
+  condensed_ = true;
+  reduced_.clear();
+  PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::Expand(Vec x) {
+  const PetscInt m = (PetscInt)d0_.size();
+  PetscFunctionBeginUser;
+  PetscCheck(condensed_ && (rank_ != 0 || reduced_.size() == (std::size_t)m), comm_, PETSC_ERR_ORDER,
+             "Expand needs a Condense and a reduced solution after it");
+  PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
+  PetscScalar *r;
+  PetscCall(VecGetArray(root_, &r));
+  if (rank_ == 0) std::copy(reduced_.begin(), reduced_.end(), redrhs_.begin());
+  id_.rhs = r;
+  id_.redrhs = redrhs_.data();
+  id_.ICNTL(26) = 2; // the backward substitution from the kept forward elimination and the reduced solution
   PetscCall(Call(3, "solve (expansion)"));
   if (rank_ == 0)
-    for (PetscInt i = 0; i < m; ++i) r[listvar_[i] - 1] = redrhs_[i];
+    for (PetscInt i = 0; i < m; ++i) r[listvar_[i] - 1] = reduced_[i];
   PetscCall(VecRestoreArray(root_, &r));
   PetscCall(VecScatterBegin(to_root_, root_, x, INSERT_VALUES, SCATTER_REVERSE));
   PetscCall(VecScatterEnd(to_root_, root_, x, INSERT_VALUES, SCATTER_REVERSE));
+  condensed_ = false;
   PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::Solve(const std::vector<PetscScalar> &d, Vec b, Vec x) {
+  const PetscInt m = (PetscInt)d0_.size();
+  PetscFunctionBeginUser;
+  PetscCall(FactorSchur(d));
+  PetscCall(Condense(b));
+  // The reduced system with the reduced right-hand side of the condensation as it is, then the expansion.
+  if (rank_ == 0) {
+    reduced_ = redrhs_;
+    if (m > 0) PetscCall(DenseSolve(reduced_));
+  }
+  PetscCall(Expand(x));
   PetscFunctionReturn(0);
 }
 

@@ -4,6 +4,7 @@
 #include "signorini/core/progress.hpp"
 
 #include <cmath>
+#include <string>
 
 namespace signorini {
 
@@ -59,6 +60,14 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
                              "Factor once and follow active-set changes through MUMPS's Schur complement on the "
                              "multipliers (linear material with a MUMPS LU/Cholesky solver; default on there)",
                              "", opts.reuse_factorization, &opts.reuse_factorization, &opts.reuse_set));
+  PetscInt ordering = (PetscInt)opts.ordering;
+  const std::string ordering_help = "Ordering of the kept factorisation (with -contact_mat_mumps_icntl_7 1, the "
+                                    "default): METIS's nested dissection of the node graph, or cuts across coordinate "
+                                    "axes; auto: METIS in 3D and from " + std::to_string(METIS_MIN_ROWS_2D) +
+                                    " rows in 2D, coordinate cuts below";
+  PetscCall(PetscOptionsEList("-contact_nested_dissection", ordering_help.c_str(), "", GRAPH_ORDERING_NAMES, 3,
+                              GRAPH_ORDERING_NAMES[ordering], &ordering, nullptr));
+  opts.ordering = (GraphOrdering)ordering;
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -143,6 +152,8 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
     }
     PetscCallMPI(MPI_Gatherv(mine.data(), n, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT, 0, comm));
     schur_rows_ = all;
+    coords_ = coords;
+    ordering_ = opts.ordering;
     PetscCall(VecCreateMPI(comm, dofs_->OwnedLambda(), PETSC_DECIDE, diag_lambda_.out()));
     PetscCall(VecScatterCreateToZero(diag_lambda_, &to_root_, diag_root_.out()));
     active_.assign(dofs_->OwnedLambda(), 0);
@@ -264,8 +275,35 @@ PetscErrorCode SaddlePointSystem::FailureAdvice(std::string &advice) const {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SaddlePointSystem::Factor() {
+  MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
+  PetscFunctionBeginUser;
+  if (factored_) PetscFunctionReturn(0);
+  std::vector<PetscScalar> d;
+  PetscCall(MultiplierDiagonal(d));
+  ProgressBegin("analysis and factorisation (MUMPS with the Schur complement on the candidates)");
+  PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_, dofs_->OwnedU(), dofs_->Dim(), coords_, ordering_));
+  ProgressEnd();
+  factored_ = true;
+  const PetscInt null_pivots = mumps_schur_.NullPivots();
+  PetscCheck(null_pivots == 0, comm, PETSC_ERR_NOT_CONVERGED,
+             "the saddle-point system is singular (MUMPS found %" PetscInt_FMT " null pivot(s)): the body is not "
+             "held; add Dirichlet conditions (e.g. on a symmetry line) or candidate contact nodes so that every "
+             "rigid-body motion is removed", null_pivots);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::Condense() {
+  PetscFunctionBeginUser;
+  PetscCheck(reuse_, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
+             "a condensation needs the kept factorisation");
+  PetscCall(Factor());
+  PetscCall(mumps_schur_.Condense(b_));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SaddlePointSystem::SolveCondensed(const std::vector<double> &bm, std::vector<double> &lambda,
-                                                 std::vector<double> &shift) {
+                                                 std::vector<double> &shift, double &residual) {
   const PetscInt nl = dofs_->OwnedLambda();
   PetscFunctionBeginUser;
   PetscCheck(reuse_ && factored_ && stab_ == 0, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
@@ -275,7 +313,7 @@ PetscErrorCode SaddlePointSystem::SolveCondensed(const std::vector<double> &bm, 
   PetscCall(MultiplierDiagonal(d));
   // b_m to rank 0, the dense solve there, x_m back.
   PetscCall(ToRoot(bm, y));
-  PetscCall(mumps_schur_.SolveReduced(d, y));
+  PetscCall(mumps_schur_.SolveReduced(d, y, residual));
   PetscCall(FromRoot(y, x));
   // Row p: -B_p du + D_p x_p = b_p, so B_p du = D_p x_p - b_p; an active row's multiplier is x_p + r b_p.
   lambda.assign(nl, 0.0);
@@ -285,6 +323,15 @@ PetscErrorCode SaddlePointSystem::SolveCondensed(const std::vector<double> &bm, 
     shift[p] = dp * x[p] - bm[p];
     lambda[p] = active_[p] ? x[p] + aug_ * bm[p] : 0.0;
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::Expand(double &residual) {
+  PetscFunctionBeginUser;
+  PetscCheck(reuse_ && factored_ && stab_ == 0, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
+             "an expansion needs the kept factorisation and no stabilisation");
+  PetscCall(mumps_schur_.Expand(x_));
+  PetscCall(CheckAndConvert(KSP_CONVERGED_ITS, 1, residual));
   PetscFunctionReturn(0);
 }
 
@@ -318,24 +365,13 @@ PetscErrorCode SaddlePointSystem::InitialGuess() {
 PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &residual) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   KSPConvergedReason reason;
-  PetscReal bnorm, rnorm;
   PetscFunctionBeginUser;
   PetscCall(InitialGuess());
   PetscInt null_pivots = 0;
   if (reuse_) {
     std::vector<PetscScalar> d;
+    PetscCall(Factor());
     PetscCall(MultiplierDiagonal(d));
-    if (!factored_) {
-      ProgressBegin("analysis and factorisation (MUMPS with the Schur complement on the candidates)");
-      PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_, dofs_->OwnedU(), dofs_->Dim()));
-      ProgressEnd();
-    }
-    factored_ = true;
-    null_pivots = mumps_schur_.NullPivots();
-    PetscCheck(null_pivots == 0, comm, PETSC_ERR_NOT_CONVERGED,
-               "the saddle-point system is singular (MUMPS found %" PetscInt_FMT " null pivot(s)): the body is not "
-               "held; add Dirichlet conditions (e.g. on a symmetry line) or candidate contact nodes so that every "
-               "rigid-body motion is removed", null_pivots);
     PetscCall(mumps_schur_.Solve(d, b_, x_));
     reason = KSP_CONVERGED_ITS;
     krylov_iterations = 1;
@@ -355,6 +391,15 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
                "held; add Dirichlet conditions (e.g. on a symmetry line) so that the initial contact and the supports "
                "remove every rigid-body motion", null_pivots);
   }
+  PetscCall(CheckAndConvert(reason, krylov_iterations, residual));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::CheckAndConvert(KSPConvergedReason reason, PetscInt krylov_iterations,
+                                                  double &residual) {
+  MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
+  PetscReal bnorm, rnorm;
+  PetscFunctionBeginUser;
   if (reason < 0) {
     std::string advice;
     PetscCall(FailureAdvice(advice));

@@ -569,11 +569,12 @@ def reuse_factorization(runner, preset):
     runner.expect_equal("refactorising run: numeric factorisations", log_event_count(fresh.output, numeric), solves)
     runner.expect_equal("kept: MUMPS factorisations", log_event_count(kept.output, "SigMumpsFactor"), 1)
     runner.expect_equal("kept: PETSc factorisations", log_event_count(kept.output, numeric), 0)
-    # Kept: per load step one solve, the active-set iterations after it in the multiplier space (condensed solves),
-    # and one solve for the displacement of the last active set (each step here takes several iterations).
+    # Kept: per load step one condensation of the right-hand side (MUMPS's forward pass), every active-set iteration
+    # in the multiplier space (condensed solves), and one expansion (the backward pass) for the displacement of the
+    # last active set.
     steps = kept.get("iterations.load_steps")
-    runner.expect_equal("kept: MUMPS solves", log_event_count(kept.output, "SigMumpsSolve"), 2 * steps)
-    runner.expect_equal("kept: condensed solves", log_event_count(kept.output, "SigReducedSolve"), solves - steps)
+    runner.expect_equal("kept: MUMPS solve phases", log_event_count(kept.output, "SigMumpsSolve"), 2 * steps)
+    runner.expect_equal("kept: condensed solves", log_event_count(kept.output, "SigReducedSolve"), solves)
     runner.expect_equal("kept: solves", kept.get("iterations.solves"), solves + steps)
     a, b = fresh.nodes(), kept.nodes()
     runner.expect_true("same active nodes", np.array_equal(a["active"], b["active"]))
@@ -582,6 +583,21 @@ def reuse_factorization(runner, preset):
     runner.expect_close("displacement", displacement(b), displacement(a), 0, 1e-8 * np.abs(displacement(a)).max())
     runner.expect_close("lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
     runner.expect_close("peak pressure", kept.get("hertz.p0_computed"), fresh.get("hertz.p0_computed"), 1e-8)
+    # A load step that starts by applying a prescribed displacement (the punch's bottom moves up): its first solve is a
+    # full one, the condensation starts from the second; the same state as refactorising.
+    punch = ["-options_file", "options/punch_on_plate.yml", "-options_file", "options/solver/%s.yml" % preset,
+             "-log_view"]
+    kept = runner.run(punch, "punch keep factorisation")
+    fresh = runner.run(punch + ["-contact_reuse_factorization", "false"], "punch refactorise")
+    for key in ("contact.active_pairs", "contact.active_nodes", "iterations.active_set"):
+        runner.expect_equal("punch: " + key, kept.get(key), fresh.get(key))
+    runner.expect_equal("punch kept: condensed solves", log_event_count(kept.output, "SigReducedSolve"),
+                        fresh.get("iterations.solves") - 1)
+    a, b = fresh.nodes(), kept.nodes()
+    runner.expect_true("punch: same active nodes", np.array_equal(a["active"], b["active"]))
+    runner.expect_close("punch: displacement", displacement(b), displacement(a), 0,
+                        1e-8 * np.abs(displacement(a)).max())
+    runner.expect_close("punch: lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
 
 
 @test("solver_preset")
@@ -1375,14 +1391,17 @@ def obstacle_mesh_plane(runner):
 
 @test("orderings")
 def orderings(runner):
-    """The pivot orders of the kept factorisation give the same state: MUMPS's automatic choice (the default for a
-    small 2D matrix), METIS's nested dissection of the node graph (the default from 50k rows and in 3D) and PORD, on
-    the 2D Hertz case and on the 3D cube with symmetry supports (a node's first row then holds only its diagonal)."""
+    """The pivot orders of the kept factorisation give the same state: MUMPS's automatic choice, the nested dissections
+    of the node graph given to MUMPS (METIS's, the default from 50k rows and in 3D, and the coordinate cuts, the
+    default for a smaller 2D matrix) and PORD, on the 2D Hertz case and on the 3D cube with symmetry supports (a node's
+    first row then holds only its diagonal)."""
     for case, what in ((["-options_file", "options/hertz.yml"], "hertz"),
                        (["-options_file", "options/cube_on_plane.yml"], "cube")):
         ref = runner.run(case + ["-contact_mat_mumps_icntl_7", "7"], "%s, automatic ordering" % what)
-        for order, name in (("1", "METIS node graph"), ("4", "PORD")):
-            r = runner.run(case + ["-contact_mat_mumps_icntl_7", order], "%s, %s" % (what, name))
+        for order, name in ((["-contact_mat_mumps_icntl_7", "1", "-contact_nested_dissection", "metis"], "METIS"),
+                            (["-contact_nested_dissection", "coordinates"], "coordinate cuts"),
+                            (["-contact_mat_mumps_icntl_7", "4"], "PORD")):
+            r = runner.run(case + order, "%s, %s" % (what, name))
             expect_same_state(runner, ref, r)
 
 

@@ -37,7 +37,8 @@ public:
   [[nodiscard]] PetscErrorCode PatternCounts(std::vector<PetscInt> &d_nnz, std::vector<PetscInt> &o_nnz) const;
   /// Adds K(u) to A (free rows and columns, plus dirichlet_diag on the Dirichlet diagonal) when A is given, and
   /// F_int(u) to fint (every displacement row, Dirichlet rows included) when fint is given. u_local holds dim values
-  /// per local vertex. Returns through min_J the smallest det F over the cells (svk). Collective.
+  /// per local vertex. Returns through min_J the smallest det F over the cells (svk). The force alone at u = 0 on every
+  /// rank is zero: no pass over the cells then. Collective.
   [[nodiscard]] PetscErrorCode Assemble(const double *u_local, Mat A, double dirichlet_diag, Vec fint,
                                         double *min_J) const;
   /// Adds K(u) v to the free rows of f, for v nonzero on Dirichlet dofs only (the coupling of a prescribed
@@ -51,6 +52,9 @@ public:
   [[nodiscard]] PetscErrorCode StiffnessScale(double &scale) const;
 
 private:
+  /// Adds f_local (dim values per local vertex, ghosts included) to the displacement rows of f and assembles f.
+  /// Collective.
+  [[nodiscard]] PetscErrorCode AddLocal(const std::vector<double> &f_local, Vec f) const;
   bool Geometry(PetscInt c, ElementGeometry &g, PetscInt &nn, const PetscInt *&vertices) const;
   const Mesh &mesh_;
   const Material &material_;

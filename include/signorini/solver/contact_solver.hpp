@@ -128,10 +128,11 @@ private:
     bool moving = false;     ///< some prescribed displacement is still to apply
     bool stabilised = false; ///< the last solve carried the stabilisation springs
     std::vector<double> gap_before{}; ///< the gaps before the last stabilised solve
-    /// Condensed solves (linear material, kept factorisation): the active-set iterations after a full solve run in the
-    /// multiplier space against that solve's right-hand side (its base: u_base, the gaps g_base), the displacement
-    /// staying at the base's until a state may be the solution (Materialise).
-    bool base = false;      ///< the last full solve can be a base (reuse mode, linear, not stabilised)
+    /// Condensed solves (linear material, kept factorisation): from the first solve without stabilisation and without
+    /// a prescribed displacement still to apply, the active-set iterations run in the multiplier space against that
+    /// solve's right-hand side, condensed once (its base: u_base, the gaps g_base), the displacement staying at the
+    /// base's until a state may be the solution (Materialise).
+    bool base = false;      ///< the right-hand side of the base is condensed (reuse mode, linear, not stabilised)
     bool condensed = false; ///< the last solve was condensed: states from g_base + shift, u not updated
     VecH u_base{};
     std::vector<double> g_base{}, shift{};
@@ -144,8 +145,8 @@ private:
   [[nodiscard]] PetscErrorCode SolveAndUpdate(StepState &st);
   /// Whether the next solve can be condensed (StepState::base).
   bool Condensable(const StepState &st) const;
-  /// After condensed solves: the full solve of the base's right-hand side with the current constraints, and the
-  /// displacement u_base + du; the pairs evaluated there. Collective.
+  /// After condensed solves: the expansion of the last one (the whole solution for the base's right-hand side with the
+  /// current constraints), and the displacement u_base + du; the pairs evaluated there. Collective.
   [[nodiscard]] PetscErrorCode Materialise(StepState &st, PetscInt it);
   [[nodiscard]] PetscErrorCode Monitor(const IterationRecord &r) const;
   [[nodiscard]] PetscErrorCode RecordIteration(PetscInt step, PetscInt it, double factor, const std::vector<char> &next,

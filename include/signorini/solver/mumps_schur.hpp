@@ -3,10 +3,11 @@
 // Schur complement only on one rank) factors the matrix once with the Schur complement S0 = D0 - A21 A11^-1 A12 on
 // the multiplier rows, centralised on rank 0. A solve with another diagonal D uses S = S0 + (D - D0), factored
 // densely (LAPACK LDL^T) on rank 0 when D changes: MUMPS condenses the right-hand side onto the multipliers, rank 0
-// solves with S, MUMPS expands the solution. LU instead of LDL^T on request (the mumps_lu preset). The ordering is
-// METIS's nested dissection of the matrix graph, computed on rank 0 and given to MUMPS (ICNTL(7) = 1), the analysis
-// sequential, with null-pivot detection (ICNTL(24)) so that a singular A11 is reported; the options
-// -contact_mat_mumps_icntl_<k> and -contact_mat_mumps_cntl_<k> override them as for PETSc's interface.
+// solves with S, MUMPS expands the solution. LU instead of LDL^T on request (the mumps_lu preset). The ordering is a
+// nested dissection of the node graph (METIS's, or coordinate cuts for a small 2D matrix), computed on rank 0 and
+// given to MUMPS (ICNTL(7) = 1), the analysis sequential, with null-pivot detection (ICNTL(24)) so that a singular
+// A11 is reported; the options -contact_mat_mumps_icntl_<k> and -contact_mat_mumps_cntl_<k> override them as for
+// PETSc's interface.
 #pragma once
 
 #include "signorini/core/handle.hpp"
@@ -21,8 +22,13 @@ namespace signorini {
 /// above the analysis' estimate (MUMPS's default, 20, was exceeded by 2-rank LDL^T of 3D hexahedral meshes).
 constexpr int MUMPS_WORKSPACE_INCREASE = 50;
 
-/// Rows from which a 2D saddle-point matrix is ordered by METIS (below: MUMPS's automatic choice; 3D: always METIS).
+/// Rows from which a 2D saddle-point matrix is ordered by METIS (below: by coordinate cuts; 3D: always METIS).
 constexpr PetscInt METIS_MIN_ROWS_2D = 50000;
+
+/// The nested dissection of the node graph given to MUMPS (-contact_nested_dissection): AUTO is METIS in 3D and from
+/// METIS_MIN_ROWS_2D rows in 2D, coordinate cuts below (CoordinateNestedDissection).
+enum class GraphOrdering { AUTO, METIS, COORDINATES };
+inline const char *const GRAPH_ORDERING_NAMES[] = {"auto", "metis", "coordinates"};
 
 class MumpsSchur {
 public:
@@ -34,17 +40,26 @@ public:
   /// Analyses and factors A (parallel AIJ, symmetric; its values now are the ones factored) with the Schur
   /// complement on the global rows `schur_rows`; d0: A's diagonal on those rows (both on rank 0 only, in the order of
   /// D in Solve). symmetric: LDL^T (MUMPS SYM = 2, LAPACK sytrf for S) or LU (SYM = 0, getrf). The first owned_u
-  /// owned rows of each rank are displacements, node_size consecutive rows per node (for the ordering). Collective.
+  /// owned rows of each rank are displacements, node_size consecutive rows per node, and coords holds each of those
+  /// rows' node coordinate (coords[node_size * i + k]: coordinate k of the owned node i), for the ordering.
+  /// Collective.
   [[nodiscard]] PetscErrorCode Factor(Mat A, const std::vector<PetscInt> &schur_rows,
                                       const std::vector<PetscScalar> &d0, bool symmetric, PetscInt owned_u,
-                                      PetscInt node_size);
-  /// Solves with the factored matrix whose multiplier diagonal is replaced by d (rank 0, Schur order). Collective.
+                                      PetscInt node_size, const std::vector<double> &coords, GraphOrdering ordering);
+  /// Solves with the factored matrix whose multiplier diagonal is replaced by d (rank 0, Schur order): Condense,
+  /// the reduced system, Expand. Collective.
   [[nodiscard]] PetscErrorCode Solve(const std::vector<PetscScalar> &d, Vec b, Vec x);
+  /// The forward elimination of the right-hand side b (MUMPS keeps it for Expand) and its part A21 A11^-1 b_u that
+  /// SolveReduced takes off. Collective.
+  [[nodiscard]] PetscErrorCode Condense(Vec b);
   /// Solves with the multiplier diagonal d for a right-hand side [b_u; y] whose displacement part b_u is that of the
-  /// last Solve: y (rank 0, Schur order) is replaced by the multiplier part of the solution. Only the dense m x m
-  /// system: the displacement part of the solution is not computed (a Solve with the same right-hand side gives it).
-  /// Collective.
-  [[nodiscard]] PetscErrorCode SolveReduced(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y);
+  /// last Condense: y (rank 0, Schur order) is replaced by the multiplier part of the solution, which is kept for
+  /// Expand; residual is ||y - A21 A11^-1 b_u - S y_solved|| (every rank). Only the dense m x m system. Collective.
+  [[nodiscard]] PetscErrorCode SolveReduced(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y,
+                                            double &residual);
+  /// The whole solution x for the right-hand side of the last Condense and the multiplier part of the last
+  /// SolveReduced (or Solve): MUMPS's backward substitution. A new Condense is needed after it. Collective.
+  [[nodiscard]] PetscErrorCode Expand(Vec x);
   /// Null pivots MUMPS met in A11 (INFOG(28)).
   PetscInt NullPivots() const { return null_pivots_; }
 
@@ -53,10 +68,12 @@ private:
   [[nodiscard]] PetscErrorCode FactorSchur(const std::vector<PetscScalar> &d);
   /// y = S^-1 y with the factored Schur complement (rank 0).
   [[nodiscard]] PetscErrorCode DenseSolve(std::vector<PetscScalar> &y) const;
-  /// METIS nested dissection of the graph of the nodes coupled by the entries in irn_/jcn_ (n rows; this rank's start at
-  /// rstart, its first owned_u rows displacements, node_size per node), computed on rank 0 into perm_in_ (MUMPS's
-  /// PERM_IN: each node's rows together, the Schur rows last). Collective.
-  [[nodiscard]] PetscErrorCode NestedDissection(PetscInt n, PetscInt rstart, PetscInt owned_u, PetscInt node_size);
+  /// Nested dissection (METIS's or CoordinateNestedDissection of coords, see Factor) of the graph of the nodes coupled
+  /// by the entries in irn_/jcn_ (n rows; this rank's start at rstart, its first owned_u rows displacements,
+  /// node_size per node), computed on rank 0 into perm_in_ (MUMPS's PERM_IN: each node's rows together, the Schur
+  /// rows last). Collective.
+  [[nodiscard]] PetscErrorCode NestedDissection(PetscInt n, PetscInt rstart, PetscInt owned_u, PetscInt node_size,
+                                                const std::vector<double> &coords, GraphOrdering ordering);
 
   DMUMPS_STRUC_C id_{};
   bool initialised_ = false;
@@ -66,7 +83,9 @@ private:
   std::vector<MUMPS_INT> irn_, jcn_, listvar_, perm_in_;
   std::vector<double> val_;
   std::vector<double> schur_raw_, s0_, d0_, s_, d_factored_, redrhs_, work_;
-  std::vector<double> condensed_u_; ///< A21 A11^-1 b_u of the last Solve (rank 0)
+  std::vector<double> condensed_u_; ///< A21 A11^-1 b_u of the last Condense (rank 0)
+  std::vector<double> reduced_;     ///< the multiplier part of the last reduced solve, for Expand (rank 0)
+  bool condensed_ = false;          ///< MUMPS holds a forward elimination (Condense) that Expand has not used yet
   std::vector<PetscBLASInt> ipiv_;
   bool s_factored_ = false, symmetric_ = true;
   VecScatter to_root_ = nullptr;

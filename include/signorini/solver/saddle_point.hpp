@@ -32,10 +32,12 @@ struct ConstraintRow {
 /// tolerances rtol 1e-10); options given by the user override it at KSPSetFromOptions.
 [[nodiscard]] PetscErrorCode SetDefaultSolver(KSP ksp);
 
-/// Options of the saddle-point system: -contact_reuse_factorization (set tells whether the user gave it).
+/// Options of the saddle-point system: -contact_reuse_factorization (set tells whether the user gave it) and
+/// -contact_nested_dissection (the ordering of the kept factorisation).
 struct SaddlePointOptions {
   PetscBool reuse_factorization = PETSC_TRUE;
   PetscBool reuse_set = PETSC_FALSE;
+  GraphOrdering ordering = GraphOrdering::AUTO;
 };
 [[nodiscard]] PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts);
 
@@ -75,14 +77,19 @@ public:
   /// -s B du on inactive ones (0 without stabilisation), so that F_int(u + du) = f + B^T x on the free rows. residual: ||b - A x||. Collective.
   [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual);
 
-  /// Reuse mode, linear material: the solve for the current constraints (SetConstraints, without stabilisation) of a
-  /// right-hand side whose displacement rows are those of the last Solve() and whose multiplier rows are bm (owned
-  /// rows), in the multiplier space alone (the dense Schur complement on rank 0; no pass over the factors). Returns
-  /// per owned multiplier row the contact multiplier (0 on inactive rows) and B_p du, the normal displacement of
-  /// the solution's increment (the gap change). The displacement itself comes from a Solve() with the same
-  /// right-hand side. Collective.
+  /// Reuse mode, linear material: the active-set iterations of a load step in the multiplier space. Condense takes
+  /// the current right-hand side (its displacement rows b_u stay those of every SolveCondensed until the next
+  /// Condense), factoring first if needed. SolveCondensed solves for the current constraints (SetConstraints,
+  /// without stabilisation) with the multiplier rows bm (owned rows) in the multiplier space alone (the dense Schur
+  /// complement on rank 0; no pass over the factors); it returns per owned multiplier row the contact multiplier (0
+  /// on inactive rows) and B_p du, the normal displacement of the solution's increment (the gap change), and the
+  /// residual of the reduced system. Expand then gives the whole solution of the last SolveCondensed in Solution(),
+  /// as Solve() does (one backward substitution), with residual ||b - A x|| for the right-hand side [b_u; bm] that
+  /// the caller has written into Rhs(). Collective.
+  [[nodiscard]] PetscErrorCode Condense();
   [[nodiscard]] PetscErrorCode SolveCondensed(const std::vector<double> &bm, std::vector<double> &lambda,
-                                              std::vector<double> &shift);
+                                              std::vector<double> &shift, double &residual);
+  [[nodiscard]] PetscErrorCode Expand(double &residual);
 
 private:
   /// Inserts zeros at the constraint entries and the multiplier diagonal, then assembles A (final). Collective.
@@ -98,6 +105,13 @@ private:
   /// Reuse mode: a value per owned multiplier row to rank 0 (Schur order; empty elsewhere), and back. Collective.
   [[nodiscard]] PetscErrorCode ToRoot(const std::vector<double> &owned, std::vector<PetscScalar> &root);
   [[nodiscard]] PetscErrorCode FromRoot(const std::vector<PetscScalar> &root, std::vector<double> &owned);
+  /// Reuse mode: the analysis and factorisation with the Schur complement, once; a singular A11 is an error.
+  /// Collective.
+  [[nodiscard]] PetscErrorCode Factor();
+  /// After a solve into x_ (reason, iterations: the KSP's): an error naming the likely cause for a failed or
+  /// inaccurate solve, residual = ||b - A x||, and the multiplier rows of x_ in the plain form's meaning. Collective.
+  [[nodiscard]] PetscErrorCode CheckAndConvert(KSPConvergedReason reason, PetscInt krylov_iterations,
+                                               double &residual);
   /// The start of the next solve in x_: zero for a direct solver; the last multipliers for an iterative one.
   [[nodiscard]] PetscErrorCode InitialGuess();
   /// What to use instead after a failed KSP solve (": ...; expected ..."), from the preconditioner that failed.
@@ -112,6 +126,8 @@ private:
   std::vector<char> active_;          ///< owned multiplier rows active in the current system
   std::vector<PetscInt> schur_rows_;  ///< rank 0: every multiplier row, in global order
   MumpsSchur mumps_schur_;
+  GraphOrdering ordering_ = GraphOrdering::AUTO; ///< -contact_nested_dissection
+  std::vector<double> coords_;                  ///< reuse mode: the coordinates of SetupKsp, for the ordering
   VecH diag_lambda_, diag_root_;
   VecScatter to_root_ = nullptr;      ///< multiplier diagonal to rank 0
   MatH A_;
