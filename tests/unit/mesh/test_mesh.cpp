@@ -23,6 +23,16 @@ MeshOptions Options(const std::string &file) {
   return opts;
 }
 
+/// The error message of Mesh::Create on the mesh file `name` (written with `text`, or missing when text is null),
+/// which must fail.
+std::string CreateError(const char *name, const char *text) {
+  TempDir dir;
+  Mesh mesh;
+  ErrorCapture capture;
+  EXPECT_NE(mesh.Create(PETSC_COMM_SELF, Options(text ? dir.Write(name, text) : dir.Path(name))), 0) << name;
+  return capture.Message();
+}
+
 class MixedMesh : public ::testing::Test {
 protected:
   void SetUp() override {
@@ -341,13 +351,10 @@ $Elements
 8 2 2 0 1 1 2 4
 $EndElements
 )";
-  TempDir dir;
-  Mesh mesh;
-  ErrorCapture capture;
-  EXPECT_NE(mesh.Create(PETSC_COMM_SELF, Options(dir.Write("folded.msh", folded))), 0);
-  EXPECT_NE(capture.Message().find("elements 7 and 8 overlap: they lie on the same side of the edge they share"),
+  const std::string message = CreateError("folded.msh", folded);
+  EXPECT_NE(message.find("elements 7 and 8 overlap: they lie on the same side of the edge they share"),
             std::string::npos)
-      << capture.Message();
+      << message;
 }
 
 TEST(Mesh, GroupLineThatIsNoCellEdgeIsAnError) {
@@ -374,21 +381,15 @@ $Elements
 9 1 2 5 1 2 4
 $EndElements
 )";
-  TempDir dir;
-  Mesh mesh;
-  ErrorCapture capture;
-  EXPECT_NE(mesh.Create(PETSC_COMM_SELF, Options(dir.Write("crossing.msh", crossing))), 0);
-  EXPECT_NE(capture.Message().find("crossing.msh': a line element of physical curve 'cut' is not an edge of any cell"),
+  const std::string message = CreateError("crossing.msh", crossing);
+  EXPECT_NE(message.find("crossing.msh': a line element of physical curve 'cut' is not an edge of any cell"),
             std::string::npos)
-      << capture.Message();
+      << message;
 }
 
 TEST(Mesh, MissingFileIsAnError) {
-  TempDir dir;
-  Mesh mesh;
-  ErrorCapture capture;
-  EXPECT_NE(mesh.Create(PETSC_COMM_SELF, Options(dir.Path("none.msh"))), 0);
-  EXPECT_NE(capture.Message().find("none.msh"), std::string::npos) << capture.Message();
+  const std::string message = CreateError("none.msh", nullptr);
+  EXPECT_NE(message.find("none.msh"), std::string::npos) << message;
 }
 
 TEST(MeshOptions, ValuesAreReadAndValidated) {
