@@ -598,13 +598,13 @@ PetscErrorCode Mesh::BoundaryVertices(std::vector<PetscInt> &vertices) const {
 PetscErrorCode Mesh::GroupFaces(const std::string &name, std::vector<Face> &faces) const {
   PetscFunctionBeginUser;
   PetscCall(CheckGroup(name, dim_ - 1));
-  LabelFaces(std::find(group_names_.begin(), group_names_.end(), name) - group_names_.begin(), faces);
+  faces = label_faces_[std::find(group_names_.begin(), group_names_.end(), name) - group_names_.begin()];
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode Mesh::BoundaryFaces(std::vector<Face> &faces) const {
   PetscFunctionBeginUser;
-  LabelFaces(group_names_.size(), faces);
+  faces = label_faces_.back();
   PetscFunctionReturn(0);
 }
 

@@ -95,8 +95,6 @@ private:
   /// Local vertices of a label; cells: the label holds cells (a group of the mesh's dimension, not completed to its
   /// closure), whose vertices are gathered over the ranks. Collective when cells.
   [[nodiscard]] PetscErrorCode LabelVertices(const std::string &label, bool cells, std::vector<PetscInt> &vertices) const;
-  /// The faces of label l (a group's index, or the number of groups for the boundary) on this rank's cells.
-  void LabelFaces(std::size_t l, std::vector<Face> &faces) const { faces = label_faces_[l]; }
   [[nodiscard]] PetscErrorCode CheckGroup(const std::string &name, int required_dim) const;
 
   MPI_Comm comm_ = MPI_COMM_NULL;
@@ -108,7 +106,8 @@ private:
   std::vector<char> vertex_owned_;
   std::vector<double> coords_;
   std::vector<PetscInt> cell_offsets_, cell_vertices_;
-  /// Faces each local cell carries (FaceTable's codes, CSR), and the faces of each label built from them.
+  /// Faces each local cell carries (FaceTable's codes, CSR), and the faces of each label built from them (a group's
+  /// index, then the boundary), on this rank's cells.
   std::vector<PetscInt> cell_face_offsets_, cell_face_codes_;
   std::vector<std::vector<Face>> label_faces_;
   std::vector<std::string> group_names_;
