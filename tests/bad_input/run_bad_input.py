@@ -80,6 +80,9 @@ CASES = {
                                                    "expected"], {}),
     "mesh_curve_not_edges": (mesh("curve_not_edge.msh") + ["-bc_traction", "diagonal:0:1"],
                              ["'diagonal'", "not an edge", "expected"], {}),
+    # Two tetrahedra sharing a face; the physical surface's triangle (1, 2, 5) cuts through them.
+    "mesh_surface_not_faces": (mesh("surface_not_face.msh") + ["-bc_traction", "patch:0:0:1"],
+                               ["surface_not_face.msh", "'patch'", "not a face of any cell", "expected"], {}),
     "mesh_geo_gmsh_crash": (mesh("gmsh_crash.geo"), ["gmsh_crash.geo", "gmsh crashed", "Mesh.Algorithm = 8",
                                                      "expected", "another Mesh.Algorithm"], {}),
     "mesh_geo_too_many_cells": (["-options_file", "{root}/options/hertz.yml", "-mesh_file", "{root}/meshes/hertz.geo",
