@@ -108,10 +108,16 @@ private:
   /// Reuse mode: the analysis and factorisation with the Schur complement, once; a singular A11 is an error.
   /// Collective.
   [[nodiscard]] PetscErrorCode Factor();
+  /// ||b - A x|| and ||b|| for the current x_. Collective.
+  [[nodiscard]] PetscErrorCode TrueResidual(PetscReal &rnorm, PetscReal &bnorm);
   /// After a solve into x_ (reason, iterations: the KSP's): an error naming the likely cause for a failed or
   /// inaccurate solve, residual = ||b - A x||, and the multiplier rows of x_ in the plain form's meaning. Collective.
   [[nodiscard]] PetscErrorCode CheckAndConvert(KSPConvergedReason reason, PetscInt krylov_iterations,
                                                double &residual);
+  /// The largest true residual ||b - A x|| / ||b|| a solve may leave, and the restarts of a Krylov solve that stopped
+  /// above it on its preconditioned residual (each must divide the true residual by 10).
+  static constexpr double ACCEPTED_RESIDUAL = 1e-6;
+  static constexpr int MAX_KRYLOV_RESTARTS = 3;
   /// The start of the next solve in x_: zero for a direct solver; the last multipliers for an iterative one.
   [[nodiscard]] PetscErrorCode InitialGuess();
   /// What to use instead after a failed KSP solve (": ...; expected ..."), from the preconditioner that failed.
