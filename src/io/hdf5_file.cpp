@@ -3,6 +3,7 @@
 
 #include <hdf5.h>
 
+#include <string>
 #include <type_traits>
 
 #ifndef H5_HAVE_PARALLEL
@@ -36,8 +37,21 @@ Hdf5File::~Hdf5File() {
   if (file_ >= 0) (void)H5Fclose(file_);
 }
 
+/// The most specific description on HDF5's error stack (its innermost entry), or empty.
+std::string InnermostError() {
+  std::string reason;
+  const auto visit = [](unsigned n, const H5E_error2_t *e, void *data) -> herr_t {
+    if (n == 0 && e->desc) *static_cast<std::string *>(data) = e->desc;
+    return 0;
+  };
+  (void)H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, visit, &reason);
+  (void)H5Eclear2(H5E_DEFAULT);
+  return reason;
+}
+
 PetscErrorCode Hdf5File::Agree(bool local_ok) {
   PetscFunctionBeginUser;
+  if (!local_ok && ok_) failed_here_ = true, reason_ = InnermostError();
   ok_ = ok_ && local_ok;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ok_, 1, MPI_C_BOOL, MPI_LAND, comm_));
   PetscFunctionReturn(0);
@@ -47,6 +61,8 @@ PetscErrorCode Hdf5File::Open(MPI_Comm comm, const std::string &path, bool creat
   PetscFunctionBeginUser;
   comm_ = comm;
   path_ = path;
+  // Failures become one message (OutputWriter, with Reason()), not HDF5's own printed error stack.
+  (void)H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   bool ok = fapl.ok() && H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL) >= 0;
   if (ok)

@@ -40,7 +40,10 @@ PetscErrorCode RegisterEvents() {
   PetscFunctionReturn(0);
 }
 
-std::string HdfError(const std::string &path) { return "cannot write HDF5 file '" + path + "'"; }
+std::string HdfError(const Hdf5File &file) {
+  return "cannot write HDF5 file '" + file.Path() + "'" + (file.Reason().empty() ? "" : " (" + file.Reason() + ")") +
+         "; expected a writable output directory with room for the file";
+}
 
 /// XDMF name and mixed-topology id of a cell with n vertices in dimension dim. XDMF's pyramid (VTK's) has gmsh's
 /// vertex order: the base, then the apex.
@@ -215,7 +218,8 @@ PetscErrorCode OutputWriter::WriteStep(PetscInt step, double t, const std::vecto
     PetscCall(file.WriteRows(boundary + "/" + f.name, contact_num_nodes_, f.ncomp, 0, restricted));
   }
   PetscCall(file.Close());
-  PetscCall(CheckCollective(comm, file.Ok(), HdfError(file.Path())));
+  // The message comes from the first rank where the write failed (Agree marks it), with HDF5's reason.
+  PetscCall(CheckCollective(comm, !file.FailedHere(), HdfError(file)));
   PetscCall(PetscLogEventEnd(EV_HDF5, 0, 0, 0, 0));
   StepInfo info{step, t, {}};
   for (const auto &f : fields) info.layout.push_back({f.name, f.ncomp, f.on_cells, {}, f.on_contact});

@@ -33,14 +33,17 @@ public:
   [[nodiscard]] PetscErrorCode Close();
   bool Ok() const { return ok_; }
   const std::string &Path() const { return path_; }
+  /// Whether the first failure happened on this rank, and HDF5's most specific description of it.
+  bool FailedHere() const { return failed_here_; }
+  const std::string &Reason() const { return reason_; }
 
 private:
   /// Turns a local success into one shared by every rank.
   [[nodiscard]] PetscErrorCode Agree(bool local_ok);
   MPI_Comm comm_ = MPI_COMM_NULL;
-  std::string path_;
+  std::string path_, reason_;
   std::int64_t file_ = -1;
-  bool ok_ = true;
+  bool ok_ = true, failed_here_ = false;
 };
 
 } // namespace signorini
