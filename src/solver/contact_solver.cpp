@@ -460,8 +460,14 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(EV_ASSEMBLY, 0, 0, 0, 0));
   // svk with the kept factorisation, while the active set changes (-newton_lagged_search): the tangent of the last
-  // assembly stays (a modified Newton step), solved to SEARCH_RTOL; the exact tangent once the active set settles.
-  st.lagged = st.large && opts_.lagged_search && st.searching && !st.stabilised && system_->ReusesFactorization();
+  // assembly stays (a modified Newton step), solved to SEARCH_RTOL, as long as the residual contracts by
+  // LAGGED_CONTRACTION per step; the exact tangent once the active set settles.
+  const bool contracting = st.lag_rnorm < 0 || st.rnorm <= LAGGED_CONTRACTION * st.lag_rnorm;
+  const bool lag = st.large && opts_.lagged_search && st.searching && !st.stabilised && system_->ReusesFactorization();
+  st.lagged = lag && contracting;
+  st.lag_rnorm = st.rnorm;
+  // A lagged step that did not contract: the factored tangent has drifted too far to precondition the current one.
+  if (lag && !contracting) system_->RefactorNext();
   if ((st.large && !st.lagged) || !k_assembled_) {
     ProgressBegin("stiffness assembly");
     PetscCall(MatZeroEntries(system_->A()));

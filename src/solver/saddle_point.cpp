@@ -60,10 +60,10 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
   PetscCall(PetscOptionsBool("-contact_reuse_factorization",
                              "Factor once and follow active-set changes through MUMPS's Schur complement on the "
                              "multipliers (with a MUMPS LU/Cholesky solver; default on there); svk: the kept "
-                             "factorisation preconditions GMRES on the current tangent",
+                             "factorisation preconditions FGMRES on the current tangent",
                              "", opts.reuse_factorization, &opts.reuse_factorization, &opts.reuse_set));
   PetscCall(OptionsInt(PetscOptionsObject, "-contact_reuse_max_it",
-                       "svk with -contact_reuse_factorization: GMRES iterations on the current tangent preconditioned "
+                       "svk with -contact_reuse_factorization: FGMRES iterations on the current tangent preconditioned "
                        "by the kept factorisation of an earlier one before MUMPS refactors (0: at every solve)",
                        0, SaddlePointOptions::REUSE_MAX_IT_MAX, opts.reuse_max_it, &opts.reuse_max_it_set));
   PetscInt ordering = (PetscInt)opts.ordering;
@@ -347,9 +347,10 @@ PetscErrorCode SaddlePointSystem::ApplyKeptFactor(PC pc, Vec b, Vec x) {
 }
 
 PetscErrorCode SaddlePointSystem::SolveWithKeptFactor(const std::vector<PetscScalar> &d, double rtol,
-                                                      PetscInt &iterations) {
+                                                      PetscInt &iterations, double &check_tol) {
   PetscFunctionBeginUser;
   iterations = 0;
+  check_tol = 1e-6;
   if (reuse_max_it_ > 0 && !refactor_next_) {
     KSPConvergedReason reason;
     PetscReal default_rtol, abstol, dtol;
@@ -362,8 +363,11 @@ PetscErrorCode SaddlePointSystem::SolveWithKeptFactor(const std::vector<PetscSca
     PetscCall(KSPGetIterationNumber(ksp_kept_, &iterations));
     // More than half the allowed iterations: the factored tangent is drifting away; the next solve refactors.
     refactor_next_ = 2 * iterations > reuse_max_it_;
-    if (reason > 0) PetscFunctionReturn(0);
-    PetscCall(PetscInfo(nullptr, "GMRES with the kept factorisation: %s after %" PetscInt_FMT " iterations; refactoring\n",
+    if (reason > 0) {
+      check_tol = std::max(check_tol, 2.0 * rtol); // an inexact step (rtol > 0) is as inexact as asked
+      PetscFunctionReturn(0);
+    }
+    PetscCall(PetscInfo(nullptr, "FGMRES with the kept factorisation: %s after %" PetscInt_FMT " iterations; refactoring\n",
                         KSPConvergedReasons[reason], iterations));
   }
   // The tangent has drifted too far from the factored one (or -contact_reuse_max_it 0): factor the current one.
@@ -449,6 +453,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
   PetscFunctionBeginUser;
   PetscCall(InitialGuess());
   PetscInt null_pivots = 0;
+  double check_tol = 1e-6; // the relative residual above which a solve is an error (CheckAndConvert)
   if (reuse_) {
     // The first solve factors the current matrix; later ones are exact for a constant K (only D changed), else the
     // kept factorisation preconditions the current matrix.
@@ -458,7 +463,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
     PetscCall(MultiplierDiagonal(d));
     krylov_iterations = 1;
     if (fresh || constant_k_) PetscCall(mumps_schur_.Solve(d, b_, x_));
-    else PetscCall(SolveWithKeptFactor(d, rtol, krylov_iterations));
+    else PetscCall(SolveWithKeptFactor(d, rtol, krylov_iterations, check_tol));
     reason = KSP_CONVERGED_ITS;
   } else {
     // KSPSetUp sets the preconditioner up (a factorisation, for the direct presets) before KSPSolve would.
@@ -476,7 +481,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
                "held; add Dirichlet conditions (e.g. on a symmetry line) so that the initial contact and the supports "
                "remove every rigid-body motion", null_pivots);
   }
-  PetscCall(CheckAndConvert(reason, krylov_iterations, residual, std::max(1e-6, 2 * rtol)));
+  PetscCall(CheckAndConvert(reason, krylov_iterations, residual, check_tol));
   PetscFunctionReturn(0);
 }
 

@@ -68,6 +68,8 @@ public:
   /// Relative residual of the lagged (modified) Newton steps of the active-set search (-newton_lagged_search): the
   /// step only has to find the next active set; the steps after it settles are exact.
   static constexpr double SEARCH_RTOL = 0.1;
+  /// A lagged step follows only one that reduced the residual at least by this factor (else the current tangent).
+  static constexpr double LAGGED_CONTRACTION = 0.5;
 
   /// Dirichlet data, candidate pairs, numbering, the saddle-point system and its KSP. Collective.
   [[nodiscard]] PetscErrorCode Setup();
@@ -134,6 +136,7 @@ private:
     bool stabilised = false; ///< the last solve carried the stabilisation springs
     bool searching = true;   ///< the next solve's active set is a new one (the first, or a change)
     bool lagged = false;     ///< the next solve keeps the last assembled tangent (-newton_lagged_search)
+    double lag_rnorm = -1;   ///< the residual before the last solve (none: -1), for LAGGED_CONTRACTION
     std::vector<double> gap_before{}; ///< the gaps before the last stabilised solve
     /// Condensed solves (linear material, kept factorisation): from the first solve without stabilisation and without
     /// a prescribed displacement still to apply, the active-set iterations run in the multiplier space against that

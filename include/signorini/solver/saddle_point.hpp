@@ -15,9 +15,10 @@
 // A nonlinear material (svk: the tangent K changes at every Newton iteration) keeps the factorisation too: the
 // factorisation of an earlier tangent, with the Schur complement over every candidate, follows the active set exactly
 // (only D changes), so that it is a close preconditioner of the current system, whose tangent alone is stale. Each
-// solve is GMRES on the current matrix preconditioned by it, to the KSP's relative tolerance (the Newton iteration
-// stays exact); when GMRES has not converged after -contact_reuse_max_it iterations, MUMPS refactors the current
-// matrix numerically (the analysis is kept) and solves directly.
+// solve is FGMRES on the current matrix preconditioned by it, to the KSP's relative tolerance (the Newton iteration
+// stays exact) or to a looser one the caller asks for (Solve's rtol); when FGMRES has not converged after
+// -contact_reuse_max_it iterations, MUMPS refactors the current matrix numerically (the analysis is kept) and solves
+// directly, and a solve that needed more than half of them refactors at the next solve.
 #pragma once
 
 #include "signorini/core/handle.hpp"
@@ -40,14 +41,14 @@ struct ConstraintRow {
 [[nodiscard]] PetscErrorCode SetDefaultSolver(KSP ksp);
 
 /// Options of the saddle-point system: -contact_reuse_factorization (set tells whether the user gave it),
-/// -contact_reuse_max_it (the GMRES iterations on a kept factorisation of an earlier tangent before a refactorisation,
+/// -contact_reuse_max_it (the FGMRES iterations on a kept factorisation of an earlier tangent before a refactorisation,
 /// nonlinear material; 0 refactors at every solve) and -contact_nested_dissection (the ordering of the kept
 /// factorisation).
 struct SaddlePointOptions {
   static constexpr PetscInt REUSE_MAX_IT_MAX = 1000;
   PetscBool reuse_factorization = PETSC_TRUE;
   PetscBool reuse_set = PETSC_FALSE;
-  PetscInt reuse_max_it = 10; ///< in [0, REUSE_MAX_IT_MAX]
+  PetscInt reuse_max_it = 6; ///< in [0, REUSE_MAX_IT_MAX]
   PetscBool reuse_max_it_set = PETSC_FALSE;
   GraphOrdering ordering = GraphOrdering::AUTO;
 };
@@ -73,6 +74,8 @@ public:
   /// Whether the factorisation is kept across active sets (the augmented form below). Then the caller adds
   /// AddAugmentation() after every assembly of K (Augmented()).
   bool ReusesFactorization() const { return reuse_; }
+  /// Changing K with the kept factorisation: the next solve refactors the current matrix instead of preconditioning.
+  void RefactorNext() { refactor_next_ = true; }
   /// Whether the kept factorisation is exact for every solve (constant K: the condensed solves below are possible).
   bool ExactFactorization() const { return reuse_ && constant_k_; }
   /// Whether the system is in the augmented form (the reuse mode, and every solver that is not a factorisation).
@@ -89,7 +92,7 @@ public:
   /// Solves A x = b; a failed or inaccurate solve is an error naming the likely cause. On return the multiplier
   /// rows of the solution hold, in both forms, the contact multipliers lambda on active rows and the spring forces
   /// -s B du on inactive ones (0 without stabilisation), so that F_int(u + du) = f + B^T x on the free rows. residual: ||b - A x||.
-  /// rtol > 0: the relative residual that GMRES on a kept factorisation of an earlier tangent may stop at (an
+  /// rtol > 0: the relative residual that FGMRES on a kept factorisation of an earlier tangent may stop at (an
   /// inexact Newton step; otherwise the KSP's tolerance); it does not apply to direct solves. Collective.
   [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual, double rtol = 0);
 
@@ -129,12 +132,13 @@ private:
   [[nodiscard]] PetscErrorCode Refactor();
   /// The error for null pivots in the last MUMPS factorisation. Collective.
   [[nodiscard]] PetscErrorCode CheckNullPivots() const;
-  /// Reuse mode, changing K: x_ from GMRES on the current matrix preconditioned by the kept factorisation, or, when
+  /// Reuse mode, changing K: x_ from FGMRES on the current matrix preconditioned by the kept factorisation, or, when
   /// it does not converge within -contact_reuse_max_it iterations (or the last solve needed more than half of them),
-  /// after a refactorisation. d: the current multiplier diagonal (rank 0); rtol: see Solve. iterations: GMRES's, plus
-  /// one for a direct solve. Collective.
+  /// after a refactorisation. d: the current multiplier diagonal (rank 0); rtol: see Solve. iterations: FGMRES's, plus
+  /// one for a direct solve; check_tol: the relative residual the solution may have (1e-6, or 2 rtol after an
+  /// inexact FGMRES solve). Collective.
   [[nodiscard]] PetscErrorCode SolveWithKeptFactor(const std::vector<PetscScalar> &d, double rtol,
-                                                   PetscInt &iterations);
+                                                   PetscInt &iterations, double &check_tol);
   /// PCSHELL apply of the kept factorisation with the multiplier diagonal kept_d_ (ctx: the system). Collective.
   static PetscErrorCode ApplyKeptFactor(PC pc, Vec b, Vec x);
   /// After a solve into x_ (reason, iterations: the KSP's): an error naming the likely cause for a failed or
@@ -151,8 +155,8 @@ private:
   const DofMap *dofs_ = nullptr;
   bool reuse_ = false, augmented_ = false, factored_ = false, constant_k_ = true;
   PetscInt reuse_max_it_ = 0;          ///< -contact_reuse_max_it
-  bool refactor_next_ = false;         ///< the last GMRES solve on the kept factorisation needed many iterations
-  KSPH ksp_kept_;                      ///< changing K: GMRES preconditioned by the kept factorisation
+  bool refactor_next_ = false;         ///< the last FGMRES solve on the kept factorisation needed many iterations
+  KSPH ksp_kept_;                      ///< changing K: FGMRES preconditioned by the kept factorisation
   std::vector<PetscScalar> kept_d_;    ///< the multiplier diagonal of the current solve (rank 0), for ApplyKeptFactor
   PetscBool lu_ = PETSC_FALSE; ///< the PC is LU (the mumps_lu preset): the reuse mode factors with LU too
   double aug_ = 1;  ///< augmentation weight r (the stiffness scale)
