@@ -46,8 +46,9 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, SolverOptions &opts) {
                              opts.line_search, &opts.line_search, nullptr));
   PetscCall(PetscOptionsBool("-newton_lagged_search",
                              "svk with the kept factorisation (-contact_reuse_factorization): while the active set "
-                             "changes, Newton steps keep the last assembled tangent (modified Newton, solved to a "
-                             "relative residual 0.1); the current tangent, solved exactly, once it settles",
+                             "changes and the residual halves per step, Newton steps keep the last assembled tangent "
+                             "(modified Newton, solved to a relative residual 0.1); the current tangent, solved "
+                             "exactly, once it settles",
                              "", opts.lagged_search, &opts.lagged_search, &opts.lagged_search_set));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
@@ -83,8 +84,8 @@ PetscErrorCode ContactSolver::Setup() {
   mult_.assign(pairs_.size(), 0.0);
   active_set_.Reset(pairs_.size());
   PetscCall(rigid_.Setup(mesh_, dirichlet_.fixed));
-  PetscCheck(!(opts_.lagged_search_set && opts_.lagged_search &&
-               (material_.model != MaterialModel::SVK || (!system_->ReusesFactorization() && dofs_.GlobalLambda() > 0))),
+  const bool kept = system_->ReusesFactorization() || dofs_.GlobalLambda() == 0;
+  PetscCheck(!(opts_.lagged_search_set && opts_.lagged_search && (material_.model != MaterialModel::SVK || !kept)),
              comm, PETSC_ERR_USER_INPUT,
              "-newton_lagged_search needs -material_model svk and the kept factorisation (-contact_reuse_factorization "
              "with a MUMPS LU or Cholesky solver)");

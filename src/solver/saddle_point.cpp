@@ -367,8 +367,8 @@ PetscErrorCode SaddlePointSystem::SolveWithKeptFactor(const std::vector<PetscSca
       check_tol = std::max(check_tol, 2.0 * rtol); // an inexact step (rtol > 0) is as inexact as asked
       PetscFunctionReturn(0);
     }
-    PetscCall(PetscInfo(nullptr, "FGMRES with the kept factorisation: %s after %" PetscInt_FMT " iterations; refactoring\n",
-                        KSPConvergedReasons[reason], iterations));
+    PetscCall(PetscInfo(nullptr, "FGMRES with the kept factorisation: %s after %" PetscInt_FMT
+                        " iterations; refactoring\n", KSPConvergedReasons[reason], iterations));
   }
   // The tangent has drifted too far from the factored one (or -contact_reuse_max_it 0): factor the current one.
   PetscCall(Refactor());

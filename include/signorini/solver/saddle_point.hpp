@@ -91,7 +91,8 @@ public:
                                               double inactive_diag, double stabilisation = 0);
   /// Solves A x = b; a failed or inaccurate solve is an error naming the likely cause. On return the multiplier
   /// rows of the solution hold, in both forms, the contact multipliers lambda on active rows and the spring forces
-  /// -s B du on inactive ones (0 without stabilisation), so that F_int(u + du) = f + B^T x on the free rows. residual: ||b - A x||.
+  /// -s B du on inactive ones (0 without stabilisation), so that F_int(u + du) = f + B^T x on the free rows.
+  /// residual: ||b - A x||.
   /// rtol > 0: the relative residual that FGMRES on a kept factorisation of an earlier tangent may stop at (an
   /// inexact Newton step; otherwise the KSP's tolerance); it does not apply to direct solves. Collective.
   [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual, double rtol = 0);
