@@ -78,7 +78,7 @@ PetscErrorCode OptionsReal(PetscOptionItems *PetscOptionsObject, const char *nam
 }
 
 PetscErrorCode OptionsInt(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, PetscInt lo,
-                          PetscInt hi, PetscInt &value) {
+                          PetscInt hi, PetscInt &value, PetscBool *set) {
   MPI_Comm comm = PetscOptionsObject->comm;
   const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
   std::string raw;
@@ -86,6 +86,7 @@ PetscErrorCode OptionsInt(PetscOptionItems *PetscOptionsObject, const char *name
   PetscFunctionBeginUser;
   PetscCall(ListAndRead(PetscOptionsObject, name, std::string(help) + "; range " + range, std::to_string(value), raw,
                         found));
+  if (set) *set = found;
   if (!found) PetscFunctionReturn(0);
   PetscCheck(!raw.empty(), comm, PETSC_ERR_USER_INPUT, "%s is given without a value; expected an integer in %s", name,
              range.c_str());

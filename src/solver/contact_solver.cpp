@@ -44,6 +44,12 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, SolverOptions &opts) {
                         opts.newton_atol));
   PetscCall(PetscOptionsBool("-newton_linesearch", "Line search on du.R(u + s du) (det F <= 0 always halves the step)", "",
                              opts.line_search, &opts.line_search, nullptr));
+  PetscCall(PetscOptionsBool("-newton_lagged_search",
+                             "svk with the kept factorisation (-contact_reuse_factorization): while the active set "
+                             "changes and the residual halves per step, Newton steps keep the last assembled tangent "
+                             "(modified Newton, solved to a relative residual 0.1); the current tangent, solved "
+                             "exactly, once it settles",
+                             "", opts.lagged_search, &opts.lagged_search, &opts.lagged_search_set));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -78,7 +84,11 @@ PetscErrorCode ContactSolver::Setup() {
   mult_.assign(pairs_.size(), 0.0);
   active_set_.Reset(pairs_.size());
   PetscCall(rigid_.Setup(mesh_, dirichlet_.fixed));
-  (void)comm;
+  const bool kept = system_->ReusesFactorization() || dofs_.GlobalLambda() == 0;
+  PetscCheck(!(opts_.lagged_search_set && opts_.lagged_search && (material_.model != MaterialModel::SVK || !kept)),
+             comm, PETSC_ERR_USER_INPUT,
+             "-newton_lagged_search needs -material_model svk and the kept factorisation (-contact_reuse_factorization "
+             "with a MUMPS LU or Cholesky solver)");
   PetscFunctionReturn(0);
 }
 
@@ -102,6 +112,7 @@ PetscErrorCode ContactSolver::CreateSystem() {
   PetscCall(VecDuplicate(u_, du_.out()));
   PetscCall(VecDuplicate(u_, fext_.out()));
   PetscCall(VecDuplicate(u_, fint_.out()));
+  fint_at_.clear();
   PetscCall(VecDuplicate(u_, fdir_.out()));
   PetscCall(PetscObjectSetName((PetscObject)u_.get(), "displacement"));
   std::vector<PetscInt> from(mesh_.NumLocalVertices() * dim);
@@ -227,8 +238,18 @@ PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double
   const int dim = mesh_.Dim();
   double min_J;
   PetscFunctionBeginUser;
-  PetscCall(VecZeroEntries(fint_));
-  PetscCall(assembler_->Assemble(u_local_.data(), nullptr, 0, fint_, &min_J));
+  // F_int is assembled again only when the displacement changed since the last assembly (svk: the step length check
+  // of UpdateSolution evaluates the residual at the new iterate, which the next iteration starts from).
+  bool same = fint_at_ == u_local_;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_CXX_BOOL, MPI_LAND, mesh_.Comm()));
+  if (same) {
+    min_J = fint_min_J_;
+  } else {
+    PetscCall(VecZeroEntries(fint_));
+    PetscCall(assembler_->Assemble(u_local_.data(), nullptr, 0, fint_, &min_J));
+    fint_at_ = u_local_;
+    fint_min_J_ = min_J;
+  }
   const PetscScalar *fi, *fe;
   PetscCall(VecGetArrayRead(fint_, &fi));
   PetscCall(VecGetArrayRead(fext_, &fe));
@@ -302,6 +323,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     }
     Outcome outcome;
     PetscCall(StepControl(st, it, changes, outcome));
+    st.searching = it == 0 || changes > 0;
     if (outcome == Outcome::CONVERGED) ok = true;
     if (outcome == Outcome::CONVERGED || outcome == Outcome::STOP) break;
     if (outcome == Outcome::EXTENDED) continue;
@@ -355,6 +377,7 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
     // residual. A state that may be the solution gets a full residual evaluation (StepControl).
     PetscScalar *fi;
     const PetscScalar *fe;
+    fint_at_.clear();
     PetscCall(VecGetArray(fint_, &fi));
     PetscCall(VecGetArrayRead(fext_, &fe));
     for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) fi[i] = fe[i];
@@ -437,7 +460,16 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   const int dim = mesh_.Dim();
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(EV_ASSEMBLY, 0, 0, 0, 0));
-  if (st.large || !k_assembled_) {
+  // svk with the kept factorisation, while the active set changes (-newton_lagged_search): the tangent of the last
+  // assembly stays (a modified Newton step), solved to SEARCH_RTOL, as long as the residual contracts by
+  // LAGGED_CONTRACTION per step; the exact tangent once the active set settles.
+  const bool contracting = st.lag_rnorm < 0 || st.rnorm <= LAGGED_CONTRACTION * st.lag_rnorm;
+  const bool lag = st.large && opts_.lagged_search && st.searching && !st.stabilised && system_->ReusesFactorization();
+  st.lagged = lag && contracting;
+  st.lag_rnorm = st.rnorm;
+  // A lagged step that did not contract: the factored tangent has drifted too far to precondition the current one.
+  if (lag && !contracting) system_->RefactorNext();
+  if ((st.large && !st.lagged) || !k_assembled_) {
     ProgressBegin("stiffness assembly");
     PetscCall(MatZeroEntries(system_->A()));
     PetscCall(assembler_->Assemble(u_local_.data(), system_->A(), kscale_, nullptr, nullptr));
@@ -489,7 +521,7 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
 }
 
 bool ContactSolver::Condensable(const StepState &st) const {
-  return st.base && !st.large && !st.stabilised && system_->ReusesFactorization();
+  return st.base && !st.large && !st.stabilised && system_->ExactFactorization();
 }
 
 PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
@@ -499,7 +531,7 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
     ScopedTimer t(stats_.time_solve);
     const double t0 = MPI_Wtime();
     PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
-    if (!st.base && !st.large && !st.stabilised && !st.moving && system_->ReusesFactorization()) {
+    if (!st.base && !st.large && !st.stabilised && !st.moving && system_->ExactFactorization()) {
       // Linear material, kept factorisation, no stabilisation and no prescribed displacement still to apply: the
       // right-hand side assembled now is the base of the solves after it, which run in the multiplier space
       // (condensed) until Materialise.
@@ -520,7 +552,7 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
     } else {
       // A full solve moves the displacement away from any base.
       st.base = false;
-      PetscCall(system_->Solve(st.krylov, st.solve_residual));
+      PetscCall(system_->Solve(st.krylov, st.solve_residual, st.lagged ? SEARCH_RTOL : 0.0));
     }
     PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
     const double dt = MPI_Wtime() - t0;
@@ -735,6 +767,8 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     PetscCall(PetscPrintf(comm, "Load step at factor %g failed (%s); cutting the increment to %g\n", t_try,
                           why.c_str(), dt));
     PetscCall(SetOwnedDisplacement(u_saved));
+    // The tangent of the failed attempt is not lagged into the next one.
+    k_assembled_ = false;
     bool differ = pairs_.size() != pairs_saved.size() ||
                   !std::equal(pairs_.begin(), pairs_.end(), pairs_saved.begin(),
                               [](const ContactPair &a, const ContactPair &b) {

@@ -190,9 +190,43 @@ PetscErrorCode MumpsSchur::NestedDissection(PetscInt n, PetscInt rstart, PetscIn
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode MumpsSchur::ReadValues(Mat A, bool pattern) {
+  PetscInt rstart, rend;
+  PetscFunctionBeginUser;
+  PetscCall(MatGetOwnershipRange(A, &rstart, &rend));
+  // The owned rows, 1-based; for LDL^T their upper triangle only (MUMPS sums duplicate entries of a symmetric matrix).
+  // Counted first, then written in place: growing the arrays entry by entry took a quarter of the contact solve at
+  // 20k rows (reallocations, copies, page faults). A refactorisation (pattern false) rewrites the values alone, in
+  // the order of the pattern read before (A's pattern is fixed).
+  std::size_t nnz = 0;
+  for (int pass = pattern ? 0 : 1; pass < 2; ++pass) {
+    if (pass == 1 && pattern) irn_.resize(nnz), jcn_.resize(nnz), val_.resize(nnz), nnz = 0;
+    for (PetscInt i = rstart; i < rend; ++i) {
+      PetscInt ncols;
+      const PetscInt *cols;
+      const PetscScalar *vals;
+      PetscCall(MatGetRow(A, i, &ncols, &cols, pass == 1 ? &vals : nullptr));
+      for (PetscInt k = 0; k < ncols; ++k)
+        if (cols[k] >= i || !symmetric_) {
+          if (pass == 1) {
+            PetscAssert(pattern || (nnz < val_.size() && irn_[nnz] == (MUMPS_INT)(i + 1) &&
+                                    jcn_[nnz] == (MUMPS_INT)(cols[k] + 1)),
+                        PETSC_COMM_SELF, PETSC_ERR_PLIB, "the pattern of the refactored matrix changed");
+            if (pattern) irn_[nnz] = (MUMPS_INT)(i + 1), jcn_[nnz] = (MUMPS_INT)(cols[k] + 1);
+            val_[nnz] = vals[k];
+          }
+          ++nnz;
+        }
+      PetscCall(MatRestoreRow(A, i, &ncols, &cols, pass == 1 ? &vals : nullptr));
+    }
+  }
+  PetscCheck(nnz == val_.size(), PETSC_COMM_SELF, PETSC_ERR_PLIB, "the pattern of the refactored matrix changed");
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows, const std::vector<PetscScalar> &d0,
                                   bool symmetric, PetscInt owned_u, PetscInt node_size,
-                                  const std::vector<double> &coords, GraphOrdering ordering) {
+                                  const std::vector<double> &coords, GraphOrdering ordering, bool keep_values) {
   PetscInt rstart, rend, N;
   PetscFunctionBeginUser;
   PetscCall(RegisterEvents());
@@ -201,31 +235,12 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
   PetscCall(MatGetOwnershipRange(A, &rstart, &rend));
   PetscCall(MatGetSize(A, &N, nullptr));
-  // The owned rows, 1-based; for LDL^T their upper triangle only (MUMPS sums duplicate entries of a symmetric matrix).
-  // Counted first, then written in place: growing the arrays entry by entry took a quarter of the contact solve at
-  // 20k rows (reallocations, copies, page faults).
-  std::size_t nnz = 0;
-  for (int pass = 0; pass < 2; ++pass) {
-    if (pass == 1) irn_.resize(nnz), jcn_.resize(nnz), val_.resize(nnz), nnz = 0;
-    for (PetscInt i = rstart; i < rend; ++i) {
-      PetscInt ncols;
-      const PetscInt *cols;
-      const PetscScalar *vals;
-      PetscCall(MatGetRow(A, i, &ncols, &cols, pass == 1 ? &vals : nullptr));
-      for (PetscInt k = 0; k < ncols; ++k)
-        if (cols[k] >= i || !symmetric) {
-          if (pass == 1) irn_[nnz] = (MUMPS_INT)(i + 1), jcn_[nnz] = (MUMPS_INT)(cols[k] + 1), val_[nnz] = vals[k];
-          ++nnz;
-        }
-      PetscCall(MatRestoreRow(A, i, &ncols, &cols, pass == 1 ? &vals : nullptr));
-    }
-  }
+  PetscCall(ReadValues(A, true));
   const PetscInt m = rank_ == 0 ? (PetscInt)schur_rows.size() : 0;
   PetscInt m_all = m;
   PetscCallMPI(MPI_Bcast(&m_all, 1, MPIU_INT, 0, comm_));
   listvar_.resize(m);
   for (PetscInt i = 0; i < m; ++i) listvar_[i] = (MUMPS_INT)(schur_rows[i] + 1);
-  schur_raw_.assign((std::size_t)m * m, 0.0);
 
   id_.comm_fortran = (MUMPS_INT)MPI_Comm_c2f(comm_);
   id_.par = 1;
@@ -280,7 +295,6 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   id_.a_loc = val_.data();
   id_.size_schur = (MUMPS_INT)m_all;
   id_.listvar_schur = listvar_.data();
-  id_.schur = schur_raw_.data();
   id_.schur_lld = (MUMPS_INT)m_all;
   if (id_.ICNTL(7) == 1) {
     PetscCall(NestedDissection(N, rstart, owned_u, node_size, coords, ordering));
@@ -291,14 +305,44 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   perm_in_.clear();
   perm_in_.shrink_to_fit();
   PetscCall(PetscLogEventEnd(EV_ANALYSIS, 0, 0, 0, 0));
+  {
+    VecH layout;
+    PetscCall(MatCreateVecs(A, layout.out(), nullptr));
+    PetscCall(VecScatterCreateToZero(layout, &to_root_, root_.out()));
+  }
+  redrhs_.assign(m, 0.0);
+  PetscCall(FactorNumeric(d0));
+  PetscCall(PetscInfo(nullptr, "MUMPS factors: ordering ICNTL(7) = %d (%s), %g entries, %g flops in the elimination\n",
+                      (int)id_.ICNTL(7), id_.ICNTL(7) == 1 ? GRAPH_ORDERING_NAMES[(int)ordering] : "MUMPS's",
+                      (double)(id_.INFOG(29) >= 0 ? id_.INFOG(29) : -1e6 * id_.INFOG(29)), (double)id_.rinfog[2]));
+  keep_values_ = keep_values;
+  if (!keep_values) {
+    // The matrix values are no longer needed (no refactorisation).
+    irn_.clear(), jcn_.clear(), val_.clear();
+    irn_.shrink_to_fit(), jcn_.shrink_to_fit(), val_.shrink_to_fit();
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::Refactor(Mat A, const std::vector<PetscScalar> &d0) {
+  PetscFunctionBeginUser;
+  PetscCheck(initialised_ && keep_values_, comm_, PETSC_ERR_ORDER,
+             "a refactorisation needs an earlier Factor that kept the pattern");
+  PetscCall(ReadValues(A, false));
+  PetscCall(FactorNumeric(d0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::FactorNumeric(const std::vector<PetscScalar> &d0) {
+  const PetscInt m = rank_ == 0 ? (PetscInt)listvar_.size() : 0;
+  PetscFunctionBeginUser;
+  schur_raw_.assign((std::size_t)m * m, 0.0);
+  id_.a_loc = val_.data();
+  id_.schur = schur_raw_.data();
   PetscCall(PetscLogEventBegin(EV_FACTOR, 0, 0, 0, 0));
   PetscCall(Call(2, "factorisation"));
   PetscCall(PetscLogEventEnd(EV_FACTOR, 0, 0, 0, 0));
   null_pivots_ = id_.INFOG(28);
-  PetscCall(PetscInfo(nullptr, "MUMPS factors: ordering ICNTL(7) = %d (%s), %g entries, %g flops in the elimination\n",
-                      (int)id_.ICNTL(7), id_.ICNTL(7) == 1 ? GRAPH_ORDERING_NAMES[(int)ordering] : "MUMPS's",
-                      (double)(id_.INFOG(29) >= 0 ? id_.INFOG(29) : -1e6 * id_.INFOG(29)), (double)id_.rinfog[2]));
-
   // The Schur complement is complete for ICNTL(19) = 3; should a MUMPS version return only one triangle (the other
   // then stays zero), the full matrix is rebuilt from the filled one.
   s0_.assign((std::size_t)m * m, 0.0);
@@ -315,15 +359,6 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   schur_raw_.clear();
   schur_raw_.shrink_to_fit();
   d0_ = d0;
-  {
-    VecH layout;
-    PetscCall(MatCreateVecs(A, layout.out(), nullptr));
-    PetscCall(VecScatterCreateToZero(layout, &to_root_, root_.out()));
-  }
-  // The matrix values are no longer needed (no refactorisation).
-  irn_.clear(), jcn_.clear(), val_.clear();
-  irn_.shrink_to_fit(), jcn_.shrink_to_fit(), val_.shrink_to_fit();
-  redrhs_.assign(m, 0.0);
   s_factored_ = false;
   condensed_ = false;
   PetscFunctionReturn(0);

@@ -1,6 +1,7 @@
 // Pattern, constraint rows, KSP set-up and solve of the saddle-point system.
 #include "signorini/solver/saddle_point.hpp"
 
+#include "signorini/core/options.hpp"
 #include "signorini/core/progress.hpp"
 
 #include <cmath>
@@ -58,8 +59,13 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
   PetscOptionsBegin(comm, nullptr, "Saddle-point system", "signorini");
   PetscCall(PetscOptionsBool("-contact_reuse_factorization",
                              "Factor once and follow active-set changes through MUMPS's Schur complement on the "
-                             "multipliers (linear material with a MUMPS LU/Cholesky solver; default on there)",
+                             "multipliers (with a MUMPS LU/Cholesky solver; default on there); svk: the kept "
+                             "factorisation preconditions FGMRES on the current tangent",
                              "", opts.reuse_factorization, &opts.reuse_factorization, &opts.reuse_set));
+  PetscCall(OptionsInt(PetscOptionsObject, "-contact_reuse_max_it",
+                       "svk with -contact_reuse_factorization: FGMRES iterations on the current tangent preconditioned "
+                       "by the kept factorisation of an earlier one before MUMPS refactors (0: at every solve)",
+                       0, SaddlePointOptions::REUSE_MAX_IT_MAX, opts.reuse_max_it, &opts.reuse_max_it_set));
   PetscInt ordering = (PetscInt)opts.ordering;
   const std::string ordering_help = "Ordering of the kept factorisation (with -contact_mat_mumps_icntl_7 1, the "
                                     "default): METIS's nested dissection of the node graph, or cuts across coordinate "
@@ -126,11 +132,17 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   }
   SaddlePointOptions opts;
   PetscCall(ReadSaddlePointOptions(comm, opts));
-  const bool possible = constant_k && mumps_factor_;
+  const bool possible = mumps_factor_ != nullptr;
   PetscCheck(!(opts.reuse_set && opts.reuse_factorization && !possible), comm, PETSC_ERR_USER_INPUT,
-             "-contact_reuse_factorization needs a constant stiffness (material_model linear) and a MUMPS LU or "
-             "Cholesky solver (-contact_pc_type lu|cholesky -contact_pc_factor_mat_solver_type mumps)");
+             "-contact_reuse_factorization needs a MUMPS LU or Cholesky solver (-contact_pc_type lu|cholesky "
+             "-contact_pc_factor_mat_solver_type mumps)");
+  PetscCheck(!(opts.reuse_max_it_set && (constant_k || !possible || !opts.reuse_factorization)), comm,
+             PETSC_ERR_USER_INPUT,
+             "-contact_reuse_max_it %" PetscInt_FMT " applies to a nonlinear material (-material_model svk) with the "
+             "kept factorisation (-contact_reuse_factorization and a MUMPS LU or Cholesky solver)", opts.reuse_max_it);
   reuse_ = possible && opts.reuse_factorization && dofs_->GlobalLambda() > 0;
+  constant_k_ = constant_k;
+  reuse_max_it_ = opts.reuse_max_it;
   // An iterative solver gets the augmented form too: its displacement block K + r B_C^T B_C is regular when the
   // candidates hold the body, so that a Schur fieldsplit with AMG on that block works for a body held by contact.
   augmented_ = reuse_ || (!factor && dofs_->GlobalLambda() > 0);
@@ -157,6 +169,22 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
     PetscCall(VecCreateMPI(comm, dofs_->OwnedLambda(), PETSC_DECIDE, diag_lambda_.out()));
     PetscCall(VecScatterCreateToZero(diag_lambda_, &to_root_, diag_root_.out()));
     active_.assign(dofs_->OwnedLambda(), 0);
+  }
+  if (reuse_ && !constant_k_ && reuse_max_it_ > 0) {
+    // FGMRES on the current matrix, right-preconditioned by the kept factorisation: the residual it tests is the true
+    // one (tolerances: SolveWithKeptFactor).
+    PC shell;
+    PetscCall(KSPCreate(comm, ksp_kept_.out()));
+    PetscCall(KSPSetType(ksp_kept_, KSPFGMRES)); // keeps the preconditioned directions: no apply to form the solution
+    PetscCall(KSPGMRESSetRestart(ksp_kept_, reuse_max_it_));
+    PetscCall(KSPSetPCSide(ksp_kept_, PC_RIGHT));
+    PetscCall(KSPSetNormType(ksp_kept_, KSP_NORM_UNPRECONDITIONED));
+    PetscCall(KSPSetOperators(ksp_kept_, A_, A_));
+    PetscCall(KSPGetPC(ksp_kept_, &shell));
+    PetscCall(PCSetType(shell, PCSHELL));
+    PetscCall(PCShellSetContext(shell, this));
+    PetscCall(PCShellSetApply(shell, ApplyKeptFactor));
+    PetscCall(PCShellSetName(shell, "kept MUMPS factorisation of an earlier tangent"));
   }
   PetscFunctionReturn(0);
 }
@@ -276,27 +304,84 @@ PetscErrorCode SaddlePointSystem::FailureAdvice(std::string &advice) const {
 }
 
 PetscErrorCode SaddlePointSystem::Factor() {
-  MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   PetscFunctionBeginUser;
   if (factored_) PetscFunctionReturn(0);
   std::vector<PetscScalar> d;
   PetscCall(MultiplierDiagonal(d));
   ProgressBegin("analysis and factorisation (MUMPS with the Schur complement on the candidates)");
-  PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_, dofs_->OwnedU(), dofs_->Dim(), coords_, ordering_));
+  PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_, dofs_->OwnedU(), dofs_->Dim(), coords_, ordering_,
+                                !constant_k_));
   ProgressEnd();
   factored_ = true;
+  PetscCall(CheckNullPivots());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::Refactor() {
+  std::vector<PetscScalar> d;
+  PetscFunctionBeginUser;
+  PetscCall(MultiplierDiagonal(d));
+  ProgressBegin("numerical refactorisation (MUMPS with the Schur complement on the candidates)");
+  PetscCall(mumps_schur_.Refactor(A_, d));
+  ProgressEnd();
+  PetscCall(CheckNullPivots());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::CheckNullPivots() const {
+  PetscFunctionBeginUser;
   const PetscInt null_pivots = mumps_schur_.NullPivots();
-  PetscCheck(null_pivots == 0, comm, PETSC_ERR_NOT_CONVERGED,
+  PetscCheck(null_pivots == 0, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_NOT_CONVERGED,
              "the saddle-point system is singular (MUMPS found %" PetscInt_FMT " null pivot(s)): the body is not "
              "held; add Dirichlet conditions (e.g. on a symmetry line) or candidate contact nodes so that every "
              "rigid-body motion is removed", null_pivots);
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SaddlePointSystem::ApplyKeptFactor(PC pc, Vec b, Vec x) {
+  SaddlePointSystem *sys;
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &sys));
+  PetscCall(sys->mumps_schur_.Solve(sys->kept_d_, b, x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::SolveWithKeptFactor(const std::vector<PetscScalar> &d, double rtol,
+                                                      PetscInt &iterations, double &check_tol) {
+  PetscFunctionBeginUser;
+  iterations = 0;
+  check_tol = ACCEPTED_RESIDUAL;
+  if (reuse_max_it_ > 0 && !refactor_next_) {
+    KSPConvergedReason reason;
+    PetscReal default_rtol, abstol, dtol;
+    PetscInt max_it;
+    PetscCall(KSPGetTolerances(ksp_, &default_rtol, &abstol, &dtol, &max_it));
+    PetscCall(KSPSetTolerances(ksp_kept_, rtol > 0 ? rtol : default_rtol, abstol, PETSC_DEFAULT, reuse_max_it_));
+    kept_d_ = d;
+    PetscCall(KSPSolve(ksp_kept_, b_, x_));
+    PetscCall(KSPGetConvergedReason(ksp_kept_, &reason));
+    PetscCall(KSPGetIterationNumber(ksp_kept_, &iterations));
+    // More than half the allowed iterations: the factored tangent is drifting away; the next solve refactors.
+    refactor_next_ = 2 * iterations > reuse_max_it_;
+    if (reason > 0) {
+      check_tol = std::max(check_tol, 2.0 * rtol); // an inexact step (rtol > 0) is as inexact as asked
+      PetscFunctionReturn(0);
+    }
+    PetscCall(PetscInfo(nullptr, "FGMRES with the kept factorisation: %s after %" PetscInt_FMT
+                        " iterations; refactoring\n", KSPConvergedReasons[reason], iterations));
+  }
+  // The tangent has drifted too far from the factored one (or -contact_reuse_max_it 0): factor the current one.
+  PetscCall(Refactor());
+  PetscCall(mumps_schur_.Solve(d, b_, x_));
+  refactor_next_ = false;
+  ++iterations;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SaddlePointSystem::Condense() {
   PetscFunctionBeginUser;
-  PetscCheck(reuse_, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
-             "a condensation needs the kept factorisation");
+  PetscCheck(reuse_ && constant_k_, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
+             "a condensation needs the kept factorisation of a constant K");
   PetscCall(Factor());
   PetscCall(mumps_schur_.Condense(b_));
   PetscFunctionReturn(0);
@@ -331,7 +416,7 @@ PetscErrorCode SaddlePointSystem::Expand(double &residual) {
   PetscCheck(reuse_ && factored_ && stab_ == 0, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
              "an expansion needs the kept factorisation and no stabilisation");
   PetscCall(mumps_schur_.Expand(x_));
-  PetscCall(CheckAndConvert(KSP_CONVERGED_ITS, 1, residual));
+  PetscCall(CheckAndConvert(KSP_CONVERGED_ITS, 1, residual, ACCEPTED_RESIDUAL));
   PetscFunctionReturn(0);
 }
 
@@ -362,19 +447,24 @@ PetscErrorCode SaddlePointSystem::InitialGuess() {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &residual) {
+PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &residual, double rtol) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   KSPConvergedReason reason;
   PetscFunctionBeginUser;
   PetscCall(InitialGuess());
   PetscInt null_pivots = 0;
+  double check_tol = ACCEPTED_RESIDUAL; // the relative residual above which a solve is an error (CheckAndConvert)
   if (reuse_) {
+    // The first solve factors the current matrix; later ones are exact for a constant K (only D changed), else the
+    // kept factorisation preconditions the current matrix.
     std::vector<PetscScalar> d;
+    const bool fresh = !factored_;
     PetscCall(Factor());
     PetscCall(MultiplierDiagonal(d));
-    PetscCall(mumps_schur_.Solve(d, b_, x_));
-    reason = KSP_CONVERGED_ITS;
     krylov_iterations = 1;
+    if (fresh || constant_k_) PetscCall(mumps_schur_.Solve(d, b_, x_));
+    else PetscCall(SolveWithKeptFactor(d, rtol, krylov_iterations, check_tol));
+    reason = KSP_CONVERGED_ITS;
   } else {
     // KSPSetUp sets the preconditioner up (a factorisation, for the direct presets) before KSPSolve would.
     ProgressBegin("preconditioner set-up (analysis and factorisation)");
@@ -410,7 +500,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
                "held; add Dirichlet conditions (e.g. on a symmetry line) so that the initial contact and the supports "
                "remove every rigid-body motion", null_pivots);
   }
-  PetscCall(CheckAndConvert(reason, krylov_iterations, residual));
+  PetscCall(CheckAndConvert(reason, krylov_iterations, residual, check_tol));
   PetscFunctionReturn(0);
 }
 
@@ -424,7 +514,7 @@ PetscErrorCode SaddlePointSystem::TrueResidual(PetscReal &rnorm, PetscReal &bnor
 }
 
 PetscErrorCode SaddlePointSystem::CheckAndConvert(KSPConvergedReason reason, PetscInt krylov_iterations,
-                                                  double &residual) {
+                                                  double &residual, double tol) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   PetscReal bnorm, rnorm;
   PetscFunctionBeginUser;
@@ -437,7 +527,7 @@ PetscErrorCode SaddlePointSystem::CheckAndConvert(KSPConvergedReason reason, Pet
   // A factorisation of a singular matrix can "succeed" with garbage: check the residual.
   PetscCall(TrueResidual(rnorm, bnorm));
   const bool finite = std::isfinite(rnorm);
-  if (!finite || rnorm > ACCEPTED_RESIDUAL * bnorm + 1e-300) {
+  if (!finite || rnorm > tol * bnorm + 1e-300) {
     // A Krylov method can report convergence on a singular system too (its preconditioned residual): the advice
     // names the solver as for a reported failure.
     std::string advice;

@@ -600,6 +600,76 @@ def reuse_factorization(runner, preset):
     runner.expect_close("punch: lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
 
 
+SVK_CASES = {"hertz": ["-options_file", "options/hertz.yml", "-material_model", "svk", "-load_steps", "3"],
+             "punch_on_plate": RANK_CASES["punch_on_plate_svk"],
+             "cube_on_sphere": RANK_CASES["cube_on_sphere_svk"],
+             "cube_mixed_conforming": RANK_CASES["cube_mixed_conforming_svk"],
+             "beam_on_floor": ["-options_file", "options/beam_on_floor.yml", "-material_model", "svk", "-load_steps",
+                               "2"],
+             # Pairs searched again while sliding (new pairs: a new pattern and a new factorisation).
+             "sliding_repair": ["-mesh_file", "meshes/block.msh", "-material_model", "svk", "-material_E", "1000",
+                                "-bc_dirichlet", "top:x=1.5:y=-0.01", "-contact_groups", "bottom", "-load_steps", "5",
+                                "-obstacle_segments", ",".join("%g,0,%g,0" % (-1 + 0.25 * k, -0.75 + 0.25 * k)
+                                                               for k in range(24))],
+             # Stabilised solves (the body held by contact only in y).
+             "onto_disc": ["-mesh_file", "meshes/block.msh", "-material_model", "svk", "-material_E", "1000",
+                           "-bc_dirichlet", "left:x", "-bc_pressure", "top:2", "-obstacle_discs", "1,-1.05,1",
+                           "-contact_groups", "bottom"]}
+
+
+@test("svk_reuse_factorization")
+def svk_reuse_factorization(runner, case):
+    """svk with the kept MUMPS factorisation (the default: FGMRES on the current tangent preconditioned by the
+    factorisation of an earlier one, the tangent lagged while the active set changes) against a refactorisation at
+    every Newton iteration (-contact_reuse_factorization false, PETSc's MUMPS on the plain saddle-point form): the same
+    converged state. Also the kept factorisation without the lagged search (exact Newton throughout: the same
+    iterations as refactorising) and refactored at every solve (-contact_reuse_max_it 0: the Schur path's numerical
+    refactorisation)."""
+    args = SVK_CASES[case] + ["-log_view"]
+    fresh = runner.run(args + ["-contact_reuse_factorization", "false"], case + " refactorise")
+    kept = runner.run(args, case + " keep factorisation")
+    exact = runner.run(args + ["-newton_lagged_search", "false"], case + " keep factorisation, exact Newton")
+    every = runner.run(args + ["-contact_reuse_max_it", "0", "-newton_lagged_search", "false"],
+                       case + " refactor the Schur path at every solve")
+    solves = fresh.get("iterations.solves")
+    runner.expect_equal("refactorising: numeric factorisations", log_event_count(fresh.output, "MatCholFctrNum"),
+                        solves)
+    runner.expect_equal("refactorising: no kept factorisation", log_event_count(fresh.output, "SigMumpsFactor"), 0)
+    for r, what in ((kept, "kept"), (exact, "exact Newton"), (every, "every solve")):
+        runner.expect_equal(what + ": no PETSc factorisations", log_event_count(r.output, "MatCholFctrNum"), 0)
+        factors = log_event_count(r.output, "SigMumpsFactor")
+        if r is every:
+            runner.expect_equal(what + ": a MUMPS factorisation per solve", factors, r.get("iterations.solves"))
+        else:
+            runner.expect_true("%s: fewer MUMPS factorisations (%d) than solves (%d)" % (
+                what, factors, r.get("iterations.solves")), 1 <= factors < r.get("iterations.solves"))
+    # Exact Newton with the kept factorisation as preconditioner solves the same systems (to the KSP tolerance, 1e-10):
+    # the same iterations as refactorising. An attempt that failed and was cut (the punch's first step cycles) amplifies
+    # round-off (rank_independence): there the cuts and the accepted steps' iterations must agree.
+    for r, what in ((exact, "exact Newton"), (every, "every solve")):
+        if fresh.get("iterations.step_cuts"):
+            runner.expect_equal(what + ": step cuts", r.get("iterations.step_cuts"), fresh.get("iterations.step_cuts"))
+            runner.expect_equal(what + ": iterations of the accepted steps", accepted_step_iterations(r),
+                                accepted_step_iterations(fresh))
+        else:
+            runner.expect_equal(what + ": active-set iterations", r.get("iterations.active_set"),
+                                fresh.get("iterations.active_set"))
+    a = fresh.nodes()
+    for r, what in ((kept, "kept"), (exact, "exact Newton"), (every, "every solve")):
+        for key in ("contact.active_pairs", "contact.active_nodes", "iterations.load_steps"):
+            runner.expect_equal("%s: %s" % (what, key), r.get(key), fresh.get(key))
+        b = r.nodes()
+        runner.expect_true(what + ": same active nodes", np.array_equal(a["active"], b["active"]))
+        # Converged states of the same discrete problem, each to the Newton tolerance (1e-9 of the force scale): 1e-8
+        # of the largest value is above that and far below any physical difference.
+        runner.expect_close(what + ": displacement", displacement(b), displacement(a), 0,
+                            1e-8 * np.abs(displacement(a)).max())
+        runner.expect_close(what + ": lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
+        runner.expect_close(what + ": contact force", r.get("contact.contact_force"),
+                            fresh.get("contact.contact_force"), 1e-8,
+                            1e-8 * np.abs(fresh.get("contact.contact_force")).max())
+
+
 @test("solver_preset")
 def solver_preset(runner, preset):
     """beam_on_floor with a solver preset gives the active set and contact force of mumps_cholesky."""

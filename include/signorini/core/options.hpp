@@ -34,7 +34,7 @@ struct RealRange {
 
 /// Reads the integer option name into value: whole decimal integers only, exactly, in [lo, hi].
 [[nodiscard]] PetscErrorCode OptionsInt(PetscOptionItems *PetscOptionsObject, const char *name, const char *help,
-                                        PetscInt lo, PetscInt hi, PetscInt &value);
+                                        PetscInt lo, PetscInt hi, PetscInt &value, PetscBool *set = nullptr);
 
 /// Reads a string option; a name given without a value is an error that says what was expected.
 [[nodiscard]] PetscErrorCode OptionsString(PetscOptionItems *PetscOptionsObject, const char *name, const char *help,

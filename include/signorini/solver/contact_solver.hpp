@@ -28,6 +28,8 @@ struct SolverOptions {
   double newton_rtol = 1e-9;  ///< -newton_rtol: residual relative to the load scale, in (0, NEWTON_RTOL_MAX]
   double newton_atol = 1e-12; ///< -newton_atol: absolute residual (force units), in [0, NEWTON_ATOL_MAX]
   PetscBool line_search = PETSC_FALSE; ///< -newton_linesearch (Crisfield's line search; det F <= 0 always backtracks)
+  PetscBool lagged_search = PETSC_TRUE;  ///< -newton_lagged_search (svk, kept factorisation): see ContactSolver
+  PetscBool lagged_search_set = PETSC_FALSE;
 };
 
 [[nodiscard]] PetscErrorCode ReadSolverOptions(MPI_Comm comm, SolverOptions &opts);
@@ -63,6 +65,11 @@ public:
   /// previous iterate, so they vanish at convergence, and the final solve of a load step is always made without
   /// them. When a stabilised solve closes no pair but brings some nearer, its step is extended past the nearest.
   static constexpr double STABILISATION = 1e-4;
+  /// Relative residual of the lagged (modified) Newton steps of the active-set search (-newton_lagged_search): the
+  /// step only has to find the next active set; the steps after it settles are exact.
+  static constexpr double SEARCH_RTOL = 0.1;
+  /// A lagged step follows only one that reduced the residual at least by this factor (else the current tangent).
+  static constexpr double LAGGED_CONTRACTION = 0.5;
 
   /// Dirichlet data, candidate pairs, numbering, the saddle-point system and its KSP. Collective.
   [[nodiscard]] PetscErrorCode Setup();
@@ -127,6 +134,9 @@ private:
     double last_solve_time = 0, solve_residual = 0, rnorm = 0, rscale = 0;
     bool moving = false;     ///< some prescribed displacement is still to apply
     bool stabilised = false; ///< the last solve carried the stabilisation springs
+    bool searching = true;   ///< the next solve's active set is a new one (the first, or a change)
+    bool lagged = false;     ///< the next solve keeps the last assembled tangent (-newton_lagged_search)
+    double lag_rnorm = -1;   ///< the residual before the last solve (none: -1), for LAGGED_CONTRACTION
     std::vector<double> gap_before{}; ///< the gaps before the last stabilised solve
     /// Condensed solves (linear material, kept factorisation): from the first solve without stabilisation and without
     /// a prescribed displacement still to apply, the active-set iterations run in the multiplier space against that
@@ -178,6 +188,8 @@ private:
   std::vector<double> u_local_, lambda_, mult_; ///< mult_: the solved multipliers (springs on inactive rows)
   double kscale_ = 1;
   bool k_assembled_ = false;
+  std::vector<double> fint_at_; ///< the displacement (u_local_) at which fint_ holds F_int (empty: none)
+  double fint_min_J_ = 1;       ///< min det F there
   SolveStats stats_;
 
 public:

@@ -42,10 +42,14 @@ public:
   /// D in Solve). symmetric: LDL^T (MUMPS SYM = 2, LAPACK sytrf for S) or LU (SYM = 0, getrf). The first owned_u
   /// owned rows of each rank are displacements, node_size consecutive rows per node, and coords holds each of those
   /// rows' node coordinate (coords[node_size * i + k]: coordinate k of the owned node i), for the ordering.
-  /// Collective.
+  /// keep_values: keep the matrix entries in MUMPS's format for Refactor (else they are freed). Collective.
   [[nodiscard]] PetscErrorCode Factor(Mat A, const std::vector<PetscInt> &schur_rows,
                                       const std::vector<PetscScalar> &d0, bool symmetric, PetscInt owned_u,
-                                      PetscInt node_size, const std::vector<double> &coords, GraphOrdering ordering);
+                                      PetscInt node_size, const std::vector<double> &coords, GraphOrdering ordering,
+                                      bool keep_values = false);
+  /// The numerical factorisation of A's current values (the pattern and the analysis of Factor, which kept the
+  /// values) with the Schur complement, d0 its multiplier diagonal now. Collective.
+  [[nodiscard]] PetscErrorCode Refactor(Mat A, const std::vector<PetscScalar> &d0);
   /// Solves with the factored matrix whose multiplier diagonal is replaced by d (rank 0, Schur order): Condense,
   /// the reduced system, Expand. Collective.
   [[nodiscard]] PetscErrorCode Solve(const std::vector<PetscScalar> &d, Vec b, Vec x);
@@ -65,6 +69,12 @@ public:
 
 private:
   [[nodiscard]] PetscErrorCode Call(int job, const char *phase);
+  /// A's owned entries in MUMPS's distributed format (irn_, jcn_, val_): with the pattern, or (pattern false) the
+  /// values alone into the pattern read before. Collective only through A.
+  [[nodiscard]] PetscErrorCode ReadValues(Mat A, bool pattern);
+  /// MUMPS's numerical factorisation of val_ and the Schur complement S0 (s0_) for the multiplier diagonal d0.
+  /// Collective.
+  [[nodiscard]] PetscErrorCode FactorNumeric(const std::vector<PetscScalar> &d0);
   [[nodiscard]] PetscErrorCode FactorSchur(const std::vector<PetscScalar> &d);
   /// y = S^-1 y with the factored Schur complement (rank 0).
   [[nodiscard]] PetscErrorCode DenseSolve(std::vector<PetscScalar> &y) const;
@@ -76,7 +86,7 @@ private:
                                                 const std::vector<double> &coords, GraphOrdering ordering);
 
   DMUMPS_STRUC_C id_{};
-  bool initialised_ = false;
+  bool initialised_ = false, keep_values_ = false;
   MPI_Comm comm_ = MPI_COMM_NULL;
   PetscMPIInt rank_ = 0;
   PetscInt null_pivots_ = 0;

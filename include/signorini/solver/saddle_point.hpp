@@ -11,6 +11,14 @@
 // B_C^T on the multipliers (MumpsSchur), and an active-set change costs a dense m x m factorisation of S
 // (m candidates) and one pair of triangular solves. K + r B_C^T B_C is regular when the candidates hold the body,
 // even if K alone is not (a body held only by contact).
+//
+// A nonlinear material (svk: the tangent K changes at every Newton iteration) keeps the factorisation too: the
+// factorisation of an earlier tangent, with the Schur complement over every candidate, follows the active set exactly
+// (only D changes), so that it is a close preconditioner of the current system, whose tangent alone is stale. Each
+// solve is FGMRES on the current matrix preconditioned by it, to the KSP's relative tolerance (the Newton iteration
+// stays exact) or to a looser one the caller asks for (Solve's rtol); when FGMRES has not converged after
+// -contact_reuse_max_it iterations, MUMPS refactors the current matrix numerically (the analysis is kept) and solves
+// directly, and a solve that needed more than half of them refactors at the next solve.
 #pragma once
 
 #include "signorini/core/handle.hpp"
@@ -32,11 +40,16 @@ struct ConstraintRow {
 /// tolerances rtol 1e-10); options given by the user override it at KSPSetFromOptions.
 [[nodiscard]] PetscErrorCode SetDefaultSolver(KSP ksp);
 
-/// Options of the saddle-point system: -contact_reuse_factorization (set tells whether the user gave it) and
-/// -contact_nested_dissection (the ordering of the kept factorisation).
+/// Options of the saddle-point system: -contact_reuse_factorization (set tells whether the user gave it),
+/// -contact_reuse_max_it (the FGMRES iterations on a kept factorisation of an earlier tangent before a refactorisation,
+/// nonlinear material; 0 refactors at every solve) and -contact_nested_dissection (the ordering of the kept
+/// factorisation).
 struct SaddlePointOptions {
+  static constexpr PetscInt REUSE_MAX_IT_MAX = 1000;
   PetscBool reuse_factorization = PETSC_TRUE;
   PetscBool reuse_set = PETSC_FALSE;
+  PetscInt reuse_max_it = 6; ///< in [0, REUSE_MAX_IT_MAX]
+  PetscBool reuse_max_it_set = PETSC_FALSE;
   GraphOrdering ordering = GraphOrdering::AUTO;
 };
 [[nodiscard]] PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts);
@@ -46,8 +59,8 @@ public:
   /// Creates the matrix with the pattern of K (inserted by insert_k; d_nnz_k, o_nnz_k: its counts per displacement
   /// row, see Assembler::PatternCounts), the constraint rows and the multiplier diagonal,
   /// the vectors and the KSP. coords: dim values per owned vertex, in dof order (for the rigid-body near-null space
-  /// of the "u" block). constant_k: K never changes (linear material), so that the factorisation may be kept
-  /// (-contact_reuse_factorization); kscale: the stiffness scale, the weight of the augmentation. Collective.
+  /// of the "u" block). constant_k: K never changes (linear material; otherwise a kept factorisation preconditions the
+  /// changed matrix, see above); kscale: the stiffness scale, the weight of the augmentation. Collective.
   template <typename InsertK>
   [[nodiscard]] PetscErrorCode Create(const DofMap &dofs, const std::vector<ConstraintRow> &rows,
                                       const std::vector<double> &coords, bool constant_k, double kscale,
@@ -61,6 +74,10 @@ public:
   /// Whether the factorisation is kept across active sets (the augmented form below). Then the caller adds
   /// AddAugmentation() after every assembly of K (Augmented()).
   bool ReusesFactorization() const { return reuse_; }
+  /// Changing K with the kept factorisation: the next solve refactors the current matrix instead of preconditioning.
+  void RefactorNext() { refactor_next_ = true; }
+  /// Whether the kept factorisation is exact for every solve (constant K: the condensed solves below are possible).
+  bool ExactFactorization() const { return reuse_ && constant_k_; }
   /// Whether the system is in the augmented form (the reuse mode, and every solver that is not a factorisation).
   bool Augmented() const { return augmented_; }
   /// Adds r B_C^T B_C over every candidate row to the displacement block (ADD_VALUES, flush assembly).
@@ -74,8 +91,11 @@ public:
                                               double inactive_diag, double stabilisation = 0);
   /// Solves A x = b; a failed or inaccurate solve is an error naming the likely cause. On return the multiplier
   /// rows of the solution hold, in both forms, the contact multipliers lambda on active rows and the spring forces
-  /// -s B du on inactive ones (0 without stabilisation), so that F_int(u + du) = f + B^T x on the free rows. residual: ||b - A x||. Collective.
-  [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual);
+  /// -s B du on inactive ones (0 without stabilisation), so that F_int(u + du) = f + B^T x on the free rows.
+  /// residual: ||b - A x||.
+  /// rtol > 0: the relative residual that FGMRES on a kept factorisation of an earlier tangent may stop at (an
+  /// inexact Newton step; otherwise the KSP's tolerance); it does not apply to direct solves. Collective.
+  [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual, double rtol = 0);
 
   /// Reuse mode, linear material: the active-set iterations of a load step in the multiplier space. Condense takes
   /// the current right-hand side (its displacement rows b_u stay those of every SolveCondensed until the next
@@ -110,12 +130,27 @@ private:
   [[nodiscard]] PetscErrorCode Factor();
   /// ||b - A x|| and ||b|| for the current x_. Collective.
   [[nodiscard]] PetscErrorCode TrueResidual(PetscReal &rnorm, PetscReal &bnorm);
+  /// Reuse mode, changing K: the numerical refactorisation of the current matrix (the analysis of Factor); a singular
+  /// A11 is an error. Collective.
+  [[nodiscard]] PetscErrorCode Refactor();
+  /// The error for null pivots in the last MUMPS factorisation. Collective.
+  [[nodiscard]] PetscErrorCode CheckNullPivots() const;
+  /// Reuse mode, changing K: x_ from FGMRES on the current matrix preconditioned by the kept factorisation, or, when
+  /// it does not converge within -contact_reuse_max_it iterations (or the last solve needed more than half of them),
+  /// after a refactorisation. d: the current multiplier diagonal (rank 0); rtol: see Solve. iterations: FGMRES's, plus
+  /// one for a direct solve; check_tol: the relative residual the solution may have (1e-6, or 2 rtol after an
+  /// inexact FGMRES solve). Collective.
+  [[nodiscard]] PetscErrorCode SolveWithKeptFactor(const std::vector<PetscScalar> &d, double rtol,
+                                                   PetscInt &iterations, double &check_tol);
+  /// PCSHELL apply of the kept factorisation with the multiplier diagonal kept_d_ (ctx: the system). Collective.
+  static PetscErrorCode ApplyKeptFactor(PC pc, Vec b, Vec x);
   /// After a solve into x_ (reason, iterations: the KSP's): an error naming the likely cause for a failed or
-  /// inaccurate solve, residual = ||b - A x||, and the multiplier rows of x_ in the plain form's meaning. Collective.
+  /// inaccurate solve (relative residual above tol), residual = ||b - A x||, and the multiplier rows of x_ in the
+  /// plain form's meaning. Collective.
   [[nodiscard]] PetscErrorCode CheckAndConvert(KSPConvergedReason reason, PetscInt krylov_iterations,
-                                               double &residual);
-  /// The largest true residual ||b - A x|| / ||b|| a solve may leave, and the restarts of a Krylov solve that stopped
-  /// above it on its preconditioned residual (each must divide the true residual by 10).
+                                               double &residual, double tol);
+  /// The largest true residual ||b - A x|| / ||b|| a direct solve may leave, and the restarts of a Krylov solve that
+  /// stopped above it on its preconditioned residual (each must divide the true residual by 10).
   static constexpr double ACCEPTED_RESIDUAL = 1e-6;
   static constexpr int MAX_KRYLOV_RESTARTS = 3;
   /// The start of the next solve in x_: zero for a direct solver; the last multipliers for an iterative one.
@@ -125,7 +160,11 @@ private:
   /// D on an inactive row (plain: the value of the plain form without stabilisation).
   double InactiveDiagonal(double plain) const;
   const DofMap *dofs_ = nullptr;
-  bool reuse_ = false, augmented_ = false, factored_ = false;
+  bool reuse_ = false, augmented_ = false, factored_ = false, constant_k_ = true;
+  PetscInt reuse_max_it_ = 0;          ///< -contact_reuse_max_it
+  bool refactor_next_ = false;         ///< the last FGMRES solve on the kept factorisation needed many iterations
+  KSPH ksp_kept_;                      ///< changing K: FGMRES preconditioned by the kept factorisation
+  std::vector<PetscScalar> kept_d_;    ///< the multiplier diagonal of the current solve (rank 0), for ApplyKeptFactor
   PetscBool lu_ = PETSC_FALSE; ///< the PC is LU (the mumps_lu preset): the reuse mode factors with LU too
   double aug_ = 1;  ///< augmentation weight r (the stiffness scale)
   double stab_ = 0; ///< stabilisation spring s of the current system (0: none)
