@@ -5,9 +5,9 @@
 // densely (LAPACK LDL^T) on rank 0 when D changes: MUMPS condenses the right-hand side onto the multipliers, rank 0
 // solves with S, MUMPS expands the solution. LU instead of LDL^T on request (the mumps_lu preset). The ordering is a
 // nested dissection of the node graph (METIS's, computed by all ranks with the partition's interfaces as the top
-// separators, or coordinate cuts for a small 2D matrix, computed on rank 0), given to MUMPS (ICNTL(7) = 1), the analysis sequential, with null-pivot detection (ICNTL(24)) so that a singular
-// A11 is reported; the options -contact_mat_mumps_icntl_<k> and -contact_mat_mumps_cntl_<k> override them as for
-// PETSc's interface.
+// separators, or coordinate cuts for a small 2D matrix, computed on rank 0), given to MUMPS (ICNTL(7) = 1), the
+// analysis sequential, with null-pivot detection (ICNTL(24)) so that a singular A11 is reported; the options
+// -contact_mat_mumps_icntl_<k> and -contact_mat_mumps_cntl_<k> override them as for PETSc's interface.
 #pragma once
 
 #include "signorini/core/handle.hpp"
