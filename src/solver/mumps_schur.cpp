@@ -2,6 +2,7 @@
 #include "signorini/solver/mumps_schur.hpp"
 
 #include "signorini/solver/nested_dissection.hpp"
+#include "signorini/solver/parallel_dissection.hpp"
 
 #include <metis.h>
 #include <petscblaslapack.h>
@@ -62,50 +63,64 @@ PetscErrorCode MumpsSchur::Call(int job, const char *phase) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MumpsSchur::NestedDissection(PetscInt n, PetscInt rstart, PetscInt owned_u, PetscInt node_size,
-                                            const std::vector<double> &coords, GraphOrdering ordering) {
-  const MPI_Datatype IDX_T_MPI = sizeof(idx_t) == 8 ? MPI_INT64_T : MPI_INT32_T;
-  PetscMPIInt size;
-  PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(EV_ORDERING, 0, 0, 0, 0));
-  PetscCallMPI(MPI_Comm_size(comm_, &size));
-  // The graph of the nodes: a node's displacement rows are node_size consecutive rows of one rank, and the rows of
-  // two nodes are coupled all or not at all. The multiplier rows are left out: MUMPS puts them last (they are the
-  // Schur rows), and each couples the rows of one node only. Node numbers: by rank, in row order.
-  PetscInt mine[3] = {rstart, owned_u, owned_u / node_size};
-  std::vector<PetscInt> ranges(3 * size);
-  PetscCallMPI(MPI_Allgather(mine, 3, MPIU_INT, ranges.data(), 3, MPIU_INT, comm_));
-  std::vector<PetscInt> first_node(size + 1, 0);
-  for (PetscMPIInt r = 0; r < size; ++r) first_node[r + 1] = first_node[r] + ranges[3 * r + 2];
-  const PetscInt num_nodes = first_node[size];
-  const auto node_of = [&](PetscInt row) -> PetscInt { // -1 for a multiplier row
-    PetscMPIInt r = 0;
-    while (r + 1 < size && ranges[3 * (r + 1)] <= row) ++r;
+namespace {
+
+/// The rows of the ranks (ranges[3 r]: rank r's first row, [3 r + 1]: its displacement rows, [3 r + 2]: its nodes)
+/// and each rank's first node (first_node[r], first_node[size]: all nodes). Nodes are numbered by rank, in row order.
+struct NodeNumbering {
+  std::vector<PetscInt> ranges, first_node;
+  PetscInt node_size = 1;
+  PetscInt Nodes() const { return first_node.back(); }
+  /// The node of a global row, -1 for a multiplier row.
+  PetscInt NodeOf(PetscInt row) const {
+    std::size_t r = 0;
+    while (r + 2 < first_node.size() && ranges[3 * (r + 1)] <= row) ++r;
     const PetscInt offset = row - ranges[3 * r];
     return offset < ranges[3 * r + 1] ? first_node[r] + offset / node_size : -1;
-  };
-  // The edges from every row of a node (one triangle holds every coupled pair in the rows of its earlier node; a row
-  // alone may have none: a Dirichlet row holds its diagonal only), one per row and neighbour.
+  }
+  /// The first global row of node k.
+  PetscInt FirstRow(PetscInt k) const {
+    const std::size_t r = std::upper_bound(first_node.begin(), first_node.end(), k) - first_node.begin() - 1;
+    return ranges[3 * r] + (k - first_node[r]) * node_size;
+  }
+};
+
+/// The edges of the node graph from the entries (irn, jcn: 1-based global rows, grouped by row) of this rank's rows
+/// (one triangle holds every coupled pair in the rows of its earlier node; a row alone may have none: a Dirichlet row
+/// holds its diagonal only), one per row and neighbour: pairs of node numbers, the first one this rank's.
+std::vector<idx_t> NodeEdges(PetscMPIInt rank, const NodeNumbering &nodes, PetscInt rstart,
+                             const std::vector<MUMPS_INT> &irn, const std::vector<MUMPS_INT> &jcn) {
   std::vector<idx_t> edges;
+  const PetscInt owned_u = nodes.ranges[3 * rank + 1];
   PetscInt last_row = -1, last_node = -1, row_node = -1;
-  for (std::size_t e = 0; e < irn_.size(); ++e) {
-    const PetscInt i = irn_[e] - 1, j = jcn_[e] - 1;
+  for (std::size_t e = 0; e < irn.size(); ++e) {
+    const PetscInt i = irn[e] - 1, j = jcn[e] - 1;
     if (i != last_row) {
       last_row = i, last_node = -1;
-      row_node = i - rstart < owned_u ? first_node[rank_] + (i - rstart) / node_size : -1;
+      row_node = i - rstart < owned_u ? nodes.first_node[rank] + (i - rstart) / nodes.node_size : -1;
     }
     if (row_node < 0) continue;
-    const PetscInt col_node = node_of(j);
+    const PetscInt col_node = nodes.NodeOf(j);
     if (col_node < 0 || col_node == row_node || col_node == last_node) continue;
     last_node = col_node;
     edges.push_back((idx_t)row_node), edges.push_back((idx_t)col_node);
   }
+  return edges;
+}
+
+/// The node graph of the edges of every rank (NodeEdges) on rank 0. Collective.
+PetscErrorCode GatherNodeGraph(MPI_Comm comm, PetscMPIInt rank, PetscInt num_nodes, std::vector<idx_t> &edges,
+                               Graph &g) {
+  const MPI_Datatype IDX_T_MPI = sizeof(idx_t) == 8 ? MPI_INT64_T : MPI_INT32_T;
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscMPIInt count = 0;
   PetscCall(PetscMPIIntCast((PetscInt)edges.size(), &count));
   std::vector<PetscMPIInt> counts(size), displs(size, 0);
-  PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_));
+  PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
   std::vector<idx_t> all;
-  if (rank_ == 0) {
+  if (rank == 0) {
     std::size_t total = counts[0];
     for (PetscMPIInt r = 1; r < size; ++r) {
       PetscCheck((std::size_t)displs[r - 1] + counts[r - 1] <= (std::size_t)INT32_MAX, PETSC_COMM_SELF,
@@ -116,76 +131,90 @@ PetscErrorCode MumpsSchur::NestedDissection(PetscInt n, PetscInt rstart, PetscIn
     all.resize(total);
   }
   PetscCallMPI(MPI_Gatherv(edges.data(), count, IDX_T_MPI, all.data(), counts.data(), displs.data(), IDX_T_MPI, 0,
-                           comm_));
+                           comm));
   edges.clear();
   edges.shrink_to_fit();
+  if (rank == 0) g = BuildGraph((idx_t)num_nodes, all);
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode MumpsSchur::NestedDissection(PetscInt n, PetscInt rstart, PetscInt owned_u, PetscInt node_size,
+                                            const std::vector<double> &coords, OrderingOptions ordering) {
+  PetscMPIInt size;
+  PetscLogDouble start, graph_built;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(EV_ORDERING, 0, 0, 0, 0));
+  PetscCall(PetscTime(&start));
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  // The graph of the nodes: a node's displacement rows are node_size consecutive rows of one rank, and the rows of
+  // two nodes are coupled all or not at all. The multiplier rows are left out: MUMPS puts them last (they are the
+  // Schur rows), and each couples the rows of one node only.
+  NodeNumbering nodes;
+  nodes.node_size = node_size;
+  PetscInt mine[3] = {rstart, owned_u, owned_u / node_size};
+  nodes.ranges.resize(3 * size);
+  PetscCallMPI(MPI_Allgather(mine, 3, MPIU_INT, nodes.ranges.data(), 3, MPIU_INT, comm_));
+  nodes.first_node.assign(size + 1, 0);
+  for (PetscMPIInt r = 0; r < size; ++r) nodes.first_node[r + 1] = nodes.first_node[r] + nodes.ranges[3 * r + 2];
+  const PetscInt num_nodes = nodes.Nodes();
+  // METIS on every rank: the edges stay where they are (PartitionNestedDissection); otherwise the graph on rank 0.
+  const bool distributed = ordering.graph == GraphOrdering::METIS && ordering.parallel && size > 1;
+  std::vector<idx_t> edges = NodeEdges(rank_, nodes, rstart, irn_, jcn_);
+  Graph g;
+  if (!distributed) PetscCall(GatherNodeGraph(comm_, rank_, num_nodes, edges, g));
   // The node coordinates for the coordinate cuts, in the same node numbering.
   std::vector<double> x;
-  if (ordering == GraphOrdering::COORDINATES) {
+  if (ordering.graph == GraphOrdering::COORDINATES) {
     std::vector<PetscMPIInt> xcounts(size), xdispls(size, 0);
     for (PetscMPIInt r = 0; r < size; ++r) {
-      PetscCall(PetscMPIIntCast(ranges[3 * r + 2] * node_size, &xcounts[r]));
+      PetscCall(PetscMPIIntCast(nodes.ranges[3 * r + 2] * node_size, &xcounts[r]));
       if (r > 0) xdispls[r] = xdispls[r - 1] + xcounts[r - 1];
     }
     if (rank_ == 0) x.resize(num_nodes * node_size);
     PetscCallMPI(MPI_Gatherv(coords.data(), xcounts[rank_], MPI_DOUBLE, x.data(), xcounts.data(), xdispls.data(),
                              MPI_DOUBLE, 0, comm_));
   }
+  PetscCall(PetscTime(&graph_built));
+  // The order of the nodes (position k: the node eliminated k-th) on rank 0: METIS's nested dissection (on every
+  // rank, DistributedNestedDissection, or on rank 0) or the coordinate cuts (rank 0).
   int status = METIS_OK;
+  std::vector<int64_t> perm;
+  if (ordering.graph == GraphOrdering::COORDINATES) {
+    if (rank_ == 0)
+      perm = CoordinateNestedDissection(std::vector<int64_t>(g.xadj.begin(), g.xadj.end()),
+                                        std::vector<int64_t>(g.adjncy.begin(), g.adjncy.end()), x, (int)node_size);
+  } else if (distributed) {
+    std::vector<idx_t> first(nodes.first_node.begin(), nodes.first_node.end()), order;
+    PetscCall(PartitionNestedDissection(comm_, first, edges, order, status));
+    perm.assign(order.begin(), order.end());
+  } else if (rank_ == 0) {
+    std::vector<idx_t> order;
+    status = MetisOrder(g, order);
+    perm.assign(order.begin(), order.end());
+  }
   if (rank_ == 0) {
-    // Compressed adjacency of the symmetrised node graph (an LU pattern's two triangles give each edge twice), then
-    // METIS's nested dissection; MUMPS takes the position of each variable in the pivot order (1-based).
-    std::vector<idx_t> xadj(num_nodes + 1, 0), adjncy;
-    for (std::size_t e = 0; e < all.size(); e += 2) ++xadj[all[e] + 1], ++xadj[all[e + 1] + 1];
-    for (PetscInt i = 0; i < num_nodes; ++i) xadj[i + 1] += xadj[i];
-    adjncy.resize(xadj[num_nodes]);
-    {
-      std::vector<idx_t> next(xadj.begin(), xadj.end() - 1);
-      for (std::size_t e = 0; e < all.size(); e += 2) {
-        adjncy[next[all[e]]++] = all[e + 1];
-        adjncy[next[all[e + 1]]++] = all[e];
-      }
-    }
-    all.clear();
-    all.shrink_to_fit();
-    idx_t w = 0;
-    for (PetscInt i = 0; i < num_nodes; ++i) {
-      const idx_t begin = w;
-      std::sort(adjncy.begin() + xadj[i], adjncy.begin() + xadj[i + 1]);
-      for (idx_t k = xadj[i]; k < xadj[i + 1]; ++k)
-        if (k == xadj[i] || adjncy[k] != adjncy[k - 1]) adjncy[w++] = adjncy[k];
-      xadj[i] = begin;
-    }
-    xadj[num_nodes] = w;
-    std::vector<int64_t> perm(num_nodes);
-    if (ordering == GraphOrdering::COORDINATES) {
-      perm = CoordinateNestedDissection(std::vector<int64_t>(xadj.begin(), xadj.begin() + num_nodes + 1),
-                                        std::vector<int64_t>(adjncy.begin(), adjncy.begin() + w), x, (int)node_size);
-    } else if (num_nodes > 0) {
-      idx_t nv = (idx_t)num_nodes, options[METIS_NOPTIONS];
-      METIS_SetDefaultOptions(options);
-      options[METIS_OPTION_SEED] = 7;
-      std::vector<idx_t> metis_perm(num_nodes), iperm(num_nodes);
-      status = METIS_NodeND(&nv, xadj.data(), adjncy.data(), nullptr, options, metis_perm.data(), iperm.data());
-      std::copy(metis_perm.begin(), metis_perm.end(), perm.begin());
-    }
-    // Each node's rows in METIS's order of the nodes, then the Schur rows (MUMPS wants them last: INFOG(1) = -4).
+    // Each node's rows in that order, then the Schur rows (MUMPS wants them last: INFOG(1) = -4); MUMPS takes the
+    // position of each variable in the pivot order (1-based).
     perm_in_.assign(n, 0);
     MUMPS_INT position = 0;
-    PetscMPIInt r = 0;
-    std::vector<PetscInt> node_row(num_nodes);
-    for (PetscInt k = 0; k < num_nodes; ++k) {
-      while (first_node[r + 1] <= k) ++r;
-      node_row[k] = ranges[3 * r] + (k - first_node[r]) * node_size;
-    }
-    for (PetscInt k = 0; k < num_nodes; ++k)
-      for (PetscInt c = 0; c < node_size; ++c) perm_in_[node_row[perm[k]] + c] = ++position;
+    for (std::size_t k = 0; k < perm.size(); ++k)
+      for (PetscInt c = 0; c < node_size; ++c) perm_in_[nodes.FirstRow(perm[k]) + c] = ++position;
     for (MUMPS_INT v : listvar_) perm_in_[v - 1] = ++position;
-    status = status == METIS_OK && position == (MUMPS_INT)n ? METIS_OK : METIS_ERROR;
+    status = status == METIS_OK && position == (MUMPS_INT)n && (PetscInt)perm.size() == num_nodes ? METIS_OK
+                                                                                                    : METIS_ERROR;
   }
   PetscCallMPI(MPI_Bcast(&status, 1, MPI_INT, 0, comm_));
   PetscCheck(status == METIS_OK, comm_, PETSC_ERR_LIB, "the nested dissection of the saddle-point matrix failed (%d)",
              status);
+  PetscLogDouble end;
+  PetscCall(PetscTime(&end));
+  PetscCall(PetscInfo(nullptr, "ordering: node graph %.3g s, nested dissection %.3g s (%s)\n",
+                      graph_built - start, end - graph_built,
+                      ordering.graph == GraphOrdering::COORDINATES ? "coordinate cuts, rank 0"
+                      : distributed                                ? "METIS, all ranks"
+                                                                   : "METIS, rank 0"));
   PetscCall(PetscLogEventEnd(EV_ORDERING, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -226,7 +255,7 @@ PetscErrorCode MumpsSchur::ReadValues(Mat A, bool pattern) {
 
 PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows, const std::vector<PetscScalar> &d0,
                                   bool symmetric, PetscInt owned_u, PetscInt node_size,
-                                  const std::vector<double> &coords, GraphOrdering ordering, bool keep_values) {
+                                  const std::vector<double> &coords, OrderingOptions ordering, bool keep_values) {
   PetscInt rstart, rend, N;
   PetscFunctionBeginUser;
   PetscCall(RegisterEvents());
@@ -271,8 +300,8 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   // METIS's is the better one, but at 20k rows it takes 30 ms, more than its smaller factor saves: a small 2D matrix
   // gets the coordinate cuts (6-8 ms, 2.6e8 flops); in 3D METIS pays from 6k rows on (measurements: README).
   id_.ICNTL(7) = 1;
-  if (ordering == GraphOrdering::AUTO)
-    ordering = node_size == 3 || N >= METIS_MIN_ROWS_2D ? GraphOrdering::METIS : GraphOrdering::COORDINATES;
+  if (ordering.graph == GraphOrdering::AUTO)
+    ordering.graph = node_size == 3 || N >= METIS_MIN_ROWS_2D ? GraphOrdering::METIS : GraphOrdering::COORDINATES;
   for (int k = 1; k <= 60; ++k) {
     PetscInt v;
     PetscBool set;
@@ -313,7 +342,7 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   redrhs_.assign(m, 0.0);
   PetscCall(FactorNumeric(d0));
   PetscCall(PetscInfo(nullptr, "MUMPS factors: ordering ICNTL(7) = %d (%s), %g entries, %g flops in the elimination\n",
-                      (int)id_.ICNTL(7), id_.ICNTL(7) == 1 ? GRAPH_ORDERING_NAMES[(int)ordering] : "MUMPS's",
+                      (int)id_.ICNTL(7), id_.ICNTL(7) == 1 ? GRAPH_ORDERING_NAMES[(int)ordering.graph] : "MUMPS's",
                       (double)(id_.INFOG(29) >= 0 ? id_.INFOG(29) : -1e6 * id_.INFOG(29)), (double)id_.rinfog[2]));
   keep_values_ = keep_values;
   if (!keep_values) {

@@ -66,14 +66,20 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
                        "svk with -contact_reuse_factorization: FGMRES iterations on the current tangent preconditioned "
                        "by the kept factorisation of an earlier one before MUMPS refactors (0: at every solve)",
                        0, SaddlePointOptions::REUSE_MAX_IT_MAX, opts.reuse_max_it, &opts.reuse_max_it_set));
-  PetscInt ordering = (PetscInt)opts.ordering;
+  PetscInt ordering = (PetscInt)opts.ordering.graph;
   const std::string ordering_help = "Ordering of the kept factorisation (with -contact_mat_mumps_icntl_7 1, the "
                                     "default): METIS's nested dissection of the node graph, or cuts across coordinate "
                                     "axes; auto: METIS in 3D and from " + std::to_string(METIS_MIN_ROWS_2D) +
                                     " rows in 2D, coordinate cuts below";
   PetscCall(PetscOptionsEList("-contact_nested_dissection", ordering_help.c_str(), "", GRAPH_ORDERING_NAMES, 3,
                               GRAPH_ORDERING_NAMES[ordering], &ordering, nullptr));
-  opts.ordering = (GraphOrdering)ordering;
+  opts.ordering.graph = (GraphOrdering)ordering;
+  PetscBool parallel = opts.ordering.parallel ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscOptionsBool("-contact_nested_dissection_parallel",
+                             "METIS's nested dissection on every rank (the partition's interfaces as the top "
+                             "separators, each rank orders its own nodes) instead of the whole node graph on rank 0",
+                             "", parallel, &parallel, nullptr));
+  opts.ordering.parallel = parallel;
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

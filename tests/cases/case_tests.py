@@ -1459,20 +1459,43 @@ def obstacle_mesh_plane(runner):
         expect_same_state(runner, plane, runner.run(case + extra, "cube on " + " ".join(extra)))
 
 
+def elimination_flops(output):
+    """The elimination flops of the kept factorisation that -info prints (rank 0's line)."""
+    m = re.search(r"^\[0\] <sys> Factor\(\): MUMPS factors: .* ([0-9.e+]+) flops in the elimination", output, re.M)
+    return float(m.group(1)) if m else None
+
+
 @test("orderings")
 def orderings(runner):
     """The pivot orders of the kept factorisation give the same state: MUMPS's automatic choice, the nested dissections
-    of the node graph given to MUMPS (METIS's, the default from 50k rows and in 3D, and the coordinate cuts, the
-    default for a smaller 2D matrix) and PORD, on the 2D Hertz case and on the 3D cube with symmetry supports (a node's
-    first row then holds only its diagonal)."""
+    of the node graph given to MUMPS (METIS's, the default from 50k rows and in 3D, computed by all ranks or by rank 0
+    alone, and the coordinate cuts, the default for a smaller 2D matrix) and PORD, on the 2D Hertz case and on the 3D
+    cube with symmetry supports (a node's first row then holds only its diagonal). On several ranks METIS's ordering
+    is computed by all of them (the partition's interface as the top separator, each rank's part by METIS) and its
+    factor costs no more than 1.3 times the elimination flops of METIS on the whole graph on rank 0 (2 ranks: 1.10
+    times in 2D, 1.21 in 3D; a separator eliminated before its parts, or no separator, costs more)."""
+    metis = ["-contact_mat_mumps_icntl_7", "1", "-contact_nested_dissection", "metis", "-info", ":sys"]
     for case, what in ((["-options_file", "options/hertz.yml"], "hertz"),
                        (["-options_file", "options/cube_on_plane.yml"], "cube")):
         ref = runner.run(case + ["-contact_mat_mumps_icntl_7", "7"], "%s, automatic ordering" % what)
-        for order, name in ((["-contact_mat_mumps_icntl_7", "1", "-contact_nested_dissection", "metis"], "METIS"),
+        for order, name in ((metis, "METIS"),
+                            (metis + ["-contact_nested_dissection_parallel", "false"], "METIS on rank 0"),
                             (["-contact_nested_dissection", "coordinates"], "coordinate cuts"),
                             (["-contact_mat_mumps_icntl_7", "4"], "PORD")):
             r = runner.run(case + order, "%s, %s" % (what, name))
             expect_same_state(runner, ref, r)
+            if name == "METIS":
+                parallel = r
+            elif name == "METIS on rank 0":
+                serial = r
+        where = "all ranks" if runner.np > 1 else "rank 0"
+        runner.expect_true("%s: METIS's nested dissection on %s" % (what, where),
+                           "(METIS, %s)" % where in parallel.output)
+        runner.expect_true("%s: METIS's nested dissection on rank 0 when asked" % what,
+                           "(METIS, rank 0)" in serial.output)
+        flops, serial_flops = elimination_flops(parallel.output), elimination_flops(serial.output)
+        runner.expect_true("%s: elimination flops %s, METIS on rank 0 %s: at most 1.3 times" % (
+            what, flops, serial_flops), flops is not None and serial_flops and flops <= 1.3 * serial_flops)
 
 
 @test("obstacle_rectangles")

@@ -4,10 +4,10 @@
 // the multiplier rows, centralised on rank 0. A solve with another diagonal D uses S = S0 + (D - D0), factored
 // densely (LAPACK LDL^T) on rank 0 when D changes: MUMPS condenses the right-hand side onto the multipliers, rank 0
 // solves with S, MUMPS expands the solution. LU instead of LDL^T on request (the mumps_lu preset). The ordering is a
-// nested dissection of the node graph (METIS's, or coordinate cuts for a small 2D matrix), computed on rank 0 and
-// given to MUMPS (ICNTL(7) = 1), the analysis sequential, with null-pivot detection (ICNTL(24)) so that a singular
-// A11 is reported; the options -contact_mat_mumps_icntl_<k> and -contact_mat_mumps_cntl_<k> override them as for
-// PETSc's interface.
+// nested dissection of the node graph (METIS's, computed by all ranks with the partition's interfaces as the top
+// separators, or coordinate cuts for a small 2D matrix, computed on rank 0), given to MUMPS (ICNTL(7) = 1), the
+// analysis sequential, with null-pivot detection (ICNTL(24)) so that a singular A11 is reported; the options
+// -contact_mat_mumps_icntl_<k> and -contact_mat_mumps_cntl_<k> override them as for PETSc's interface.
 #pragma once
 
 #include "signorini/core/handle.hpp"
@@ -30,6 +30,13 @@ constexpr PetscInt METIS_MIN_ROWS_2D = 50000;
 enum class GraphOrdering { AUTO, METIS, COORDINATES };
 inline const char *const GRAPH_ORDERING_NAMES[] = {"auto", "metis", "coordinates"};
 
+/// The ordering given to MUMPS: which nested dissection, and for METIS's whether all ranks compute it
+/// (-contact_nested_dissection_parallel, DistributedNestedDissection) or rank 0 alone.
+struct OrderingOptions {
+  GraphOrdering graph = GraphOrdering::AUTO;
+  bool parallel = true;
+};
+
 class MumpsSchur {
 public:
   MumpsSchur() = default;
@@ -45,7 +52,7 @@ public:
   /// keep_values: keep the matrix entries in MUMPS's format for Refactor (else they are freed). Collective.
   [[nodiscard]] PetscErrorCode Factor(Mat A, const std::vector<PetscInt> &schur_rows,
                                       const std::vector<PetscScalar> &d0, bool symmetric, PetscInt owned_u,
-                                      PetscInt node_size, const std::vector<double> &coords, GraphOrdering ordering,
+                                      PetscInt node_size, const std::vector<double> &coords, OrderingOptions ordering,
                                       bool keep_values = false);
   /// The numerical factorisation of A's current values (the pattern and the analysis of Factor, which kept the
   /// values) with the Schur complement, d0 its multiplier diagonal now. Collective.
@@ -78,12 +85,12 @@ private:
   [[nodiscard]] PetscErrorCode FactorSchur(const std::vector<PetscScalar> &d);
   /// y = S^-1 y with the factored Schur complement (rank 0).
   [[nodiscard]] PetscErrorCode DenseSolve(std::vector<PetscScalar> &y) const;
-  /// Nested dissection (METIS's or CoordinateNestedDissection of coords, see Factor) of the graph of the nodes coupled
-  /// by the entries in irn_/jcn_ (n rows; this rank's start at rstart, its first owned_u rows displacements,
-  /// node_size per node), computed on rank 0 into perm_in_ (MUMPS's PERM_IN: each node's rows together, the Schur
-  /// rows last). Collective.
+  /// Nested dissection (METIS's, on all ranks or rank 0, or CoordinateNestedDissection of coords on rank 0, see
+  /// Factor) of the graph of the nodes coupled by the entries in irn_/jcn_ (n rows; this rank's start at rstart, its
+  /// first owned_u rows displacements, node_size per node), into perm_in_ on rank 0 (MUMPS's PERM_IN: each node's
+  /// rows together, the Schur rows last). Collective.
   [[nodiscard]] PetscErrorCode NestedDissection(PetscInt n, PetscInt rstart, PetscInt owned_u, PetscInt node_size,
-                                                const std::vector<double> &coords, GraphOrdering ordering);
+                                                const std::vector<double> &coords, OrderingOptions ordering);
 
   DMUMPS_STRUC_C id_{};
   bool initialised_ = false, keep_values_ = false;

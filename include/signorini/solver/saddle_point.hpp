@@ -50,7 +50,7 @@ struct SaddlePointOptions {
   PetscBool reuse_set = PETSC_FALSE;
   PetscInt reuse_max_it = 6; ///< in [0, REUSE_MAX_IT_MAX]
   PetscBool reuse_max_it_set = PETSC_FALSE;
-  GraphOrdering ordering = GraphOrdering::AUTO;
+  OrderingOptions ordering; ///< -contact_nested_dissection, -contact_nested_dissection_parallel
 };
 [[nodiscard]] PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts);
 
@@ -171,7 +171,7 @@ private:
   std::vector<char> active_;          ///< owned multiplier rows active in the current system
   std::vector<PetscInt> schur_rows_;  ///< rank 0: every multiplier row, in global order
   MumpsSchur mumps_schur_;
-  GraphOrdering ordering_ = GraphOrdering::AUTO; ///< -contact_nested_dissection
+  OrderingOptions ordering_; ///< -contact_nested_dissection, -contact_nested_dissection_parallel
   std::vector<double> coords_;                  ///< reuse mode: the coordinates of SetupKsp, for the ordering
   VecH diag_lambda_, diag_root_;
   VecScatter to_root_ = nullptr;      ///< multiplier diagonal to rank 0
