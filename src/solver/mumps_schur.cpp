@@ -46,8 +46,17 @@ PetscErrorCode MumpsSchur::Call(int job, const char *phase) {
   PetscFunctionBeginUser;
   id_.job = job;
   dmumps_c(&id_);
-  // INFOG is the same on every rank, so every rank takes the same branch. -13: an allocation failed; INFOG(2) is its
-  // size in entries, or in millions of entries when negative.
+  // INFOG is the same on every rank, so every rank takes the same branch. A factorisation out of workspace (-8, -9:
+  // the analysis' estimate was too small, e.g. for the delayed pivots of the indefinite matrix on 3 ranks) is run
+  // again with twice the extra room (ICNTL(14)), as MUMPS's guide advises, a few times.
+  for (int retry = 0; job == 2 && (id_.INFOG(1) == -8 || id_.INFOG(1) == -9) && retry < MUMPS_WORKSPACE_RETRIES;
+       ++retry) {
+    id_.ICNTL(14) = 2 * std::max<MUMPS_INT>(id_.ICNTL(14), MUMPS_WORKSPACE_INCREASE);
+    PetscCall(PetscInfo(nullptr, "MUMPS factorisation out of workspace (INFOG(1) = %d): again with ICNTL(14) = %d\n",
+                        (int)id_.INFOG(1), (int)id_.ICNTL(14)));
+    dmumps_c(&id_);
+  }
+  // -13: an allocation failed; INFOG(2) is its size in entries, or in millions of entries when negative.
   if (id_.INFOG(1) == -13) {
     const double entries = id_.INFOG(2) < 0 ? -1e6 * id_.INFOG(2) : (double)id_.INFOG(2);
     SETERRQ(comm_, PETSC_ERR_MEM,

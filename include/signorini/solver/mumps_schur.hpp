@@ -21,6 +21,8 @@ namespace signorini {
 /// MUMPS's ICNTL(14) for every MUMPS factorisation of the saddle-point system: the workspace is this many per cent
 /// above the analysis' estimate (MUMPS's default, 20, was exceeded by 2-rank LDL^T of 3D hexahedral meshes).
 constexpr int MUMPS_WORKSPACE_INCREASE = 50;
+/// Factorisations run again with twice the extra workspace after MUMPS ran out of it (INFOG(1) = -8 or -9).
+constexpr int MUMPS_WORKSPACE_RETRIES = 4;
 
 /// Rows from which a 2D saddle-point matrix is ordered by METIS (below: by coordinate cuts; 3D: always METIS).
 constexpr PetscInt METIS_MIN_ROWS_2D = 50000;
