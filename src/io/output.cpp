@@ -380,7 +380,8 @@ PetscErrorCode OutputWriter::WriteXdmf() const {
                    : contact_face_size_ == 3 ? "Triangle"
                    : contact_face_size_ == 4 ? "Quadrilateral"
                                              : "Mixed",
-                   contact_num_faces_, contact_face_size_, contact_face_size_ ? 0 : (std::size_t)contact_topology_size_, nb)
+                   contact_num_faces_, contact_face_size_,
+                   contact_face_size_ ? 0 : (std::size_t)contact_topology_size_, nb)
           << Attribute("node_tags", 1, false, nb, true, "/contact_boundary/node_tags");
         for (const auto &f : s.layout)
           if (f.on_contact)

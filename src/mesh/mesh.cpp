@@ -130,8 +130,8 @@ std::string FoldedCells(const SerialMesh &serial, const FaceEntry &a, const Face
 /// Renumbers the cells of serial along a Morton (Z-order) curve through their centroids and the nodes in the order
 /// the cells first use them, so that the vertices of a cell, and the cells of a region, sit close together in every
 /// array the element loops touch (the stiffness rows of one cell within a few cache lines). The file's numbering comes
-/// out in file_node and file_cell (new index -> index in the file). Every index of serial (cells, groups) is renumbered;
-/// the tags move with their nodes and cells.
+/// out in file_node and file_cell (new index -> index in the file). Every index of serial (cells, groups) is
+/// renumbered; the tags move with their nodes and cells.
 void LocalityOrder(SerialMesh &serial, std::vector<PetscInt> &file_node, std::vector<PetscInt> &file_cell) {
   const int dim = serial.dim, nc = serial.NumCells(), nv = serial.NumNodes();
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};

@@ -491,7 +491,8 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
       if (!(rnorm > ACCEPTED_RESIDUAL * bnorm) || !(rnorm < 0.1 * last)) break;
       last = rnorm;
       PetscInt its;
-      PetscCall(PetscInfo(nullptr, "Krylov restart %d: true relative residual %g\n", restart + 1, (double)(rnorm / bnorm)));
+      PetscCall(PetscInfo(nullptr, "Krylov restart %d: true relative residual %g\n", restart + 1,
+                          (double)(rnorm / bnorm)));
       PetscCall(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
       PetscCall(KSPSolve(ksp_, b_, x_));
       PetscCall(KSPGetConvergedReason(ksp_, &reason));

@@ -149,8 +149,9 @@ private:
   /// plain form's meaning. Collective.
   [[nodiscard]] PetscErrorCode CheckAndConvert(KSPConvergedReason reason, PetscInt krylov_iterations,
                                                double &residual, double tol);
-  /// The largest true residual ||b - A x|| / ||b|| a direct solve may leave, and the restarts of a Krylov solve that
-  /// stopped above it on its preconditioned residual (each must divide the true residual by 10).
+  /// The largest true residual ||b - A x|| / ||b|| a solve may leave (an inexact svk search step: 2 rtol), and the
+  /// restarts of a Krylov solve that stopped above it on its preconditioned residual (each must divide the true
+  /// residual by 10).
   static constexpr double ACCEPTED_RESIDUAL = 1e-6;
   static constexpr int MAX_KRYLOV_RESTARTS = 3;
   /// The start of the next solve in x_: zero for a direct solver; the last multipliers for an iterative one.
