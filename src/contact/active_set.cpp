@@ -74,8 +74,10 @@ std::string Certificate::Violation() const {
 }
 
 void ActiveSet::First(const std::vector<PairState> &states, bool first_step, const std::vector<PairKey> &keys,
-                      const std::vector<std::array<double, 3>> &normals, std::vector<char> &next) const {
+                      const std::vector<std::array<double, 3>> &normals, std::vector<char> &next) {
   next.resize(states.size());
+  start_gap_.resize(states.size());
+  for (std::size_t p = 0; p < states.size(); ++p) start_gap_[p] = states[p].gap;
   for (std::size_t p = 0; p < states.size(); ++p)
     next[p] = first_step ? (states[p].InZone() && states[p].gap <= params_.touch_tol) : active_[p];
   DropParallelPairs(keys, normals, next);
@@ -85,9 +87,12 @@ PetscErrorCode ActiveSet::Next(const std::vector<PairState> &states, PetscInt it
                                const std::vector<std::array<double, 3>> &normals, std::vector<char> &next,
                                PetscInt &changes) const {
   PetscFunctionBeginUser;
-  // Activation threshold of the first update: the deepest penetration of an inactive pair times the fraction. It
-  // damps the overshoot after the solve with the initial (touching or previous) set; later updates activate every
-  // penetrating pair, so that the last pairs are not held back. The deepest pair always qualifies.
+  // The first update of a load step damps the overshoot after the solve with the initial (touching or previous)
+  // set; later updates activate every penetrating pair, so that the last pairs are not held back. The deepest
+  // penetration of an inactive pair always qualifies.
+  // - Fraction: only pairs penetrating deeper than the fraction times the deepest penetration.
+  // - Gap factor: only pairs whose gap at the start of the load step is at most the factor times that of the deepest
+  //   pair(s) (those within 1e-9 of the deepest penetration, so that round-off does not choose among near ties).
   double deepest = 0, gdeepest;
   for (std::size_t p = 0; p < states.size(); ++p)
     if (!active_[p] && states[p].InZone()) deepest = std::max(deepest, -states[p].gap);
@@ -97,6 +102,19 @@ PetscErrorCode ActiveSet::Next(const std::vector<PairState> &states, PetscInt it
   std::vector<PairState> current = states;
   for (std::size_t p = 0; p < states.size(); ++p) current[p].active = active_[p];
   ProposeSet(current, params_.c, tol, activate_tol, keys, normals, next);
+  if (it == 1 && params_.activation_gap_factor > 0 && start_gap_.size() == states.size() && gdeepest > 0) {
+    double g = -INFINITY, G;
+    for (std::size_t p = 0; p < states.size(); ++p)
+      if (!active_[p] && states[p].InZone() && -states[p].gap >= (1 - 1e-9) * gdeepest) g = std::max(g, start_gap_[p]);
+    PetscCallMPI(MPI_Allreduce(&g, &G, 1, MPI_DOUBLE, MPI_MAX, comm_));
+    const double limit = std::max(G, params_.activation_gap_factor * G);
+    PetscInt held = 0;
+    for (std::size_t p = 0; p < states.size(); ++p)
+      if (next[p] && !active_[p] && start_gap_[p] > limit) next[p] = 0, ++held;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &held, 1, MPIU_INT, MPI_SUM, comm_));
+    PetscCall(PetscInfo(nullptr, "first update: %" PetscInt_FMT " penetrating pair(s) held back (gap at the start of "
+                        "the step above %g)\n", held, limit));
+  }
   PetscInt mine = 0;
   for (std::size_t p = 0; p < states.size(); ++p) mine += next[p] != active_[p];
   PetscCallMPI(MPI_Allreduce(&mine, &changes, 1, MPIU_INT, MPI_SUM, comm_));

@@ -15,7 +15,7 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
   // beyond 1e-2 projects a node off its facet, a radius beyond 1e5 diagonals pairs everything anyway (and keeps the
   // bin search finite), and c far from E t makes lambda - c g compare numbers of unrelated magnitudes.
   const RealRange radius{0, 1e5, true, false, L, "body diagonal"}, gap{0, 1e-3, false, false, L, "body diagonal"};
-  const RealRange alpha{0, 1e-2}, fraction{0, 1, false, true}, c{1e-6, 1e6, false, false, k, "E x thickness"};
+  const RealRange alpha{0, 1e-2}, fraction{0, 1, false, true}, gap_factor{0, 1e6}, c{1e-6, 1e6, false, false, k, "E x thickness"};
   PetscFunctionBeginUser;
   opts.length = L;
   opts.search_radius = 0.1 * L;
@@ -38,6 +38,10 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_activation_fraction", "In the first update of a load step, "
                         "activate only pairs penetrating deeper than this fraction of the deepest penetration (0: all)",
                         fraction, opts.activation_fraction));
+  PetscCall(OptionsReal(PetscOptionsObject, "-contact_activation_gap_factor", "In the first update of a load step, "
+                        "activate only pairs whose gap at the start of the step is at most this factor times that of "
+                        "the deepest penetrating pair (0: off; otherwise at least 1)", gap_factor,
+                        opts.activation_gap_factor));
   PetscCall(OptionsInt(PetscOptionsObject, "-contact_max_it", "Maximum active-set iterations per load step", 1,
                        CONTACT_MAX_IT_LIMIT, opts.max_it));
   PetscCall(PetscOptionsBool("-contact_monitor", "Print one line per active-set iteration", "", opts.monitor,
@@ -45,6 +49,8 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
   PetscCall(PetscOptionsBool("-contact_converged_reason", "Print why the active-set loop stopped", "",
                              opts.converged_reason, &opts.converged_reason, nullptr));
   PetscOptionsEnd();
+  PetscCheck(opts.activation_gap_factor == 0 || opts.activation_gap_factor >= 1, comm, PETSC_ERR_USER_INPUT,
+             "-contact_activation_gap_factor %g is out of range; expected 0 (off) or a number in [1, 1e+06]", opts.activation_gap_factor);
   PetscFunctionReturn(0);
 }
 

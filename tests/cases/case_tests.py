@@ -1132,12 +1132,37 @@ def plate_on_arc(runner):
     expect_balance(runner, arc, "arcs")
     segments = runner.run(options_args(runner, "options/plate_on_arc.yml", drop=("obstacle_arcs",)) +
                           ["-obstacle_segments", arc_segments(4.5, -4.1, 4, 150, 30, 30)], "plate on 30 segments")
-    runs = [segments] + [runner.run(["-options_file", "options/plate_on_arc.yml", "-contact_activation_fraction", f],
+    runs = [segments] + [runner.run(["-options_file", "options/plate_on_arc.yml", "-contact_activation_fraction", f,
+                                     "-contact_activation_gap_factor", "0"],
                                     "plate on arc, activation fraction %s" % f) for f in ("0", "0.9")]
     for r in runs:
         expect_balance(runner, r, r.label)
         # Other activation fractions may take other paths (iteration counts) to the same state.
         expect_same_state(runner, arc, r, keys=("contact.active_pairs",))
+
+
+@test("activation_rules")
+def activation_rules(runner):
+    """The first update's damping rules take other paths to the same state: the default (-contact_activation_gap_factor
+    2) against the seed's rule (no damping) and the fraction rule (-contact_activation_fraction 0.9, the earlier
+    default), on smooth contacts that start at a touching point (2D and 3D Hertz, Hertz in 3 load steps) and on the
+    plate pushed through an arc (no touching pair: the first solve has no contact at all). On the Hertz cases the gap
+    factor must also take fewer iterations than both: it activates about the final set at once."""
+    seed = ["-contact_activation_fraction", "0", "-contact_activation_gap_factor", "0"]
+    fraction = ["-contact_activation_fraction", "0.9", "-contact_activation_gap_factor", "0"]
+    for args, what, fewer in ((["-options_file", "options/hertz.yml"], "hertz", True),
+                              (["-options_file", "options/hertz3d.yml"], "hertz3d", True),
+                              (["-options_file", "options/hertz.yml", "-load_steps", "3"], "hertz, 3 load steps", True),
+                              (["-options_file", "options/plate_on_arc.yml"], "plate on arc", False)):
+        default = runner.run(args, what)
+        for extra, rule in ((seed, "seed's rule"), (fraction, "fraction 0.9")):
+            r = runner.run(args + extra, "%s, %s" % (what, rule))
+            expect_same_state(runner, default, r, keys=("contact.active_pairs", "contact.active_nodes",
+                                                        "iterations.load_steps"))
+            if fewer:
+                runner.expect_true("%s: fewer active-set iterations with the gap factor (%d) than with the %s (%d)" % (
+                    what, default.get("iterations.active_set"), rule, r.get("iterations.active_set")),
+                    default.get("iterations.active_set") < r.get("iterations.active_set"))
 
 
 @test("block_in_notch")

@@ -58,7 +58,8 @@ public:
                 const ContactOptions &contact, const SolverOptions &solver)
       : mesh_(mesh), material_(material), bc_(bc), obstacle_(obstacle), contact_(contact), opts_(solver),
         active_set_(mesh.Comm(),
-                    {contact.c, contact.gap_tol, contact.touch_tol, contact.activation_fraction, contact.length}) {}
+                    {contact.c, contact.gap_tol, contact.touch_tol, contact.activation_fraction, contact.length,
+                     contact.activation_gap_factor}) {}
 
   /// Initial weight of the springs on the normals of the inactive pairs, relative to the stiffness scale, in the
   /// solves whose active set leaves a rigid-body motion free (RigidModes). They pull the increment towards the
