@@ -13,9 +13,11 @@ namespace signorini {
 PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOptions &opts) {
   // Ranges (README): a penetration or touching gap beyond 1e-3 of the body's size is a visibly wrong state, alpha
   // beyond 1e-2 projects a node off its facet, a radius beyond 1e5 diagonals pairs everything anyway (and keeps the
-  // bin search finite), and c far from E t makes lambda - c g compare numbers of unrelated magnitudes.
+  // bin search finite), a gap factor beyond 1e6 holds nothing back, and c far from E t makes lambda - c g compare
+  // numbers of unrelated magnitudes.
   const RealRange radius{0, 1e5, true, false, L, "body diagonal"}, gap{0, 1e-3, false, false, L, "body diagonal"};
-  const RealRange alpha{0, 1e-2}, fraction{0, 1, false, true}, gap_factor{0, 1e6}, c{1e-6, 1e6, false, false, k, "E x thickness"};
+  const RealRange alpha{0, 1e-2}, fraction{0, 1, false, true}, gap_factor{0, 1e6};
+  const RealRange c{1e-6, 1e6, false, false, k, "E x thickness"};
   PetscFunctionBeginUser;
   opts.length = L;
   opts.search_radius = 0.1 * L;
@@ -50,7 +52,8 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
                              opts.converged_reason, &opts.converged_reason, nullptr));
   PetscOptionsEnd();
   PetscCheck(opts.activation_gap_factor == 0 || opts.activation_gap_factor >= 1, comm, PETSC_ERR_USER_INPUT,
-             "-contact_activation_gap_factor %g is out of range; expected 0 (off) or a number in [1, 1e+06]", opts.activation_gap_factor);
+             "-contact_activation_gap_factor %g is out of range; expected 0 (off) or a number in [1, 1e+06]",
+             opts.activation_gap_factor);
   PetscFunctionReturn(0);
 }
 
