@@ -22,7 +22,7 @@ struct ContactOptions {
   double gap_tol = -1;             ///< -contact_gap_tol: penetration tolerance of the active-set rule
   double alpha_tol = 1e-8;         ///< -contact_alpha_tol: tolerance on the projection parameter (seed Eq. 27)
   double c = -1;                   ///< -contact_complementarity_c: weight of the gap in the active-set rule
-  double activation_fraction = 0;   ///< -contact_activation_fraction: activate only penetrations deeper than this
+  double activation_fraction = 0.2; ///< -contact_activation_fraction: activate only penetrations deeper than this
                                     ///< fraction of the deepest one (0: every penetration, the seed's rule)
   double activation_gap_factor = 2; ///< -contact_activation_gap_factor: in the first update of a load step, activate
                                     ///< only pairs whose start gap is at most this times the deepest one's (0: off)
