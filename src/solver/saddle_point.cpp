@@ -460,6 +460,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
   PetscCall(InitialGuess());
   PetscInt null_pivots = 0;
   double check_tol = ACCEPTED_RESIDUAL; // the relative residual above which a solve is an error (CheckAndConvert)
+  PetscReal known_residual[2] = {-1, -1}; // ||b - A x||, ||b|| of the final x_ when the restart loop computed them
   if (reuse_) {
     // The first solve factors the current matrix; later ones are exact for a constant K (only D changed), else the
     // kept factorisation preconditions the current matrix.
@@ -488,7 +489,10 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
     for (int restart = 0; !preonly && reason > 0 && restart < MAX_KRYLOV_RESTARTS; ++restart) {
       PetscReal rnorm, bnorm;
       PetscCall(TrueResidual(rnorm, bnorm));
-      if (!(rnorm > ACCEPTED_RESIDUAL * bnorm) || !(rnorm < 0.1 * last)) break;
+      if (!(rnorm > ACCEPTED_RESIDUAL * bnorm) || !(rnorm < 0.1 * last)) {
+        known_residual[0] = rnorm, known_residual[1] = bnorm; // x_ stays as it is: CheckAndConvert reuses them
+        break;
+      }
       last = rnorm;
       PetscInt its;
       PetscCall(PetscInfo(nullptr, "Krylov restart %d: true relative residual %g\n", restart + 1,
@@ -507,7 +511,8 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
                "held; add Dirichlet conditions (e.g. on a symmetry line) so that the initial contact and the supports "
                "remove every rigid-body motion", null_pivots);
   }
-  PetscCall(CheckAndConvert(reason, krylov_iterations, residual, check_tol));
+  const PetscReal *known = known_residual[0] >= 0 ? known_residual : nullptr;
+  PetscCall(CheckAndConvert(reason, krylov_iterations, residual, check_tol, known));
   PetscFunctionReturn(0);
 }
 
@@ -521,7 +526,7 @@ PetscErrorCode SaddlePointSystem::TrueResidual(PetscReal &rnorm, PetscReal &bnor
 }
 
 PetscErrorCode SaddlePointSystem::CheckAndConvert(KSPConvergedReason reason, PetscInt krylov_iterations,
-                                                  double &residual, double tol) {
+                                                  double &residual, double tol, const PetscReal *known) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   PetscReal bnorm, rnorm;
   PetscFunctionBeginUser;
@@ -532,7 +537,8 @@ PetscErrorCode SaddlePointSystem::CheckAndConvert(KSPConvergedReason reason, Pet
             KSPConvergedReasons[reason], krylov_iterations, advice.c_str());
   }
   // A factorisation of a singular matrix can "succeed" with garbage: check the residual.
-  PetscCall(TrueResidual(rnorm, bnorm));
+  if (known) rnorm = known[0], bnorm = known[1];
+  else PetscCall(TrueResidual(rnorm, bnorm));
   const bool finite = std::isfinite(rnorm);
   if (!finite || rnorm > tol * bnorm + 1e-300) {
     // A Krylov method can report convergence on a singular system too (its preconditioned residual): the advice

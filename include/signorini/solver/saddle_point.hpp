@@ -146,9 +146,10 @@ private:
   static PetscErrorCode ApplyKeptFactor(PC pc, Vec b, Vec x);
   /// After a solve into x_ (reason, iterations: the KSP's): an error naming the likely cause for a failed or
   /// inaccurate solve (relative residual above tol), residual = ||b - A x||, and the multiplier rows of x_ in the
-  /// plain form's meaning. Collective.
+  /// plain form's meaning. known: {||b - A x||, ||b||} of the current x_ when the caller has them (else computed).
+  /// Collective.
   [[nodiscard]] PetscErrorCode CheckAndConvert(KSPConvergedReason reason, PetscInt krylov_iterations,
-                                               double &residual, double tol);
+                                               double &residual, double tol, const PetscReal *known = nullptr);
   /// The largest true residual ||b - A x|| / ||b|| a solve may leave (an inexact svk search step: 2 rtol), and the
   /// restarts of a Krylov solve that stopped above it on its preconditioned residual (each must divide the true
   /// residual by 10).
