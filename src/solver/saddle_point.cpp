@@ -152,6 +152,8 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   // An iterative solver gets the augmented form too: its displacement block K + r B_C^T B_C is regular when the
   // candidates hold the body, so that a Schur fieldsplit with AMG on that block works for a body held by contact.
   augmented_ = reuse_ || (!factor && dofs_->GlobalLambda() > 0);
+  // Its inactive rows get a smaller weight (INACTIVE_WEIGHT); the kept factorisation needs a constant block.
+  if (augmented_ && !reuse_) aug_inactive_ = INACTIVE_WEIGHT * aug_;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu_));
   if (reuse_) {
     // The Schur complement on every multiplier row, centralised on rank 0 (what PETSc's MUMPS interface supports in
@@ -197,11 +199,22 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
 
 PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<ConstraintRow> &rows) {
   PetscFunctionBeginUser;
-  for (const ConstraintRow &row : rows) {
+  weight_.assign(rows.size(), 0.0);
+  PetscCall(Reweight(rows, std::vector<double>(rows.size(), aug_)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::Reweight(const std::vector<ConstraintRow> &rows, const std::vector<double> &weight) {
+  PetscFunctionBeginUser;
+  for (std::size_t p = 0; p < rows.size(); ++p) {
+    const ConstraintRow &row = rows[p];
+    const double dw = weight[p] - weight_[p];
+    if (dw == 0) continue;
     PetscScalar v[9];
     for (PetscInt i = 0; i < row.ncols; ++i)
-      for (PetscInt j = 0; j < row.ncols; ++j) v[i * row.ncols + j] = aug_ * row.coef[i] * row.coef[j];
+      for (PetscInt j = 0; j < row.ncols; ++j) v[i * row.ncols + j] = dw * row.coef[i] * row.coef[j];
     PetscCall(MatSetValues(A_, row.ncols, row.cols, row.ncols, row.cols, v, ADD_VALUES));
+    weight_[p] = weight[p];
   }
   PetscCall(MatAssemblyBegin(A_, MAT_FLUSH_ASSEMBLY));
   PetscCall(MatAssemblyEnd(A_, MAT_FLUSH_ASSEMBLY));
@@ -252,9 +265,14 @@ PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<ConstraintRow
                                                  double stabilisation) {
   const PetscScalar zeros[3] = {0, 0, 0};
   PetscFunctionBeginUser;
-  PetscCheck(stabilisation >= 0 && stabilisation < aug_, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ARG_OUTOFRANGE,
-             "stabilisation weight %g outside [0, %g)", stabilisation, aug_);
+  PetscCheck(stabilisation >= 0 && stabilisation < aug_inactive_, PetscObjectComm((PetscObject)A_.get()),
+             PETSC_ERR_ARG_OUTOFRANGE, "stabilisation weight %g outside [0, %g)", stabilisation, aug_inactive_);
   stab_ = stabilisation;
+  if (augmented_ && aug_inactive_ != aug_) {
+    std::vector<double> weight(rows.size());
+    for (std::size_t p = 0; p < rows.size(); ++p) weight[p] = active[p] ? aug_ : aug_inactive_;
+    PetscCall(Reweight(rows, weight));
+  }
   for (std::size_t p = 0; p < rows.size(); ++p) {
     const PetscInt r = dofs_->LambdaRow((PetscInt)p);
     const bool keep = active[p] || augmented_ || stab_ > 0;
@@ -273,7 +291,7 @@ double SaddlePointSystem::InactiveDiagonal(double plain) const {
   // Eliminating an inactive row -B_i du + D mu_i = 0 adds (r - 1/D) B_i^T B_i (augmented form) or -B_i^T B_i / D
   // (plain form, row kept) to the displacement block: the spring stab_ B_i^T B_i, or nothing in the augmented form
   // without stabilisation.
-  if (augmented_) return 1.0 / (aug_ - stab_);
+  if (augmented_) return 1.0 / (aug_inactive_ - stab_);
   return stab_ > 0 ? -1.0 / stab_ : plain;
 }
 
@@ -477,6 +495,10 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
     ProgressBegin("preconditioner set-up (analysis and factorisation)");
     PetscCall(KSPSetUp(ksp_));
     ProgressEnd();
+    PetscReal ksp_rtol, abstol, dtol;
+    PetscInt max_it;
+    PetscCall(KSPGetTolerances(ksp_, &ksp_rtol, &abstol, &dtol, &max_it));
+    if (rtol > ksp_rtol) PetscCall(KSPSetTolerances(ksp_, rtol, abstol, dtol, max_it));
     PetscCall(KSPSolve(ksp_, b_, x_));
     PetscCall(KSPGetConvergedReason(ksp_, &reason));
     PetscCall(KSPGetIterationNumber(ksp_, &krylov_iterations));
@@ -503,6 +525,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
       PetscCall(KSPGetIterationNumber(ksp_, &its));
       krylov_iterations += its;
     }
+    if (rtol > ksp_rtol) PetscCall(KSPSetTolerances(ksp_, ksp_rtol, abstol, dtol, max_it));
   }
   if (mumps_factor_ && !reuse_) {
     PetscCall(MatMumpsGetInfog(mumps_factor_, 28, &null_pivots));
@@ -559,7 +582,7 @@ PetscErrorCode SaddlePointSystem::CheckAndConvert(KSPConvergedReason reason, Pet
     PetscCall(VecGetArrayRead(b_, &b));
     for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) {
       const PetscInt i = dofs_->OwnedU() + p;
-      x[i] = active_[p] ? x[i] + aug_ * b[i] : -stab_ * x[i] / (aug_ - stab_);
+      x[i] = active_[p] ? x[i] + aug_ * b[i] : -stab_ * x[i] / (aug_inactive_ - stab_);
     }
     PetscCall(VecRestoreArrayRead(b_, &b));
     PetscCall(VecRestoreArray(x_, &x));

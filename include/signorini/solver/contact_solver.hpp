@@ -138,6 +138,7 @@ private:
     bool searching = true;   ///< the next solve's active set is a new one (the first, or a change)
     bool lagged = false;     ///< the next solve keeps the last assembled tangent (-newton_lagged_search)
     double lag_rnorm = -1;   ///< the residual before the last solve (none: -1), for LAGGED_CONTRACTION
+    double correction_rtol = 0; ///< linear: the next solve only corrects the equilibrium residual, to this tolerance
     std::vector<double> gap_before{}; ///< the gaps before the last stabilised solve
     /// Condensed solves (linear material, kept factorisation): from the first solve without stabilisation and without
     /// a prescribed displacement still to apply, the active-set iterations run in the multiplier space against that

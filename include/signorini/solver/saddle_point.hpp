@@ -19,6 +19,14 @@
 // stays exact) or to a looser one the caller asks for (Solve's rtol); when FGMRES has not converged after
 // -contact_reuse_max_it iterations, MUMPS refactors the current matrix numerically (the analysis is kept) and solves
 // directly, and a solve that needed more than half of them refactors at the next solve.
+//
+// Iterative solvers (a Schur fieldsplit: no factorisation) get the augmented form too, with a weight that follows the
+// active set: r on an active row, r_I = INACTIVE_WEIGHT r on an inactive one (D = 1/r_I). The displacement block is
+// then regular when the candidates hold the body, as above, and the Schur complement stays well conditioned: on an
+// inactive row it is 1/r_I - B_i (K + ...)^-1 B_i^T, which vanishes for r_I = r in every direction the augmentation
+// stiffens more than K (the smooth ones), but stays near 1/r_I when r_I is small against K's stiffness there. The
+// displacement block changes with the active set (the preconditioner is set up again per active set, as it is
+// anyway when D changes).
 #pragma once
 
 #include "signorini/core/handle.hpp"
@@ -80,13 +88,17 @@ public:
   bool ExactFactorization() const { return reuse_ && constant_k_; }
   /// Whether the system is in the augmented form (the reuse mode, and every solver that is not a factorisation).
   bool Augmented() const { return augmented_; }
-  /// Adds r B_C^T B_C over every candidate row to the displacement block (ADD_VALUES, flush assembly).
+  /// Adds r B_C^T B_C over every candidate row to the displacement block (ADD_VALUES, flush assembly); an iterative
+  /// solver's inactive rows get r_I in SetConstraints.
   [[nodiscard]] PetscErrorCode AddAugmentation(const std::vector<ConstraintRow> &rows);
+  /// Changes the augmentation weight of every owned row to weight[p] (ADD_VALUES of the difference, flush assembly).
+  [[nodiscard]] PetscErrorCode Reweight(const std::vector<ConstraintRow> &rows, const std::vector<double> &weight);
   /// Writes the constraint rows. Plain form: active rows get their coefficients (in both B and B^T) and D = 0,
   /// inactive rows zeros and D = inactive_diag. Augmented form: every row keeps its coefficients, D = 0 on active
-  /// rows and 1/r on inactive ones. stabilisation s > 0 (s < r) adds a spring s B_i^T B_i on the normal of every
-  /// inactive pair to the displacement block (plain form: the row kept with D = -1/s; augmented: D = 1/(r - s)), for a
-  /// body that the active set does not hold. Ends with a final assembly of A. Collective.
+  /// rows and 1/r_I on inactive ones (weights r, r_I: Reweight). stabilisation s > 0 (s < r_I) adds a spring
+  /// s B_i^T B_i on the normal of every inactive pair to the displacement block (plain form: the row kept with
+  /// D = -1/s; augmented: D = 1/(r_I - s)), for a body that the active set does not hold. Ends with a final assembly
+  /// of A. Collective.
   [[nodiscard]] PetscErrorCode SetConstraints(const std::vector<ConstraintRow> &rows, const std::vector<char> &active,
                                               double inactive_diag, double stabilisation = 0);
   /// Solves A x = b; a failed or inaccurate solve is an error naming the likely cause. On return the multiplier
@@ -94,7 +106,9 @@ public:
   /// -s B du on inactive ones (0 without stabilisation), so that F_int(u + du) = f + B^T x on the free rows.
   /// residual: ||b - A x||.
   /// rtol > 0: the relative residual that FGMRES on a kept factorisation of an earlier tangent may stop at (an
-  /// inexact Newton step; otherwise the KSP's tolerance); it does not apply to direct solves. Collective.
+  /// inexact Newton step; otherwise the KSP's tolerance), and that an iterative KSP may stop at if it is looser than
+  /// the KSP's own (a correction solve, see ContactSolver::StepControl); it does not apply to direct solves.
+  /// Collective.
   [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual, double rtol = 0);
 
   /// Reuse mode, linear material: the active-set iterations of a load step in the multiplier space. Condense takes
@@ -155,6 +169,11 @@ private:
   /// residual by 10).
   static constexpr double ACCEPTED_RESIDUAL = 1e-6;
   static constexpr int MAX_KRYLOV_RESTARTS = 3;
+  /// r_I / r of an iterative solver (see the head of this file). On 2D Hertz with fieldsplit_gamg (upper Schur
+  /// factorisation, selfp) at 20k/195k/1M dofs: Krylov iterations per solve 57-65/94-113/121-164 with 1 (the earlier
+  /// constant weight), 24-36/26-41/34-50 with 0.01, about the same with 0.001; it must stay well above the
+  /// stabilisation spring (ContactSolver::STABILISATION r).
+  static constexpr double INACTIVE_WEIGHT = 1e-2;
   /// The start of the next solve in x_: zero for a direct solver; the last multipliers for an iterative one.
   [[nodiscard]] PetscErrorCode InitialGuess();
   /// What to use instead after a failed KSP solve (": ...; expected ..."), from the preconditioner that failed.
@@ -169,6 +188,8 @@ private:
   std::vector<PetscScalar> kept_d_;    ///< the multiplier diagonal of the current solve (rank 0), for ApplyKeptFactor
   PetscBool lu_ = PETSC_FALSE; ///< the PC is LU (the mumps_lu preset): the reuse mode factors with LU too
   double aug_ = 1;  ///< augmentation weight r (the stiffness scale)
+  double aug_inactive_ = 1; ///< augmentation weight r_I of an inactive row (r, or INACTIVE_WEIGHT r: iterative)
+  std::vector<double> weight_; ///< owned multiplier rows: the augmentation weight A holds now (AddAugmentation)
   double stab_ = 0; ///< stabilisation spring s of the current system (0: none)
   std::vector<char> active_;          ///< owned multiplier rows active in the current system
   std::vector<PetscInt> schur_rows_;  ///< rank 0: every multiplier row, in global order
@@ -199,6 +220,7 @@ PetscErrorCode SaddlePointSystem::Create(const DofMap &dofs, const std::vector<C
   PetscFunctionBeginUser;
   dofs_ = &dofs;
   aug_ = kscale;
+  aug_inactive_ = kscale;
   PetscCall(MatCreate(comm, A_.out()));
   PetscCall(MatSetType(A_, MATAIJ));
   PetscCall(MatSetSizes(A_, dofs.OwnedRows(), dofs.OwnedRows(), dofs.GlobalRows(), dofs.GlobalRows()));
