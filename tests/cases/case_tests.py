@@ -716,10 +716,10 @@ def iterative_on_contact(runner, preset, case="hertz"):
     if len(h) >= 2 and h[-2]["changed"] == 0:
         runner.expect_true("correction solve: %d Krylov iterations < half of the %d before" % (
             h[-1]["krylov"], h[-2]["krylov"]), 2 * h[-1]["krylov"] < h[-2]["krylov"])
-    max_mean_krylov = {("hertz", "fieldsplit_gamg"): 40}.get((case, preset))
+    max_mean_krylov = {("hertz", "fieldsplit_gamg"): 25}.get((case, preset))
     if max_mean_krylov:
-        # The inactive rows' small augmentation weight keeps the Schur complement well conditioned: 30 per solve on
-        # 1 and 2 ranks; the constant weight r took 52 (366 in 7 solves).
+        # The inactive rows' small augmentation weight keeps the Schur complement well conditioned: BiCGStab takes
+        # 15-16 iterations per solve on 1 and 2 ranks, against 33-34 with the weight r on every row.
         runner.expect_true("Krylov iterations per solve %.1f <= %d" % (krylov / its, max_mean_krylov),
                            krylov <= max_mean_krylov * its)
 

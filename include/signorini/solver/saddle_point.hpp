@@ -184,6 +184,7 @@ private:
   bool reuse_ = false, augmented_ = false, factored_ = false, constant_k_ = true;
   PetscInt reuse_max_it_ = 0;          ///< -contact_reuse_max_it
   bool refactor_next_ = false;         ///< the last FGMRES solve on the kept factorisation needed many iterations
+  bool pc_current_ = false; ///< iterative solver: A is the matrix of the last preconditioner set-up (a correction)
   KSPH ksp_kept_;                      ///< changing K: FGMRES preconditioned by the kept factorisation
   std::vector<PetscScalar> kept_d_;    ///< the multiplier diagonal of the current solve (rank 0), for ApplyKeptFactor
   PetscBool lu_ = PETSC_FALSE; ///< the PC is LU (the mumps_lu preset): the reuse mode factors with LU too
