@@ -202,6 +202,7 @@ PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<ConstraintRo
   weight_.assign(rows.size(), 0.0);
   PetscCall(Reweight(rows, std::vector<double>(rows.size(), aug_)));
   pc_current_ = false; // after an assembly of K
+  u_pc_valid_ = false;
   PetscFunctionReturn(0);
 }
 
@@ -501,10 +502,12 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
     PetscBool same = augmented_ && !reuse_ && pc_current_ ? PETSC_TRUE : PETSC_FALSE;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_BOOL, MPI_LAND, comm));
     PetscCall(KSPSetReusePreconditioner(ksp_, same));
+    PetscCall(KeepDisplacementPreconditioner());
     ProgressBegin("preconditioner set-up (analysis and factorisation)");
     PetscCall(KSPSetUp(ksp_));
     ProgressEnd();
     pc_current_ = augmented_ && !reuse_;
+    fieldsplit_ready_ = true;
     PetscReal ksp_rtol, abstol, dtol;
     PetscInt max_it;
     PetscCall(KSPGetTolerances(ksp_, &ksp_rtol, &abstol, &dtol, &max_it));
@@ -546,6 +549,45 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
   }
   const PetscReal *known = known_residual[0] >= 0 ? known_residual : nullptr;
   PetscCall(CheckAndConvert(reason, krylov_iterations, residual, check_tol, known));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::KeepDisplacementPreconditioner() {
+  MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
+  PC pc;
+  PetscBool fieldsplit;
+  PetscFunctionBeginUser;
+  if (!augmented_ || reuse_) PetscFunctionReturn(0);
+  PetscCall(KSPGetPC(ksp_, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
+  if (!fieldsplit) PetscFunctionReturn(0);
+  // The displacement block K + sum_p w_p B_p^T B_p changes with the active set only in the weights of the rows that
+  // changed: a rank-k change. While K is the one of the last set-up and k is small against the candidates, the
+  // preconditioner of that block (a GAMG hierarchy) stays; the outer Krylov method works on the current matrix, and
+  // the Schur approximation is formed again. 3D Hertz at 110k dofs, fieldsplit_gamg: 2 GAMG set-ups instead of 6,
+  // the same Krylov counts (20, 28, 28, 29, 27, 29, 5; at most 111 of 2202 rows changed since the set-up).
+  PetscInt changed = 0, total = (PetscInt)weight_.size();
+  if (u_pc_weight_.size() != weight_.size()) changed = total;
+  else
+    for (std::size_t p = 0; p < weight_.size(); ++p) changed += weight_[p] != u_pc_weight_[p];
+  PetscInt counts[2] = {changed, total};
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, comm));
+  PetscBool valid = u_pc_valid_ && fieldsplit_ready_ ? PETSC_TRUE : PETSC_FALSE;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &valid, 1, MPIU_BOOL, MPI_LAND, comm));
+  const PetscBool keep = valid && counts[0] <= KEEP_U_PC_FRACTION * counts[1] ? PETSC_TRUE : PETSC_FALSE;
+  if (fieldsplit_ready_) {
+    KSP *sub;
+    PetscInt n;
+    PetscCall(PCFieldSplitGetSubKSP(pc, &n, &sub));
+    PetscCall(KSPSetReusePreconditioner(sub[0], keep));
+    PetscCall(PetscFree(sub));
+  }
+  PetscCall(PetscInfo(nullptr, "displacement block: %" PetscInt_FMT " of %" PetscInt_FMT " weights changed since its "
+                      "preconditioner's set-up: %s\n", counts[0], counts[1], keep ? "kept" : "set up again"));
+  if (!keep) {
+    u_pc_weight_ = weight_;
+    u_pc_valid_ = true;
+  }
   PetscFunctionReturn(0);
 }
 

@@ -174,6 +174,10 @@ private:
   /// constant weight), 24-36/26-41/34-50 with 0.01, about the same with 0.001; it must stay well above the
   /// stabilisation spring (ContactSolver::STABILISATION r).
   static constexpr double INACTIVE_WEIGHT = 1e-2;
+  /// A Schur fieldsplit keeps its displacement block's preconditioner while at most this fraction of the candidate
+  /// rows changed weight since its set-up (and K did not change): KeepDisplacementPreconditioner.
+  static constexpr double KEEP_U_PC_FRACTION = 0.1;
+  [[nodiscard]] PetscErrorCode KeepDisplacementPreconditioner();
   /// The start of the next solve in x_: zero for a direct solver; the last multipliers for an iterative one.
   [[nodiscard]] PetscErrorCode InitialGuess();
   /// What to use instead after a failed KSP solve (": ...; expected ..."), from the preconditioner that failed.
@@ -185,6 +189,9 @@ private:
   PetscInt reuse_max_it_ = 0;          ///< -contact_reuse_max_it
   bool refactor_next_ = false;         ///< the last FGMRES solve on the kept factorisation needed many iterations
   bool pc_current_ = false; ///< iterative solver: A is the matrix of the last preconditioner set-up (a correction)
+  bool fieldsplit_ready_ = false;   ///< iterative solver: the KSP has been set up (its sub-KSPs exist)
+  bool u_pc_valid_ = false;         ///< K is the one the displacement block's preconditioner was set up with
+  std::vector<double> u_pc_weight_; ///< the augmentation weights at that set-up
   KSPH ksp_kept_;                      ///< changing K: FGMRES preconditioned by the kept factorisation
   std::vector<PetscScalar> kept_d_;    ///< the multiplier diagonal of the current solve (rank 0), for ApplyKeptFactor
   PetscBool lu_ = PETSC_FALSE; ///< the PC is LU (the mumps_lu preset): the reuse mode factors with LU too
