@@ -406,18 +406,18 @@ PetscErrorCode Assembler::AssembleLoads(const BoundaryConditions &bc, double fac
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::CellResults(const double *u_local, std::vector<CellStress> &cells) const {
+PetscErrorCode Assembler::CellResults(const double *u_local,
+                                      const std::function<void(PetscInt, const CellStress &)> &use) const {
   const int dim = mesh_.Dim();
   std::array<double, MAX_EDOF> ue;
   PetscFunctionBeginUser;
-  cells.resize(mesh_.NumLocalCells());
   ElementGeometry g;
   for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
     PetscInt nn;
     const PetscInt *v;
     Geometry(c, g, nn, v);
     GatherElement(u_local, v, nn, dim, ue.data());
-    cells[c] = ElementStress(material_, g, ue.data());
+    use(c, ElementStress(material_, g, ue.data()));
   }
   PetscFunctionReturn(0);
 }
