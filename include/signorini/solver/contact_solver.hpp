@@ -139,6 +139,7 @@ private:
     bool lagged = false;     ///< the next solve keeps the last assembled tangent (-newton_lagged_search)
     double lag_rnorm = -1;   ///< the residual before the last solve (none: -1), for LAGGED_CONTRACTION
     double correction_rtol = 0; ///< linear: the next solve only corrects the equilibrium residual, to this tolerance
+    bool corrected = false;     ///< the last solve was such a correction
     std::vector<double> gap_before{}; ///< the gaps before the last stabilised solve
     /// Condensed solves (linear material, kept factorisation): from the first solve without stabilisation and without
     /// a prescribed displacement still to apply, the active-set iterations run in the multiplier space against that
