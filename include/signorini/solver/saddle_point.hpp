@@ -25,8 +25,8 @@
 // then regular when the candidates hold the body, as above, and the Schur complement stays well conditioned: on an
 // inactive row it is 1/r_I - B_i (K + ...)^-1 B_i^T, which vanishes for r_I = r in every direction the augmentation
 // stiffens more than K (the smooth ones), but stays near 1/r_I when r_I is small against K's stiffness there. The
-// displacement block changes with the active set (the preconditioner is set up again per active set, as it is
-// anyway when D changes).
+// displacement block changes with the active set; a Schur fieldsplit keeps that block's preconditioner across small
+// changes (KeepDisplacementPreconditioner) and the whole preconditioner for a solve with an unchanged matrix.
 #pragma once
 
 #include "signorini/core/handle.hpp"
