@@ -199,8 +199,13 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
 
 PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<ConstraintRow> &rows) {
   PetscFunctionBeginUser;
+  // The weights of the current active set (an iterative solver's inactive rows: r_I), so that SetConstraints only
+  // changes the rows whose state changes.
+  std::vector<double> weight(rows.size(), aug_);
+  for (std::size_t p = 0; p < rows.size() && p < active_.size(); ++p)
+    if (!active_[p]) weight[p] = aug_inactive_;
   weight_.assign(rows.size(), 0.0);
-  PetscCall(Reweight(rows, std::vector<double>(rows.size(), aug_)));
+  PetscCall(Reweight(rows, weight));
   pc_current_ = false; // after an assembly of K
   u_pc_valid_ = false;
   PetscFunctionReturn(0);
@@ -208,6 +213,8 @@ PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<ConstraintRo
 
 PetscErrorCode SaddlePointSystem::Reweight(const std::vector<ConstraintRow> &rows, const std::vector<double> &weight) {
   PetscFunctionBeginUser;
+  // Adds (w_new - w_old) B_p^T B_p: the rows must have the coefficients AddAugmentation added them with (they change
+  // only with a new assembly of K, which AddAugmentation follows).
   for (std::size_t p = 0; p < rows.size(); ++p) {
     const ConstraintRow &row = rows[p];
     const double dw = weight[p] - weight_[p];
@@ -507,7 +514,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
     PetscCall(KSPSetUp(ksp_));
     ProgressEnd();
     pc_current_ = augmented_ && !reuse_;
-    fieldsplit_ready_ = true;
+    ksp_set_up_ = true;
     PetscReal ksp_rtol, abstol, dtol;
     PetscInt max_it;
     PetscCall(KSPGetTolerances(ksp_, &ksp_rtol, &abstol, &dtol, &max_it));
@@ -572,10 +579,10 @@ PetscErrorCode SaddlePointSystem::KeepDisplacementPreconditioner() {
     for (std::size_t p = 0; p < weight_.size(); ++p) changed += weight_[p] != u_pc_weight_[p];
   PetscInt counts[2] = {changed, total};
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, comm));
-  PetscBool valid = u_pc_valid_ && fieldsplit_ready_ ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool valid = u_pc_valid_ && ksp_set_up_ ? PETSC_TRUE : PETSC_FALSE;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &valid, 1, MPIU_BOOL, MPI_LAND, comm));
   const PetscBool keep = valid && counts[0] <= KEEP_U_PC_FRACTION * counts[1] ? PETSC_TRUE : PETSC_FALSE;
-  if (fieldsplit_ready_) {
+  if (ksp_set_up_) {
     KSP *sub;
     PetscInt n;
     PetscCall(PCFieldSplitGetSubKSP(pc, &n, &sub));

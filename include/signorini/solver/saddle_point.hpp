@@ -89,7 +89,7 @@ public:
   /// Whether the system is in the augmented form (the reuse mode, and every solver that is not a factorisation).
   bool Augmented() const { return augmented_; }
   /// Adds r B_C^T B_C over every candidate row to the displacement block (ADD_VALUES, flush assembly); an iterative
-  /// solver's inactive rows get r_I in SetConstraints.
+  /// solver's rows inactive in the current system get r_I (SetConstraints changes the weights of the next).
   [[nodiscard]] PetscErrorCode AddAugmentation(const std::vector<ConstraintRow> &rows);
   /// Changes the augmentation weight of every owned row to weight[p] (ADD_VALUES of the difference, flush assembly).
   [[nodiscard]] PetscErrorCode Reweight(const std::vector<ConstraintRow> &rows, const std::vector<double> &weight);
@@ -169,9 +169,9 @@ private:
   /// residual by 10).
   static constexpr double ACCEPTED_RESIDUAL = 1e-6;
   static constexpr int MAX_KRYLOV_RESTARTS = 3;
-  /// r_I / r of an iterative solver (see the head of this file). On 2D Hertz with fieldsplit_gamg (upper Schur
+  /// r_I / r of an iterative solver (see the head of this file). On 2D Hertz with fieldsplit_gamg (FGMRES, upper Schur
   /// factorisation, selfp) at 20k/195k/1M dofs: Krylov iterations per solve 57-65/94-113/121-164 with 1 (the earlier
-  /// constant weight), 24-36/26-41/34-50 with 0.01, about the same with 0.001; it must stay well above the
+  /// constant weight), 24-36/26-41/29-42 with 0.01, about the same with 0.001; it must stay well above the
   /// stabilisation spring (ContactSolver::STABILISATION r).
   static constexpr double INACTIVE_WEIGHT = 1e-2;
   /// A Schur fieldsplit keeps its displacement block's preconditioner while at most this fraction of the candidate
@@ -189,7 +189,7 @@ private:
   PetscInt reuse_max_it_ = 0;          ///< -contact_reuse_max_it
   bool refactor_next_ = false;         ///< the last FGMRES solve on the kept factorisation needed many iterations
   bool pc_current_ = false; ///< iterative solver: A is the matrix of the last preconditioner set-up (a correction)
-  bool fieldsplit_ready_ = false;   ///< iterative solver: the KSP has been set up (its sub-KSPs exist)
+  bool ksp_set_up_ = false;         ///< iterative solver: the KSP has been set up (a fieldsplit's sub-KSPs exist)
   bool u_pc_valid_ = false;         ///< K is the one the displacement block's preconditioner was set up with
   std::vector<double> u_pc_weight_; ///< the augmentation weights at that set-up
   KSPH ksp_kept_;                      ///< changing K: FGMRES preconditioned by the kept factorisation
