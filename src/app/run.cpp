@@ -103,35 +103,54 @@ PetscErrorCode HelpKsp(MPI_Comm comm) {
 
 /// Vertex and cell fields of the current state, for the HDF5 file (vectors padded to 3 components for ParaView).
 PetscErrorCode StepFields(ContactSolver &solver, const NodeContact &nodes, std::vector<Field> &fields) {
-  const Mesh &mesh = solver.GetMesh();
-  const int dim = mesh.Dim();
-  const PetscInt nv = mesh.NumLocalVertices(), nc = mesh.NumLocalCells();
+  const int dim = solver.GetMesh().Dim();
   PetscFunctionBeginUser;
-  Field disp{"displacement", 3, false, std::vector<double>(3 * nv, 0.0)};
-  for (PetscInt v = 0; v < nv; ++v)
-    for (int k = 0; k < dim; ++k) disp.values[3 * v + k] = solver.ULocal()[v * dim + k];
-  Field strain{"strain", 6, true, std::vector<double>(6 * nc)}, stress{"stress", 6, true, std::vector<double>(6 * nc)},
-      vm{"von_mises", 1, true, std::vector<double>(nc)};
-  PetscCall(solver.GetAssembler().CellResults(solver.ULocal().data(), [&](PetscInt c, const CellStress &r) {
-    // VTK's order of a symmetric tensor (xx, yy, zz, xy, yz, xz): ParaView names six components so (output.cpp). The
-    // kernels' Voigt order is (xx, yy, xy) in 2D and (xx, yy, zz, yz, xz, xy) in 3D.
-    const auto &e = r.strain, &s = r.stress;
-    const std::array<double, 6> e6 = dim == 2 ? std::array<double, 6>{e[0], e[1], 0, e[2], 0, 0}
-                                              : std::array<double, 6>{e[0], e[1], e[2], e[5], e[3], e[4]},
-                                s6 = dim == 2 ? std::array<double, 6>{s[0], s[1], r.stress_zz, s[2], 0, 0}
-                                              : std::array<double, 6>{s[0], s[1], s[2], s[5], s[3], s[4]};
-    std::copy(e6.begin(), e6.end(), strain.values.begin() + 6 * c);
-    std::copy(s6.begin(), s6.end(), stress.values.begin() + 6 * c);
-    vm.values[c] = r.von_mises;
-  }));
-  fields.push_back(std::move(disp));
-  fields.push_back({"contact_lambda", 1, false, nodes.lambda, true});
-  fields.push_back({"contact_pressure", 1, false, nodes.pressure, true});
-  fields.push_back({"contact_gap", 1, false, nodes.gap, true});
-  fields.push_back({"contact_active", 1, false, nodes.active, true});
-  fields.push_back(std::move(strain));
-  fields.push_back(std::move(stress));
-  fields.push_back(std::move(vm));
+  // Each field is made when it is written (Field::fill): the cell fields each by a pass over the cells.
+  const auto node_copy = [](const std::vector<double> &from) {
+    return [&from](std::vector<double> &values) -> PetscErrorCode {
+      values = from;
+      return 0;
+    };
+  };
+  const auto displacement = [&solver, dim](std::vector<double> &values) -> PetscErrorCode {
+    const PetscInt nv = solver.GetMesh().NumLocalVertices();
+    values.assign(3 * nv, 0.0);
+    for (PetscInt v = 0; v < nv; ++v)
+      for (int k = 0; k < dim; ++k) values[3 * v + k] = solver.ULocal()[v * dim + k];
+    return 0;
+  };
+  enum { STRAIN, STRESS, VON_MISES };
+  const auto cell_field = [&solver, dim](int which) {
+    return [&solver, dim, which](std::vector<double> &values) -> PetscErrorCode {
+      const int ncomp = which == VON_MISES ? 1 : 6;
+      PetscFunctionBeginUser;
+      values.assign(ncomp * solver.GetMesh().NumLocalCells(), 0.0);
+      PetscCall(solver.GetAssembler().CellResults(solver.ULocal().data(), [&](PetscInt c, const CellStress &r) {
+        if (which == VON_MISES) {
+          values[c] = r.von_mises;
+          return;
+        }
+        // VTK's order of a symmetric tensor (xx, yy, zz, xy, yz, xz): ParaView names six components so (output.cpp).
+        // The kernels' Voigt order is (xx, yy, xy) in 2D and (xx, yy, zz, yz, xz, xy) in 3D.
+        const auto &e = r.strain, &s = r.stress;
+        const std::array<double, 6> t =
+            which == STRAIN ? (dim == 2 ? std::array<double, 6>{e[0], e[1], 0, e[2], 0, 0}
+                                        : std::array<double, 6>{e[0], e[1], e[2], e[5], e[3], e[4]})
+                            : (dim == 2 ? std::array<double, 6>{s[0], s[1], r.stress_zz, s[2], 0, 0}
+                                        : std::array<double, 6>{s[0], s[1], s[2], s[5], s[3], s[4]});
+        std::copy(t.begin(), t.end(), values.begin() + 6 * c);
+      }));
+      PetscFunctionReturn(0);
+    };
+  };
+  fields.push_back({"displacement", 3, false, {}, false, displacement});
+  fields.push_back({"contact_lambda", 1, false, {}, true, node_copy(nodes.lambda)});
+  fields.push_back({"contact_pressure", 1, false, {}, true, node_copy(nodes.pressure)});
+  fields.push_back({"contact_gap", 1, false, {}, true, node_copy(nodes.gap)});
+  fields.push_back({"contact_active", 1, false, {}, true, node_copy(nodes.active)});
+  fields.push_back({"strain", 6, true, {}, false, cell_field(STRAIN)});
+  fields.push_back({"stress", 6, true, {}, false, cell_field(STRESS)});
+  fields.push_back({"von_mises", 1, true, {}, false, cell_field(VON_MISES)});
   PetscFunctionReturn(0);
 }
 
@@ -255,7 +274,7 @@ PetscErrorCode Run() {
     PetscCall(PetscLogStagePush(stage_output));
     ProgressBegin("output of load step");
     PetscCall(ComputeContactResults(solver, material, nodes, summary));
-    std::vector<Field> fields; // freed after the step's output (130 MB at 1M cells)
+    std::vector<Field> fields; // made one at a time as they are written
     PetscCall(StepFields(solver, nodes, fields));
     PetscCall(output.WriteStep(step, factor, fields));
     ProgressEnd();

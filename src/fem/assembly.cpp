@@ -58,24 +58,38 @@ PetscErrorCode Assembler::CheckCells() const {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::MatrixRows(Mat A, std::vector<PetscInt> &rows) const {
+  const int dim = mesh_.Dim();
+  PetscInt m;
+  PetscFunctionBeginUser;
+  PetscCall(MatGetSize(A, &m, nullptr));
+  const bool block = m != dofs_.GlobalRows();
+  PetscCheck(!block || m == dofs_.GlobalU(), PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
+             "a stiffness matrix of %" PetscInt_FMT " rows: neither the saddle-point system nor its displacement block", m);
+  rows.resize(mesh_.NumLocalVertices() * dim);
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    for (int k = 0; k < dim; ++k) rows[v * dim + k] = block ? dofs_.URow(v, k) : dofs_.Row(v, k);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::InsertPattern(Mat A) const {
   const int dim = mesh_.Dim();
   std::array<PetscInt, MAX_EDOF> idx;
   std::array<PetscScalar, MAX_EDOF * MAX_EDOF> zeros{};
+  std::vector<PetscInt> rows;
   PetscFunctionBeginUser;
+  PetscCall(MatrixRows(A, rows));
   for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
     PetscInt nn;
     const PetscInt *v = mesh_.CellVertices(c, nn);
     for (PetscInt a = 0; a < nn; ++a)
-      for (int k = 0; k < dim; ++k) idx[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : dofs_.Row(v[a], k);
+      for (int k = 0; k < dim; ++k) idx[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : rows[v[a] * dim + k];
     PetscCall(MatSetValues(A, nn * dim, idx.data(), nn * dim, idx.data(), zeros.data(), ADD_VALUES));
   }
   for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
     for (int k = 0; k < dim; ++k)
-      if (mesh_.Owned(v) && dirichlet_.fixed[v * dim + k]) {
-        const PetscInt r = dofs_.Row(v, k);
-        PetscCall(MatSetValue(A, r, r, 0.0, ADD_VALUES));
-      }
+      if (mesh_.Owned(v) && dirichlet_.fixed[v * dim + k])
+        PetscCall(MatSetValue(A, rows[v * dim + k], rows[v * dim + k], 0.0, ADD_VALUES));
   PetscFunctionReturn(0);
 }
 
@@ -282,6 +296,8 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
       PetscFunctionReturn(0);
     }
   }
+  std::vector<PetscInt> matrix_rows;
+  if (A) PetscCall(MatrixRows(A, matrix_rows));
   if (A) PetscCall(adder.Begin(A));
   for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
     PetscInt nn;
@@ -293,7 +309,8 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
     if (material_.model == MaterialModel::SVK) jmin = std::min(jmin, MinDeformationJacobian(g, ue.data()));
     if (A) {
       for (PetscInt a = 0; a < nn; ++a)
-        for (int k = 0; k < dim; ++k) rows[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : dofs_.Row(v[a], k);
+        for (int k = 0; k < dim; ++k)
+          rows[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : matrix_rows[v[a] * dim + k];
       PetscCall(adder.Add(nn * dim, rows.data(), Ke.data()));
     }
     if (fint)
@@ -303,10 +320,8 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
   if (A) {
     for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
       for (int k = 0; k < dim; ++k)
-        if (mesh_.Owned(v) && dirichlet_.fixed[v * dim + k]) {
-          const PetscInt r = dofs_.Row(v, k);
-          PetscCall(adder.Add(1, &r, &dirichlet_diag));
-        }
+        if (mesh_.Owned(v) && dirichlet_.fixed[v * dim + k])
+          PetscCall(adder.Add(1, &matrix_rows[v * dim + k], &dirichlet_diag));
     PetscCall(adder.End());
   }
   if (fint) PetscCall(AddLocal(f_local, fint));

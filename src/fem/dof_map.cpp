@@ -1,6 +1,8 @@
 // Numbering of the saddle-point unknowns.
 #include "signorini/fem/dof_map.hpp"
 
+#include <algorithm>
+
 namespace signorini {
 
 PetscErrorCode DofMap::Create(const Mesh &mesh, PetscInt num_owned_multipliers) {
@@ -17,6 +19,15 @@ PetscErrorCode DofMap::Create(const Mesh &mesh, PetscInt num_owned_multipliers) 
   row_start_ -= local;
   PetscCallMPI(MPI_Allreduce(&local, &n_global_, 1, MPIU_INT, MPI_SUM, comm));
   PetscCallMPI(MPI_Allreduce(&nu_, &nu_global_, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCallMPI(MPI_Scan(&nl_, &lambda_start_, 1, MPIU_INT, MPI_SUM, comm));
+  lambda_start_ -= nl_;
+  PetscMPIInt size;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  row_starts_.assign(size + 1, n_global_);
+  u_starts_.assign(size + 1, nu_global_);
+  const PetscInt u_start = row_start_ - lambda_start_;
+  PetscCallMPI(MPI_Allgather(&row_start_, 1, MPIU_INT, row_starts_.data(), 1, MPIU_INT, comm));
+  PetscCallMPI(MPI_Allgather(&u_start, 1, MPIU_INT, u_starts_.data(), 1, MPIU_INT, comm));
 
   // Owners number their vertices; the point SF carries the numbers to the ghosts.
   DM dm = mesh.Dm();
@@ -37,9 +48,11 @@ PetscErrorCode DofMap::Create(const Mesh &mesh, PetscInt num_owned_multipliers) 
     PetscCall(PetscSFBcastEnd(sf, MPIU_INT, root.data(), leaf.data(), MPI_REPLACE));
   }
   vertex_row_.resize(nv);
+  vertex_urow_.resize(nv);
   for (PetscInt v = 0; v < nv; ++v) {
     vertex_row_[v] = leaf[vstart + v - pstart];
     PetscCheck(vertex_row_[v] >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "vertex %" PetscInt_FMT " has no dof number", v);
+    vertex_urow_[v] = UBlockRow(vertex_row_[v]);
   }
   PetscCall(ISCreateStride(comm, nu_, row_start_, 1, is_u_.out()));
   PetscCall(ISSetBlockSize(is_u_, dim_));
@@ -47,6 +60,12 @@ PetscErrorCode DofMap::Create(const Mesh &mesh, PetscInt num_owned_multipliers) 
   PetscCall(PetscObjectSetName((PetscObject)is_u_.get(), "u"));
   PetscCall(PetscObjectSetName((PetscObject)is_lambda_.get(), "lambda"));
   PetscFunctionReturn(0);
+}
+
+PetscInt DofMap::UBlockRow(PetscInt row) const {
+  // The owner: the last rank whose first row is at most row (ranks without rows share their first row).
+  const std::size_t r = std::upper_bound(row_starts_.begin(), row_starts_.end() - 1, row) - row_starts_.begin() - 1;
+  return row - row_starts_[r] + u_starts_[r];
 }
 
 } // namespace signorini

@@ -210,8 +210,10 @@ PetscErrorCode OutputWriter::WriteStep(PetscInt step, double t, const std::vecto
   if (contact_num_nodes_ > 0) PetscCall(file.CreateGroup(boundary));
   for (const auto &f : fields) {
     const FileRows &rows = f.on_cells ? cell_rows_ : node_rows_;
-    std::vector<double> block, restricted;
-    PetscCall(rows.ToBlocks(f.values, f.ncomp, block));
+    std::vector<double> made, block, restricted;
+    if (f.fill) PetscCall(f.fill(made));
+    PetscCall(rows.ToBlocks(f.fill ? made : f.values, f.ncomp, block));
+    made = std::vector<double>(); // freed before the write
     PetscCall(file.WriteRows(group + "/" + f.name, rows.Global(), f.ncomp, rows.Start(), block));
     if (!f.on_contact || contact_num_nodes_ == 0) continue;
     PetscCall(contact_rows_.FromBlocks(block, f.ncomp, restricted));

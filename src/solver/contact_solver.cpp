@@ -478,10 +478,10 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   if (lag && !contracting) system_->RefactorNext();
   if ((st.large && !st.lagged) || !k_assembled_) {
     ProgressBegin("stiffness assembly");
-    PetscCall(MatZeroEntries(system_->A()));
-    PetscCall(assembler_->Assemble(u_local_.data(), system_->A(), kscale_, nullptr, nullptr));
-    PetscCall(MatAssemblyBegin(system_->A(), MAT_FLUSH_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(system_->A(), MAT_FLUSH_ASSEMBLY));
+    PetscCall(MatZeroEntries(system_->Stiffness()));
+    PetscCall(assembler_->Assemble(u_local_.data(), system_->Stiffness(), kscale_, nullptr, nullptr));
+    PetscCall(MatAssemblyBegin(system_->Stiffness(), MAT_FLUSH_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(system_->Stiffness(), MAT_FLUSH_ASSEMBLY));
     if (system_->Augmented()) PetscCall(system_->AddAugmentation(rows_));
     k_assembled_ = true;
     ProgressEnd();
@@ -754,6 +754,9 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
       mult_saved = mult_;
       lambda_saved = lambda_;
       active_saved = active_set_.Flags();
+      // After the last solve the factorisation or preconditioner goes before the last step's output (1M dofs in 2D:
+      // MUMPS's factors 1.35 GB, fieldsplit_gamg's blocks and hierarchy 0.36 GB).
+      if (t >= 1.0 - 1e-12) PetscCall(system_->Release());
       PetscCall(step_done(step, t));
       continue;
     }

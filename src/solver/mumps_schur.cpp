@@ -34,12 +34,20 @@ PetscErrorCode RegisterEvents() {
 }
 } // namespace
 
-MumpsSchur::~MumpsSchur() {
+MumpsSchur::~MumpsSchur() { Release(); }
+
+void MumpsSchur::Release() {
   if (initialised_) {
     id_.job = -2;
     dmumps_c(&id_);
   }
+  initialised_ = condensed_ = s_factored_ = false;
+  for (auto *v : {&irn_, &jcn_, &listvar_, &perm_in_}) std::vector<MUMPS_INT>().swap(*v);
+  for (auto *v : {&val_, &schur_raw_, &s0_, &d0_, &s_, &d_factored_, &redrhs_, &work_, &condensed_u_, &reduced_})
+    std::vector<double>().swap(*v);
+  std::vector<PetscBLASInt>().swap(ipiv_);
   (void)VecScatterDestroy(&to_root_);
+  root_.Reset();
 }
 
 PetscErrorCode MumpsSchur::Call(int job, const char *phase) {

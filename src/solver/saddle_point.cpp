@@ -84,12 +84,136 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SaddlePointSystem::Create(const DofMap &dofs, const std::vector<ConstraintRow> &rows,
+                                         const std::vector<double> &coords, bool constant_k, double kscale,
+                                         const std::vector<PetscInt> &d_nnz_k, const std::vector<PetscInt> &o_nnz_k,
+                                         const std::function<PetscErrorCode(Mat)> &insert_k) {
+  MPI_Comm comm = PetscObjectComm((PetscObject)dofs.IsU());
+  PetscFunctionBeginUser;
+  dofs_ = &dofs;
+  aug_ = kscale;
+  aug_inactive_ = kscale;
+  bool fieldsplit;
+  PetscCall(CreateKsp(comm, fieldsplit));
+  nest_ = fieldsplit && dofs.GlobalLambda() > 0;
+  if (nest_) {
+    PetscCall(CreateNest(rows, d_nnz_k, o_nnz_k, insert_k));
+  } else {
+    PetscCall(MatCreate(comm, A_.out()));
+    PetscCall(MatSetType(A_, MATAIJ));
+    PetscCall(MatSetSizes(A_, dofs.OwnedRows(), dofs.OwnedRows(), dofs.GlobalRows(), dofs.GlobalRows()));
+    // Block size 1 even without multipliers: GAMG with the rigid-body near-null space on the node blocks (bs = dim)
+    // left a true residual of 1e-6 on the 2-rank cantilever (tests: elastic_gamg), against 1e-10 unblocked.
+    std::vector<PetscInt> d_nnz, o_nnz;
+    RowCounts(rows, d_nnz_k, o_nnz_k, d_nnz, o_nnz);
+    PetscCall(MatSeqAIJSetPreallocation(A_, 0, d_nnz.data()));
+    PetscCall(MatMPIAIJSetPreallocation(A_, 0, d_nnz.data(), 0, o_nnz.data()));
+    // The pattern: zeros inserted at every entry of K and of the constraint rows (an entry beyond the counts, possible
+    // only in rows shared between ranks, is allocated then), compressed by the final assembly and fixed from then on.
+    PetscCall(MatSetOption(A_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+    PetscCall(insert_k(A_.get()));
+    PetscCall(CreatePattern(rows, A_));
+    PetscCall(MatSetOption(A_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+    PetscCall(MatSetOption(A_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+  }
+  PetscCall(MatSetOption(A_, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(A_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+  PetscCall(PetscObjectSetName((PetscObject)A_.get(), "saddle_point"));
+  PetscCall(MatCreateVecs(A_, x_.out(), b_.out()));
+  PetscCall(VecDuplicate(b_, r_.out()));
+  PetscCall(SetupKsp(coords, constant_k));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::CreateNest(const std::vector<ConstraintRow> &rows,
+                                             const std::vector<PetscInt> &d_nnz_k, const std::vector<PetscInt> &o_nnz_k,
+                                             const std::function<PetscErrorCode(Mat)> &insert_k) {
+  MPI_Comm comm = PetscObjectComm((PetscObject)dofs_->IsU());
+  const PetscInt nu = dofs_->OwnedU(), nl = dofs_->OwnedLambda(), gu = dofs_->GlobalU(), gl = dofs_->GlobalLambda();
+  const PetscInt start = dofs_->RowStart();
+  const auto mine = [&](PetscInt c) { return c >= start && c < start + nu; };
+  const auto create = [&](PetscInt m, PetscInt n, PetscInt gm, PetscInt gn, const std::vector<PetscInt> &d_nnz,
+                          const std::vector<PetscInt> &o_nnz, MatH &M) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCall(MatCreate(comm, M.out()));
+    PetscCall(MatSetType(M, MATAIJ));
+    PetscCall(MatSetSizes(M, m, n, gm, gn));
+    PetscCall(MatSeqAIJSetPreallocation(M, 0, d_nnz.data()));
+    PetscCall(MatMPIAIJSetPreallocation(M, 0, d_nnz.data(), 0, o_nnz.data()));
+    // An entry beyond the counts (rows shared between ranks) is allocated when it is set; the pattern is then fixed.
+    PetscCall(MatSetOption(M, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+    PetscFunctionReturn(0);
+  };
+  PetscFunctionBeginUser;
+  // The displacement block: K's pattern, node blocks of dim (as PCFIELDSPLIT's copy of it had them, for GAMG).
+  PetscCall(create(nu, nu, gu, gu, d_nnz_k, o_nnz_k, K_));
+  PetscCall(MatSetBlockSizes(K_, dofs_->Dim(), dofs_->Dim()));
+  PetscCall(insert_k(K_.get()));
+  // B (rows: this rank's multipliers) and B^T (rows: displacement rows; a row of another rank gets room when set).
+  std::vector<PetscInt> b_d(nl, 0), b_o(nl, 0), bt_d(nu, 0), bt_o(nu, 0), d_d(nl, 1), d_o(nl, 0);
+  for (std::size_t p = 0; p < rows.size(); ++p)
+    for (PetscInt i = 0; i < rows[p].ncols; ++i) {
+      const PetscInt c = rows[p].cols[i];
+      (mine(c) ? b_d[p] : b_o[p]) += 1;
+      if (mine(c)) bt_d[c - start] += 1;
+    }
+  PetscCall(create(nl, nu, gl, gu, b_d, b_o, B_));
+  PetscCall(create(nu, nl, gu, gl, bt_d, bt_o, Bt_));
+  PetscCall(create(nl, nl, gl, gl, d_d, d_o, D_));
+  const PetscScalar zeros[3] = {0, 0, 0};
+  for (std::size_t p = 0; p < rows.size(); ++p) PetscCall(SetRow(rows[p], (PetscInt)p, zeros, 0.0));
+  for (Mat M : {K_.get(), B_.get(), Bt_.get(), D_.get()}) {
+    PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatSetOption(M, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+    PetscCall(MatSetOption(M, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+  }
+  PetscCall(MatSetOption(K_, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(K_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+  IS is[2] = {dofs_->IsU(), dofs_->IsLambda()};
+  Mat blocks[4] = {K_, Bt_, B_, D_};
+  PetscCall(MatCreateNest(comm, 2, is, 2, is, blocks, A_.out()));
+  // Standard vectors in the layout of the whole system (each rank: its displacement rows, then its multipliers).
+  PetscCall(MatNestSetVecType(A_, VECSTANDARD));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::SetRow(const ConstraintRow &row, PetscInt p, const PetscScalar *coef,
+                                         PetscScalar d) {
+  PetscFunctionBeginUser;
+  if (!nest_) {
+    const PetscInt r = dofs_->LambdaRow(p);
+    PetscCall(MatSetValues(A_, 1, &r, row.ncols, row.cols, coef, INSERT_VALUES));
+    PetscCall(MatSetValues(A_, row.ncols, row.cols, 1, &r, coef, INSERT_VALUES));
+    PetscCall(MatSetValue(A_, r, r, d, INSERT_VALUES));
+    PetscFunctionReturn(0);
+  }
+  const PetscInt r = dofs_->LambdaBlockRow(p);
+  PetscInt cols[3];
+  for (PetscInt i = 0; i < row.ncols; ++i) cols[i] = dofs_->UBlockRow(row.cols[i]);
+  PetscCall(MatSetValues(B_, 1, &r, row.ncols, cols, coef, INSERT_VALUES));
+  PetscCall(MatSetValues(Bt_, row.ncols, cols, 1, &r, coef, INSERT_VALUES));
+  PetscCall(MatSetValue(D_, r, r, d, INSERT_VALUES));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::CreateKsp(MPI_Comm comm, bool &fieldsplit) {
+  PC pc;
+  PetscBool is_fieldsplit;
+  PetscFunctionBeginUser;
+  PetscCall(KSPCreate(comm, ksp_.out()));
+  PetscCall(SetDefaultSolver(ksp_));
+  PetscCall(KSPSetFromOptions(ksp_));
+  PetscCall(KSPGetPC(ksp_, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &is_fieldsplit));
+  fieldsplit = is_fieldsplit;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bool constant_k) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   PC pc;
   PetscFunctionBeginUser;
-  PetscCall(KSPCreate(comm, ksp_.out()));
-  PetscCall(SetDefaultSolver(ksp_));
   PetscCall(KSPSetOperators(ksp_, A_, A_));
   PetscCall(KSPGetPC(ksp_, &pc));
   // Rigid-body modes of the displacement block, offered to fieldsplit's "u" solver as its near-null space.
@@ -104,7 +228,6 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   PetscCall(MatNullSpaceCreateRigidBody(xyz, near_null_.out()));
   PetscCall(PetscObjectCompose((PetscObject)dofs_->IsU(), "nearnullspace", (PetscObject)near_null_.get()));
   if (dofs_->GlobalLambda() == 0) PetscCall(MatSetNearNullSpace(A_, near_null_));
-  PetscCall(KSPSetFromOptions(ksp_));
   PetscBool preonly;
   PetscCall(PetscObjectTypeCompare((PetscObject)ksp_.get(), KSPPREONLY, &preonly));
   if (!preonly) PetscCall(KSPConvergedDefaultSetUIRNorm(ksp_)); // relative to the start's residual (InitialGuess)
@@ -124,6 +247,11 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
     PetscBool mumps = PETSC_FALSE;
     if (type) PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &mumps));
     if (mumps) {
+      // The factor's options (-contact_mat_mumps_*) have the PC's prefix: PCSetUp would give it, but the factor is
+      // created here, and the options were read (CreateKsp) before the matrix existed.
+      const char *prefix;
+      PetscCall(PCGetOptionsPrefix(pc, &prefix));
+      PetscCall(MatSetOptionsPrefixFactor(A_, prefix));
       PetscCall(PCFactorSetUpMatSolverType(pc));
       PetscCall(PCFactorGetMatrix(pc, &mumps_factor_));
       PetscCall(MatMumpsSetIcntl(mumps_factor_, 24, 1));
@@ -220,13 +348,16 @@ PetscErrorCode SaddlePointSystem::Reweight(const std::vector<ConstraintRow> &row
     const double dw = weight[p] - weight_[p];
     if (dw == 0) continue;
     PetscScalar v[9];
-    for (PetscInt i = 0; i < row.ncols; ++i)
+    PetscInt cols[3];
+    for (PetscInt i = 0; i < row.ncols; ++i) {
+      cols[i] = nest_ ? dofs_->UBlockRow(row.cols[i]) : row.cols[i];
       for (PetscInt j = 0; j < row.ncols; ++j) v[i * row.ncols + j] = dw * row.coef[i] * row.coef[j];
-    PetscCall(MatSetValues(A_, row.ncols, row.cols, row.ncols, row.cols, v, ADD_VALUES));
+    }
+    PetscCall(MatSetValues(Stiffness(), row.ncols, cols, row.ncols, cols, v, ADD_VALUES));
     weight_[p] = weight[p];
   }
-  PetscCall(MatAssemblyBegin(A_, MAT_FLUSH_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(A_, MAT_FLUSH_ASSEMBLY));
+  PetscCall(MatAssemblyBegin(Stiffness(), MAT_FLUSH_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Stiffness(), MAT_FLUSH_ASSEMBLY));
   PetscFunctionReturn(0);
 }
 
@@ -284,12 +415,9 @@ PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<ConstraintRow
     PetscCall(Reweight(rows, weight));
   }
   for (std::size_t p = 0; p < rows.size(); ++p) {
-    const PetscInt r = dofs_->LambdaRow((PetscInt)p);
     const bool keep = active[p] || augmented_ || stab_ > 0;
-    const PetscScalar *v = keep ? rows[p].coef : zeros;
-    PetscCall(MatSetValues(A_, 1, &r, rows[p].ncols, rows[p].cols, v, INSERT_VALUES));
-    PetscCall(MatSetValues(A_, rows[p].ncols, rows[p].cols, 1, &r, v, INSERT_VALUES));
-    PetscCall(MatSetValue(A_, r, r, active[p] ? 0.0 : InactiveDiagonal(inactive_diag), INSERT_VALUES));
+    PetscCall(SetRow(rows[p], (PetscInt)p, keep ? rows[p].coef : zeros,
+                     active[p] ? 0.0 : InactiveDiagonal(inactive_diag)));
   }
   active_ = active;
   PetscCall(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
@@ -414,7 +542,7 @@ PetscErrorCode SaddlePointSystem::SolveWithKeptFactor(const std::vector<PetscSca
 
 PetscErrorCode SaddlePointSystem::Condense() {
   PetscFunctionBeginUser;
-  PetscCheck(reuse_ && constant_k_, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
+  PetscCheck(reuse_ && constant_k_ && !released_, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
              "a condensation needs the kept factorisation of a constant K");
   PetscCall(Factor());
   PetscCall(mumps_schur_.Condense(b_));
@@ -485,6 +613,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   KSPConvergedReason reason;
   PetscFunctionBeginUser;
+  PetscCheck(!released_, comm, PETSC_ERR_ORDER, "a saddle-point solve after Release()");
   PetscCall(InitialGuess());
   PetscInt null_pivots = 0;
   double check_tol = ACCEPTED_RESIDUAL; // the relative residual above which a solve is an error (CheckAndConvert)
@@ -556,6 +685,17 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
   }
   const PetscReal *known = known_residual[0] >= 0 ? known_residual : nullptr;
   PetscCall(CheckAndConvert(reason, krylov_iterations, residual, check_tol, known));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::Release() {
+  PetscFunctionBeginUser;
+  PetscCall(KSPReset(ksp_));
+  if (ksp_kept_) PetscCall(KSPReset(ksp_kept_));
+  mumps_schur_.Release();
+  mumps_factor_ = nullptr; // the PC's, destroyed
+  factored_ = pc_current_ = ksp_set_up_ = u_pc_valid_ = false;
+  released_ = true;
   PetscFunctionReturn(0);
 }
 

@@ -29,7 +29,9 @@ public:
 
   /// Checks every local cell's Jacobian (positive, no inversion). Collective.
   [[nodiscard]] PetscErrorCode CheckCells() const;
-  /// Inserts the nonzero pattern of K (free rows and columns) and the Dirichlet diagonal into A (values 0).
+  /// Inserts the nonzero pattern of K (free rows and columns) and the Dirichlet diagonal into A (values 0). A is the
+  /// whole saddle-point matrix (DofMap::Row) or its displacement block alone (DofMap::URow), told by its size; so in
+  /// Assemble.
   [[nodiscard]] PetscErrorCode InsertPattern(Mat A) const;
   /// Bounds of the nonzeros of K per owned displacement row (local row order, dofs.OwnedU() values) in the columns
   /// this rank owns (d_nnz) and in the others (o_nnz), from the local cells around each vertex: exact for a vertex
@@ -58,6 +60,9 @@ private:
   /// Adds f_local (dim values per local vertex, ghosts included) to the displacement rows of f and assembles f.
   /// Collective.
   [[nodiscard]] PetscErrorCode AddLocal(const std::vector<double> &f_local, Vec f) const;
+  /// Global rows of A for the local vertices (dim per vertex): the numbering of the whole saddle-point matrix or of its
+  /// displacement block (InsertPattern). Not collective.
+  [[nodiscard]] PetscErrorCode MatrixRows(Mat A, std::vector<PetscInt> &rows) const;
   bool Geometry(PetscInt c, ElementGeometry &g, PetscInt &nn, const PetscInt *&vertices) const;
   const Mesh &mesh_;
   const Material &material_;

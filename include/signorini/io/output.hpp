@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,13 +30,16 @@ struct OutputOptions {
 [[nodiscard]] PetscErrorCode ReadOutputOptions(MPI_Comm comm, OutputOptions &opts);
 
 /// A field on the vertices or the cells, ncomp values per local vertex (cell), named as in the HDF5 file. A vertex
-/// field with on_contact is written on the contact-boundary grid too.
+/// field with on_contact is written on the contact-boundary grid too. A field with fill has its values made by it when
+/// it is written (WriteStep), so that a step's fields are in memory one at a time (the cell fields of 1M cells take
+/// 100 MB together); fill is collective when the writer's caller is.
 struct Field {
   std::string name;
   int ncomp = 1;
   bool on_cells = false;
   std::vector<double> values;
   bool on_contact = false;
+  std::function<PetscErrorCode(std::vector<double> &)> fill = nullptr;
 };
 
 class OutputWriter {

@@ -73,6 +73,8 @@ public:
   /// The whole solution x for the right-hand side of the last Condense and the multiplier part of the last
   /// SolveReduced (or Solve): MUMPS's backward substitution. A new Condense is needed after it. Collective.
   [[nodiscard]] PetscErrorCode Expand(Vec x);
+  /// Frees the factors and every array (MUMPS's JOB = -2); a new Factor starts again. Collective.
+  void Release();
   /// Null pivots MUMPS met in A11 (INFOG(28)).
   PetscInt NullPivots() const { return null_pivots_; }
 
