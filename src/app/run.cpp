@@ -257,6 +257,7 @@ PetscErrorCode Run() {
   PetscCall(PetscLogStagePush(stage_setup));
   ProgressBegin("set-up (supports, contact pairs, numbering, matrix pattern)");
   PetscCall(solver.Setup());
+  mesh.ReleaseDM(); // the mesh's own arrays serve from here on
   ProgressEnd();
   PetscCall(PetscLogStagePop());
   info.timings["setup"] = MPI_Wtime() - t;

@@ -114,22 +114,13 @@ PetscErrorCode Assembler::PatternCounts(std::vector<PetscInt> &d_nnz, std::vecto
       for (PetscInt a = 0; a < nn; ++a) cells[next[v[a]]++] = c;
     }
   }
-  // Vertices that other ranks see too (roots of the point SF with leaves).
+  // Vertices that other ranks see too (roots of the vertex SF with leaves).
   std::vector<char> shared(nv, 0);
   {
-    DM dm = mesh_.Dm();
-    PetscSF sf;
-    PetscInt nroots, pstart, pend, vstart, vend;
     const PetscInt *degree = nullptr;
-    PetscCall(DMGetPointSF(dm, &sf));
-    PetscCall(PetscSFGetGraph(sf, &nroots, nullptr, nullptr, nullptr));
-    PetscCall(DMPlexGetChart(dm, &pstart, &pend));
-    PetscCall(DMPlexGetDepthStratum(dm, 0, &vstart, &vend));
-    if (nroots >= 0) {
-      PetscCall(PetscSFComputeDegreeBegin(sf, &degree));
-      PetscCall(PetscSFComputeDegreeEnd(sf, &degree));
-      for (PetscInt v = 0; v < nv; ++v) shared[v] = degree[vstart + v - pstart] > 0;
-    }
+    PetscCall(PetscSFComputeDegreeBegin(mesh_.VertexSF(), &degree));
+    PetscCall(PetscSFComputeDegreeEnd(mesh_.VertexSF(), &degree));
+    for (PetscInt v = 0; v < nv; ++v) shared[v] = degree[v] > 0;
   }
   const auto free_dofs = [&](PetscInt w) {
     PetscInt n = 0;

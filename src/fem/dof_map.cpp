@@ -29,28 +29,17 @@ PetscErrorCode DofMap::Create(const Mesh &mesh, PetscInt num_owned_multipliers) 
   PetscCallMPI(MPI_Allgather(&row_start_, 1, MPIU_INT, row_starts_.data(), 1, MPIU_INT, comm));
   PetscCallMPI(MPI_Allgather(&u_start, 1, MPIU_INT, u_starts_.data(), 1, MPIU_INT, comm));
 
-  // Owners number their vertices; the point SF carries the numbers to the ghosts.
-  DM dm = mesh.Dm();
-  PetscInt pstart, pend, vstart, vend;
-  PetscCall(DMPlexGetChart(dm, &pstart, &pend));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vstart, &vend));
-  std::vector<PetscInt> root(pend - pstart, -1), leaf(pend - pstart, -1);
+  // Owners number their vertices; the vertex SF carries the numbers to the ghosts.
+  std::vector<PetscInt> root(nv, -1), leaf(nv, -1);
   PetscInt next = row_start_;
   for (PetscInt v = 0; v < nv; ++v)
-    if (mesh.Owned(v)) root[vstart + v - pstart] = next, next += dim_;
-  leaf = root;
-  PetscSF sf;
-  PetscInt nroots;
-  PetscCall(DMGetPointSF(dm, &sf));
-  PetscCall(PetscSFGetGraph(sf, &nroots, nullptr, nullptr, nullptr));
-  if (nroots >= 0) {
-    PetscCall(PetscSFBcastBegin(sf, MPIU_INT, root.data(), leaf.data(), MPI_REPLACE));
-    PetscCall(PetscSFBcastEnd(sf, MPIU_INT, root.data(), leaf.data(), MPI_REPLACE));
-  }
+    if (mesh.Owned(v)) root[v] = next, next += dim_;
+  PetscCall(PetscSFBcastBegin(mesh.VertexSF(), MPIU_INT, root.data(), leaf.data(), MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(mesh.VertexSF(), MPIU_INT, root.data(), leaf.data(), MPI_REPLACE));
   vertex_row_.resize(nv);
   vertex_urow_.resize(nv);
   for (PetscInt v = 0; v < nv; ++v) {
-    vertex_row_[v] = leaf[vstart + v - pstart];
+    vertex_row_[v] = mesh.Owned(v) ? root[v] : leaf[v];
     PetscCheck(vertex_row_[v] >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "vertex %" PetscInt_FMT " has no dof number", v);
     vertex_urow_[v] = UBlockRow(vertex_row_[v]);
   }

@@ -267,6 +267,8 @@ PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
   ProgressEnd();
   dm_ = std::move(dm);
   PetscCall(BuildLocalArrays());
+  PetscCall(BuildVertexSF());
+  PetscCall(CacheLabelVertices());
   // The file's tags in blocks of file indices (written with the output); nothing needs the serial mesh any more.
   if (rank == 0) {
     serial_.node_tags = InFileOrder(serial_.node_tags, file_node);
@@ -669,14 +671,13 @@ PetscErrorCode Mesh::CheckGroup(const std::string &name, int required_dim) const
 PetscErrorCode Mesh::GroupVertices(const std::string &name, std::vector<PetscInt> &vertices) const {
   PetscFunctionBeginUser;
   PetscCall(CheckGroup(name, -1));
-  const int dim = group_dims_[std::find(group_names_.begin(), group_names_.end(), name) - group_names_.begin()];
-  PetscCall(LabelVertices(LABEL_PREFIX + name, dim == dim_, vertices));
+  vertices = label_vertices_[std::find(group_names_.begin(), group_names_.end(), name) - group_names_.begin()];
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode Mesh::BoundaryVertices(std::vector<PetscInt> &vertices) const {
   PetscFunctionBeginUser;
-  PetscCall(LabelVertices(BOUNDARY_LABEL, false, vertices));
+  vertices = label_vertices_.back();
   PetscFunctionReturn(0);
 }
 
@@ -705,22 +706,57 @@ PetscErrorCode Mesh::BoundingBox(double *lo, double *hi) const {
 }
 
 PetscErrorCode Mesh::SumShared(std::vector<double> &per_vertex) const {
-  PetscInt pstart, pend, nroots;
+  const PetscInt nv = NumLocalVertices();
+  PetscFunctionBeginUser;
+  std::vector<double> root(nv, 0.0), leaf(nv, 0.0);
+  for (PetscInt v = 0; v < nv; ++v) (Owned(v) ? root : leaf)[v] = per_vertex[v];
+  PetscCall(PetscSFReduceBegin(vertex_sf_, MPI_DOUBLE, leaf.data(), root.data(), MPI_SUM));
+  PetscCall(PetscSFReduceEnd(vertex_sf_, MPI_DOUBLE, leaf.data(), root.data(), MPI_SUM));
+  PetscCall(PetscSFBcastBegin(vertex_sf_, MPI_DOUBLE, root.data(), leaf.data(), MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(vertex_sf_, MPI_DOUBLE, root.data(), leaf.data(), MPI_REPLACE));
+  for (PetscInt v = 0; v < nv; ++v) per_vertex[v] = (Owned(v) ? root : leaf)[v];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::BuildVertexSF() {
+  const PetscInt nv = NumLocalVertices();
+  PetscInt pstart, pend, nroots, nleaves;
+  const PetscInt *ilocal;
+  const PetscSFNode *iremote;
   PetscSF sf;
   PetscFunctionBeginUser;
-  PetscCall(DMGetPointSF(dm_, &sf));
-  PetscCall(PetscSFGetGraph(sf, &nroots, nullptr, nullptr, nullptr));
-  if (nroots < 0) PetscFunctionReturn(0);
   PetscCall(DMPlexGetChart(dm_, &pstart, &pend));
-  std::vector<double> root(pend - pstart, 0.0), leaf(pend - pstart, 0.0);
-  for (PetscInt v = 0; v < NumLocalVertices(); ++v) {
-    (Owned(v) ? root : leaf)[vstart_ + v - pstart] = per_vertex[v];
+  PetscCall(DMGetPointSF(dm_, &sf));
+  PetscCall(PetscSFGetGraph(sf, &nroots, &nleaves, &ilocal, &iremote));
+  std::vector<PetscInt> leaves;
+  std::vector<PetscSFNode> remotes;
+  if (nroots >= 0) {
+    // Each point's vertex index on its own rank (-1: not a vertex), carried to the ranks that have it as a leaf.
+    std::vector<PetscInt> own(pend - pstart, -1), remote(pend - pstart, -1);
+    for (PetscInt v = 0; v < nv; ++v) own[vstart_ + v - pstart] = v;
+    PetscCall(PetscSFBcastBegin(sf, MPIU_INT, own.data(), remote.data(), MPI_REPLACE));
+    PetscCall(PetscSFBcastEnd(sf, MPIU_INT, own.data(), remote.data(), MPI_REPLACE));
+    for (PetscInt i = 0; i < nleaves; ++i) {
+      const PetscInt p = ilocal ? ilocal[i] : i;
+      if (p < vstart_ || p >= vstart_ + nv) continue;
+      PetscCheck(remote[p - pstart] >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "a ghost vertex is no vertex on its owner");
+      leaves.push_back(p - vstart_);
+      remotes.push_back({iremote[i].rank, remote[p - pstart]});
+    }
   }
-  PetscCall(PetscSFReduceBegin(sf, MPI_DOUBLE, leaf.data(), root.data(), MPI_SUM));
-  PetscCall(PetscSFReduceEnd(sf, MPI_DOUBLE, leaf.data(), root.data(), MPI_SUM));
-  PetscCall(PetscSFBcastBegin(sf, MPI_DOUBLE, root.data(), leaf.data(), MPI_REPLACE));
-  PetscCall(PetscSFBcastEnd(sf, MPI_DOUBLE, root.data(), leaf.data(), MPI_REPLACE));
-  for (PetscInt v = 0; v < NumLocalVertices(); ++v) per_vertex[v] = (Owned(v) ? root : leaf)[vstart_ + v - pstart];
+  PetscCall(PetscSFCreate(comm_, vertex_sf_.out()));
+  PetscCall(PetscSFSetGraph(vertex_sf_, nv, (PetscInt)leaves.size(), leaves.data(), PETSC_COPY_VALUES,
+                            remotes.data(), PETSC_COPY_VALUES));
+  PetscCall(PetscSFSetUp(vertex_sf_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::CacheLabelVertices() {
+  PetscFunctionBeginUser;
+  label_vertices_.assign(group_names_.size() + 1, {});
+  for (std::size_t g = 0; g < group_names_.size(); ++g)
+    PetscCall(LabelVertices(LABEL_PREFIX + group_names_[g], group_dims_[g] == dim_, label_vertices_[g]));
+  PetscCall(LabelVertices(BOUNDARY_LABEL, false, label_vertices_.back()));
   PetscFunctionReturn(0);
 }
 

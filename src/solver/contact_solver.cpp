@@ -113,7 +113,7 @@ PetscErrorCode ContactSolver::CreateSystem() {
   PetscCall(VecDuplicate(u_, fext_.out()));
   PetscCall(VecDuplicate(u_, fint_.out()));
   fint_at_.clear();
-  PetscCall(VecDuplicate(u_, fdir_.out()));
+  fdir_.Reset(); // made by the first step that moves a Dirichlet value
   PetscCall(PetscObjectSetName((PetscObject)u_.get(), "displacement"));
   std::vector<PetscInt> from(mesh_.NumLocalVertices() * dim);
   for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
@@ -508,6 +508,7 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   PetscCall(VecGetArrayRead(fext_, &fe));
   for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) b[i] = fe[i] - fi[i];
   if (st.moving) {
+    if (!fdir_) PetscCall(VecDuplicate(u_, fdir_.out()));
     PetscCall(VecZeroEntries(fdir_));
     PetscCall(assembler_->AddStiffnessTimes(u_local_.data(), st.delta.data(), fdir_));
     const PetscScalar *fd;
