@@ -107,6 +107,7 @@ PetscErrorCode ContactSolver::CreateSystem() {
   system_ = std::make_unique<SaddlePointSystem>();
   PetscCall(system_->Create(dofs_, rows_, coords, material_.model != MaterialModel::SVK, kscale_, d_nnz, o_nnz,
                             [&](Mat A) { return assembler_->InsertPattern(A); }));
+  if (opts_.lagged_search_set && opts_.lagged_search) system_->KeepFactorization();
   k_assembled_ = false;
   PetscCall(MatCreateVecs(system_->A(), u_.out(), nullptr));
   PetscCall(VecDuplicate(u_, du_.out()));

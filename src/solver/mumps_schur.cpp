@@ -272,9 +272,11 @@ PetscErrorCode MumpsSchur::ReadValues(Mat A, bool pattern) {
 
 PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows, const std::vector<PetscScalar> &d0,
                                   bool symmetric, PetscInt owned_u, PetscInt node_size,
-                                  const std::vector<double> &coords, OrderingOptions ordering, bool keep_values) {
+                                  const std::vector<double> &coords, OrderingOptions ordering, bool keep_values,
+                                  bool may_decline) {
   PetscInt rstart, rend, N;
   PetscFunctionBeginUser;
+  declined_ = false;
   PetscCall(RegisterEvents());
   symmetric_ = symmetric;
   PetscCall(PetscObjectGetComm((PetscObject)A, &comm_));
@@ -351,6 +353,17 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   perm_in_.clear();
   perm_in_.shrink_to_fit();
   PetscCall(PetscLogEventEnd(EV_ANALYSIS, 0, 0, 0, 0));
+  // The analysis' estimates (every rank has them): elimination flops RINFOG(1), factor entries INFOG(20) (negative: in
+  // millions).
+  const double flops = id_.rinfog[0], entries = id_.INFOG(20) >= 0 ? id_.INFOG(20) : -1e6 * id_.INFOG(20);
+  if (may_decline && DenseCostsMore((double)m_all, flops)) {
+    PetscCall(PetscInfo(nullptr, "dense Schur complement of %" PetscInt_FMT " candidates: %g flops per active-set change "
+                        "and %g entries, against %g flops and %g entries of the sparse factors: declined\n", m_all,
+                        (double)m_all * m_all * m_all / 3, 2.0 * m_all * m_all, flops, entries));
+    Release();
+    declined_ = true;
+    PetscFunctionReturn(0);
+  }
   {
     VecH layout;
     PetscCall(MatCreateVecs(A, layout.out(), nullptr));

@@ -59,8 +59,10 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
   PetscOptionsBegin(comm, nullptr, "Saddle-point system", "signorini");
   PetscCall(PetscOptionsBool("-contact_reuse_factorization",
                              "Factor once and follow active-set changes through MUMPS's Schur complement on the "
-                             "multipliers (with a MUMPS LU/Cholesky solver; default on there); svk: the kept "
-                             "factorisation preconditions FGMRES on the current tangent",
+                             "multipliers (with a MUMPS LU/Cholesky solver; default on there, unless a dense factorisation "
+                             "of the Schur complement would take more flops than the sparse one: then MUMPS "
+                             "refactorises at each change; giving the option keeps it); svk: the kept factorisation "
+                             "preconditions FGMRES on the current tangent",
                              "", opts.reuse_factorization, &opts.reuse_factorization, &opts.reuse_set));
   PetscCall(OptionsInt(PetscOptionsObject, "-contact_reuse_max_it",
                        "svk with -contact_reuse_factorization: FGMRES iterations on the current tangent preconditioned "
@@ -275,6 +277,7 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
              "-contact_reuse_max_it %" PetscInt_FMT " applies to a nonlinear material (-material_model svk) with the "
              "kept factorisation (-contact_reuse_factorization and a MUMPS LU or Cholesky solver)", opts.reuse_max_it);
   reuse_ = possible && opts.reuse_factorization && dofs_->GlobalLambda() > 0;
+  reuse_forced_ = reuse_ && (opts.reuse_set || opts.reuse_max_it_set);
   constant_k_ = constant_k;
   reuse_max_it_ = opts.reuse_max_it;
   // An iterative solver gets the augmented form too: its displacement block K + r B_C^T B_C is regular when the
@@ -472,8 +475,14 @@ PetscErrorCode SaddlePointSystem::Factor() {
   PetscCall(MultiplierDiagonal(d));
   ProgressBegin("analysis and factorisation (MUMPS with the Schur complement on the candidates)");
   PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_, dofs_->OwnedU(), dofs_->Dim(), coords_, ordering_,
-                                !constant_k_));
+                                !constant_k_, !reuse_forced_));
   ProgressEnd();
+  if (mumps_schur_.Declined()) {
+    // The dense Schur complement would cost more than it saves (many candidates on a body that factors cheaply, such
+    // as a thin plate): the KSP's MUMPS factorises the matrix, which stays in the augmented form, at every change.
+    reuse_ = false;
+    PetscFunctionReturn(0);
+  }
   factored_ = true;
   PetscCall(CheckNullPivots());
   PetscFunctionReturn(0);
@@ -545,6 +554,7 @@ PetscErrorCode SaddlePointSystem::Condense() {
   PetscCheck(reuse_ && constant_k_ && !released_, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
              "a condensation needs the kept factorisation of a constant K");
   PetscCall(Factor());
+  if (!reuse_) PetscFunctionReturn(0); // declined: the caller solves in full (ExactFactorization() is false now)
   PetscCall(mumps_schur_.Condense(b_));
   PetscFunctionReturn(0);
 }
@@ -618,12 +628,13 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
   PetscInt null_pivots = 0;
   double check_tol = ACCEPTED_RESIDUAL; // the relative residual above which a solve is an error (CheckAndConvert)
   PetscReal known_residual[2] = {-1, -1}; // ||b - A x||, ||b|| of the final x_ when the restart loop computed them
+  // The first solve of the reuse mode factors the current matrix (or declines the Schur complement: Factor).
+  const bool fresh = reuse_ && !factored_;
+  if (fresh) PetscCall(Factor());
   if (reuse_) {
-    // The first solve factors the current matrix; later ones are exact for a constant K (only D changed), else the
-    // kept factorisation preconditions the current matrix.
+    // Later solves are exact for a constant K (only D changed), else the kept factorisation preconditions the current
+    // matrix.
     std::vector<PetscScalar> d;
-    const bool fresh = !factored_;
-    PetscCall(Factor());
     PetscCall(MultiplierDiagonal(d));
     krylov_iterations = 1;
     if (fresh || constant_k_) PetscCall(mumps_schur_.Solve(d, b_, x_));

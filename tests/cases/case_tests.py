@@ -598,6 +598,31 @@ def reuse_factorization(runner, preset):
     runner.expect_close("punch: displacement", displacement(b), displacement(a), 0,
                         1e-8 * np.abs(displacement(a)).max())
     runner.expect_close("punch: lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
+    # Many candidates on a body that factors cheaply (meshes/strip.geo: one layer of 400 cells, all 401 bottom nodes
+    # candidates, on a V-shaped floor, held vertically by contact alone): the dense Schur complement would cost more
+    # than the sparse factors (MumpsSchur::DenseCostsMore), so it is declined and MUMPS refactorises the augmented
+    # matrix at every active-set change; -contact_reuse_factorization keeps it. The same state either way.
+    strip = ["-mesh_file", "meshes/strip.geo", "-material_E", "1000", "-material_nu", "0.3", "-bc_dirichlet",
+             "left:x", "-bc_pressure", "top:0.001", "-obstacle_segments",
+             "-1,0.0002,11,-0.0001,11,-0.0001,22,0.0002", "-contact_groups", "bottom",
+             "-options_file", "options/solver/%s.yml" % preset, "-log_view"]
+    auto = runner.run(strip + ["-info", ":sys"], "strip declined")
+    kept = runner.run(strip + ["-contact_reuse_factorization", "true"], "strip kept")
+    declined = re.search(r"Factor\(\): dense Schur complement of (\d+) candidates: .*: declined$", auto.output, re.M)
+    runner.expect_true("strip: the Schur complement declined (-info)", declined is not None)
+    runner.expect_equal("strip declined: MUMPS-Schur factorisations", log_event_count(auto.output, "SigMumpsFactor"), 0)
+    runner.expect_equal("strip declined: a numeric factorisation per solve", log_event_count(auto.output, numeric),
+                        auto.get("iterations.solves"))
+    runner.expect_true("strip: several active-set iterations (%d)" % auto.get("iterations.active_set"),
+                       auto.get("iterations.active_set") > 2)
+    runner.expect_equal("strip kept: MUMPS-Schur factorisations", log_event_count(kept.output, "SigMumpsFactor"), 1)
+    for key in ("contact.active_pairs", "iterations.active_set"):
+        runner.expect_equal("strip: " + key, auto.get(key), kept.get(key))
+    a, b = kept.nodes(), auto.nodes()
+    runner.expect_true("strip: same active nodes", np.array_equal(a["active"], b["active"]))
+    runner.expect_close("strip: displacement", displacement(b), displacement(a), 0,
+                        1e-8 * np.abs(displacement(a)).max())
+    runner.expect_close("strip: lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
 
 
 SVK_CASES = {"hertz": ["-options_file", "options/hertz.yml", "-material_model", "svk", "-load_steps", "3"],

@@ -91,6 +91,9 @@ public:
   bool ReusesFactorization() const { return reuse_; }
   /// Changing K with the kept factorisation: the next solve refactors the current matrix instead of preconditioning.
   void RefactorNext() { refactor_next_ = true; }
+  /// The kept factorisation is asked for (an option that needs it, such as -newton_lagged_search): its Schur
+  /// complement is never declined (Factor).
+  void KeepFactorization() { reuse_forced_ = reuse_forced_ || reuse_; }
   /// Whether the kept factorisation is exact for every solve (constant K: the condensed solves below are possible).
   bool ExactFactorization() const { return reuse_ && constant_k_; }
   /// Whether the system is in the augmented form (the reuse mode, and every solver that is not a factorisation).
@@ -164,7 +167,9 @@ private:
   /// Reuse mode: a value per owned multiplier row to rank 0 (Schur order; empty elsewhere), and back. Collective.
   [[nodiscard]] PetscErrorCode ToRoot(const std::vector<double> &owned, std::vector<PetscScalar> &root);
   [[nodiscard]] PetscErrorCode FromRoot(const std::vector<PetscScalar> &root, std::vector<double> &owned);
-  /// Reuse mode: the analysis and factorisation with the Schur complement, once; a singular A11 is an error.
+  /// Reuse mode: the analysis and factorisation with the Schur complement, once; a singular A11 is an error. Unless
+  /// -contact_reuse_factorization was given, the Schur complement is declined when it would cost more than it saves
+  /// (MumpsSchur::DenseCostsMore): the reuse mode ends, and the KSP factorises the augmented matrix at every change.
   /// Collective.
   [[nodiscard]] PetscErrorCode Factor();
   /// ||b - A x|| and ||b|| for the current x_. Collective.
@@ -212,6 +217,7 @@ private:
   const DofMap *dofs_ = nullptr;
   bool reuse_ = false, augmented_ = false, factored_ = false, constant_k_ = true;
   bool released_ = false; ///< Release() freed the solver
+  bool reuse_forced_ = false; ///< -contact_reuse_factorization given: the Schur complement is never declined (Factor)
   PetscInt reuse_max_it_ = 0;          ///< -contact_reuse_max_it
   bool refactor_next_ = false;         ///< the last FGMRES solve on the kept factorisation needed many iterations
   bool pc_current_ = false; ///< iterative solver: A is the matrix of the last preconditioner set-up (a correction)
