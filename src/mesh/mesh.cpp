@@ -8,7 +8,6 @@
 #include "signorini/core/progress.hpp"
 #include "signorini/mesh/geo_mesher.hpp"
 
-#include <malloc.h>
 #include <metis.h>
 
 #include <algorithm>
@@ -278,9 +277,6 @@ PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
   PetscCall(ScatterBlocks(comm, serial_.node_tags, node_tags_));
   PetscCall(ScatterBlocks(comm, serial_.cell_tags, cell_tags_));
   serial_ = SerialMesh{};
-  // Reading and distributing peak at several times what the mesh keeps (rank 0: 380 MB against 150 MB at 1M cells);
-  // glibc keeps the freed heap, which on several ranks stayed in rank 0's footprint for the whole run.
-  malloc_trim(0);
   PetscFunctionReturn(0);
 }
 

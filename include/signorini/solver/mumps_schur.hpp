@@ -62,10 +62,11 @@ public:
   bool Declined() const { return declined_; }
   /// The rule of Factor's may_decline, from the analysis' estimate: a dense LDL^T of the m x m Schur complement, which
   /// every active-set change costs, takes more flops than the whole sparse factorisation (flops), which a
-  /// refactorisation at every change would cost instead. 2D Hertz at 1M dofs: m = 1325, 7.8e8 against 8.6e10 flops;
-  /// a 3D plate 1 x 1 x 0.02 of 120 x 120 x 2 hexahedra on its bottom face: m = 14641, 1.0e12 against 4.4e11 (and 3.4
-  /// GB of dense matrices against 0.7 GB of sparse factors); 41 x 41 bottom nodes: 1.6e9 against 3.5e9, kept (2.4 s
-  /// against 3.1 s refactorising, 19 active-set iterations).
+  /// refactorisation at every change would cost instead. Kept: 2D Hertz at 1M dofs, m = 1325, 7.8e8 against 8.5e10
+  /// flops; 3D Hertz at 110k dofs, m = 2202, 3.6e9 against 3.6e11; a 3D plate 1 x 1 x 0.02 of 40 x 40 x 2 hexahedra
+  /// with its 1681 bottom nodes the candidates, 1.6e9 against 3.5e9 (2.1 s, 19 active-set iterations). Declined: the
+  /// plate of 120 x 120 x 2, m = 14641, 1.0e12 against 4.4e11 (66 s and 0.81 GB refactorising at each of 37 changes;
+  /// kept, each change took 26 s and the run 6.4 GB).
   static bool DenseCostsMore(double m, double flops) { return m * m * m / 3 > flops; }
   /// The numerical factorisation of A's current values (the pattern and the analysis of Factor, which kept the
   /// values) with the Schur complement, d0 its multiplier diagonal now. Collective.
