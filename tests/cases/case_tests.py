@@ -726,8 +726,11 @@ def iterative_on_contact(runner, preset, case="hertz"):
     # In 3D the later active-set changes are small: -info tells whether the displacement block's preconditioner was
     # kept for them (KeepDisplacementPreconditioner), which the comparison below then covers.
     info = ["-info", ":sys"] if case == "hertz3d" else []
-    r = runner.run(base + ["-options_file", "options/solver/%s.yml" % preset] + info, "hertz %s" % preset,
-                   heap_check=runner.np == 1)
+    r = runner.run(base + ["-options_file", "options/solver/%s.yml" % preset, "-contact_ksp_view"] + info,
+                   "hertz %s" % preset, heap_check=runner.np == 1)
+    # The fieldsplit works on the blocks of a nested matrix, not on a copy of the displacement block.
+    runner.expect_true("the saddle-point matrix is nested",
+                       re.search(r"Mat Object: saddle_point .*\n\s+type: nest$", r.output, re.M) is not None)
     if info:
         kept = len(re.findall(r"^\[0\] <sys> KeepDisplacementPreconditioner\(\).*: kept$", r.output, re.M))
         runner.expect_true("the displacement block's preconditioner kept for %d solve(s)" % kept, kept >= 1)
