@@ -65,7 +65,8 @@ PetscErrorCode Assembler::MatrixRows(Mat A, std::vector<PetscInt> &rows) const {
   PetscCall(MatGetSize(A, &m, nullptr));
   const bool block = m != dofs_.GlobalRows();
   PetscCheck(!block || m == dofs_.GlobalU(), PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
-             "a stiffness matrix of %" PetscInt_FMT " rows: neither the saddle-point system nor its displacement block", m);
+             "a stiffness matrix of %" PetscInt_FMT " rows: neither the saddle-point system nor its displacement "
+             "block", m);
   rows.resize(mesh_.NumLocalVertices() * dim);
   for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
     for (int k = 0; k < dim; ++k) rows[v * dim + k] = block ? dofs_.URow(v, k) : dofs_.Row(v, k);

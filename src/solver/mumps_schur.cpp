@@ -357,9 +357,9 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   // millions).
   const double flops = id_.rinfog[0], entries = id_.INFOG(20) >= 0 ? id_.INFOG(20) : -1e6 * id_.INFOG(20);
   if (may_decline && DenseCostsMore((double)m_all, flops)) {
-    PetscCall(PetscInfo(nullptr, "dense Schur complement of %" PetscInt_FMT " candidates: %g flops per active-set change "
-                        "and %g entries, against %g flops and %g entries of the sparse factors: declined\n", m_all,
-                        (double)m_all * m_all * m_all / 3, 2.0 * m_all * m_all, flops, entries));
+    PetscCall(PetscInfo(nullptr, "dense Schur complement of %" PetscInt_FMT " candidates: %g flops per active-set "
+                        "change and %g entries, against %g flops and %g entries of the sparse factors: declined\n",
+                        m_all, (double)m_all * m_all * m_all / 3, 2.0 * m_all * m_all, flops, entries));
     Release();
     declined_ = true;
     PetscFunctionReturn(0);

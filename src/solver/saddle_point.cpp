@@ -59,10 +59,10 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
   PetscOptionsBegin(comm, nullptr, "Saddle-point system", "signorini");
   PetscCall(PetscOptionsBool("-contact_reuse_factorization",
                              "Factor once and follow active-set changes through MUMPS's Schur complement on the "
-                             "multipliers (with a MUMPS LU/Cholesky solver; default on there, unless a dense factorisation "
-                             "of the Schur complement would take more flops than the sparse one: then MUMPS "
-                             "refactorises at each change; giving the option keeps it); svk: the kept factorisation "
-                             "preconditions FGMRES on the current tangent",
+                             "multipliers (with a MUMPS LU/Cholesky solver; default on there, unless a dense "
+                             "factorisation of the Schur complement would take more flops than the sparse one: then "
+                             "MUMPS refactorises at each change; giving the option keeps it); svk: the kept "
+                             "factorisation preconditions FGMRES on the current tangent",
                              "", opts.reuse_factorization, &opts.reuse_factorization, &opts.reuse_set));
   PetscCall(OptionsInt(PetscOptionsObject, "-contact_reuse_max_it",
                        "svk with -contact_reuse_factorization: FGMRES iterations on the current tangent preconditioned "

@@ -72,7 +72,8 @@ public:
   /// row, see Assembler::PatternCounts), the constraint rows and the multiplier diagonal,
   /// the vectors and the KSP. coords: dim values per owned vertex, in dof order (for the rigid-body near-null space
   /// of the "u" block). constant_k: K never changes (linear material; otherwise a kept factorisation preconditions the
-  /// changed matrix, see above); kscale: the stiffness scale, the weight of the augmentation. insert_k gets Stiffness().
+  /// changed matrix, see above); kscale: the stiffness scale, the weight of the augmentation. insert_k gets
+  /// Stiffness().
   /// Collective.
   [[nodiscard]] PetscErrorCode Create(const DofMap &dofs, const std::vector<ConstraintRow> &rows,
                                       const std::vector<double> &coords, bool constant_k, double kscale,
