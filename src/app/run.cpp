@@ -105,13 +105,8 @@ PetscErrorCode HelpKsp(MPI_Comm comm) {
 PetscErrorCode StepFields(ContactSolver &solver, const NodeContact &nodes, std::vector<Field> &fields) {
   const int dim = solver.GetMesh().Dim();
   PetscFunctionBeginUser;
-  // Each field is made when it is written (Field::fill): the cell fields each by a pass over the cells.
-  const auto node_copy = [](const std::vector<double> &from) {
-    return [&from](std::vector<double> &values) -> PetscErrorCode {
-      values = from;
-      return 0;
-    };
-  };
+  // The displacement and the cell fields are made when they are written (Field::fill), the cell fields each by a pass
+  // over the cells.
   const auto displacement = [&solver, dim](std::vector<double> &values) -> PetscErrorCode {
     const PetscInt nv = solver.GetMesh().NumLocalVertices();
     values.assign(3 * nv, 0.0);
@@ -144,10 +139,10 @@ PetscErrorCode StepFields(ContactSolver &solver, const NodeContact &nodes, std::
     };
   };
   fields.push_back({"displacement", 3, false, {}, false, displacement});
-  fields.push_back({"contact_lambda", 1, false, {}, true, node_copy(nodes.lambda)});
-  fields.push_back({"contact_pressure", 1, false, {}, true, node_copy(nodes.pressure)});
-  fields.push_back({"contact_gap", 1, false, {}, true, node_copy(nodes.gap)});
-  fields.push_back({"contact_active", 1, false, {}, true, node_copy(nodes.active)});
+  fields.push_back({"contact_lambda", 1, false, nodes.lambda, true});
+  fields.push_back({"contact_pressure", 1, false, nodes.pressure, true});
+  fields.push_back({"contact_gap", 1, false, nodes.gap, true});
+  fields.push_back({"contact_active", 1, false, nodes.active, true});
   fields.push_back({"strain", 6, true, {}, false, cell_field(STRAIN)});
   fields.push_back({"stress", 6, true, {}, false, cell_field(STRESS)});
   fields.push_back({"von_mises", 1, true, {}, false, cell_field(VON_MISES)});

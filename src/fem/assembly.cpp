@@ -58,8 +58,7 @@ PetscErrorCode Assembler::CheckCells() const {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::MatrixRows(Mat A, std::vector<PetscInt> &rows) const {
-  const int dim = mesh_.Dim();
+PetscErrorCode Assembler::FirstRows(Mat A, const PetscInt *&first) const {
   PetscInt m;
   PetscFunctionBeginUser;
   PetscCall(MatGetSize(A, &m, nullptr));
@@ -67,9 +66,7 @@ PetscErrorCode Assembler::MatrixRows(Mat A, std::vector<PetscInt> &rows) const {
   PetscCheck(!block || m == dofs_.GlobalU(), PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
              "a stiffness matrix of %" PetscInt_FMT " rows: neither the saddle-point system nor its displacement "
              "block", m);
-  rows.resize(mesh_.NumLocalVertices() * dim);
-  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
-    for (int k = 0; k < dim; ++k) rows[v * dim + k] = block ? dofs_.URow(v, k) : dofs_.Row(v, k);
+  first = dofs_.FirstRows(block).data();
   PetscFunctionReturn(0);
 }
 
@@ -77,20 +74,20 @@ PetscErrorCode Assembler::InsertPattern(Mat A) const {
   const int dim = mesh_.Dim();
   std::array<PetscInt, MAX_EDOF> idx;
   std::array<PetscScalar, MAX_EDOF * MAX_EDOF> zeros{};
-  std::vector<PetscInt> rows;
+  const PetscInt *first;
   PetscFunctionBeginUser;
-  PetscCall(MatrixRows(A, rows));
+  PetscCall(FirstRows(A, first));
   for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
     PetscInt nn;
     const PetscInt *v = mesh_.CellVertices(c, nn);
     for (PetscInt a = 0; a < nn; ++a)
-      for (int k = 0; k < dim; ++k) idx[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : rows[v[a] * dim + k];
+      for (int k = 0; k < dim; ++k) idx[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : first[v[a]] + k;
     PetscCall(MatSetValues(A, nn * dim, idx.data(), nn * dim, idx.data(), zeros.data(), ADD_VALUES));
   }
   for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
     for (int k = 0; k < dim; ++k)
       if (mesh_.Owned(v) && dirichlet_.fixed[v * dim + k])
-        PetscCall(MatSetValue(A, rows[v * dim + k], rows[v * dim + k], 0.0, ADD_VALUES));
+        PetscCall(MatSetValue(A, first[v] + k, first[v] + k, 0.0, ADD_VALUES));
   PetscFunctionReturn(0);
 }
 
@@ -288,8 +285,8 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
       PetscFunctionReturn(0);
     }
   }
-  std::vector<PetscInt> matrix_rows;
-  if (A) PetscCall(MatrixRows(A, matrix_rows));
+  const PetscInt *first = nullptr;
+  if (A) PetscCall(FirstRows(A, first));
   if (A) PetscCall(adder.Begin(A));
   for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
     PetscInt nn;
@@ -302,7 +299,7 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
     if (A) {
       for (PetscInt a = 0; a < nn; ++a)
         for (int k = 0; k < dim; ++k)
-          rows[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : matrix_rows[v[a] * dim + k];
+          rows[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : first[v[a]] + k;
       PetscCall(adder.Add(nn * dim, rows.data(), Ke.data()));
     }
     if (fint)
@@ -312,8 +309,10 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
   if (A) {
     for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
       for (int k = 0; k < dim; ++k)
-        if (mesh_.Owned(v) && dirichlet_.fixed[v * dim + k])
-          PetscCall(adder.Add(1, &matrix_rows[v * dim + k], &dirichlet_diag));
+        if (mesh_.Owned(v) && dirichlet_.fixed[v * dim + k]) {
+          const PetscInt r = first[v] + k;
+          PetscCall(adder.Add(1, &r, &dirichlet_diag));
+        }
     PetscCall(adder.End());
   }
   if (fint) PetscCall(AddLocal(f_local, fint));

@@ -60,9 +60,9 @@ private:
   /// Adds f_local (dim values per local vertex, ghosts included) to the displacement rows of f and assembles f.
   /// Collective.
   [[nodiscard]] PetscErrorCode AddLocal(const std::vector<double> &f_local, Vec f) const;
-  /// Global rows of A for the local vertices (dim per vertex): the numbering of the whole saddle-point matrix or of its
-  /// displacement block (InsertPattern). Not collective.
-  [[nodiscard]] PetscErrorCode MatrixRows(Mat A, std::vector<PetscInt> &rows) const;
+  /// The first row in A of each local vertex (component k: + k): DofMap::FirstRows of the whole saddle-point matrix or
+  /// of its displacement block, told by A's size (InsertPattern). Not collective.
+  [[nodiscard]] PetscErrorCode FirstRows(Mat A, const PetscInt *&first) const;
   bool Geometry(PetscInt c, ElementGeometry &g, PetscInt &nn, const PetscInt *&vertices) const;
   const Mesh &mesh_;
   const Material &material_;

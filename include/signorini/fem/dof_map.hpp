@@ -29,6 +29,9 @@ public:
   PetscInt LambdaRow(PetscInt p) const { return row_start_ + nu_ + p; }
   /// Row of component k of local vertex v in the displacement block alone.
   PetscInt URow(PetscInt v, int k) const { return vertex_urow_[v] + k; }
+  /// Per local vertex its first row (component k: + k), in the whole system's numbering (Row) or the displacement
+  /// block's (URow).
+  const std::vector<PetscInt> &FirstRows(bool block) const { return block ? vertex_urow_ : vertex_row_; }
   /// The displacement block's row of the global displacement row `row` (of any rank).
   PetscInt UBlockRow(PetscInt row) const;
   /// The multiplier block's row of owned multiplier p.

@@ -70,8 +70,8 @@ public:
   const std::vector<std::size_t> &NodeTagsBlock() const { return node_tags_; }
   const std::vector<std::size_t> &CellTagsBlock() const { return cell_tags_; }
 
-  /// Local vertices (owned and ghost) of the physical group `name`; an unknown name is an error listing the names.
-  /// Collective.
+  /// Local vertices (owned and ghost) of the physical group `name` (kept since Create); an unknown name is an error
+  /// listing the names. Collective.
   [[nodiscard]] PetscErrorCode GroupVertices(const std::string &name, std::vector<PetscInt> &vertices) const;
   /// Owned faces of a physical curve (2D) or surface (3D), oriented outwards (Face); error if the group has another
   /// dimension. Collective.
