@@ -215,6 +215,34 @@ public:
       PetscCall(MatSetValues(A_, n, idx, n, idx, Ke, ADD_VALUES));
       PetscFunctionReturn(0);
     }
+    bool owned = false;
+    for (PetscInt i = 0; i < n; ++i) owned = owned || (idx[i] >= rstart_ && idx[i] < rend_);
+    if (!owned) {
+      // No row here (a cell of a ghost layer): its columns need not be in this rank's pattern.
+      PetscCall(MatSetValues(A_, n, idx, n, idx, Ke, ADD_VALUES));
+      PetscFunctionReturn(0);
+    }
+    // The element's columns once per element: their block (0: diagonal, 1: off-diagonal), local column, and order
+    // in the block, so that each row is one forward walk over its sorted columns instead of a search per entry.
+    std::array<Column, MAX_EDOF> cols;
+    PetscInt m = 0;
+    for (PetscInt j = 0; j < n; ++j) {
+      const PetscInt c = idx[j];
+      if (c < 0) continue;
+      Column col{0, c - cstart_, j};
+      if (c < cstart_ || c >= cend_) {
+        PetscCheck(block_[1], PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "column %" PetscInt_FMT " outside the "
+                   "stiffness pattern", c);
+        const PetscInt *at = std::lower_bound(garray_, garray_ + ngarray_, c);
+        PetscCheck(at != garray_ + ngarray_ && *at == c, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+                   "column %" PetscInt_FMT " outside the stiffness pattern", c);
+        col = Column{1, (PetscInt)(at - garray_), j};
+      }
+      PetscInt k = m++;
+      for (; k > 0 && (cols[k - 1].b > col.b || (cols[k - 1].b == col.b && cols[k - 1].lc > col.lc)); --k)
+        cols[k] = cols[k - 1];
+      cols[k] = col;
+    }
     for (PetscInt i = 0; i < n; ++i) {
       const PetscInt r = idx[i];
       if (r < 0) continue;
@@ -223,21 +251,18 @@ public:
         continue;
       }
       const PetscInt lr = r - rstart_;
-      for (PetscInt j = 0; j < n; ++j) {
-        const PetscInt c = idx[j];
-        if (c < 0) continue;
-        const int b = c >= cstart_ && c < cend_ ? 0 : 1;
-        PetscInt lc = c - cstart_;
-        if (b == 1) {
-          PetscCheck(block_[1], PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "column %" PetscInt_FMT " outside the "
-                     "stiffness pattern", c);
-          lc = (PetscInt)(std::lower_bound(garray_, garray_ + ngarray_, c) - garray_);
+      const double *ke = Ke + i * n;
+      int b = -1;
+      const PetscInt *at = nullptr, *end = nullptr;
+      for (PetscInt q = 0; q < m; ++q) {
+        if (cols[q].b != b) {
+          b = cols[q].b;
+          at = ja_[b] + ia_[b][lr], end = ja_[b] + ia_[b][lr + 1];
         }
-        const PetscInt *cols = ja_[b] + ia_[b][lr], *end = ja_[b] + ia_[b][lr + 1];
-        const PetscInt *at = std::lower_bound(cols, end, lc);
-        PetscCheck(at != end && *at == lc && (b == 0 || garray_[lc] == c), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
-                   "entry (%" PetscInt_FMT ", %" PetscInt_FMT ") outside the stiffness pattern", r, c);
-        va_[b][at - ja_[b]] += Ke[i * n + j];
+        while (at != end && *at < cols[q].lc) ++at;
+        PetscCheck(at != end && *at == cols[q].lc, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+                   "entry (%" PetscInt_FMT ", %" PetscInt_FMT ") outside the stiffness pattern", r, idx[cols[q].j]);
+        va_[b][at - ja_[b]] += ke[cols[q].j];
       }
     }
     PetscFunctionReturn(0);
@@ -257,6 +282,11 @@ public:
   }
 
 private:
+  struct Column {
+    int b;        ///< 0: the diagonal block, 1: the off-diagonal one
+    PetscInt lc;  ///< the column in that block
+    PetscInt j;   ///< the element's column
+  };
   Mat A_ = nullptr, block_[2] = {nullptr, nullptr};
   bool direct_ = false;
   PetscInt rstart_ = 0, rend_ = 0, cstart_ = 0, cend_ = 0, ngarray_ = 0;

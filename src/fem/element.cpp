@@ -207,89 +207,140 @@ void FaceIntegrals(int dim, int n, const double *X, double *w, double (*an)[3]) 
   }
 }
 
-bool ComputeGeometry(int dim, int nodes, const double *X, double thickness, ElementGeometry &g) {
+namespace {
+/// ComputeGeometry for DIM and NODES known at compile time (the loops unrolled).
+template <int DIM, int NODES>
+bool ComputeGeometryFixed(const double *X, double thickness, ElementGeometry &g) {
   double xi[MAX_QP][MAX_DIM], wq[MAX_QP];
-  g.dim = dim;
-  g.nodes = nodes;
-  g.nqp = ReferenceQuadrature(dim, nodes, xi, wq);
-  if (g.nqp == 0) return false;
+  g.dim = DIM;
+  g.nodes = NODES;
+  g.nqp = ReferenceQuadrature(DIM, NODES, xi, wq);
   g.min_detJ = 1e300;
   g.max_detJ = -1e300;
   for (int q = 0; q < g.nqp; ++q) {
     double dNref[MAX_NODES][MAX_DIM] = {}, J[MAX_DIM][MAX_DIM] = {}, Ji[MAX_DIM][MAX_DIM];
-    ReferenceShape(dim, nodes, xi[q], g.N[q].data(), dNref);
-    for (int a = 0; a < nodes; ++a)
-      for (int i = 0; i < dim; ++i)
-        for (int j = 0; j < dim; ++j) J[i][j] += X[a * dim + i] * dNref[a][j];
-    const double det = Det(dim, J);
+    ReferenceShape(DIM, NODES, xi[q], g.N[q].data(), dNref);
+    for (int a = 0; a < NODES; ++a)
+      for (int i = 0; i < DIM; ++i)
+        for (int j = 0; j < DIM; ++j) J[i][j] += X[a * DIM + i] * dNref[a][j];
+    const double det = Det(DIM, J);
     g.min_detJ = std::min(g.min_detJ, det);
     g.max_detJ = std::max(g.max_detJ, det);
-    Inverse(dim, J, det, Ji);
-    for (int a = 0; a < nodes; ++a)
-      for (int i = 0; i < dim; ++i) {
-        g.dN[q][a][i] = 0;
-        for (int j = 0; j < dim; ++j) g.dN[q][a][i] += dNref[a][j] * Ji[j][i];
+    Inverse(DIM, J, det, Ji);
+    for (int a = 0; a < NODES; ++a)
+      for (int i = 0; i < DIM; ++i) {
+        double d = 0;
+        for (int j = 0; j < DIM; ++j) d += dNref[a][j] * Ji[j][i];
+        g.dN[q][a][i] = d;
       }
-    g.w[q] = wq[q] * std::abs(det) * (dim == 2 ? thickness : 1.0);
+    g.w[q] = wq[q] * std::abs(det) * (DIM == 2 ? thickness : 1.0);
   }
   return true;
 }
+} // namespace
 
-void ElementTangentAndForce(const Material &m, const ElementGeometry &g, const double *u, double *K, double *f) {
-  const int dim = g.dim, n = g.nodes * dim, nv = NumVoigt(dim);
+bool ComputeGeometry(int dim, int nodes, const double *X, double thickness, ElementGeometry &g) {
+  // The reference cells of ReferenceShape: the triangle and the quadrilateral, the tetrahedron, the pyramid and the
+  // hexahedron.
+  if (dim == 2 && nodes == 3) return ComputeGeometryFixed<2, 3>(X, thickness, g);
+  if (dim == 2 && nodes == 4) return ComputeGeometryFixed<2, 4>(X, thickness, g);
+  if (dim == 3 && nodes == 4) return ComputeGeometryFixed<3, 4>(X, thickness, g);
+  if (dim == 3 && nodes == 5) return ComputeGeometryFixed<3, 5>(X, thickness, g);
+  if (dim == 3 && nodes == 8) return ComputeGeometryFixed<3, 8>(X, thickness, g);
+  g.dim = dim;
+  g.nodes = nodes;
+  g.nqp = 0;
+  return false;
+}
+
+namespace {
+/// ElementTangentAndForce for DIM and NODES known at compile time (the loops unrolled: the svk Newton iteration
+/// assembles the tangent and the internal force at every step).
+template <int DIM, int NODES>
+void TangentAndForceFixed(const Material &m, const ElementGeometry &g, const double *u, double *K, double *f) {
+  constexpr int n = NODES * DIM, nv = DIM == 2 ? 3 : 6;
+  constexpr const int(*voigt)[2] = DIM == 2 ? VOIGT2 : VOIGT3;
   const bool large = m.model == MaterialModel::SVK;
   double D[6][6];
-  ElasticityMatrix(m, dim, D);
+  ElasticityMatrix(m, DIM, D);
   if (K) std::memset(K, 0, sizeof(double) * n * n);
   std::memset(f, 0, sizeof(double) * n);
   for (int q = 0; q < g.nqp; ++q) {
-    double F[MAX_DIM][MAX_DIM], eps[6], S[6] = {};
-    DeformationGradient(g, q, u, large, F);
-    Strain(g, q, u, large, eps);
+    const auto &dN = g.dN[q];
+    // H = grad u; F = I + H (svk) or I; the strain, Green-Lagrange (svk) or small, Voigt with engineering shear.
+    double H[DIM][DIM] = {}, F[DIM][DIM], eps[nv], S[nv] = {};
+    for (int a = 0; a < NODES; ++a)
+      for (int i = 0; i < DIM; ++i)
+        for (int j = 0; j < DIM; ++j) H[i][j] += u[a * DIM + i] * dN[a][j];
+    for (int i = 0; i < DIM; ++i)
+      for (int j = 0; j < DIM; ++j) F[i][j] = (i == j ? 1.0 : 0.0) + (large ? H[i][j] : 0.0);
+    for (int v = 0; v < nv; ++v) {
+      const int i = voigt[v][0], j = voigt[v][1];
+      double e = H[i][j] + H[j][i]; // Eq. 1: grad u + grad u^T (+ grad u^T grad u)
+      if (large)
+        for (int k = 0; k < DIM; ++k) e += H[k][i] * H[k][j];
+      eps[v] = i == j ? 0.5 * e : e;
+    }
     for (int a = 0; a < nv; ++a)
       for (int b = 0; b < nv; ++b) S[a] += D[a][b] * eps[b]; // Eq. 4: S = C : E
     // B[v][a*dim+k]: variation of the Voigt strain v with respect to u_ak, F^T grad N symmetrised.
-    double B[6][MAX_EDOF];
+    double B[nv][n];
     for (int v = 0; v < nv; ++v) {
-      const int i = Voigt(dim)[v][0], j = Voigt(dim)[v][1];
-      for (int a = 0; a < g.nodes; ++a)
-        for (int k = 0; k < dim; ++k)
-          B[v][a * dim + k] =
-              i == j ? F[k][i] * g.dN[q][a][i] : F[k][i] * g.dN[q][a][j] + F[k][j] * g.dN[q][a][i];
+      const int i = voigt[v][0], j = voigt[v][1];
+      for (int a = 0; a < NODES; ++a)
+        for (int k = 0; k < DIM; ++k)
+          B[v][a * DIM + k] = i == j ? F[k][i] * dN[a][i] : F[k][i] * dN[a][j] + F[k][j] * dN[a][i];
     }
     const double wq = g.w[q];
-    for (int r = 0; r < n; ++r)
-      for (int v = 0; v < nv; ++v) f[r] += wq * B[v][r] * S[v]; // Eq. 15: dE/du : S
+    for (int r = 0; r < n; ++r) {
+      double fr = 0;
+      for (int v = 0; v < nv; ++v) fr += B[v][r] * S[v]; // Eq. 15: dE/du : S
+      f[r] += wq * fr;
+    }
     if (!K) continue;
-    double DB[6][MAX_EDOF];
+    double DB[nv][n];
     for (int v = 0; v < nv; ++v)
       for (int c = 0; c < n; ++c) {
-        DB[v][c] = 0;
-        for (int w = 0; w < nv; ++w) DB[v][c] += D[v][w] * B[w][c];
+        double d = 0;
+        for (int w = 0; w < nv; ++w) d += D[v][w] * B[w][c];
+        DB[v][c] = wq * d;
       }
-    for (int r = 0; r < n; ++r) {
+    for (int r = 0; r < n; ++r)
       for (int c = 0; c < n; ++c) {
         double kij = 0;
         for (int v = 0; v < nv; ++v) kij += B[v][r] * DB[v][c];
-        K[r * n + c] += wq * kij;
+        K[r * n + c] += kij;
       }
-    }
     if (large) {
       // Geometric (initial-stress) term of Eq. 17: d2E/du2 : S = (grad N_a . S grad N_b) delta_ik.
-      double Sm[MAX_DIM][MAX_DIM];
+      double Sm[DIM][DIM];
       for (int v = 0; v < nv; ++v) {
-        const int i = Voigt(dim)[v][0], j = Voigt(dim)[v][1];
-        Sm[i][j] = Sm[j][i] = S[v];
+        const int i = voigt[v][0], j = voigt[v][1];
+        Sm[i][j] = Sm[j][i] = wq * S[v];
       }
-      for (int a = 0; a < g.nodes; ++a)
-        for (int b = 0; b < g.nodes; ++b) {
-          double gab = 0;
-          for (int i = 0; i < dim; ++i)
-            for (int j = 0; j < dim; ++j) gab += g.dN[q][a][i] * Sm[i][j] * g.dN[q][b][j];
-          for (int k = 0; k < dim; ++k) K[(a * dim + k) * n + b * dim + k] += wq * gab;
+      for (int a = 0; a < NODES; ++a) {
+        double SdN[DIM];
+        for (int i = 0; i < DIM; ++i) {
+          SdN[i] = 0;
+          for (int j = 0; j < DIM; ++j) SdN[i] += Sm[i][j] * dN[a][j];
         }
+        for (int b = 0; b < NODES; ++b) {
+          double gab = 0;
+          for (int i = 0; i < DIM; ++i) gab += SdN[i] * dN[b][i];
+          for (int k = 0; k < DIM; ++k) K[(a * DIM + k) * n + b * DIM + k] += gab;
+        }
+      }
     }
   }
+}
+} // namespace
+
+void ElementTangentAndForce(const Material &m, const ElementGeometry &g, const double *u, double *K, double *f) {
+  if (g.dim == 2 && g.nodes == 3) TangentAndForceFixed<2, 3>(m, g, u, K, f);
+  else if (g.dim == 2 && g.nodes == 4) TangentAndForceFixed<2, 4>(m, g, u, K, f);
+  else if (g.dim == 3 && g.nodes == 4) TangentAndForceFixed<3, 4>(m, g, u, K, f);
+  else if (g.dim == 3 && g.nodes == 5) TangentAndForceFixed<3, 5>(m, g, u, K, f);
+  else if (g.dim == 3 && g.nodes == 8) TangentAndForceFixed<3, 8>(m, g, u, K, f);
 }
 
 CellStress ElementStress(const Material &m, const ElementGeometry &g, const double *u) {

@@ -46,9 +46,10 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, SolverOptions &opts) {
                              opts.line_search, &opts.line_search, nullptr));
   PetscCall(PetscOptionsBool("-newton_lagged_search",
                              "svk with the kept factorisation (-contact_reuse_factorization): while the active set "
-                             "changes and the residual halves per step, Newton steps keep the last assembled tangent "
-                             "(modified Newton, solved to a relative residual 0.1); the current tangent, solved "
-                             "exactly, once it settles",
+                             "changes and the residual halves per step, a Newton step searches the active set in the "
+                             "multiplier space with the factored tangent (modified Newton: one forward and one "
+                             "backward pass); once it settles, inexact Newton steps with the current tangent (FGMRES "
+                             "to a residual of min(0.1, ||R||/scale) ||R||); false: exact Newton at every iteration",
                              "", opts.lagged_search, &opts.lagged_search, &opts.lagged_search_set));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
@@ -362,6 +363,9 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
     bool rebuilt;
     PetscCall(Repair(st.u_eval, it == 0, rebuilt));
     if (rebuilt) {
+      // A new layout: no base of a condensed search survives it.
+      st.base = false;
+      st.u_base.Reset();
       st.next.assign(pairs_.size(), 0);
       st.gap_before.clear();
       PetscCall(VecZeroEntries(fext_));
@@ -471,12 +475,18 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   // svk with the kept factorisation, while the active set changes (-newton_lagged_search): the tangent of the last
   // assembly stays (a modified Newton step), solved to SEARCH_RTOL, as long as the residual contracts by
   // LAGGED_CONTRACTION per step; the exact tangent once the active set settles.
-  const bool contracting = st.lag_rnorm < 0 || st.rnorm <= LAGGED_CONTRACTION * st.lag_rnorm;
-  const bool lag = st.large && opts_.lagged_search && st.searching && !st.stabilised && system_->ReusesFactorization();
-  st.lagged = lag && contracting;
-  st.lag_rnorm = st.rnorm;
-  // A lagged step that did not contract: the factored tangent has drifted too far to precondition the current one.
-  if (lag && !contracting) system_->RefactorNext();
+  // A lagged step is a condensed search (SolveAndUpdate): its later iterations (st.base) keep it.
+  if (!(st.large && st.base)) {
+    const bool contracting = st.lag_rnorm < 0 || st.rnorm <= LAGGED_CONTRACTION * st.lag_rnorm;
+    const bool lag = st.large && opts_.lagged_search && st.searching && !st.stabilised &&
+                     system_->ReusesFactorization();
+    st.lagged = lag && contracting;
+    st.lag_rnorm = st.rnorm;
+    // A lagged step that did not contract: the factored tangent has drifted too far to precondition the current one.
+    if (lag && !contracting) system_->RefactorNext();
+  } else if (st.stabilised) {
+    st.lagged = false; // the search is left (Condensable): a full solve from the base with the current tangent
+  }
   if ((st.large && !st.lagged) || !k_assembled_) {
     ProgressBegin("stiffness assembly");
     PetscCall(MatZeroEntries(system_->Stiffness()));
@@ -529,8 +539,26 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ContactSolver::NewtonForcing(const StepState &st, double &rtol) const {
+  PetscFunctionBeginUser;
+  // svk with the kept factorisation and the lagged search: an inexact Newton step. A linear residual of
+  // eta ||R||, eta = min(SEARCH_RTOL, ||R|| / scale), keeps Newton's quadratic convergence (Dembo, Eisenstat and
+  // Steihaug 1982); none needs to go below a quarter of the equilibrium tolerance. The KSP's tolerance is relative to
+  // the right-hand side, which carries the whole contact force (the solve is for the multipliers, not their
+  // increments).
+  rtol = 0;
+  if (!(opts_.lagged_search && system_->ReusesFactorization()) || !(st.rnorm > 0) || !(st.rscale > 0))
+    PetscFunctionReturn(0);
+  const double eta = std::min(SEARCH_RTOL, std::max(0.25 * EquilibriumTol(st.rscale) / st.rnorm, st.rnorm / st.rscale));
+  PetscReal bnorm;
+  PetscCall(VecNorm(system_->Rhs(), NORM_2, &bnorm));
+  if (bnorm > 0) rtol = std::min(SEARCH_RTOL, eta * st.rnorm / bnorm);
+  PetscFunctionReturn(0);
+}
+
 bool ContactSolver::Condensable(const StepState &st) const {
-  return st.base && !st.large && !st.stabilised && system_->ExactFactorization();
+  if (!st.base || st.stabilised || !system_->ReusesFactorization()) return false;
+  return st.large ? st.lagged : system_->ExactFactorization();
 }
 
 PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
@@ -540,7 +568,8 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
     ScopedTimer t(stats_.time_solve);
     const double t0 = MPI_Wtime();
     PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
-    if (!st.base && !st.large && !st.stabilised && !st.moving && system_->ExactFactorization()) {
+    const bool search = st.large ? st.lagged && system_->ReusesFactorization() : system_->ExactFactorization();
+    if (!st.base && !st.stabilised && !st.moving && search) {
       // Linear material, kept factorisation, no stabilisation and no prescribed displacement still to apply: the
       // right-hand side assembled now is the base of the solves after it, which run in the multiplier space
       // (condensed) until Materialise.
@@ -550,6 +579,7 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
       for (std::size_t p = 0; p < pairs_.size(); ++p) st.g_base[p] = states_[p].gap;
       PetscCall(system_->Condense());
       st.base = true;
+      st.base_rnorm = st.rnorm;
     }
     condensed = Condensable(st);
     if (condensed) {
@@ -561,7 +591,9 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
     } else {
       // A full solve moves the displacement away from any base.
       st.base = false;
-      PetscCall(system_->Solve(st.krylov, st.solve_residual, st.lagged ? SEARCH_RTOL : st.correction_rtol));
+      double rtol = st.lagged ? SEARCH_RTOL : st.correction_rtol;
+      if (st.large && !st.lagged) PetscCall(NewtonForcing(st, rtol));
+      PetscCall(system_->Solve(st.krylov, st.solve_residual, rtol));
       st.corrected = st.correction_rtol > 0;
       st.correction_rtol = 0;
     }
@@ -599,9 +631,11 @@ PetscErrorCode ContactSolver::Materialise(StepState &st, PetscInt it) {
   stats_.solves++;
   PetscCall(VecCopy(st.u_base, u_));
   double step_length;
-  PetscCall(UpdateSolution(st.rnorm, false, step_length));
+  PetscCall(UpdateSolution(st.base_rnorm, false, step_length));
   last_step_ = step_length;
   st.condensed = false;
+  // svk: the search's modified Newton step is taken; the next solve has a new right-hand side.
+  if (st.large) st.base = false;
   PetscCall(EvaluateIterate(st, it));
   for (std::size_t p = 0; p < pairs_.size(); ++p) states_[p].lambda = lambda_[p];
   PetscFunctionReturn(0);

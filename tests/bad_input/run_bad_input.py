@@ -301,7 +301,7 @@ CASES = {
                                    ["DIVERGED_CERTIFICATE", "has no contact pair", "-contact_search_radius 0.02"], {}),
     "active_set_max_it": (["-contact_max_it", "1"], ["did not converge", "-contact_max_it"], {"previous": HERTZ}),
     "newton_diverges": (BEAM + ["-material_model", "svk", "-newton_max_it", "1", "-load_max_cuts", "0",
-                                "-bc_pressure", "top:50"], ["did not converge", "-load_max_cuts"], {"previous": BEAM}),
+                                "-bc_pressure", "top:200"], ["did not converge", "-load_max_cuts"], {"previous": BEAM}),
     # Output directories.
     "output_dir_under_file": (["-output_dir", "{file}/out"], ["-output_dir", "a_file/out", "expected a writable"],
                               {}),

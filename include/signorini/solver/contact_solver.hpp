@@ -136,19 +136,21 @@ private:
     bool moving = false;     ///< some prescribed displacement is still to apply
     bool stabilised = false; ///< the last solve carried the stabilisation springs
     bool searching = true;   ///< the next solve's active set is a new one (the first, or a change)
-    bool lagged = false;     ///< the next solve keeps the last assembled tangent (-newton_lagged_search)
+    bool lagged = false;     ///< the next solve is a condensed search with the factored tangent (-newton_lagged_search)
     double lag_rnorm = -1;   ///< the residual before the last solve (none: -1), for LAGGED_CONTRACTION
     double correction_rtol = 0; ///< linear: the next solve only corrects the equilibrium residual, to this tolerance
     bool corrected = false;     ///< the last solve was such a correction
     std::vector<double> gap_before{}; ///< the gaps before the last stabilised solve
-    /// Condensed solves (linear material, kept factorisation): from the first solve without stabilisation and without
-    /// a prescribed displacement still to apply, the active-set iterations run in the multiplier space against that
-    /// solve's right-hand side, condensed once (its base: u_base, the gaps g_base), the displacement staying at the
-    /// base's until a state may be the solution (Materialise).
-    bool base = false;      ///< the right-hand side of the base is condensed (reuse mode, linear, not stabilised)
+    /// Condensed solves (kept factorisation): from the first solve without stabilisation and without a prescribed
+    /// displacement still to apply (svk: from each lagged one), the active-set iterations run in the multiplier space
+    /// against that solve's right-hand side, condensed once (its base: u_base, the gaps g_base), the displacement
+    /// staying at the base's until the active set settles (Materialise). svk: the factored matrix is an earlier
+    /// tangent, so the search is a modified Newton step; the Newton steps after it are exact (FGMRES).
+    bool base = false;      ///< the right-hand side of the base is condensed (reuse mode, not stabilised)
     bool condensed = false; ///< the last solve was condensed: states from g_base + shift, u not updated
     VecH u_base{};
     std::vector<double> g_base{}, shift{};
+    double base_rnorm = 0; ///< the equilibrium residual at the base
   };
   enum class Outcome { SOLVE, EXTENDED, CONVERGED, STOP };
   [[nodiscard]] PetscErrorCode LoadStep(PetscInt step, double factor, bool first, bool &ok);
@@ -157,6 +159,8 @@ private:
   [[nodiscard]] PetscErrorCode AssembleSystem(StepState &st);
   [[nodiscard]] PetscErrorCode SolveAndUpdate(StepState &st);
   /// Whether the next solve can be condensed (StepState::base).
+  /// The relative tolerance of an svk solve that is not lagged: an inexact Newton step (0: the KSP's).
+  [[nodiscard]] PetscErrorCode NewtonForcing(const StepState &st, double &rtol) const;
   bool Condensable(const StepState &st) const;
   /// After condensed solves: the expansion of the last one (the whole solution for the base's right-hand side with the
   /// current constraints), and the displacement u_base + du; the pairs evaluated there. Collective.
