@@ -645,8 +645,8 @@ SVK_CASES = {"hertz": ["-options_file", "options/hertz.yml", "-material_model", 
 @test("svk_reuse_factorization")
 def svk_reuse_factorization(runner, case):
     """svk with the kept MUMPS factorisation (the default: FGMRES on the current tangent preconditioned by the
-    factorisation of an earlier one, the tangent lagged while the active set changes) against a refactorisation at
-    every Newton iteration (-contact_reuse_factorization false, PETSc's MUMPS on the plain saddle-point form): the same
+    factorisation of an earlier one, inexact Newton steps, and while the active set changes its search in the
+    multiplier space with the factored tangent) against a refactorisation at every Newton iteration (-contact_reuse_factorization false, PETSc's MUMPS on the plain saddle-point form): the same
     converged state. Also the kept factorisation without the lagged search (exact Newton throughout: the same
     iterations as refactorising) and refactored at every solve (-contact_reuse_max_it 0: the Schur path's numerical
     refactorisation)."""
@@ -660,6 +660,12 @@ def svk_reuse_factorization(runner, case):
     runner.expect_equal("refactorising: numeric factorisations", log_event_count(fresh.output, "MatCholFctrNum"),
                         solves)
     runner.expect_equal("refactorising: no kept factorisation", log_event_count(fresh.output, "SigMumpsFactor"), 0)
+    # The default's active-set search runs in the multiplier space (reduced solves on the dense Schur complement)
+    # unless its solves carry the stabilisation springs (onto_disc); exact Newton never condenses.
+    if not kept.get("iterations.stabilised_solves"):
+        reduced = log_event_count(kept.output, "SigReducedSolve")
+        runner.expect_true("kept: condensed searches (%d reduced solves)" % reduced, reduced > 0)
+    runner.expect_equal("exact Newton: no reduced solves", log_event_count(exact.output, "SigReducedSolve"), 0)
     for r, what in ((kept, "kept"), (exact, "exact Newton"), (every, "every solve")):
         runner.expect_equal(what + ": no PETSc factorisations", log_event_count(r.output, "MatCholFctrNum"), 0)
         factors = log_event_count(r.output, "SigMumpsFactor")
