@@ -304,7 +304,8 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
   std::vector<double> f_local(fint ? mesh_.NumLocalVertices() * dim : 0, 0.0);
   ElementGeometry g;
   ElementMatrixAdder adder;
-  double jmin = 1e300;
+  double jmin = 1e300, D[6][6];
+  ElasticityMatrix(material_, dim, D);
   PetscFunctionBeginUser;
   if (!A) {
     // The force alone at u = 0 (every rank): F_int(0) = 0 and det F = 1 for both models, no pass over the cells.
@@ -323,9 +324,8 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
     const PetscInt *v;
     Geometry(c, g, nn, v);
     GatherElement(u_local, v, nn, dim, ue.data());
-    ElementTangentAndForce(material_, g, ue.data(), A ? Ke.data() : nullptr, fe.data());
     // det F at the quadrature points (svk): the deformation must stay invertible.
-    if (material_.model == MaterialModel::SVK) jmin = std::min(jmin, MinDeformationJacobian(g, ue.data()));
+    jmin = std::min(jmin, ElementTangentAndForce(material_, D, g, ue.data(), A ? Ke.data() : nullptr, fe.data()));
     if (A) {
       for (PetscInt a = 0; a < nn; ++a)
         for (int k = 0; k < dim; ++k)

@@ -111,7 +111,8 @@ constexpr int VOIGT3[6][2] = {{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
 int NumVoigt(int dim) { return dim == 2 ? 3 : 6; }
 const int (*Voigt(int dim))[2] { return dim == 2 ? VOIGT2 : VOIGT3; }
 
-/// Isotropic elasticity matrix in Voigt form (engineering shear strain).
+} // namespace
+
 void ElasticityMatrix(const Material &m, int dim, double D[6][6]) {
   const double lam = dim == 2 ? m.LambdaPlane() : m.Lambda3D(), mu = m.Mu();
   const int nv = NumVoigt(dim);
@@ -122,6 +123,8 @@ void ElasticityMatrix(const Material &m, int dim, double D[6][6]) {
   }
   for (int i = dim; i < nv; ++i) D[i][i] = mu;
 }
+
+namespace {
 
 /// Deformation gradient F = I + grad u at quadrature point q (identity for the linear model).
 void DeformationGradient(const ElementGeometry &g, int q, const double *u, bool large, double F[MAX_DIM][MAX_DIM]) {
@@ -209,17 +212,28 @@ void FaceIntegrals(int dim, int n, const double *X, double *w, double (*an)[3]) 
 
 namespace {
 /// ComputeGeometry for DIM and NODES known at compile time (the loops unrolled).
+/// The quadrature points and weights of a reference cell and its shape functions there, computed once.
+template <int DIM, int NODES>
+struct ReferenceCell {
+  int nqp;
+  double xi[MAX_QP][MAX_DIM], w[MAX_QP], N[MAX_QP][MAX_NODES], dN[MAX_QP][MAX_NODES][MAX_DIM] = {};
+  ReferenceCell() : nqp(ReferenceQuadrature(DIM, NODES, xi, w)) {
+    for (int q = 0; q < nqp; ++q) ReferenceShape(DIM, NODES, xi[q], N[q], dN[q]);
+  }
+};
+
 template <int DIM, int NODES>
 bool ComputeGeometryFixed(const double *X, double thickness, ElementGeometry &g) {
-  double xi[MAX_QP][MAX_DIM], wq[MAX_QP];
+  static const ReferenceCell<DIM, NODES> ref;
   g.dim = DIM;
   g.nodes = NODES;
-  g.nqp = ReferenceQuadrature(DIM, NODES, xi, wq);
+  g.nqp = ref.nqp;
   g.min_detJ = 1e300;
   g.max_detJ = -1e300;
   for (int q = 0; q < g.nqp; ++q) {
-    double dNref[MAX_NODES][MAX_DIM] = {}, J[MAX_DIM][MAX_DIM] = {}, Ji[MAX_DIM][MAX_DIM];
-    ReferenceShape(DIM, NODES, xi[q], g.N[q].data(), dNref);
+    const auto &dNref = ref.dN[q];
+    double J[MAX_DIM][MAX_DIM] = {}, Ji[MAX_DIM][MAX_DIM];
+    for (int a = 0; a < NODES; ++a) g.N[q][a] = ref.N[q][a];
     for (int a = 0; a < NODES; ++a)
       for (int i = 0; i < DIM; ++i)
         for (int j = 0; j < DIM; ++j) J[i][j] += X[a * DIM + i] * dNref[a][j];
@@ -233,7 +247,7 @@ bool ComputeGeometryFixed(const double *X, double thickness, ElementGeometry &g)
         for (int j = 0; j < DIM; ++j) d += dNref[a][j] * Ji[j][i];
         g.dN[q][a][i] = d;
       }
-    g.w[q] = wq[q] * std::abs(det) * (DIM == 2 ? thickness : 1.0);
+    g.w[q] = ref.w[q] * std::abs(det) * (DIM == 2 ? thickness : 1.0);
   }
   return true;
 }
@@ -257,12 +271,12 @@ namespace {
 /// ElementTangentAndForce for DIM and NODES known at compile time (the loops unrolled: the svk Newton iteration
 /// assembles the tangent and the internal force at every step).
 template <int DIM, int NODES>
-void TangentAndForceFixed(const Material &m, const ElementGeometry &g, const double *u, double *K, double *f) {
+double TangentAndForceFixed(const Material &m, const double (&D)[6][6], const ElementGeometry &g, const double *u,
+                            double *K, double *f) {
   constexpr int n = NODES * DIM, nv = DIM == 2 ? 3 : 6;
   constexpr const int(*voigt)[2] = DIM == 2 ? VOIGT2 : VOIGT3;
   const bool large = m.model == MaterialModel::SVK;
-  double D[6][6];
-  ElasticityMatrix(m, DIM, D);
+  double jmin = 1e300;
   if (K) std::memset(K, 0, sizeof(double) * n * n);
   std::memset(f, 0, sizeof(double) * n);
   for (int q = 0; q < g.nqp; ++q) {
@@ -274,6 +288,12 @@ void TangentAndForceFixed(const Material &m, const ElementGeometry &g, const dou
         for (int j = 0; j < DIM; ++j) H[i][j] += u[a * DIM + i] * dN[a][j];
     for (int i = 0; i < DIM; ++i)
       for (int j = 0; j < DIM; ++j) F[i][j] = (i == j ? 1.0 : 0.0) + (large ? H[i][j] : 0.0);
+    if (large) {
+      double Fm[MAX_DIM][MAX_DIM];
+      for (int i = 0; i < DIM; ++i)
+        for (int j = 0; j < DIM; ++j) Fm[i][j] = F[i][j];
+      jmin = std::min(jmin, Det(DIM, Fm));
+    }
     for (int v = 0; v < nv; ++v) {
       const int i = voigt[v][0], j = voigt[v][1];
       double e = H[i][j] + H[j][i]; // Eq. 1: grad u + grad u^T (+ grad u^T grad u)
@@ -332,15 +352,24 @@ void TangentAndForceFixed(const Material &m, const ElementGeometry &g, const dou
       }
     }
   }
+  return large ? jmin : 1.0;
 }
 } // namespace
 
-void ElementTangentAndForce(const Material &m, const ElementGeometry &g, const double *u, double *K, double *f) {
-  if (g.dim == 2 && g.nodes == 3) TangentAndForceFixed<2, 3>(m, g, u, K, f);
-  else if (g.dim == 2 && g.nodes == 4) TangentAndForceFixed<2, 4>(m, g, u, K, f);
-  else if (g.dim == 3 && g.nodes == 4) TangentAndForceFixed<3, 4>(m, g, u, K, f);
-  else if (g.dim == 3 && g.nodes == 5) TangentAndForceFixed<3, 5>(m, g, u, K, f);
-  else if (g.dim == 3 && g.nodes == 8) TangentAndForceFixed<3, 8>(m, g, u, K, f);
+double ElementTangentAndForce(const Material &m, const double (&D)[6][6], const ElementGeometry &g, const double *u,
+                              double *K, double *f) {
+  if (g.dim == 2 && g.nodes == 3) return TangentAndForceFixed<2, 3>(m, D, g, u, K, f);
+  if (g.dim == 2 && g.nodes == 4) return TangentAndForceFixed<2, 4>(m, D, g, u, K, f);
+  if (g.dim == 3 && g.nodes == 4) return TangentAndForceFixed<3, 4>(m, D, g, u, K, f);
+  if (g.dim == 3 && g.nodes == 5) return TangentAndForceFixed<3, 5>(m, D, g, u, K, f);
+  if (g.dim == 3 && g.nodes == 8) return TangentAndForceFixed<3, 8>(m, D, g, u, K, f);
+  return 1.0;
+}
+
+double ElementTangentAndForce(const Material &m, const ElementGeometry &g, const double *u, double *K, double *f) {
+  double D[6][6];
+  ElasticityMatrix(m, g.dim, D);
+  return ElementTangentAndForce(m, D, g, u, K, f);
 }
 
 CellStress ElementStress(const Material &m, const ElementGeometry &g, const double *u) {

@@ -33,7 +33,13 @@ bool ComputeGeometry(int dim, int nodes, const double *X, double thickness, Elem
 /// Element stiffness (tangent, Eq. 17) and internal force (Eq. 15 without contact and loads) at the element
 /// displacement u (dim values per vertex). For the linear model K does not depend on u and f = K u.
 /// K is (nodes*dim)^2 row-major, f has nodes*dim entries; both are overwritten. K may be null (the force alone).
-void ElementTangentAndForce(const Material &m, const ElementGeometry &g, const double *u, double *K, double *f);
+/// Returns the smallest det F = det(I + grad u) over the quadrature points (svk; 1 for the linear model).
+double ElementTangentAndForce(const Material &m, const ElementGeometry &g, const double *u, double *K, double *f);
+/// The same with the material's elasticity matrix D (Voigt, ElasticityMatrix) computed once by the caller.
+double ElementTangentAndForce(const Material &m, const double (&D)[6][6], const ElementGeometry &g, const double *u,
+                              double *K, double *f);
+/// The isotropic elasticity matrix in Voigt form (engineering shear strain; 2D: plane strain or stress).
+void ElasticityMatrix(const Material &m, int dim, double D[6][6]);
 
 /// Strain and stress averaged over the cell, in Voigt order (xx, yy, xy) in 2D and (xx, yy, zz, yz, xz, xy) in 3D,
 /// with tensor (not engineering) shear strain; 2D outputs also sigma_zz. Linear: small strain and Cauchy stress;

@@ -81,8 +81,9 @@ TEST_F(ConformingMixedMesh, ALinearFieldImposedOnTheBoundaryIsReproducedInside) 
   ASSERT_EQ(VecScale(b, -1.0), 0);
   for (PetscInt v = 0; v < nv; ++v)
     for (int k = 0; k < 3; ++k)
-      if (dirichlet_.fixed[3 * v + k])
+      if (dirichlet_.fixed[3 * v + k]) {
         ASSERT_EQ(VecSetValue(b, dofs_.Row(v, k), dirichlet_.value[3 * v + k], INSERT_VALUES), 0);
+      }
   ASSERT_EQ(VecAssemblyBegin(b), 0);
   ASSERT_EQ(VecAssemblyEnd(b), 0);
   KSP ksp;
