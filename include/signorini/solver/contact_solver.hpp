@@ -66,8 +66,9 @@ public:
   /// previous iterate, so they vanish at convergence, and the final solve of a load step is always made without
   /// them. When a stabilised solve closes no pair but brings some nearer, its step is extended past the nearest.
   static constexpr double STABILISATION = 1e-4;
-  /// Relative residual of the lagged (modified) Newton steps of the active-set search (-newton_lagged_search): the
-  /// step only has to find the next active set; the steps after it settles are exact.
+  /// Relative residual of a lagged (modified) Newton step of the active-set search (-newton_lagged_search) that cannot
+  /// be condensed (a prescribed displacement still to apply): the step only has to find the next active set. Also
+  /// the largest forcing term of the inexact Newton steps after it settles (NewtonForcing).
   static constexpr double SEARCH_RTOL = 0.1;
   /// A lagged step follows only one that reduced the residual at least by this factor (else the current tangent).
   static constexpr double LAGGED_CONTRACTION = 0.5;
