@@ -1324,6 +1324,24 @@ def random_cases(runner):
                        outcomes["converged"] >= 15)
 
 
+@test("svk_pairs_kept")
+def svk_pairs_kept(runner):
+    """svk Hertz in 3 load steps with the default search radius: the pair search at a load step's start finds new
+    pairs, all farther than half the radius from their nodes, so the pairs, the system and its factorisation stay (no
+    repairing, one MUMPS factorisation in the run; before, each such search rebuilt the system). The state is that of
+    a radius of the whole body diagonal, with which the first search pairs every candidate."""
+    args = ["-options_file", "options/hertz.yml", "-material_model", "svk", "-load_steps", "3", "-log_view"]
+    kept = runner.run(args + ["-info", ":sys"], "default radius")
+    wide = runner.run(args + ["-contact_search_radius", "1"], "radius of the body diagonal")
+    runner.expect_true("new pairs left for a later search", "farther than half the search radius" in kept.output)
+    runner.expect_equal("no repairing", kept.get("iterations.repairings"), 0)
+    runner.expect_equal("one MUMPS factorisation", log_event_count(kept.output, "SigMumpsFactor"), 1)
+    a, b = kept.nodes(), wide.nodes()
+    runner.expect_true("same active nodes", np.array_equal(a["active"], b["active"]))
+    runner.expect_close("displacement", displacement(a), displacement(b), 0, 1e-8 * np.abs(displacement(b)).max())
+    runner.expect_close("lambda", a["lambda"], b["lambda"], 0, 1e-8 * np.nanmax(np.abs(b["lambda"])))
+
+
 @test("nonlinear_sliding_repair")
 def nonlinear_sliding_repair(runner):
     """svk block dragged 1.5 along a floor of 24 short collinear segments with the default search radius (0.22,
