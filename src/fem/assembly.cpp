@@ -305,8 +305,8 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
   ElementGeometry g;
   ElementMatrixAdder adder;
   double jmin = 1e300, D[6][6];
-  ElasticityMatrix(material_, dim, D);
   PetscFunctionBeginUser;
+  ElasticityMatrix(material_, dim, D);
   if (!A) {
     // The force alone at u = 0 (every rank): F_int(0) = 0 and det F = 1 for both models, no pass over the cells.
     int zero = std::all_of(u_local, u_local + mesh_.NumLocalVertices() * dim, [](double x) { return x == 0; });

@@ -126,23 +126,24 @@ void ElasticityMatrix(const Material &m, int dim, double D[6][6]) {
 
 namespace {
 
-/// Deformation gradient F = I + grad u at quadrature point q (identity for the linear model).
-void DeformationGradient(const ElementGeometry &g, int q, const double *u, bool large, double F[MAX_DIM][MAX_DIM]) {
+/// Displacement gradient H = grad u at quadrature point q.
+void DisplacementGradient(const ElementGeometry &g, int q, const double *u, double H[MAX_DIM][MAX_DIM]) {
   for (int i = 0; i < g.dim; ++i)
-    for (int j = 0; j < g.dim; ++j) {
-      F[i][j] = i == j ? 1.0 : 0.0;
-      if (large)
-        for (int a = 0; a < g.nodes; ++a) F[i][j] += u[a * g.dim + i] * g.dN[q][a][j];
-    }
+    for (int j = 0; j < g.dim; ++j) H[i][j] = 0;
+  for (int a = 0; a < g.nodes; ++a)
+    for (int i = 0; i < g.dim; ++i)
+      for (int j = 0; j < g.dim; ++j) H[i][j] += u[a * g.dim + i] * g.dN[q][a][j];
 }
 
-/// Strain in Voigt form with engineering shear: Green-Lagrange (large) or small strain.
-void Strain(const ElementGeometry &g, int q, const double *u, bool large, double eps[6]) {
-  const int dim = g.dim, nv = NumVoigt(dim);
-  double H[MAX_DIM][MAX_DIM] = {};
-  for (int a = 0; a < g.nodes; ++a)
-    for (int i = 0; i < dim; ++i)
-      for (int j = 0; j < dim; ++j) H[i][j] += u[a * dim + i] * g.dN[q][a][j];
+/// Deformation gradient F = I + H (identity for the linear model).
+void DeformationGradient(int dim, const double H[MAX_DIM][MAX_DIM], bool large, double F[MAX_DIM][MAX_DIM]) {
+  for (int i = 0; i < dim; ++i)
+    for (int j = 0; j < dim; ++j) F[i][j] = (i == j ? 1.0 : 0.0) + (large ? H[i][j] : 0.0);
+}
+
+/// Strain in Voigt form with engineering shear from H: Green-Lagrange (large) or small strain.
+void Strain(int dim, const double H[MAX_DIM][MAX_DIM], bool large, double eps[6]) {
+  const int nv = NumVoigt(dim);
   for (int v = 0; v < nv; ++v) {
     const int i = Voigt(dim)[v][0], j = Voigt(dim)[v][1];
     double e = H[i][j] + H[j][i]; // Eq. 1: grad u + grad u^T (+ grad u^T grad u)
@@ -157,8 +158,9 @@ void Strain(const ElementGeometry &g, int q, const double *u, bool large, double
 double MinDeformationJacobian(const ElementGeometry &g, const double *u) {
   double jmin = 1e300;
   for (int q = 0; q < g.nqp; ++q) {
-    double F[MAX_DIM][MAX_DIM];
-    DeformationGradient(g, q, u, true, F);
+    double H[MAX_DIM][MAX_DIM], F[MAX_DIM][MAX_DIM];
+    DisplacementGradient(g, q, u, H);
+    DeformationGradient(g.dim, H, true, F);
     jmin = std::min(jmin, Det(g.dim, F));
   }
   return jmin;
@@ -211,7 +213,6 @@ void FaceIntegrals(int dim, int n, const double *X, double *w, double (*an)[3]) 
 }
 
 namespace {
-/// ComputeGeometry for DIM and NODES known at compile time (the loops unrolled).
 /// The quadrature points and weights of a reference cell and its shape functions there, computed once.
 template <int DIM, int NODES>
 struct ReferenceCell {
@@ -222,6 +223,7 @@ struct ReferenceCell {
   }
 };
 
+/// ComputeGeometry for DIM and NODES known at compile time (the loops unrolled).
 template <int DIM, int NODES>
 bool ComputeGeometryFixed(const double *X, double thickness, ElementGeometry &g) {
   static const ReferenceCell<DIM, NODES> ref;
@@ -281,26 +283,11 @@ double TangentAndForceFixed(const Material &m, const double (&D)[6][6], const El
   std::memset(f, 0, sizeof(double) * n);
   for (int q = 0; q < g.nqp; ++q) {
     const auto &dN = g.dN[q];
-    // H = grad u; F = I + H (svk) or I; the strain, Green-Lagrange (svk) or small, Voigt with engineering shear.
-    double H[DIM][DIM] = {}, F[DIM][DIM], eps[nv], S[nv] = {};
-    for (int a = 0; a < NODES; ++a)
-      for (int i = 0; i < DIM; ++i)
-        for (int j = 0; j < DIM; ++j) H[i][j] += u[a * DIM + i] * dN[a][j];
-    for (int i = 0; i < DIM; ++i)
-      for (int j = 0; j < DIM; ++j) F[i][j] = (i == j ? 1.0 : 0.0) + (large ? H[i][j] : 0.0);
-    if (large) {
-      double Fm[MAX_DIM][MAX_DIM];
-      for (int i = 0; i < DIM; ++i)
-        for (int j = 0; j < DIM; ++j) Fm[i][j] = F[i][j];
-      jmin = std::min(jmin, Det(DIM, Fm));
-    }
-    for (int v = 0; v < nv; ++v) {
-      const int i = voigt[v][0], j = voigt[v][1];
-      double e = H[i][j] + H[j][i]; // Eq. 1: grad u + grad u^T (+ grad u^T grad u)
-      if (large)
-        for (int k = 0; k < DIM; ++k) e += H[k][i] * H[k][j];
-      eps[v] = i == j ? 0.5 * e : e;
-    }
+    double H[MAX_DIM][MAX_DIM], F[MAX_DIM][MAX_DIM], eps[6], S[nv] = {};
+    DisplacementGradient(g, q, u, H);
+    DeformationGradient(DIM, H, large, F);
+    Strain(DIM, H, large, eps);
+    if (large) jmin = std::min(jmin, Det(DIM, F));
     for (int a = 0; a < nv; ++a)
       for (int b = 0; b < nv; ++b) S[a] += D[a][b] * eps[b]; // Eq. 4: S = C : E
     // B[v][a*dim+k]: variation of the Voigt strain v with respect to u_ak, F^T grad N symmetrised.
@@ -380,9 +367,10 @@ CellStress ElementStress(const Material &m, const ElementGeometry &g, const doub
   CellStress out;
   double wsum = 0;
   for (int q = 0; q < g.nqp; ++q) {
-    double F[MAX_DIM][MAX_DIM], eps[6], S[6] = {};
-    DeformationGradient(g, q, u, large, F);
-    Strain(g, q, u, large, eps);
+    double H[MAX_DIM][MAX_DIM], F[MAX_DIM][MAX_DIM], eps[6], S[6] = {};
+    DisplacementGradient(g, q, u, H);
+    DeformationGradient(dim, H, large, F);
+    Strain(dim, H, large, eps);
     for (int a = 0; a < nv; ++a)
       for (int b = 0; b < nv; ++b) S[a] += D[a][b] * eps[b];
     double Sm[MAX_DIM][MAX_DIM] = {}, sig[MAX_DIM][MAX_DIM] = {};
