@@ -130,9 +130,8 @@ public:
   [[nodiscard]] PetscErrorCode Release();
 
   /// Reuse mode: the active-set iterations of a load step (svk: of a Newton iteration's search, with the factored
-  /// tangent) in the multiplier space. Condense takes
-  /// the current right-hand side (its displacement rows b_u stay those of every SolveCondensed until the next
-  /// Condense), factoring first if needed. SolveCondensed solves for the current constraints (SetConstraints,
+  /// tangent) in the multiplier space. Condense takes the current right-hand side (its displacement rows b_u stay
+  /// those of every SolveCondensed until the next Condense), factoring first if needed. SolveCondensed solves for the current constraints (SetConstraints,
   /// without stabilisation) with the multiplier rows bm (owned rows) in the multiplier space alone (the dense Schur
   /// complement on rank 0; no pass over the factors); it returns per owned multiplier row the contact multiplier (0
   /// on inactive rows) and B_p du, the normal displacement of the solution's increment (the gap change), and the
