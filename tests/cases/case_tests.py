@@ -647,8 +647,9 @@ def svk_reuse_factorization(runner, case):
     """svk with the kept MUMPS factorisation (the default: FGMRES on the current tangent preconditioned by the
     factorisation of an earlier one, inexact Newton steps, and while the active set changes its search in the
     multiplier space with the factored tangent) against a refactorisation at every Newton iteration
-    (-contact_reuse_factorization false, PETSc's MUMPS on the plain saddle-point form): the same converged state. Also the kept factorisation without the lagged search (exact Newton throughout: the same
-    iterations as refactorising) and refactored at every solve (-contact_reuse_max_it 0: the Schur path's numerical
+    (-contact_reuse_factorization false, PETSc's MUMPS on the plain saddle-point form): the same converged state.
+    Also the kept factorisation without the lagged search (exact Newton throughout: the same iterations as
+    refactorising) and refactored at every solve (-contact_reuse_max_it 0: the Schur path's numerical
     refactorisation)."""
     args = SVK_CASES[case] + ["-log_view"]
     fresh = runner.run(args + ["-contact_reuse_factorization", "false"], case + " refactorise")
