@@ -1,15 +1,40 @@
 // signorini: frictionless contact of elastic bodies against rigid obstacles. Initialise, run, finalise.
 #include "signorini/app/run.hpp"
 #include "signorini/core/errors.hpp"
+#include "signorini/core/options.hpp"
+
+#include <cstdio>
+#include <string>
 
 int main(int argc, char **argv) {
   // The handler goes first so that a bad -options_file, read by PetscInitialize, is reported like any other input.
   PetscCall(signorini::InstallErrorHandler());
   signorini::HoldGenericHelp();
   // No help text here: PETSc would print it with a stray separator line; Run() prints it above the option groups.
-  PetscCall(PetscInitialize(&argc, &argv, nullptr, nullptr));
-  const PetscErrorCode ierr = signorini::Run();
+  // MPI first, so that an options file that cannot be read is reported once, by rank 0, before PETSc reads it
+  // (PETSc's own check of a directory or an unreadable file is made by rank 0 alone, while the others wait).
+  MPI_Init(&argc, &argv);
+  std::string files;
+  const std::string unreadable = signorini::UnreadableOptionsFile(argc, argv, files);
+  signorini::SetOptionsFiles(files);
+  if (!unreadable.empty()) {
+    int rank;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank == 0) std::fprintf(stderr, "signorini: error: %s\n", unreadable.c_str());
+    MPI_Finalize();
+    return 1;
+  }
+  if (PetscInitialize(&argc, &argv, nullptr, nullptr)) {
+    // The handler has reported it (a bad -options_file, read by every rank alike); PetscCall here would abort MPI.
+    int finalized = 0;
+    MPI_Finalized(&finalized);
+    if (!finalized) MPI_Finalize();
+    return 1;
+  }
+  PetscErrorCode ierr = signorini::CheckCommandLine(argc, argv);
+  if (!ierr) ierr = signorini::Run();
   if (ierr) (void)PetscOptionsSetValue(nullptr, "-options_left", "0");
   PetscCall(PetscFinalize());
+  MPI_Finalize(); // PETSc leaves MPI to whoever initialised it
   return ierr ? 1 : 0;
 }

@@ -11,6 +11,11 @@ namespace signorini {
 
 namespace {
 
+std::string &OptionsFiles() {
+  static std::string files;
+  return files;
+}
+
 /// Rewrites PETSc's "Input string abc has no numeric value" (and its integer and logical variants) to name the option
 /// holding the bad value, found by that value in the options database, and to say what was expected.
 std::string DescribeBadOptionValue(const std::string &mess) {
@@ -58,8 +63,12 @@ PetscErrorCode Handler(MPI_Comm comm, int line, const char *func, const char *fi
   // it is done, a bad option value. The latter is raised on PETSC_COMM_SELF but on every rank alike, since every
   // rank holds the same options and reads them together: report it once, from rank 0, and let every rank unwind.
   const bool options_code = file && std::strstr(file, "sys/objects/options") != nullptr;
+  // The same holds while PetscInitialize reads the command line (a missing file name) and a YAML file (rank 0 reads
+  // it, every rank parses it), but not for a plain options file, which rank 0 parses while the others wait: that
+  // one is reported by rank 0, which then aborts the others. (main checks beforehand that every file is readable.)
   const bool option_value = options_code && PetscInitializeCalled;
-  if (option_value && mpi_up) MPI_Comm_rank(world, &rank), comm_size = world_size;
+  const bool plain_file = options_code && func && std::strcmp(func, "PetscOptionsInsertFilePetsc") == 0;
+  if (options_code && mpi_up) MPI_Comm_rank(world, &rank), comm_size = plain_file ? 1 : world_size;
   const bool collective = comm_size == world_size;
   std::string message = mess ? mess : "";
   while (!message.empty() && std::isspace((unsigned char)message.back()))
@@ -67,14 +76,15 @@ PetscErrorCode Handler(MPI_Comm comm, int line, const char *func, const char *fi
   if (option_value)
     message = DescribeBadOptionValue(message);
   else if (options_code)
-    message = "-options_file: " + message + "; expected a readable YAML or PETSc options file";
+    message = "-options_file" + (OptionsFiles().empty() ? "" : " " + OptionsFiles()) + ": " + message +
+              "; expected a readable YAML or PETSc options file";
   if (n == PETSC_ERR_ARG_UNKNOWN_TYPE) message += "; expected one of the types that -help lists";
   const char *text = message.c_str();
   const bool user = options_code || n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_ARG_UNKNOWN_TYPE ||
                     n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_READ || n == PETSC_ERR_FILE_WRITE ||
                     n == PETSC_ERR_FILE_UNEXPECTED || n == PETSC_ERR_ARG_OUTOFRANGE || n == PETSC_ERR_NOT_CONVERGED ||
                     n == PETSC_ERR_CONV_FAILED || n == PETSC_ERR_ARG_WRONG;
-  if (!collective || rank == 0) {
+  if (!collective || rank == 0 || plain_file) {
     if (n == PETSC_ERR_MEM)
       std::fprintf(stderr, "signorini: error: out of memory (%s)\n", text);
     else if (user)
@@ -88,6 +98,8 @@ PetscErrorCode Handler(MPI_Comm comm, int line, const char *func, const char *fi
 }
 
 } // namespace
+
+void SetOptionsFiles(const std::string &files) { OptionsFiles() = files; }
 
 PetscErrorCode InstallErrorHandler() {
   PetscFunctionBeginUser;

@@ -3,7 +3,12 @@
 
 #include "signorini/core/parse.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <fstream>
+#include <system_error>
+#include <filesystem>
 
 namespace signorini {
 
@@ -160,6 +165,81 @@ PetscErrorCode OptionsRequireValue(PetscOptionItems *PetscOptionsObject, const c
   PetscCheck(!found || !raw.empty(), PetscOptionsObject->comm, PETSC_ERR_USER_INPUT,
              "%s is given without a value; expected %s", name, expected);
   PetscFunctionReturn(0);
+}
+
+namespace {
+
+/// The edit distance between a and b (insertions, deletions, substitutions).
+std::size_t EditDistance(const std::string &a, const std::string &b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+} // namespace
+
+PetscErrorCode CheckCommandLine(int argc, char **argv) {
+  PetscFunctionBeginUser;
+  // PETSc's reading of the arguments (PetscOptionsInsertArgs): these take the next argument whatever it is, and
+  // -prefix_pop none; any other key takes the next argument when that is not a key.
+  static const char *const WITH_OPERAND[] = {"-options_file", "-options_file_yaml", "-options_string_yaml",
+                                             "-prefix_push"};
+  for (int i = 1; i < argc; ++i) {
+    PetscBool key;
+    PetscCall(PetscOptionsValidKey(argv[i], &key));
+    const std::string arg = argv[i];
+    if (!key) {
+      const std::size_t dot = arg.rfind('.');
+      const std::string ext = dot == std::string::npos ? "" : arg.substr(dot);
+      const bool options_file = ext == ".yml" || ext == ".yaml" || ext == ".txt" || ext == ".opts";
+      SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+              "unexpected argument '%s': every input is an option, -name value%s", arg.c_str(),
+              options_file ? ("; to read this case file, give -options_file " + arg).c_str() : "");
+    }
+    const std::string name = arg.substr(1);
+    if (name != "options_file" && EditDistance(name, "options_file") <= 2)
+      SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "unknown option %s; expected -options_file FILE",
+              arg.c_str());
+    if (std::find_if(std::begin(WITH_OPERAND), std::end(WITH_OPERAND),
+                     [&](const char *k) { return arg == k; }) != std::end(WITH_OPERAND)) {
+      ++i;
+    } else if (arg != "-prefix_pop" && i + 1 < argc) {
+      PetscBool next_key;
+      PetscCall(PetscOptionsValidKey(argv[i + 1], &next_key));
+      if (!next_key) ++i;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+std::string UnreadableOptionsFile(int argc, char **argv, std::string &files) {
+  files.clear();
+  for (int i = 1; i + 1 < argc; ++i) {
+    const std::string key = argv[i];
+    if (key != "-options_file" && key != "-options_file_yaml") continue;
+    const std::string path = argv[++i];
+    if (!path.empty() && path[0] == '-') continue; // PETSc reports the missing file name
+    files += (files.empty() ? "" : ", ") + path;
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    std::string problem;
+    if (!std::filesystem::exists(status)) problem = "no such file";
+    else if (std::filesystem::is_directory(status)) problem = "it is a directory";
+    else if (!std::ifstream(path)) problem = "it cannot be read";
+    if (!problem.empty())
+      return key + " " + path + ": " + problem + "; expected a readable YAML or PETSc options file";
+  }
+  return "";
 }
 
 } // namespace signorini

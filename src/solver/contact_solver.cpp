@@ -653,8 +653,9 @@ PetscErrorCode ContactSolver::Materialise(StepState &st, PetscInt it) {
   PetscCall(UpdateSolution(st.base_rnorm, false, step_length));
   last_step_ = step_length;
   st.condensed = false;
-  // svk: the search's modified Newton step is taken; the next solve has a new right-hand side.
-  if (st.large) st.base = false;
+  // The expansion used up the condensed right-hand side: a solve after it (svk: the next Newton step; linear: a
+  // correction of an equilibrium residual the certificate refused) condenses again or solves in full.
+  st.base = false;
   PetscCall(EvaluateIterate(st, it));
   for (std::size_t p = 0; p < pairs_.size(); ++p) states_[p].lambda = lambda_[p];
   PetscFunctionReturn(0);

@@ -11,6 +11,9 @@ namespace signorini {
 /// aborts the MPI job for errors raised on a single rank, so that no rank waits forever. Call once on all ranks,
 /// before PetscInitialize so that errors in reading -options_file are reported the same way.
 [[nodiscard]] PetscErrorCode InstallErrorHandler();
+/// The options files of the command line ("a.yml, b.txt"), named by the handler's message when PetscInitialize cannot
+/// read one of them.
+void SetOptionsFiles(const std::string &files);
 
 /// Collective check of a condition that may hold on some ranks only: if any rank has ok == false, every rank raises
 /// PETSC_ERR_USER_INPUT with the message of the lowest failing rank. Call on all ranks of comm together.

@@ -55,4 +55,15 @@ struct RealRange {
 [[nodiscard]] PetscErrorCode OptionsRequireValue(PetscOptionItems *PetscOptionsObject, const char *name,
                                                  const char *expected);
 
+/// Checks the command line as PETSc reads it (-name value, -name, -options_file FILE, ...): an argument that is
+/// neither an option nor an option's value (PETSc would skip it silently, e.g. a case file given without
+/// -options_file), or a misspelling of -options_file (PETSc would take it for an unused option and run the default
+/// case), is an error that names it and says what was expected. Collective (every rank has the same arguments).
+[[nodiscard]] PetscErrorCode CheckCommandLine(int argc, char **argv);
+
+/// The first options file of the command line (-options_file FILE, -options_file_yaml FILE) that cannot be read, as
+/// a message naming it and saying what was expected; empty when every one can. files: the options files it saw, for
+/// SetOptionsFiles. Needs no PETSc (it runs before PetscInitialize).
+std::string UnreadableOptionsFile(int argc, char **argv, std::string &files);
+
 } // namespace signorini
