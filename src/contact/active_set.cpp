@@ -93,12 +93,17 @@ PetscErrorCode ActiveSet::Next(const std::vector<PairState> &states, PetscInt it
   // - Fraction: only pairs penetrating deeper than the fraction times the deepest penetration.
   // - Gap factor: only pairs whose gap at the start of the load step is at most the factor times that of the deepest
   //   pair(s) (those within 1e-9 of the deepest penetration, so that round-off does not choose among near ties).
-  double deepest = 0, gdeepest;
-  for (std::size_t p = 0; p < states.size(); ++p)
-    if (!active_[p] && states[p].InZone()) deepest = std::max(deepest, -states[p].gap);
-  PetscCallMPI(MPI_Allreduce(&deepest, &gdeepest, 1, MPI_DOUBLE, MPI_MAX, comm_));
+  // An active pair stays active while its multiplier is not tensile beyond TensileTol; an inactive one is activated
+  // when it penetrates beyond the gap tolerance (c gap_tol), or beyond the first update's damping.
+  double local[2] = {0, 0}, global[2]; // deepest penetration of an inactive pair, largest |lambda|
+  for (std::size_t p = 0; p < states.size(); ++p) {
+    if (!active_[p] && states[p].InZone()) local[0] = std::max(local[0], -states[p].gap);
+    local[1] = std::max(local[1], std::abs(states[p].lambda));
+  }
+  PetscCallMPI(MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_MAX, comm_));
+  const double gdeepest = global[0];
   const double frac = it == 1 ? params_.activation_fraction : 0.0;
-  const double tol = params_.ForceTol(), activate_tol = std::max(tol, params_.c * frac * gdeepest);
+  const double tol = TensileTol(global[1]), activate_tol = std::max(params_.ForceTol(), params_.c * frac * gdeepest);
   std::vector<PairState> current = states;
   for (std::size_t p = 0; p < states.size(); ++p) current[p].active = active_[p];
   ProposeSet(current, params_.c, tol, activate_tol, keys, normals, next);
@@ -143,8 +148,8 @@ PetscErrorCode ActiveSet::Seen(const std::vector<char> &next, const std::vector<
 PetscErrorCode ActiveSet::Certify(const std::vector<PairState> &states, const std::vector<PairKey> &keys,
                                   const std::vector<std::array<double, 3>> &normals, double equilibrium,
                                   double equilibrium_tol, Certificate &cert) const {
-  // Local maxima: penetration, -min active lambda, max |inactive lambda|, max |lambda g|, max lambda.
-  double m[5] = {0, -INFINITY, 0, 0, 0}, g[5];
+  // Local maxima: penetration, -min active lambda, max |inactive lambda|, max |lambda g|, max lambda, max |lambda|.
+  double m[6] = {0, -INFINITY, 0, 0, 0, 0}, g[6];
   PetscInt counts[2] = {0, 0}, gcounts[2];
   PetscFunctionBeginUser;
   std::vector<char> next;
@@ -155,15 +160,17 @@ PetscErrorCode ActiveSet::Certify(const std::vector<PairState> &states, const st
     else m[2] = std::max(m[2], std::abs(s.lambda));
     m[3] = std::max(m[3], std::abs(s.lambda * s.gap));
     m[4] = std::max(m[4], s.lambda);
+    m[5] = std::max(m[5], std::abs(s.lambda));
   }
-  ProposeSet(states, params_.c, params_.ForceTol(), params_.ForceTol(), keys, normals, next);
+  PetscCallMPI(MPI_Allreduce(m, g, 6, MPI_DOUBLE, MPI_MAX, comm_));
+  const double tensile_tol = TensileTol(g[5]);
+  ProposeSet(states, params_.c, tensile_tol, params_.ForceTol(), keys, normals, next);
   for (std::size_t p = 0; p < states.size(); ++p) counts[0] += next[p] != (char)states[p].active;
-  PetscCallMPI(MPI_Allreduce(m, g, 5, MPI_DOUBLE, MPI_MAX, comm_));
   PetscCallMPI(MPI_Allreduce(counts, gcounts, 2, MPIU_INT, MPI_SUM, comm_));
   cert.max_penetration = std::max(0.0, g[0]);
   cert.gap_tol = params_.GapTol();
   cert.min_active_lambda = gcounts[1] ? -g[1] : 0.0;
-  cert.lambda_tol = params_.ForceTol();
+  cert.lambda_tol = tensile_tol;
   cert.max_inactive_lambda = g[2];
   cert.complementarity = g[3];
   cert.complementarity_tol = params_.GapTol() * std::max(g[4], cert.lambda_tol);

@@ -44,7 +44,8 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
                         "activate only pairs whose gap at the start of the step is at most this factor times that of "
                         "the deepest penetrating pair (0: off; otherwise at least 1)", gap_factor,
                         opts.activation_gap_factor));
-  PetscCall(OptionsInt(PetscOptionsObject, "-contact_max_it", "Maximum active-set iterations per load step", 1,
+  PetscCall(OptionsInt(PetscOptionsObject, "-contact_max_it", "Maximum active-set iterations per load step (svk: Newton "
+                       "iterations that change the active set)", 1,
                        CONTACT_MAX_IT_LIMIT, opts.max_it));
   PetscCall(PetscOptionsBool("-contact_monitor", "Print one line per active-set iteration", "", opts.monitor,
                              &opts.monitor, nullptr));
@@ -131,7 +132,7 @@ private:
 
 PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
                                 const std::vector<char> &fixed, std::vector<ContactPair> &pairs,
-                                std::vector<char> &candidate, const double *u_local) {
+                                std::vector<char> &candidate, const double *u_local, std::vector<char> *held) {
   const int dim = mesh.Dim();
   const PetscInt nv = mesh.NumLocalVertices();
   PetscFunctionBeginUser;
@@ -147,9 +148,11 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
     }
   }
   // Seed section 4.2.1: nodes with every component fixed cannot move and are no candidates.
+  if (held) held->assign(nv, 0);
   for (PetscInt v = 0; v < nv; ++v) {
     bool all_fixed = true;
     for (int k = 0; k < dim; ++k) all_fixed = all_fixed && fixed[v * dim + k];
+    if (all_fixed && held) (*held)[v] = candidate[v];
     if (all_fixed) candidate[v] = 0;
   }
   pairs.clear();
@@ -195,56 +198,74 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
 }
 
 PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
-                               const std::vector<char> &candidate, const std::vector<char> &fixed,
-                               const std::vector<ContactPair> &pairs, const double *u_local, double &depth,
-                               PetscInt &node, double position[3]) {
+                               const std::vector<char> &candidate, const std::vector<char> &held,
+                               const std::vector<char> &fixed, const std::vector<ContactPair> &pairs,
+                               const double *u_local, Penetration &unpaired, Penetration &prescribed) {
   const int dim = mesh.Dim();
   const PetscInt nv = mesh.NumLocalVertices();
   PetscFunctionBeginUser;
   std::vector<char> paired(nv, 0);
   for (const auto &p : pairs) paired[p.vertex] = 1;
+  const auto examined = [&](PetscInt v) { return (candidate[v] || held[v]) && !paired[v] && mesh.Owned(v); };
   double reach = 0;
   for (PetscInt v = 0; v < nv; ++v)
-    if (candidate[v] && !paired[v] && mesh.Owned(v)) {
+    if (examined(v)) {
       double u2 = 0;
       for (int k = 0; k < dim; ++k) u2 += u_local[v * dim + k] * u_local[v * dim + k];
       reach = std::max(reach, std::sqrt(u2));
     }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &reach, 1, MPI_DOUBLE, MPI_MAX, mesh.Comm()));
-  // The deepest local one; the global deepest, from the lowest rank at a tie.
-  struct {
-    double depth;
-    int rank;
-  } mine{0.0, 0}, deepest;
-  double where[4] = {-1, 0, 0, 0}; // file number, reference position
-  PetscCallMPI(MPI_Comm_rank(mesh.Comm(), &mine.rank));
+  // Each examined node's penetration of each kind (0: unpaired, 1: prescribed): the deepest facet.
+  std::vector<double> depth[2];
+  depth[0].assign(nv, 0.0), depth[1].assign(nv, 0.0);
   if (reach > 0) {
     const FacetBins bins(obstacle, dim, opts.search_radius + reach);
     std::vector<PetscInt> near;
     for (PetscInt v = 0; v < nv; ++v) {
-      if (!candidate[v] || paired[v] || !mesh.Owned(v)) continue;
+      if (!examined(v)) continue;
       double x[3] = {0, 0, 0};
       for (int k = 0; k < dim; ++k) x[k] = mesh.X(v)[k] + u_local[v * dim + k];
       bins.Find(x, near);
       for (PetscInt f : near) {
         const Projection p = obstacle.facets[f]->Project(x, opts.alpha_tol);
-        if (!p.inside || -p.gap <= mine.depth) continue;
-        // As in FindContactPairs: a facet whose normal lies in the node's fixed components is the supports' business.
+        if (!p.inside) continue;
+        // As in FindContactPairs: a facet whose normal lies in the node's fixed components gets no pair.
         double free2 = 0;
         for (int k = 0; k < dim; ++k)
           if (!fixed[v * dim + k]) free2 += p.normal[k] * p.normal[k];
-        if (free2 < 1e-12) continue;
-        mine.depth = -p.gap;
-        where[0] = (double)mesh.VertexOriginal(v) + 1;
-        for (int k = 0; k < dim; ++k) where[1 + k] = mesh.X(v)[k];
+        double &d = depth[free2 < 1e-12 ? 1 : 0][v];
+        d = std::max(d, -p.gap);
       }
     }
   }
-  PetscCallMPI(MPI_Allreduce(&mine, &deepest, 1, MPI_DOUBLE_INT, MPI_MAXLOC, mesh.Comm()));
-  PetscCallMPI(MPI_Bcast(where, 4, MPI_DOUBLE, deepest.rank, mesh.Comm()));
-  depth = deepest.depth;
-  node = depth > 0 ? (PetscInt)where[0] : -1;
-  for (int k = 0; k < 3; ++k) position[k] = where[1 + k];
+  for (int kind = 0; kind < 2; ++kind) {
+    // The deepest, then among the nodes within round-off of it the smallest file number, then its position.
+    double deepest = 0;
+    for (PetscInt v = 0; v < nv; ++v) deepest = std::max(deepest, depth[kind][v]);
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &deepest, 1, MPI_DOUBLE, MPI_MAX, mesh.Comm()));
+    Penetration &out = kind ? prescribed : unpaired;
+    out = Penetration();
+    if (deepest <= 0) continue;
+    struct {
+      double node;
+      int rank;
+    } mine{INFINITY, 0}, first;
+    PetscCallMPI(MPI_Comm_rank(mesh.Comm(), &mine.rank));
+    PetscInt local = -1;
+    for (PetscInt v = 0; v < nv; ++v)
+      if (depth[kind][v] > 0 && depth[kind][v] >= deepest * (1 - 1e-12) && mesh.VertexOriginal(v) < mine.node)
+        mine.node = (double)mesh.VertexOriginal(v), local = v;
+    PetscCallMPI(MPI_Allreduce(&mine, &first, 1, MPI_DOUBLE_INT, MPI_MINLOC, mesh.Comm()));
+    double where[4] = {0, 0, 0, 0}; // depth, reference position
+    if (first.rank == mine.rank) {
+      where[0] = depth[kind][local];
+      for (int k = 0; k < dim; ++k) where[1 + k] = mesh.X(local)[k];
+    }
+    PetscCallMPI(MPI_Bcast(where, 4, MPI_DOUBLE, first.rank, mesh.Comm()));
+    out.depth = where[0];
+    out.node = (PetscInt)first.node + 1;
+    for (int k = 0; k < 3; ++k) out.x[k] = where[1 + k];
+  }
   PetscFunctionReturn(0);
 }
 

@@ -36,7 +36,8 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, SolverOptions &opts) {
                        opts.load_steps));
   PetscCall(OptionsInt(PetscOptionsObject, "-load_max_cuts", "Halvings allowed for a failed load increment", 0,
                        SolverOptions::LOAD_MAX_CUTS_MAX, opts.max_cuts));
-  PetscCall(OptionsInt(PetscOptionsObject, "-newton_max_it", "Newton/active-set iterations per load step (svk)", 1,
+  PetscCall(OptionsInt(PetscOptionsObject, "-newton_max_it", "Newton iterations per load step (svk; at most "
+                       "-contact_max_it of them change the active set)", 1,
                        SolverOptions::NEWTON_MAX_IT_MAX, opts.newton_max_it));
   PetscCall(OptionsReal(PetscOptionsObject, "-newton_rtol", "Residual tolerance relative to the force scale", rtol,
                         opts.newton_rtol));
@@ -67,7 +68,7 @@ PetscErrorCode ContactSolver::Setup() {
     PetscCall(PetscLogEventRegister("SigSolve", id, &EV_SOLVE));
   }
   PetscCall(BuildDirichlet(mesh_, bc_, dirichlet_));
-  PetscCall(FindContactPairs(mesh_, obstacle_, contact_, dirichlet_.fixed, pairs_, candidate_));
+  PetscCall(FindContactPairs(mesh_, obstacle_, contact_, dirichlet_.fixed, pairs_, candidate_, nullptr, &held_));
   // Linear material: a pair's zone is fixed in the reference configuration (EvaluatePairs: inside = zone0), so a pair
   // outside it can never be active. Dropping it keeps a fine obstacle mesh (a node within the search radius of many
   // facets) from adding a multiplier, an identity row and a stabilising spring per facet.
@@ -327,7 +328,9 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     if (dirichlet_.fixed[i]) st.delta[i] = factor * dirichlet_.value[i] - u_local_[i];
   PetscCall(VecZeroEntries(fext_));
   PetscCall(assembler_->AssembleLoads(bc_, factor, fext_));
-  active_set_.BeginStep();
+  PetscReal load_scale;
+  PetscCall(VecNorm(fext_, NORM_INFINITY, &load_scale));
+  active_set_.BeginStep(load_scale);
   for (PetscInt it = 0;; ++it) {
     PetscInt changes = 0;
     PetscCall(EvaluateIterate(st, it));
@@ -418,6 +421,7 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
 PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt changes, Outcome &outcome) {
   PetscFunctionBeginUser;
   outcome = Outcome::SOLVE;
+  if (changes > 0) st.candidate_rnorm = -1; // a new active set: its residual is not a correction's
   if (it > 0) {
     PetscCall(RecordIteration(st.step, it, st.factor, st.next, changes, st.krylov, st.rnorm, st.last_solve_time));
     // A state that may be the solution: certified, or the loop goes on (svk: Newton; linear: one more solve corrects
@@ -449,7 +453,21 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt c
       // instead of -contact_ksp_rtol relative to that start (the certificate checks the result again). 2D Hertz,
       // fieldsplit_gamg, 1M dofs: 46 Krylov iterations of the correction solve before. A correction that did not
       // reach the tolerance (its start's residual was not this one) is followed by a solve to the KSP's tolerance.
-      if (!st.large && st.rnorm > tol) st.correction_rtol = st.corrected ? 0.0 : 0.1 * tol / st.rnorm;
+      if (!st.large && st.rnorm > tol) {
+        // Corrections that no longer halve the residual cannot reach the tolerance: the solves are as accurate as
+        // the system's conditioning lets them be (e.g. a nearly incompressible material).
+        if (st.candidate_rnorm > 0 && st.rnorm > 0.5 * st.candidate_rnorm) {
+          stats_.reason = "DIVERGED_EQUILIBRIUM_STALLED";
+          char text[256];
+          std::snprintf(text, sizeof(text), "%g after the correction solve, %g before it, tolerance %g", st.rnorm,
+                        st.candidate_rnorm, tol);
+          stats_.violation = text;
+          outcome = Outcome::STOP;
+          PetscFunctionReturn(0);
+        }
+        st.candidate_rnorm = st.rnorm;
+        st.correction_rtol = st.corrected ? 0.0 : 0.1 * tol / st.rnorm;
+      }
     }
     if (st.stabilised && changes == 0 && st.gap_before.size() == pairs_.size()) {
       // The springs let the body move along the rigid motions its active set leaves free, and no pair closed. If
@@ -473,12 +491,14 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt c
       PetscFunctionReturn(0);
     }
   }
-  const PetscInt max_it = st.large ? std::max(opts_.newton_max_it, contact_.max_it) : contact_.max_it;
+  // Linear material: every iteration is an active-set iteration. svk: every iteration is a Newton step, at most
+  // -newton_max_it of them, and at most -contact_max_it of them may change the active set.
+  if (changes > 0) ++st.set_changes;
+  const bool limit = st.large ? it >= opts_.newton_max_it || st.set_changes > contact_.max_it : it >= contact_.max_it;
   bool cycling = false;
-  if (std::isfinite(st.rnorm) && it < max_it)
-    PetscCall(active_set_.Seen(st.next, keys_, st.large ? 3 : 1, cycling));
+  if (std::isfinite(st.rnorm) && !limit) PetscCall(active_set_.Seen(st.next, keys_, st.large ? 3 : 1, cycling));
   if (!std::isfinite(st.rnorm)) stats_.reason = "DIVERGED_NONINVERTIBLE_DEFORMATION";
-  else if (it >= max_it) stats_.reason = "DIVERGED_MAX_IT";
+  else if (limit) stats_.reason = "DIVERGED_MAX_IT";
   else if (cycling && changes > 0 && it > 0) stats_.reason = "DIVERGED_CYCLING";
   else PetscFunctionReturn(0);
   outcome = Outcome::STOP;
@@ -666,9 +686,18 @@ PetscErrorCode ContactSolver::Certify(const std::vector<double> &u_eval, double 
   PetscCall(active_set_.Certify(states_, keys_, normals_, rnorm, tol, cert));
   // The pairs cover the nodes that were within the search radius: a node that was not and went through the obstacle
   // would otherwise pass unseen.
-  PetscCall(DeepestUnpaired(mesh_, obstacle_, contact_, candidate_, dirichlet_.fixed, pairs_, u_eval.data(),
-                            cert.unpaired_penetration, cert.unpaired_node, cert.unpaired_x));
+  Penetration unpaired, prescribed;
+  PetscCall(DeepestUnpaired(mesh_, obstacle_, contact_, candidate_, held_, dirichlet_.fixed, pairs_, u_eval.data(),
+                            unpaired, prescribed));
+  cert.unpaired_penetration = unpaired.depth;
+  cert.unpaired_node = unpaired.node;
+  std::copy(unpaired.x, unpaired.x + 3, cert.unpaired_x);
   cert.search_radius = contact_.search_radius;
+  // No solve can lift a node whose normal motion the supports prescribe: the input contradicts itself.
+  PetscCheck(prescribed.depth <= cert.gap_tol, mesh_.Comm(), PETSC_ERR_USER_INPUT,
+             "candidate node %" PetscInt_FMT " (at %g, %g, %g) is held by -bc_dirichlet %g inside the obstacle (gap "
+             "tolerance %g); expected prescribed displacements that keep the contact candidates out of the obstacle",
+             prescribed.node, prescribed.x[0], prescribed.x[1], prescribed.x[2], prescribed.depth, cert.gap_tol);
   PetscFunctionReturn(0);
 }
 
@@ -826,7 +855,13 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
               "and orientation and -contact_search_radius)"
         : why == "DIVERGED_CERTIFICATE"
             ? "the state is not a contact solution (" + stats_.violation + ") and the active-set rule cannot change it"
-            : "the active-set/Newton loop reached its iteration limit (-contact_max_it, -newton_max_it)";
+        : why == "DIVERGED_EQUILIBRIUM_STALLED"
+            ? "the equilibrium residual stalls above its tolerance (" + stats_.violation + "): the solver cannot "
+              "resolve the system more accurately (ill-conditioned, e.g. -material_nu near 0.5; or an iterative "
+              "solver's tolerance); loosen -newton_rtol or use a direct solver"
+        : large ? "the Newton loop reached its iteration limit (-newton_max_it Newton iterations, of which at most "
+                  "-contact_max_it change the active set)"
+                : "the active-set loop reached its iteration limit (-contact_max_it)";
     PetscCheck(large && stats_.cuts < opts_.max_cuts && why != "DIVERGED_NOT_HELD", comm, PETSC_ERR_NOT_CONVERGED,
                "the contact solve did not converge at load factor %g: %s: %s%s", t_try, why.c_str(), what.c_str(),
                large ? "; no more load-step cuts allowed (-load_max_cuts)" : "");

@@ -284,6 +284,25 @@ CASES = {
                                 ["-options_file", "bad_options.txt line 3", "expected"], {}),
     # Failures of the solve, after the output directory was opened.
     "singular_system": (LOOSE_BEAM, ["singular", "not held", "add Dirichlet"], {"previous": BEAM}),
+    # Supports that hold contact candidates inside the obstacle: no solve can lift them, and with no pair for a node
+    # whose normal motion is prescribed the penetration went unchecked (a converged state 0.01 inside the floor).
+    "dirichlet_into_obstacle": (["-options_file", "{root}/options/block_on_floor.yml", "-bc_dirichlet",
+                                 "left:x,bottom:y=-0.01"],
+                                ["candidate node 1", "-bc_dirichlet 0.01 inside the obstacle",
+                                 "expected prescribed displacements"], {}),
+    "dirichlet_node_into_obstacle": (["-bc_dirichlet", "top_centre:x,contact_point:x:y=-0.05"],
+                                     ["candidate node 4", "-bc_dirichlet 0.05 inside the obstacle"], {}),
+    # A nearly incompressible material: the correction solves stall above the equilibrium tolerance (they went on
+    # until -contact_max_it; with the kept factorisation the second one failed an internal assertion).
+    "equilibrium_stalls": (["-material_nu", "0.499999"],
+                           ["DIVERGED_EQUILIBRIUM_STALLED", "-material_nu near 0.5", "loosen -newton_rtol"], {}),
+    # svk's iteration limits are both honoured: each iteration is a Newton step (-newton_max_it), and at most
+    # -contact_max_it of them change the active set (the loop used to run to the larger of the two).
+    "svk_newton_max_it": (["-options_file", "{root}/options/cantilever_large.yml", "-newton_max_it", "1",
+                           "-load_max_cuts", "0"], ["DIVERGED_MAX_IT", "-newton_max_it Newton iterations"], {}),
+    "svk_contact_max_it": (["-options_file", "{root}/options/beam_on_floor.yml", "-material_model", "svk",
+                            "-contact_max_it", "1", "-load_max_cuts", "0"],
+                           ["DIVERGED_MAX_IT", "at most -contact_max_it change the active set"], {}),
     # Held by contact alone, but pulled up out of the notch: no active set can hold it.
     "pulled_out_of_notch": (["-options_file", "{root}/options/block_in_notch.yml", "-bc_traction", "top:0:1"],
                             ["DIVERGED_NOT_HELD", "not held", "away from every obstacle"], {}),

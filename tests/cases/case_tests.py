@@ -401,6 +401,14 @@ def block_pulled_off(runner):
     u_ref = displacement(ref)
     runner.expect_close("displacement = displacement without obstacle", displacement(nodes), u_ref, 0,
                         1e-12 * np.abs(u_ref).max())
+    # The tolerance on a tensile multiplier follows the forces, not E t times the gap tolerance: with a stiff material
+    # (E = 1e9: c gap_tol = 2.2 against multipliers of 0.3) or a small suction (1e-5: multipliers of 1e-6), the
+    # tensile pairs were kept and the block converged glued to the floor (contact force -3.2 and -1.6e-5).
+    for label, extra in (("E = 1e9", ["-material_E", "1e9"]), ("suction 1e-5", ["-bc_pressure", "top:-1e-5"])):
+        v = runner.run(["-options_file", "options/block_pulled_off.yml"] + extra, "block_pulled_off, " + label)
+        runner.expect_equal("active pairs, " + label, v.get("contact.active_pairs"), 0)
+        runner.expect_close("contact force, " + label, v.get("contact.contact_force"), [0, 0], 0, 0)
+        runner.expect_close("lambda, " + label, v.nodes()["lambda"], np.zeros(len(nodes)), 0, 0)
 
 
 @test("block_in_corner")

@@ -6,6 +6,7 @@
 
 #include <petscsys.h>
 
+#include <algorithm>
 #include <array>
 #include <string>
 #include <vector>
@@ -68,7 +69,7 @@ struct Certificate {
   double search_radius = 0;        ///< -contact_search_radius, for the message
   double gap_tol = 0;             ///< -contact_gap_tol
   double min_active_lambda = 0;   ///< min lambda over the active pairs (0 when none)
-  double lambda_tol = 0;          ///< c gap_tol: a multiplier above -lambda_tol counts as compressive
+  double lambda_tol = 0;          ///< a multiplier above -lambda_tol counts as compressive (ActiveSet::TensileTol)
   double max_inactive_lambda = 0; ///< max |lambda| over the inactive pairs
   double complementarity = 0;     ///< max |lambda g| over the pairs
   double complementarity_tol = 0; ///< gap_tol max(lambda) (lambda_tol when no multiplier is larger)
@@ -102,8 +103,9 @@ public:
   void Reset(std::size_t npairs) { active_.assign(npairs, 0), start_gap_.clear(); }
   const std::vector<char> &Flags() const { return active_; }
   void Set(const std::vector<char> &flags) { active_ = flags; }
-  /// Starts a load step: forgets the sets seen in the previous one.
-  void BeginStep() { seen_.clear(); }
+  /// Starts a load step: forgets the sets seen in the previous one. load_scale: the largest nodal force of the
+  /// step's loads (max |f_i|), the force scale of TensileTol with the multipliers.
+  void BeginStep(double load_scale) { seen_.clear(), load_scale_ = load_scale; }
 
   /// The set of the first solve of a load step: in the first step the pairs in their zone whose gap is within
   /// -contact_touch_tol, later the converged set of the previous step. Records the gaps at the start of the step.
@@ -130,9 +132,22 @@ public:
                                        const std::vector<std::array<double, 3>> &normals, double equilibrium,
                                        double equilibrium_tol, Certificate &cert) const;
 
+  /// Relative size, against the largest nodal force of the step (loads or multipliers), below which a negative
+  /// multiplier counts as zero.
+  static constexpr double MULTIPLIER_RTOL = 1e-6;
+
 private:
+  /// How negative an active pair's multiplier may be and still count as compressive: c times the gap tolerance,
+  /// but at most MULTIPLIER_RTOL times the force scale (max_lambda: the largest |lambda| of the pairs, global).
+  /// c gap_tol alone scales with E t and the body's size, not with the load: for a stiff material or a small load
+  /// it exceeded every multiplier, and a body pulled off its obstacle converged glued to it by tensile multipliers.
+  double TensileTol(double max_lambda) const {
+    return std::min(params_.ForceTol(), MULTIPLIER_RTOL * std::max(load_scale_, max_lambda));
+  }
+
   MPI_Comm comm_;
   ActiveSetParams params_;
+  double load_scale_ = 0; ///< BeginStep
   std::vector<char> active_;
   std::vector<unsigned long long> seen_;
   std::vector<double> start_gap_; ///< the pairs' gaps at the start of the load step (First)

@@ -52,21 +52,33 @@ struct ContactPair {
 /// Finds the candidate pairs of the owned candidate nodes whose every component is not fixed (fixed[v*dim+k] != 0
 /// marks a Dirichlet dof), at the positions X + u_local (u_local: dim values per local vertex; null: the reference
 /// configuration). Pairs are sorted by (node in file order, facet) so that every partition finds the same pairs.
+/// held (if given): the nodes of the contact groups whose every component is fixed, which are no candidates.
 /// Collective.
 [[nodiscard]] PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
                                               const std::vector<char> &fixed, std::vector<ContactPair> &pairs,
-                                              std::vector<char> &candidate, const double *u_local = nullptr);
+                                              std::vector<char> &candidate, const double *u_local = nullptr,
+                                              std::vector<char> *held = nullptr);
 
-/// The deepest penetration of the obstacle, at the positions X + u_local, by an owned candidate node that has no
-/// pair at all (it was farther than the search radius from every facet when the pairs were found): depth 0 and node
-/// -1 when none penetrates; node in file numbering (from 1) and its reference position, the same on every rank.
-/// Every facet within search radius + max |u| of a node is examined, so none that the node can have reached is
-/// missed; a facet whose normal lies in the node's fixed components (fixed: as for FindContactPairs) is skipped, as
-/// it is when pairing. Collective.
+/// A candidate node that penetrates the obstacle: how deep, the node in file numbering (from 1; -1 when none) and its
+/// reference position.
+struct Penetration {
+  double depth = 0;
+  PetscInt node = -1;
+  double x[3] = {0, 0, 0};
+};
+
+/// The deepest penetrations of the obstacle, at the positions X + u_local, by owned candidate nodes without a pair,
+/// the same on every rank: unpaired, by a node that has no pair at all (it was farther than the search radius from
+/// every facet when the pairs were found); prescribed, by a node whose motion along the facet's normal the Dirichlet
+/// conditions prescribe (fixed: as for FindContactPairs; such a facet gets no pair, the supports hold the node, so
+/// the prescribed values put it there), or of a held node (FindContactPairs). Every facet within search radius +
+/// max |u| of a node is examined, so none that the node can have reached is missed. At a tie the node with the
+/// smallest file number is reported, whatever the partition. Collective.
 [[nodiscard]] PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
-                                             const std::vector<char> &candidate, const std::vector<char> &fixed,
+                                             const std::vector<char> &candidate, const std::vector<char> &held,
+                                             const std::vector<char> &fixed,
                                              const std::vector<ContactPair> &pairs, const double *u_local,
-                                             double &depth, PetscInt &node, double position[3]);
+                                             Penetration &unpaired, Penetration &prescribed);
 
 /// Tributary length (2D) or area (3D) of every local candidate vertex: the integral of its shape function over each
 /// adjacent boundary face whose every vertex is a candidate (half of an edge, a third of a triangle, a quarter of a

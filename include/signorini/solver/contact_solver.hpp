@@ -24,7 +24,7 @@ struct SolverOptions {
 
   PetscInt load_steps = 1;    ///< -load_steps, in [1, LOAD_STEPS_MAX]
   PetscInt max_cuts = 5;      ///< -load_max_cuts: halvings of a failed load increment, in [0, LOAD_MAX_CUTS_MAX]
-  PetscInt newton_max_it = 30; ///< -newton_max_it (svk): iterations per load step, in [1, NEWTON_MAX_IT_MAX]
+  PetscInt newton_max_it = 50; ///< -newton_max_it (svk): iterations per load step, in [1, NEWTON_MAX_IT_MAX]
   double newton_rtol = 1e-9;  ///< -newton_rtol: residual relative to the load scale, in (0, NEWTON_RTOL_MAX]
   double newton_atol = 1e-12; ///< -newton_atol: absolute residual (force units), in [0, NEWTON_ATOL_MAX]
   PetscBool line_search = PETSC_FALSE; ///< -newton_linesearch (Crisfield's line search; det F <= 0 always backtracks)
@@ -141,6 +141,8 @@ private:
     double lag_rnorm = -1;   ///< the residual before the last solve (none: -1), for LAGGED_CONTRACTION
     double correction_rtol = 0; ///< linear: the next solve only corrects the equilibrium residual, to this tolerance
     bool corrected = false;     ///< the last solve was such a correction
+    PetscInt set_changes = 0;   ///< iterations of this load step that changed the active set
+    double candidate_rnorm = -1; ///< linear: the equilibrium residual of the last candidate state of this active set
     std::vector<double> gap_before{}; ///< the gaps before the last stabilised solve
     /// Condensed solves (kept factorisation): from the first solve without stabilisation and without a prescribed
     /// displacement still to apply (svk: from each lagged one), the active-set iterations run in the multiplier space
@@ -179,6 +181,7 @@ private:
   DirichletData dirichlet_;
   std::vector<ContactPair> pairs_;
   std::vector<char> candidate_;
+  std::vector<char> held_; ///< contact-group nodes whose every component is fixed (FindContactPairs)
   std::vector<PairKey> keys_;
   ActiveSet active_set_;
   RigidModes rigid_;
