@@ -62,7 +62,10 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
                              "multipliers (with a MUMPS LU/Cholesky solver; default on there, unless a dense "
                              "factorisation of the Schur complement would take more flops than the sparse one: then "
                              "MUMPS refactorises at each change; giving the option keeps it); svk: the kept "
-                             "factorisation preconditions FGMRES on the current tangent",
+                             "factorisation preconditions FGMRES on the current tangent. The kept factorisation calls "
+                             "MUMPS itself with ICNTL(7) = 1 (the ordering below), ICNTL(14) = 50, ICNTL(24) = 1 and "
+                             "CNTL(3) = 1e-12 unless -contact_mat_mumps_icntl_<k> / _cntl_<k> say otherwise; PETSc's "
+                             "MUMPS options listed further down show PETSc's own defaults, which apply without it",
                              "", opts.reuse_factorization, &opts.reuse_factorization, &opts.reuse_set));
   PetscCall(OptionsInt(PetscOptionsObject, "-contact_reuse_max_it",
                        "svk with -contact_reuse_factorization: FGMRES iterations on the current tangent preconditioned "
@@ -450,7 +453,8 @@ PetscErrorCode SaddlePointSystem::FailureAdvice(std::string &advice) const {
                              "options/solver/mumps_cholesky.yml) solves every system whose body is held";
   if (!fieldsplit) {
     advice = ": the system is singular or the solver unsuitable; is the body held (Dirichlet conditions or enough "
-             "active contact)?" + direct;
+             "active contact), and is the material not nearly incompressible (-material_nu near 0.5 locks the "
+             "displacement formulation and makes the system nearly singular)?" + direct;
     PetscFunctionReturn(0);
   }
   PetscInt n = 0;
