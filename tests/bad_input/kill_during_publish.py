@@ -8,8 +8,8 @@ A first good run (beam_on_floor, one load step) fills DIR. Each later run (two l
 killed at call N of rename (then symlink, then unlinkat: the removal of the earlier run after the switch), N = 1, 2,
 ... until a run gets through. After every kill, the files that DIR names must agree: summary.json's load steps
 = the step groups of solution.h5 = the steps of solution.xdmf and of each per-block XDMF file, and nodes.csv's
-displacement = solution.h5's last step. Some kill must leave DIR byte for byte as it was and some must leave the new run, so the kills did reach the
-switch from both sides.
+displacement = solution.h5's last step. Some kill must leave DIR byte for byte as it was and some must leave the new
+run, so the kills did reach the switch from both sides.
 Exit status 0 when every check passed, 1 when one failed, 77 when strace is missing or not permitted.
 """
 import argparse
