@@ -20,8 +20,8 @@ namespace fs = std::filesystem;
 PetscErrorCode ReadOutputOptions(MPI_Comm comm, OutputOptions &opts) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Output", "signorini");
-  PetscCall(OptionsString(PetscOptionsObject, "-output_dir", "Directory for solution.h5/.xdmf, nodes.csv and "
-                          "summary.json (default: no files)", "a directory path", opts.dir));
+  PetscCall(OptionsString(PetscOptionsObject, "-output_dir", "Directory for solution.h5/.xdmf, an .xdmf per block, "
+                          "nodes.csv and summary.json (default: no files)", "a directory path", opts.dir));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
