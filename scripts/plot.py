@@ -9,7 +9,9 @@ Writes into OUTPUT_DIR (or --out):
   contact_pressure.png  the contact pressure along the contact boundary against x, with Hertz's
                       p(x) = p0 sqrt(1 - x^2/a^2) when summary.json has a "hertz" block
   active_set.png      active pairs and maximum penetration per active-set iteration (summary.json iterations.history)
-Reads solution.h5 (last load step: mesh, obstacle, contact boundary, fields) and summary.json.
+Reads solution.h5 (last load step: mesh, obstacle, contact boundary, fields) and summary.json. It draws 2D results
+only: a 3D output is refused with a message (open it in ParaView: DIR/solution.xdmf or the per-block files
+DIR/body.xdmf, obstacle.xdmf, contact_boundary.xdmf), and so is a directory that is not an output (exit status 1).
 """
 import argparse
 import json
@@ -37,9 +39,43 @@ def cells_of(topology):
     return cells
 
 
+class NotDrawable(Exception):
+    """An output plot.py does not draw, or no output at all: its message is all the user needs (no traceback)."""
+
+
+def read_summary(directory):
+    """summary.json of an output directory of a 2D run; NotDrawable otherwise."""
+    if not os.path.isdir(directory):
+        raise NotDrawable("'%s' %s; expected the -output_dir of a signorini run" % (
+            directory, "is not a directory" if os.path.exists(directory) else "does not exist"))
+    missing = [n for n in ("summary.json", "solution.h5") if not os.path.exists(os.path.join(directory, n))]
+    if missing:
+        raise NotDrawable("'%s' is not a signorini output directory (no %s there); expected the -output_dir of a "
+                          "successful run" % (directory, " and no ".join(missing)))
+    try:
+        with open(os.path.join(directory, "summary.json")) as f:
+            summary = json.load(f)
+        dim = summary["mesh"]["dim"]
+    except (OSError, ValueError, KeyError, TypeError) as e:
+        raise NotDrawable("'%s' is not a signorini output directory (its summary.json cannot be read: %s)" % (
+            os.path.join(directory, "summary.json"), e))
+    if dim != 2:
+        raise NotDrawable("'%s' holds a %sD result, and plot.py draws 2D results only; open 3D results in ParaView: "
+                          "%s, or the per-block files body.xdmf, obstacle.xdmf and contact_boundary.xdmf beside it" % (
+                              directory, dim, os.path.join(directory, "solution.xdmf")))
+    return summary
+
+
 def read(directory):
-    with open(os.path.join(directory, "summary.json")) as f:
-        summary = json.load(f)
+    summary = read_summary(directory)
+    try:
+        return summary, read_solution(directory)
+    except (OSError, KeyError, IndexError) as e:
+        raise NotDrawable("'%s' is not a signorini output (cannot read its last load step: %s)" % (
+            os.path.join(directory, "solution.h5"), e))
+
+
+def read_solution(directory):
     with h5py.File(os.path.join(directory, "solution.h5"), "r") as f:
         last = sorted(k for k in f if k.startswith("step_"))[-1]
         step = f[last]
@@ -50,7 +86,7 @@ def read(directory):
         if "contact_boundary" in f and "contact_boundary" in step:
             data["contact_xy"] = f["contact_boundary/coordinates"][:, :2]
             data["contact_pressure"] = step["contact_boundary/contact_pressure"][()]
-    return summary, data
+    return data
 
 
 def plot_deformed(summary, d, path, scale):
@@ -120,8 +156,12 @@ def main():
     parser.add_argument("--scale", type=float, default=1.0, help="displacement scale of deformed.png (default 1)")
     args = parser.parse_args()
     out = args.out or args.output_dir
+    try:
+        summary, data = read(args.output_dir)
+    except NotDrawable as e:
+        print("plot.py: error: %s" % e, file=sys.stderr)
+        return 1
     os.makedirs(out, exist_ok=True)
-    summary, data = read(args.output_dir)
     plot_deformed(summary, data, os.path.join(out, "deformed.png"), args.scale)
     plot_pressure(summary, data, os.path.join(out, "contact_pressure.png"))
     plot_history(summary, os.path.join(out, "active_set.png"))

@@ -138,7 +138,7 @@ PetscErrorCode StepFields(ContactSolver &solver, const NodeContact &nodes, std::
       PetscFunctionReturn(0);
     };
   };
-  fields.push_back({"displacement", 3, false, {}, false, displacement});
+  fields.push_back({"displacement", 3, false, {}, true, displacement});
   fields.push_back({"contact_lambda", 1, false, nodes.lambda, true});
   fields.push_back({"contact_pressure", 1, false, nodes.pressure, true});
   fields.push_back({"contact_gap", 1, false, nodes.gap, true});

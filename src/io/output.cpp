@@ -20,8 +20,8 @@ namespace fs = std::filesystem;
 PetscErrorCode ReadOutputOptions(MPI_Comm comm, OutputOptions &opts) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Output", "signorini");
-  PetscCall(OptionsString(PetscOptionsObject, "-output_dir", "Directory for solution.h5/.xdmf, nodes.csv and "
-                          "summary.json (default: no files)", "a directory path", opts.dir));
+  PetscCall(OptionsString(PetscOptionsObject, "-output_dir", "Directory for solution.h5/.xdmf, an .xdmf per block, "
+                          "nodes.csv and summary.json (default: no files)", "a directory path", opts.dir));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -347,60 +347,95 @@ std::string Shape(const std::string &group, const char *type, int cells, int nod
 
 } // namespace
 
+std::string OutputWriter::BodyGrid(const std::string &name, const StepInfo &s) const {
+  const int nn = (int)mesh_->NumGlobalNodes(), nc = (int)mesh_->NumGlobalCells();
+  char group[32];
+  std::snprintf(group, sizeof(group), "/step_%06d/", (int)s.step);
+  std::ostringstream x;
+  x << "    <Grid Name=\"" << name << "\" GridType=\"Uniform\">\n"
+    << Shape("mesh", uniform_ ? XdmfCellName(mesh_->Dim(), cell_size_) : "Mixed", nc, cell_size_,
+             uniform_ ? 0 : (std::size_t)mixed_topology_size_, nn)
+    << Attribute("node_tags", 1, false, nn, true, "/mesh/node_tags")
+    << Attribute("cell_tags", 1, true, nc, true, "/mesh/cell_tags");
+  for (const auto &f : s.layout)
+    x << Attribute(f.name, f.ncomp, f.on_cells, f.on_cells ? nc : nn, false, group + f.name);
+  return x.str();
+}
+
+std::string OutputWriter::ObstacleGrid(const std::string &name) const {
+  return "    <Grid Name=\"" + name + "\" GridType=\"Uniform\">\n" +
+         Shape("obstacle", obstacle_cell_size_ == 3 ? "Triangle" : "Polyline",
+               (int)obstacle_points_.size() / obstacle_cell_size_, obstacle_cell_size_, 0,
+               (int)obstacle_points_.size());
+}
+
+std::string OutputWriter::ContactGrid(const std::string &name, const StepInfo &s) const {
+  const int nb = (int)contact_num_nodes_;
+  char group[48];
+  std::snprintf(group, sizeof(group), "/step_%06d/contact_boundary/", (int)s.step);
+  std::ostringstream x;
+  x << "    <Grid Name=\"" << name << "\" GridType=\"Uniform\">\n"
+    << Shape("contact_boundary",
+             contact_face_size_ == 2   ? "Polyline"
+             : contact_face_size_ == 3 ? "Triangle"
+             : contact_face_size_ == 4 ? "Quadrilateral"
+                                       : "Mixed",
+             contact_num_faces_, contact_face_size_, contact_face_size_ ? 0 : (std::size_t)contact_topology_size_, nb)
+    << Attribute("node_tags", 1, false, nb, true, "/contact_boundary/node_tags");
+  for (const auto &f : s.layout)
+    if (f.on_contact) x << Attribute(f.name, f.ncomp, false, nb, false, group + f.name);
+  return x.str();
+}
+
 PetscErrorCode OutputWriter::WriteXdmf() const {
   PetscMPIInt rank;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(mesh_->Comm(), &rank));
   std::string error;
   if (rank == 0) {
-    const int nn = (int)mesh_->NumGlobalNodes(), nc = (int)mesh_->NumGlobalCells(), nb = (int)contact_num_nodes_;
-    std::ostringstream x;
-    x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
-      << "  <Grid Name=\"signorini\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    const bool obstacle = !obstacle_points_.empty(), contact = contact_num_nodes_ > 0;
+    const char *head = "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n";
+    const char *tail = "  </Grid>\n </Domain>\n</Xdmf>\n";
+    const auto temporal = [](const std::string &name) {
+      return "  <Grid Name=\"" + name + "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    };
+    // solution.xdmf: per step a spatial collection of the three grids. Each block also gets a file of its own, a
+    // temporal collection of one grid per step: every ParaView reader opens that as a plain dataset with all steps,
+    // where the Xdmf3 readers name the blocks of solution.xdmf body[1], ... from the second step on, or not at all.
+    std::ostringstream all, body, obstacles, boundary;
+    all << head << temporal("signorini");
+    body << head << temporal("body");
+    obstacles << head << temporal("obstacle");
+    boundary << head << temporal("contact_boundary");
     for (const auto &s : steps_) {
       char group[32];
       std::snprintf(group, sizeof(group), "step_%06d", (int)s.step);
-      x << "   <Grid Name=\"" << group << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
-        << "    <Time Value=\"" << s.t << "\"/>\n    <Grid Name=\"body\" GridType=\"Uniform\">\n"
-        << Shape("mesh", uniform_ ? XdmfCellName(mesh_->Dim(), cell_size_) : "Mixed", nc, cell_size_,
-                 uniform_ ? 0 : (std::size_t)mixed_topology_size_, nn)
-        << Attribute("node_tags", 1, false, nn, true, "/mesh/node_tags")
-        << Attribute("cell_tags", 1, true, nc, true, "/mesh/cell_tags");
-      for (const auto &f : s.layout)
-        x << Attribute(f.name, f.ncomp, f.on_cells, f.on_cells ? nc : nn, false, "/" + std::string(group) + "/" + f.name);
-      x << "    </Grid>\n";
-      if (!obstacle_points_.empty())
-        x << "    <Grid Name=\"obstacle\" GridType=\"Uniform\">\n"
-          << Shape("obstacle", obstacle_cell_size_ == 3 ? "Triangle" : "Polyline",
-                   (int)obstacle_points_.size() / obstacle_cell_size_, obstacle_cell_size_, 0,
-                   (int)obstacle_points_.size())
-          << "    </Grid>\n";
-      if (nb > 0) {
-        x << "    <Grid Name=\"contact_boundary\" GridType=\"Uniform\">\n"
-          << Shape("contact_boundary",
-                   contact_face_size_ == 2   ? "Polyline"
-                   : contact_face_size_ == 3 ? "Triangle"
-                   : contact_face_size_ == 4 ? "Quadrilateral"
-                                             : "Mixed",
-                   contact_num_faces_, contact_face_size_,
-                   contact_face_size_ ? 0 : (std::size_t)contact_topology_size_, nb)
-          << Attribute("node_tags", 1, false, nb, true, "/contact_boundary/node_tags");
-        for (const auto &f : s.layout)
-          if (f.on_contact)
-            x << Attribute(f.name, f.ncomp, false, nb, false, "/" + std::string(group) + "/contact_boundary/" + f.name);
-        x << "    </Grid>\n";
-      }
-      x << "   </Grid>\n";
+      std::ostringstream t;
+      t << "     <Time Value=\"" << s.t << "\"/>\n";
+      const std::string time = t.str(), end = "    </Grid>\n";
+      all << "   <Grid Name=\"" << group << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
+          << "    <Time Value=\"" << s.t << "\"/>\n"
+          << BodyGrid("body", s) << end;
+      body << BodyGrid(group, s) << time << end;
+      if (obstacle) all << ObstacleGrid("obstacle") << end, obstacles << ObstacleGrid(group) << time << end;
+      if (contact) all << ContactGrid("contact_boundary", s) << end, boundary << ContactGrid(group, s) << time << end;
+      all << "   </Grid>\n";
     }
-    x << "  </Grid>\n </Domain>\n</Xdmf>\n";
-    const std::string path = Staging() + "/solution.xdmf";
-    std::ofstream out(path + ".tmp");
-    out << x.str();
-    out.close();
-    std::error_code ec;
-    if (!out) error = "cannot write '" + path + "'";
-    else fs::rename(path + ".tmp", path, ec);
-    if (ec) error = "cannot write '" + path + "': " + ec.message();
+    std::vector<std::pair<std::string, std::string>> files = {{"solution.xdmf", all.str() + tail},
+                                                              {"body.xdmf", body.str() + tail}};
+    if (obstacle) files.emplace_back("obstacle.xdmf", obstacles.str() + tail);
+    if (contact) files.emplace_back("contact_boundary.xdmf", boundary.str() + tail);
+    for (const auto &[name, text] : files) {
+      const std::string path = Staging() + "/" + name;
+      std::ofstream out(path + ".tmp");
+      out << text;
+      out.close();
+      std::error_code ec;
+      if (!out) error = "cannot write '" + path + "'";
+      else fs::rename(path + ".tmp", path, ec);
+      if (ec) error = "cannot write '" + path + "': " + ec.message();
+      if (!error.empty()) break;
+    }
   }
   PetscCall(RaiseFromRoot(mesh_->Comm(), error));
   PetscFunctionReturn(0);

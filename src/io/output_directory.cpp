@@ -78,6 +78,11 @@ std::string PublishOutputDirectory(const std::string &dir_name) {
   // replaced, summary.json first and last, so that a reader never finds it beside files of another run.
   if (!fs::is_symlink(dir / "summary.json")) fs::remove(dir / "summary.json", ec);
   for (const char *name : OUTPUT_FILES) {
+    // A file this run did not write (no obstacle, no contact boundary) loses its link, which would dangle now.
+    if (!fs::exists(dir / run / name)) {
+      if (fs::is_symlink(dir / name)) fs::remove(dir / name, ec);
+      continue;
+    }
     if (fs::is_symlink(dir / name) && fs::read_symlink(dir / name, ec) == fs::path(CURRENT) / name) continue;
     error = ReplaceLink(dir / name, fs::path(CURRENT) / name);
     if (!error.empty()) return error;

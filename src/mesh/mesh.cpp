@@ -211,8 +211,8 @@ PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, M
   PetscFunctionBeginUser;
   opts.file = default_file;
   PetscOptionsBegin(comm, nullptr, "Mesh options", "signorini");
-  PetscCall(OptionsString(PetscOptionsObject, "-mesh_file", "gmsh mesh (.msh 2.2/4.1) or geometry (.geo, meshed "
-                          "in-process)", "a .msh or .geo path", opts.file));
+  PetscCall(OptionsString(PetscOptionsObject, "-mesh_file", "gmsh mesh (.msh 2.2/4.1) or geometry (.geo, meshed by "
+                          "gmsh in a child process of rank 0)", "a .msh or .geo path", opts.file));
   PetscCall(OptionsReal(PetscOptionsObject, "-mesh_size_factor", "Mesh size factor applied when meshing a .geo file",
                         {MESH_SIZE_FACTOR_MIN, MESH_SIZE_FACTOR_MAX}, opts.size_factor));
   opts.max_cells = DefaultMaxCells();

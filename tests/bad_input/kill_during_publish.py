@@ -6,10 +6,10 @@ switch of the output directory, and checks after each kill that DIR holds the fi
 
 A first good run (beam_on_floor, one load step) fills DIR. Each later run (two load steps, another pressure) is
 killed at call N of rename (then symlink, then unlinkat: the removal of the earlier run after the switch), N = 1, 2,
-... until a run gets through. After every kill, the four files that DIR names must agree: summary.json's load steps
-= the step groups of solution.h5 = the steps of solution.xdmf, and nodes.csv's displacement = solution.h5's last
-step. Some kill must leave DIR byte for byte as it was and some must leave the new run, so the kills did reach the
-switch from both sides.
+... until a run gets through. After every kill, the files that DIR names must agree: summary.json's load steps
+= the step groups of solution.h5 = the steps of solution.xdmf and of each per-block XDMF file, and nodes.csv's
+displacement = solution.h5's last step. Some kill must leave DIR byte for byte as it was and some must leave the new
+run, so the kills did reach the switch from both sides.
 Exit status 0 when every check passed, 1 when one failed, 77 when strace is missing or not permitted.
 """
 import argparse
@@ -27,7 +27,8 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-FILES = ("solution.h5", "solution.xdmf", "nodes.csv", "summary.json")
+XDMF = ("solution.xdmf", "body.xdmf", "obstacle.xdmf", "contact_boundary.xdmf")  # the beam has all three blocks
+FILES = ("solution.h5",) + XDMF + ("nodes.csv", "summary.json")
 BEAM = ["-options_file", os.path.join(ROOT, "options", "beam_on_floor.yml")]
 
 
@@ -64,16 +65,18 @@ def consistency(out_dir):
         groups = sorted(k for k in f if k.startswith("step_"))
         u = f[groups[-1]]["displacement"][:, :2]
         tags = f["mesh/node_tags"][()]
-    with open(os.path.join(out_dir, "solution.xdmf")) as f:
-        xdmf_steps = len(re.findall(r'<Grid Name="step_\d+"', f.read()))
+    xdmf_steps = []
+    for name in XDMF:
+        with open(os.path.join(out_dir, name)) as f:
+            xdmf_steps.append(len(re.findall(r'<Grid Name="step_\d+"', f.read())))
     table = np.genfromtxt(os.path.join(out_dir, "nodes.csv"), delimiter=",", names=True)
     order = np.argsort(table["node_tag"])
     csv_u = np.column_stack([table["u_x"], table["u_y"]])[order]
     h5_u = u[np.argsort(tags)]
     problems = []
-    if not steps == len(groups) == xdmf_steps:
-        problems.append("load steps: summary.json %d, solution.h5 %d, solution.xdmf %d" % (steps, len(groups),
-                                                                                            xdmf_steps))
+    if not steps == len(groups) == min(xdmf_steps) == max(xdmf_steps):
+        problems.append("load steps: summary.json %d, solution.h5 %d, %s" % (
+            steps, len(groups), ", ".join("%s %d" % (n, k) for n, k in zip(XDMF, xdmf_steps))))
     if csv_u.shape != h5_u.shape or not np.allclose(csv_u, h5_u, rtol=0, atol=1e-14):
         problems.append("nodes.csv displacement differs from solution.h5's last step")
     return problems

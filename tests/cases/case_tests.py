@@ -475,8 +475,8 @@ def accepted_step_iterations(result):
 def check_same_files(runner, one, two):
     """The output files of 1 and 2 ranks: each rank writes its block of the file's order, so solution.h5 has the same
     datasets, the geometry (mesh, obstacle, contact boundary) byte for byte, and the step fields in the same rows; the
-    XDMF is the same text; nodes.csv has the same header and the same node tags and coordinates, as text, row by row.
-    The fields themselves are the two solves' (equal to round-off, as compared in rank_independence)."""
+    XDMF files are the same text; nodes.csv has the same header and the same node tags and coordinates, as text, row
+    by row. The fields themselves are the two solves' (equal to round-off, as compared in rank_independence)."""
     import h5py
 
     def datasets(result):
@@ -501,7 +501,11 @@ def check_same_files(runner, one, two):
             runner.expect_true("solution.h5 %s: NaN in the same rows" % name, np.array_equal(np.isnan(x), np.isnan(y)))
             x, y = np.nan_to_num(x), np.nan_to_num(y)
             runner.expect_close("solution.h5 %s, row by row" % name, y, x, 0, 1e-8 * max(np.abs(x).max(), u_max))
-    for name in ("solution.xdmf",):
+    for name in ("solution.xdmf", "body.xdmf", "obstacle.xdmf", "contact_boundary.xdmf"):
+        there = [os.path.exists(os.path.join(r.dir, name)) for r in (one, two)]
+        runner.expect_equal("%s written on 2 ranks as on 1" % name, there[1], there[0])
+        if not all(there):
+            continue
         with open(os.path.join(one.dir, name)) as f, open(os.path.join(two.dir, name)) as g:
             runner.expect_true("%s: the same text on 1 and 2 ranks" % name, f.read() == g.read())
     with open(os.path.join(one.dir, "nodes.csv")) as f, open(os.path.join(two.dir, "nodes.csv")) as g:
@@ -1373,10 +1377,14 @@ def nonlinear_sliding_repair(runner):
                         1e-8)
 
 
+PARAVIEW_READERS = ("Xdmf3ReaderS", "Xdmf3ReaderT", "XDMFReader")
+
+
 def paraview_dump(runner, results):
-    """What each ParaView XDMF reader shows of each result's solution.xdmf (paraview_dump.py under pvpython, one call
-    for all): per result, a dict reader -> blocks, or None when pvpython failed (a recorded check). Skips the test
-    when pvpython is not installed."""
+    """What each ParaView XDMF reader shows of each result's solution.xdmf and of its per-block files
+    (paraview_dump.py under pvpython, one call for all): per result, a dict reader -> {class, times, blocks at the last
+    time step} with "files": block name -> the same per reader, or None when pvpython failed (a recorded check). Skips
+    the test when pvpython is not installed."""
     pvpython = shutil.which("pvpython")
     if not pvpython:
         from run_case import Skipped
@@ -1396,16 +1404,74 @@ def paraview_dump(runner, results):
     return dumps
 
 
+def check_contact_displacement(runner, r):
+    """solution.h5: the contact boundary's displacement at every step is the body's at the same nodes (node tags)."""
+    import h5py
+
+    with h5py.File(os.path.join(r.dir, "solution.h5"), "r") as f:
+        row = {int(t): k for k, t in enumerate(f["mesh/node_tags"][()])}
+        rows = [row[int(t)] for t in f["contact_boundary/node_tags"][()]]
+        steps = sorted(k for k in f if k.startswith("step_"))
+        runner.expect_equal("solution.h5: load steps", len(steps), r.get("iterations.load_steps"))
+        for step in steps:
+            got = f[step + "/contact_boundary/displacement"][()] if "displacement" in f[step + "/contact_boundary"] \
+                else np.full((len(rows), 3), np.nan)
+            runner.expect_close("solution.h5 %s: contact boundary displacement = the body's at its nodes" % step,
+                                got, f[step + "/displacement"][()][rows], 0, 0)
+
+
+def check_block_files(runner, dump, names):
+    """What every reader shows of body.xdmf, obstacle.xdmf and contact_boundary.xdmf (names: the blocks of
+    solution.xdmf in order): a plain vtkUnstructuredGrid with the time steps of solution.xdmf, whose points, cells and
+    arrays at the last step are those of the block of solution.xdmf, value for value; and on the contact boundary of
+    solution.xdmf the displacement of the body at the same nodes (node_tags), so that Warp By Vector moves both."""
+    runner.expect_equal("per-block XDMF files", sorted(dump["files"]), sorted(names))
+    for reader in PARAVIEW_READERS:
+        whole = dump[reader]
+        runner.expect_equal("%s: solution.xdmf blocks" % reader, len(whole["blocks"]), len(names))
+        if len(whole["blocks"]) != len(names):
+            continue
+        for k, name in enumerate(names):
+            view = dump["files"].get(name, {}).get(reader)
+            if view is None:
+                continue
+            what = "%s: %s.xdmf" % (reader, name)
+            runner.expect_equal("%s: dataset class" % what, view["class"], "vtkUnstructuredGrid")
+            runner.expect_equal("%s: time steps (solution.xdmf's)" % what, view["times"], whole["times"])
+            runner.expect_equal("%s: datasets" % what, len(view["blocks"]), 1)
+            got, want = view["blocks"][0], whole["blocks"][k]
+            runner.expect_equal("%s: points at the last step" % what, got["points"], want["points"])
+            runner.expect_equal("%s: cells" % what, got["cells"], want["cells"])
+            for kind in ("point_data", "cell_data"):
+                runner.expect_equal("%s: %s arrays" % (what, kind), sorted(got[kind]), sorted(want[kind]))
+                for array in sorted(set(got[kind]) & set(want[kind])):
+                    a, b = got[kind][array], want[kind][array]
+                    runner.expect_equal("%s: %s component names" % (what, array), a["components"], b["components"])
+                    runner.expect_true("%s: %s at the last step = solution.xdmf's %s block's" % (what, array, name),
+                                       np.array_equal(np.array(a["values"]), np.array(b["values"]), equal_nan=True))
+        body, contact = whole["blocks"][0], whole["blocks"][names.index("contact_boundary")]
+        u = {int(t[0]): v for t, v in zip(body["point_data"]["node_tags"]["values"],
+                                         body["point_data"]["displacement"]["values"])}
+        tags = [int(t[0]) for t in contact["point_data"]["node_tags"]["values"]]
+        shown = contact["point_data"].get("displacement", {"values": [[np.nan] * 3] * len(tags)})["values"]
+        runner.expect_close("%s: contact_boundary displacement = the body's at its node_tags" % reader, shown,
+                            [u[t] for t in tags], 0, 0)
+
+
 @test("paraview_view")
 def paraview_view(runner):
-    """What ParaView shows of block_on_floor, through each of its XDMF readers: stress and strain under the right
-    component names, the floor as its own grid, the contact fields on a grid of the contact boundary (finite gap
-    everywhere), and node and cell tags that match nodes.csv."""
+    """What ParaView shows of block_on_floor in two load steps, through each of its XDMF readers, at the last step:
+    stress and strain under the right component names, the floor as its own grid, the contact fields and the
+    displacement on a grid of the contact boundary (finite gap everywhere), node and cell tags that match nodes.csv;
+    and each block in a file of its own (check_block_files)."""
     q = 2.0
-    r = runner.run(["-options_file", "options/block_on_floor.yml"], "block_on_floor")
-    readers = paraview_dump(runner, [r])[0]
-    if readers is None:
+    r = runner.run(["-options_file", "options/block_on_floor.yml", "-load_steps", "2"], "block_on_floor")
+    check_contact_displacement(runner, r)
+    dump = paraview_dump(runner, [r])[0]
+    if dump is None:
         return
+    check_block_files(runner, dump, ["body", "obstacle", "contact_boundary"])
+    readers = {reader: dump[reader]["blocks"] for reader in PARAVIEW_READERS}
     nodes = r.nodes()
     by_tag = {int(t): (x, y) for t, x, y in zip(nodes["node_tag"], nodes["x"], nodes["y"])}
     bottom = nodes[nodes["y"] == 0.0]
@@ -1458,15 +1524,18 @@ def paraview_view_3d(runner):
     pyramids and hexahedra (a Mixed topology) cell by cell, and the analytic obstacles drawn as triangles in the
     obstacle grid, each with the bounds its options give: the plane z = 0 as the rectangle under the body, a cylinder
     over the body's extent along its axis, a whole sphere (placed apart, below the body, so that they do not touch
-    it)."""
+    it); in two load steps, at the last one; and each block in a file of its own (check_block_files)."""
     plane, cylinder, sphere = [0, 0, 0, 0, 0, 1], [0, 0.5, -4, 1, 0, 0, 0.5], [1, 0.5, -10, 2]
     r = runner.run(["-options_file", "options/cube_on_plane.yml", "-mesh_file", "meshes/cube_mixed_conforming.msh",
                     "-obstacle_planes", ",".join(map(str, plane)), "-obstacle_cylinders",
-                    ",".join(map(str, cylinder)), "-obstacle_spheres", ",".join(map(str, sphere))],
+                    ",".join(map(str, cylinder)), "-obstacle_spheres", ",".join(map(str, sphere)), "-load_steps", "2"],
                    "cube_mixed_conforming with a plane, a cylinder and a sphere")
-    readers = paraview_dump(runner, [r])[0]
-    if readers is None:
+    check_contact_displacement(runner, r)
+    dump = paraview_dump(runner, [r])[0]
+    if dump is None:
         return
+    check_block_files(runner, dump, ["body", "obstacle", "contact_boundary"])
+    readers = {reader: dump[reader]["blocks"] for reader in PARAVIEW_READERS}
     xyz, cells, _ = r.solution()
     kinds = {n: sum(len(c) == n for c in cells) for n in (4, 5, 8)}
     # The body's box [0, 2] x [0, 1] x [0, 1] bounds the unbounded shapes: the plane's rectangle is the box's
@@ -1691,7 +1760,7 @@ def punch_on_plate(runner):
     case = options_args(runner, "options/punch_on_plate.yml", drop=("obstacle_mesh",))
     fz_sphere = runner.run(case + ["-obstacle_spheres", "0,0,1.252,1"], "punch as a sphere").get(
         "contact.contact_force.2")
-    # The punch's .geo meshed with triangles of size h = 0.03, 0.015, 0.0075 (in-process, -obstacle_mesh FILE.geo).
+    # The punch's .geo meshed with triangles of size h = 0.03, 0.015, 0.0075 (meshed by the run, -obstacle_mesh FILE.geo).
     with open(runner.path("meshes/punch.geo")) as f:
         geo = f.read()
     runner.expect_true("meshes/punch.geo sets Mesh.MeshSizeMax = 0.03", "Mesh.MeshSizeMax = 0.03;" in geo)

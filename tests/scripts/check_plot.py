@@ -1,7 +1,10 @@
 #!/usr/bin/python3
 """scripts/plot.py on the output of a small run (beam_on_floor with a Hertz block, so that the analytical curve is
 drawn, and two load steps): it exits 0 and writes deformed.png, contact_pressure.png and active_set.png, each a valid
-PNG (signature, non-empty, an image matplotlib reads back, at least 200 pixels each way)."""
+PNG (signature, non-empty, an image matplotlib reads back, at least 200 pixels each way). It refuses, with one line
+naming the reason, no traceback, exit status 1 and no picture written: a 3D output (cube_on_plane; the message says it
+draws 2D results and names ParaView and the output's solution.xdmf), a directory that does not exist, and one that is
+not an output."""
 import argparse
 import os
 import shutil
@@ -13,6 +16,35 @@ import matplotlib.image
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 PICTURES = ("deformed.png", "contact_pressure.png", "active_set.png")
+
+
+def refusals(args, work):
+    """plot.py on what it does not draw: the failures."""
+    out3d = os.path.join(work, "out3d")
+    cmd = [args.mpiexec, "-n", str(args.np), args.exe, "-options_file", "options/cube_on_plane.yml", "-output_dir",
+           out3d]
+    run = subprocess.run(cmd, cwd=args.source_dir, capture_output=True, text=True)
+    if run.returncode != 0:
+        return ["the 3D run failed: %s\n%s%s" % (" ".join(cmd), run.stdout, run.stderr)]
+    empty = os.path.join(work, "not_an_output")
+    os.makedirs(empty)
+    failures = []
+    for what, directory, words in (("a 3D output", out3d, ["3D", "2D results only", "ParaView",
+                                                            os.path.join(out3d, "solution.xdmf")]),
+                                   ("a missing directory", os.path.join(work, "missing"), ["does not exist"]),
+                                   ("a directory that is not an output", empty, ["not a signorini output"])):
+        plot = subprocess.run([sys.executable, os.path.join(args.source_dir, "scripts", "plot.py"), directory],
+                              capture_output=True, text=True)
+        lines = (plot.stdout + plot.stderr).splitlines()
+        written = [n for n in PICTURES if os.path.exists(os.path.join(directory, n))]
+        ok = (plot.returncode == 1 and len(lines) == 1 and lines[0].startswith("plot.py: error: ") and
+              all(w in lines[0] for w in words) and not written)
+        print("%s refuses %s: exit status %d, %s" % ("ok  " if ok else "FAIL", what, plot.returncode, lines))
+        if not ok:
+            failures.append("plot.py on %s: exit status %d (expected 1), output %r (expected one 'plot.py: error:' line "
+                            "with %s), pictures written: %s" % (what, plot.returncode, plot.stdout + plot.stderr,
+                                                                 words, written))
+    return failures
 
 
 def main():
@@ -50,6 +82,7 @@ def main():
             if not ok:
                 failures.append("%s is not a valid picture (signature %r, %d bytes, shape %s)" % (
                     name, head, size, image.shape))
+    failures += refusals(args, work)
     if failures:
         print("FAIL " + "\nFAIL ".join(failures) + "\nkept in " + work)
         return 1

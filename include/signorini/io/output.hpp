@@ -1,10 +1,10 @@
 // Output (prefix -output_): HDF5 + XDMF for ParaView (one step per load step; the body, the obstacle and the contact
-// boundary as three grids), the per-node CSV table keyed by the mesh file's node tags, and summary.json. Everything
-// is written into DIR/incomplete/ and published with one rename only when the run succeeds (output_directory.hpp),
-// so a failed or killed run never leaves files that look complete nor replaces a good earlier output. Every rank writes
-// its block of the file's node and cell order (HDF5 collectively through MPI-IO, nodes.csv with MPI-IO), so the files
-// are the same for any number of ranks and no rank holds a whole table; the obstacle and the contact boundary are small
-// and rank 0 writes them.
+// boundary as three grids of solution.xdmf, and each in an XDMF file of its own), the per-node CSV table keyed by the
+// mesh file's node tags, and summary.json. Everything is written into DIR/incomplete/ and published with one rename
+// only when the run succeeds (output_directory.hpp), so a failed or killed run never leaves files that look complete
+// nor replaces a good earlier output. Every rank writes its block of the file's node and cell order (HDF5 collectively
+// through MPI-IO, nodes.csv with MPI-IO), so the files are the same for any number of ranks and no rank holds a whole
+// table; the obstacle and the contact boundary are small and rank 0 writes them.
 #pragma once
 
 #include "signorini/io/file_rows.hpp"
@@ -55,7 +55,7 @@ public:
   /// vertex), the edges that carry contact pressure, gathered on rank 0 in the order of their vertices' file indices.
   /// Collective; call before WriteStep.
   [[nodiscard]] PetscErrorCode SetContactBoundary(const std::vector<char> &candidate);
-  /// Writes the fields of one load step (load factor t) and rewrites the XDMF. Collective.
+  /// Writes the fields of one load step (load factor t) and rewrites the XDMF files. Collective.
   [[nodiscard]] PetscErrorCode WriteStep(PetscInt step, double t, const std::vector<Field> &fields);
   /// Writes the node table (vertex fields: name, ncomp) of the final state. Collective.
   [[nodiscard]] PetscErrorCode WriteNodeTable(const std::vector<Field> &fields);
@@ -84,6 +84,11 @@ private:
     std::vector<Field> layout; // names and sizes only
   };
   std::vector<StepInfo> steps_;
+  /// The XDMF of one grid named `name` (its Uniform Grid element, open: the caller adds what else the grid holds and
+  /// closes it): the body with the fields of step s, the obstacle, the contact boundary with its fields of step s.
+  std::string BodyGrid(const std::string &name, const StepInfo &s) const;
+  std::string ObstacleGrid(const std::string &name) const;
+  std::string ContactGrid(const std::string &name, const StepInfo &s) const;
   std::vector<std::array<double, 3>> obstacle_points_; ///< the corners of each obstacle cell (x, y, z)
   int obstacle_cell_size_ = 2;                         ///< 2: segments of polylines (2D), 3: triangles (3D)
   FileRows node_rows_, cell_rows_;                     ///< owned vertices and cells to the blocks of the file's order

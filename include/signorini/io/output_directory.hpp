@@ -1,6 +1,7 @@
 // The layout of an output directory and its all-or-nothing switch: a run writes into DIR/incomplete/, which becomes
 // DIR/run_<id>/ when it succeeds; DIR/current is a symbolic link to the published run and one rename of that link
-// replaces every file at once. DIR/solution.h5, solution.xdmf, nodes.csv and summary.json link to current/.
+// replaces every file at once. DIR/solution.h5, solution.xdmf, the per-block XDMF files, nodes.csv and summary.json
+// link to current/.
 // Plain file-system code, called on one rank.
 #pragma once
 
@@ -9,7 +10,9 @@
 namespace signorini {
 
 /// The files a run publishes, in the order a reader should trust them (summary.json says the rest is complete).
-inline constexpr const char *OUTPUT_FILES[] = {"solution.h5", "solution.xdmf", "nodes.csv", "summary.json"};
+/// obstacle.xdmf and contact_boundary.xdmf are written only when there is an obstacle grid, a contact boundary.
+inline constexpr const char *OUTPUT_FILES[] = {"solution.h5",           "solution.xdmf", "body.xdmf", "obstacle.xdmf",
+                                               "contact_boundary.xdmf", "nodes.csv",     "summary.json"};
 
 /// DIR/incomplete/, where a run writes its files.
 std::string StagingDirectory(const std::string &dir);
