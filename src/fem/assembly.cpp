@@ -28,7 +28,8 @@ PetscErrorCode BuildDirichlet(const Mesh &mesh, const BoundaryConditions &bc, Di
     for (PetscInt v : vertices) {
       const PetscInt r = v * dim + d.component;
       if (setter[r] >= 0 && bc.dirichlet[setter[r]].value != d.value) {
-        const PetscInt64 key = (((PetscInt64)mesh.VertexOriginal(v) * dim + d.component) * nspec + setter[r]) * nspec + i;
+        const PetscInt64 node_comp = (PetscInt64)mesh.VertexOriginal(v) * dim + d.component;
+        const PetscInt64 key = (node_comp * nspec + setter[r]) * nspec + i;
         conflict = std::min(conflict, key);
         continue;
       }
@@ -436,7 +437,8 @@ PetscErrorCode Assembler::AssembleLoads(const BoundaryConditions &bc, double fac
   auto face_loads = [&](const std::vector<LoadSpec> &loads, bool pressure) -> PetscErrorCode {
     PetscFunctionBeginUser;
     for (const auto &load : loads) {
-      PetscCall(mesh_.GroupFaces(load.group, faces, std::string(pressure ? "-bc_pressure " : "-bc_traction ") + load.item));
+      const std::string input = std::string(pressure ? "-bc_pressure " : "-bc_traction ") + load.item;
+      PetscCall(mesh_.GroupFaces(load.group, faces, input));
       for (const auto &face : faces) {
         double X[4 * MAX_DIM], w[4], an[4][3];
         for (int a = 0; a < face.n; ++a)

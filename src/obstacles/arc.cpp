@@ -24,8 +24,9 @@ ShapeType ArcsShape() {
               return "has " + FormatNumber(v[5]) + " segments (expected a whole number in [1, " +
                      FormatNumber(MAX_ARC_SEGMENTS) + "])";
             if (std::abs(v[3]) > MAX_ARC_ANGLE || std::abs(v[4]) > MAX_ARC_ANGLE)
-              return "has angles " + FormatNumber(v[3]) + ", " + FormatNumber(v[4]) + " (expected THETA0 and THETA1 in [" +
-                     FormatNumber(-MAX_ARC_ANGLE) + ", " + FormatNumber(MAX_ARC_ANGLE) + "] degrees)";
+              return "has angles " + FormatNumber(v[3]) + ", " + FormatNumber(v[4]) +
+                     " (expected THETA0 and THETA1 in [" + FormatNumber(-MAX_ARC_ANGLE) + ", " +
+                     FormatNumber(MAX_ARC_ANGLE) + "] degrees)";
             // More than a full turn would lay segments over each other (the obstacle on both sides of a node).
             if (sweep == 0 || std::abs(sweep) > 360)
               return "sweeps " + FormatNumber(sweep) + " degrees from THETA0 " + FormatNumber(v[3]) + " to THETA1 " +

@@ -69,7 +69,8 @@ elif TEST == "default_case":
     check("Hertz (R = 8., P = 10.)" in out1, "the default case compares with Hertz")
     # README: any option given overrides the default case's value, the mesh too; the rest of the case stays.
     rc3, out3 = run(["-mesh_file", "meshes/hertz.msh"])
-    check(rc3 == 0 and strip(out3) == strip(out1), "-mesh_file alone runs the default case on that mesh: " + out3[-300:])
+    check(rc3 == 0 and strip(out3) == strip(out1),
+          "-mesh_file alone runs the default case on that mesh: " + out3[-300:])
     rc4, out4 = run(["-bc_traction", "top:0:-1.25"])
     check(rc4 == 0 and "applied load (0, -20)" in out4, "-bc_traction alone changes only the default case's load: "
           + out4[-300:])
