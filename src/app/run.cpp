@@ -3,6 +3,7 @@
 
 #include "signorini/app/report.hpp"
 #include "signorini/contact/contact_results.hpp"
+#include "signorini/core/parse.hpp"
 #include "signorini/core/progress.hpp"
 #include "signorini/io/output.hpp"
 #include "signorini/obstacles/obstacle_mesh.hpp"
@@ -37,13 +38,30 @@ PetscErrorCode HoldHelpPrintf(MPI_Comm, const char format[], ...) {
   return 0;
 }
 
-/// The built-in default case (2D Hertz: half cylinder R = 8 on a rigid flat, P = 10 per unit thickness). Its
-/// options fill in whatever the user did not set when -mesh_file is absent.
-PetscErrorCode ApplyDefaultCase() {
+/// The physical groups that the default case's supports, load and candidates name (its mesh has them).
+const std::vector<std::string> DEFAULT_CASE_GROUPS = {"top_centre", "contact_point", "top", "contact"};
+
+/// The built-in default case (2D Hertz: half cylinder R = 8 on a rigid flat, P = 10 per unit thickness). Its options
+/// fill in whatever the run does not set (README: any option given overrides the default case's value), unless the
+/// run gives a case of its own: a -mesh_file together with any support, load, obstacle or candidate group. A
+/// -mesh_file alone (a finer Hertz mesh, meshes/hertz.geo with -mesh_size_factor) keeps the rest of the default case
+/// instead of running a body that nothing loads or holds; on_user_mesh then tells CheckDefaultCaseMesh to check it.
+PetscErrorCode ApplyDefaultCase(bool &on_user_mesh) {
   PetscBool has_mesh;
   PetscFunctionBeginUser;
+  on_user_mesh = false;
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-mesh_file", &has_mesh));
-  if (has_mesh) PetscFunctionReturn(0);
+  if (has_mesh) {
+    std::vector<std::string> own = {"-bc_dirichlet", "-bc_traction", "-bc_pressure", "-bc_point_force",
+                                    "-bc_body_force", "-obstacle_mesh", "-contact_groups"};
+    for (const ShapeType &shape : ShapeRegistry()) own.push_back(shape.option);
+    for (const std::string &name : own) {
+      PetscBool set;
+      PetscCall(PetscOptionsHasName(nullptr, nullptr, name.c_str(), &set));
+      if (set) PetscFunctionReturn(0);
+    }
+    on_user_mesh = true;
+  }
   const std::string mesh = std::string(SIGNORINI_SOURCE_DIR) + "/meshes/hertz.msh";
   const std::vector<std::pair<const char *, std::string>> defaults = {
       {"-mesh_file", mesh},
@@ -59,6 +77,25 @@ PetscErrorCode ApplyDefaultCase() {
     PetscCall(PetscOptionsHasName(nullptr, nullptr, name, &set));
     if (!set) PetscCall(PetscOptionsSetValue(nullptr, name, value.c_str()));
   }
+  PetscFunctionReturn(0);
+}
+
+/// The default case on the user's -mesh_file: its supports, load and candidates need a 2D mesh with its groups.
+/// Without this check the first missing group would be reported against an option the user never gave.
+PetscErrorCode CheckDefaultCaseMesh(MPI_Comm comm, const std::string &file, const Mesh &mesh) {
+  std::vector<std::string> missing;
+  PetscFunctionBeginUser;
+  for (const std::string &g : DEFAULT_CASE_GROUPS)
+    if (std::find(mesh.GroupNames().begin(), mesh.GroupNames().end(), g) == mesh.GroupNames().end())
+      missing.push_back(g);
+  const std::string what = mesh.Dim() != 2 ? "is " + std::to_string(mesh.Dim()) + "D"
+                                           : "has no physical group " + Join(missing, ", ");
+  PetscCheck(mesh.Dim() == 2 && missing.empty(), comm, PETSC_ERR_USER_INPUT,
+             "-mesh_file %s is given without supports, loads, obstacles or contact groups, so the run is the default "
+             "case (2D Hertz) on it, which needs a 2D mesh with the physical groups %s; this mesh %s; expected a mesh "
+             "of the Hertz geometry, or the case's own -bc_dirichlet, loads (-bc_traction, -bc_pressure, "
+             "-bc_point_force, -bc_body_force), -obstacle_* and -contact_groups (an -options_file of a case)",
+             file.c_str(), Join(DEFAULT_CASE_GROUPS, ", ").c_str(), what.c_str());
   PetscFunctionReturn(0);
 }
 
@@ -195,9 +232,11 @@ PetscErrorCode Run() {
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (help)
     PetscCall(PetscPrintf(comm, "signorini: frictionless (Signorini) contact of elastic bodies against rigid "
-                          "obstacles.\nEvery input is a PETSc option; without -mesh_file the built-in 2D Hertz case "
-                          "runs.\n\n"));
-  PetscCall(ApplyDefaultCase());
+                          "obstacles.\nEvery input is a PETSc option. The built-in 2D Hertz case (options/hertz.yml) "
+                          "fills in every option not given, unless the run gives a case of its own: -mesh_file with "
+                          "any of -bc_*, -obstacle_*, -contact_groups.\n\n"));
+  bool default_on_user_mesh;
+  PetscCall(ApplyDefaultCase(default_on_user_mesh));
   PetscCall(ReadProgressOptions(comm));
 
   MeshOptions mesh_opts;
@@ -211,7 +250,7 @@ PetscErrorCode Run() {
   PetscCall(ReadMeshOptions(comm, "", mesh_opts));
   PetscCall(ReadMaterialOptions(comm, material));
   PetscCall(ReadObstacle(comm, obstacle));
-  PetscCall(ReadSolverOptions(comm, solver_opts));
+  PetscCall(ReadSolverOptions(comm, material.model, solver_opts));
   PetscCall(ReadOutputOptions(comm, output_opts));
   PetscCall(ReadReportOptions(comm, hertz));
   if (help) {
@@ -231,9 +270,11 @@ PetscErrorCode Run() {
   PetscCall(mesh.Create(comm, mesh_opts));
   PetscCall(PetscLogStagePop());
   info.timings["mesh"] = MPI_Wtime() - t;
+  if (default_on_user_mesh) PetscCall(CheckDefaultCaseMesh(comm, mesh_opts.file, mesh));
   // What the mesh's dimension decides: the components of loads and supports, the shapes, the 2D-only options.
   PetscCall(CheckMaterialDimension(comm, material, mesh.Dim()));
   PetscCall(ReadBoundaryConditions(comm, mesh.Dim(), bc));
+  PetscCall(CheckLoadGroups(mesh, bc));
   PetscCall(CheckObstacleDimension(comm, obstacle, mesh.Dim()));
   PetscCall(LoadObstacleMeshes(comm, mesh.Dim(), obstacle));
 

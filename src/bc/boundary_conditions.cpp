@@ -28,7 +28,7 @@ std::string ParseDirichlet(const std::string &entry, int dim, std::vector<Dirich
       if (comp < 0 || comp >= dim)
         return "'" + entry + "' has component '" + std::string(1, c) + "'; expected " +
                (dim == 3 ? "x, y or z" : "x or y (the mesh is 2D)");
-      out.push_back({fields[0], comp, value});
+      out.push_back({fields[0], comp, value, entry});
     }
   }
   return "";
@@ -43,6 +43,7 @@ std::string ParseLoad(const std::string &entry, int count, const char *what, Loa
     return std::string(what) + " '" + entry + "' has " + std::to_string(fields.size() - 1) + " value(s); expected " +
            std::to_string(count) + " (" + form + ")";
   out.group = fields[0];
+  out.item = entry;
   out.value.clear();
   for (std::size_t k = 1; k < fields.size(); ++k) {
     const auto v = ParseFinite(fields[k]);

@@ -143,7 +143,7 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
     for (PetscInt v : vertices) candidate[v] = 1;
   } else {
     for (const auto &g : opts.groups) {
-      PetscCall(mesh.GroupVertices(g, vertices));
+      PetscCall(mesh.GroupVertices(g, vertices, "-contact_groups " + g));
       for (PetscInt v : vertices) candidate[v] = 1;
     }
   }

@@ -1,25 +1,64 @@
 // Global assembly over the local cells: stiffness, internal force, loads, Dirichlet data.
 #include "signorini/fem/assembly.hpp"
 
+#include "signorini/core/parse.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace signorini {
 
 PetscErrorCode BuildDirichlet(const Mesh &mesh, const BoundaryConditions &bc, DirichletData &data) {
   const int dim = mesh.Dim();
+  const PetscInt nspec = (PetscInt)bc.dirichlet.size();
   PetscFunctionBeginUser;
   data.fixed.assign(mesh.NumLocalVertices() * dim, 0);
   data.value.assign(mesh.NumLocalVertices() * dim, 0.0);
+  // Two items prescribing different values to one node component would leave the last one silently in force. The
+  // first such conflict in (file node, component, item, item) order is reported: the key is the same on every rank
+  // that sees the node, so the minimum over the ranks gives one message whatever the partition.
+  std::vector<PetscInt> setter(mesh.NumLocalVertices() * dim, -1);
+  PetscInt64 conflict = std::numeric_limits<PetscInt64>::max();
   std::vector<PetscInt> vertices;
-  for (const auto &d : bc.dirichlet) {
-    PetscCall(mesh.GroupVertices(d.group, vertices));
+  for (PetscInt i = 0; i < nspec; ++i) {
+    const auto &d = bc.dirichlet[i];
+    PetscCall(mesh.GroupVertices(d.group, vertices, "-bc_dirichlet " + d.item));
     for (PetscInt v : vertices) {
-      data.fixed[v * dim + d.component] = 1;
-      data.value[v * dim + d.component] = d.value;
+      const PetscInt r = v * dim + d.component;
+      if (setter[r] >= 0 && bc.dirichlet[setter[r]].value != d.value) {
+        const PetscInt64 node_comp = (PetscInt64)mesh.VertexOriginal(v) * dim + d.component;
+        const PetscInt64 key = (node_comp * nspec + setter[r]) * nspec + i;
+        conflict = std::min(conflict, key);
+        continue;
+      }
+      if (setter[r] < 0) setter[r] = i;
+      data.fixed[r] = 1;
+      data.value[r] = d.value;
     }
   }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &conflict, 1, MPIU_INT64, MPI_MIN, mesh.Comm()));
+  if (conflict != std::numeric_limits<PetscInt64>::max()) {
+    const PetscInt i = (PetscInt)(conflict % nspec), first = (PetscInt)(conflict / nspec % nspec);
+    const PetscInt64 node_comp = conflict / nspec / nspec;
+    const auto &a = bc.dirichlet[first], &b = bc.dirichlet[i];
+    SETERRQ(mesh.Comm(), PETSC_ERR_USER_INPUT,
+            "-bc_dirichlet prescribes two values to component %c of node %" PetscInt64_FMT " (in file order): %s by "
+            "item '%s' and %s by item '%s'; expected one value per node component (the same value twice is allowed)",
+            "xyz"[node_comp % dim], node_comp / dim + 1, FormatNumber(a.value).c_str(), a.item.c_str(),
+            FormatNumber(b.value).c_str(), b.item.c_str());
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckLoadGroups(const Mesh &mesh, const BoundaryConditions &bc) {
+  std::vector<Face> faces;
+  std::vector<PetscInt> vertices;
+  PetscFunctionBeginUser;
+  for (const auto &t : bc.traction) PetscCall(mesh.GroupFaces(t.group, faces, "-bc_traction " + t.item));
+  for (const auto &p : bc.pressure) PetscCall(mesh.GroupFaces(p.group, faces, "-bc_pressure " + p.item));
+  for (const auto &f : bc.point_force) PetscCall(mesh.GroupVertices(f.group, vertices, "-bc_point_force " + f.item));
   PetscFunctionReturn(0);
 }
 
@@ -398,7 +437,8 @@ PetscErrorCode Assembler::AssembleLoads(const BoundaryConditions &bc, double fac
   auto face_loads = [&](const std::vector<LoadSpec> &loads, bool pressure) -> PetscErrorCode {
     PetscFunctionBeginUser;
     for (const auto &load : loads) {
-      PetscCall(mesh_.GroupFaces(load.group, faces));
+      const std::string input = std::string(pressure ? "-bc_pressure " : "-bc_traction ") + load.item;
+      PetscCall(mesh_.GroupFaces(load.group, faces, input));
       for (const auto &face : faces) {
         double X[4 * MAX_DIM], w[4], an[4][3];
         for (int a = 0; a < face.n; ++a)
@@ -419,7 +459,7 @@ PetscErrorCode Assembler::AssembleLoads(const BoundaryConditions &bc, double fac
   PetscCall(face_loads(bc.traction, false));
   PetscCall(face_loads(bc.pressure, true));
   for (const auto &pf : bc.point_force) {
-    PetscCall(mesh_.GroupVertices(pf.group, vertices));
+    PetscCall(mesh_.GroupVertices(pf.group, vertices, "-bc_point_force " + pf.item));
     for (PetscInt v : vertices)
       if (mesh_.Owned(v)) PetscCall(add(v, pf.value.data(), 1.0));
   }

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <tuple>
 
 namespace signorini {
 
@@ -210,18 +211,27 @@ constexpr double MESH_SIZE_FACTOR_MIN = 1e-3, MESH_SIZE_FACTOR_MAX = 1e3;
 PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, MeshOptions &opts) {
   PetscFunctionBeginUser;
   opts.file = default_file;
+  PetscBool size_factor_set = PETSC_FALSE, max_cells_set = PETSC_FALSE;
   PetscOptionsBegin(comm, nullptr, "Mesh options", "signorini");
   PetscCall(OptionsString(PetscOptionsObject, "-mesh_file", "gmsh mesh (.msh 2.2/4.1) or geometry (.geo, meshed by "
                           "gmsh in a child process of rank 0)", "a .msh or .geo path", opts.file));
   PetscCall(OptionsReal(PetscOptionsObject, "-mesh_size_factor", "Mesh size factor applied when meshing a .geo file",
-                        {MESH_SIZE_FACTOR_MIN, MESH_SIZE_FACTOR_MAX}, opts.size_factor));
+                        {MESH_SIZE_FACTOR_MIN, MESH_SIZE_FACTOR_MAX}, opts.size_factor, &size_factor_set));
   opts.max_cells = DefaultMaxCells();
   PetscCall(OptionsReal(PetscOptionsObject, "-mesh_max_cells", "Refuse a .geo whose mesh is estimated to have more "
-                        "cells (default: physical memory / 3.2 kB per cell)", {1, 1e12}, opts.max_cells));
+                        "cells (default: physical memory / 3.2 kB per cell)", {1, 1e12}, opts.max_cells,
+                        &max_cells_set));
   PetscCall(OptionsString(PetscOptionsObject, "-mesh_partitioner", "Partitioner: metis, ptscotch or simple",
                           "metis, ptscotch or simple", opts.partitioner));
   PetscOptionsEnd();
   PetscCheck(!opts.file.empty(), comm, PETSC_ERR_USER_INPUT, "-mesh_file is empty; expected a .msh or .geo path");
+  // Both only steer the meshing of a .geo (the reader decides by the same suffix): with a .msh they would be ignored.
+  const bool geo = opts.file.size() >= 4 && opts.file.compare(opts.file.size() - 4, 4, ".geo") == 0;
+  for (const auto &[set, name, value] : {std::make_tuple(size_factor_set, "-mesh_size_factor", opts.size_factor),
+                                         std::make_tuple(max_cells_set, "-mesh_max_cells", opts.max_cells)})
+    PetscCheck(geo || !set, comm, PETSC_ERR_USER_INPUT,
+               "%s %s applies to meshing a .geo file only; -mesh_file '%s' is a mesh (expected a .geo -mesh_file, or "
+               "no %s)", name, FormatNumber(value).c_str(), opts.file.c_str(), name);
   PetscCall(PathCandidatesFor("-mesh_file", opts.file, opts.file_candidates));
   PetscCheck(opts.partitioner == "metis" || opts.partitioner == "ptscotch" || opts.partitioner == "simple", comm,
              PETSC_ERR_USER_INPUT, "-mesh_partitioner '%s' is unknown; expected metis, ptscotch or simple",
@@ -655,22 +665,25 @@ PetscErrorCode Mesh::LabelVertices(const std::string &label_name, bool cells, st
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Mesh::CheckGroup(const std::string &name, int required_dim) const {
+PetscErrorCode Mesh::CheckGroup(const std::string &name, int required_dim, const std::string &input) const {
+  const std::string where = input.empty() ? "" : input + ": ";
   PetscFunctionBeginUser;
   const auto it = std::find(group_names_.begin(), group_names_.end(), name);
   PetscCheck(it != group_names_.end(), comm_, PETSC_ERR_USER_INPUT,
-             "physical group '%s' is not in the mesh; the mesh has: %s", name.c_str(),
-             group_names_.empty() ? "(no physical groups)" : Join(group_names_, ", ").c_str());
+             "%sphysical group '%s' is not in the mesh; %s", where.c_str(), name.c_str(),
+             group_names_.empty() ? "the mesh has no physical groups"
+                                  : ("expected one of the mesh's groups: " + Join(group_names_, ", ")).c_str());
   const int dim = group_dims_[it - group_names_.begin()];
   PetscCheck(required_dim < 0 || dim == required_dim, comm_, PETSC_ERR_USER_INPUT,
-             "physical group '%s' has dimension %d; expected a physical %s (dimension %d)", name.c_str(), dim,
-             required_dim == 1 ? "curve" : "surface", required_dim);
+             "%sphysical group '%s' has dimension %d; expected a physical %s (dimension %d)", where.c_str(),
+             name.c_str(), dim, required_dim == 1 ? "curve" : "surface", required_dim);
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Mesh::GroupVertices(const std::string &name, std::vector<PetscInt> &vertices) const {
+PetscErrorCode Mesh::GroupVertices(const std::string &name, std::vector<PetscInt> &vertices,
+                                   const std::string &input) const {
   PetscFunctionBeginUser;
-  PetscCall(CheckGroup(name, -1));
+  PetscCall(CheckGroup(name, -1, input));
   vertices = label_vertices_[std::find(group_names_.begin(), group_names_.end(), name) - group_names_.begin()];
   PetscFunctionReturn(0);
 }
@@ -681,9 +694,9 @@ PetscErrorCode Mesh::BoundaryVertices(std::vector<PetscInt> &vertices) const {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Mesh::GroupFaces(const std::string &name, std::vector<Face> &faces) const {
+PetscErrorCode Mesh::GroupFaces(const std::string &name, std::vector<Face> &faces, const std::string &input) const {
   PetscFunctionBeginUser;
-  PetscCall(CheckGroup(name, dim_ - 1));
+  PetscCall(CheckGroup(name, dim_ - 1, input));
   faces = label_faces_[std::find(group_names_.begin(), group_names_.end(), name) - group_names_.begin()];
   PetscFunctionReturn(0);
 }

@@ -11,7 +11,7 @@
 namespace signorini {
 
 Cylinder::Cylinder(const double *point, const double *axis, double radius) : r_(radius) {
-  const double norm = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+  const double norm = std::hypot(axis[0], axis[1], axis[2]); // no overflow of the squares
   for (int i = 0; i < 3; ++i) p_[i] = point[i], a_[i] = axis[i] / norm;
 }
 
@@ -74,7 +74,7 @@ ShapeType CylindersShape() {
   return {"-obstacle_cylinders", "Infinite rigid cylinders PX,PY,PZ,AX,AY,AZ,R,... (point on the axis, axis, radius; "
           "the body is outside)", 7,
           [](const double *v, std::vector<std::unique_ptr<Facet>> &out) -> std::string {
-            if (std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]) <= 0) return "has a zero axis";
+            if (!(std::hypot(v[3], v[4], v[5]) > 0)) return "has a zero axis";
             if (v[6] <= 0) return "has radius " + FormatNumber(v[6]) + " (expected > 0)";
             out.push_back(std::make_unique<Cylinder>(v, v + 3, v[6]));
             return "";

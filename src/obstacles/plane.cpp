@@ -8,7 +8,7 @@
 namespace signorini {
 
 Plane::Plane(const double *point, const double *normal) {
-  const double norm = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+  const double norm = std::hypot(normal[0], normal[1], normal[2]); // no overflow of the squares
   for (int i = 0; i < 3; ++i) p_[i] = point[i], n_[i] = normal[i] / norm;
 }
 
@@ -52,7 +52,7 @@ ShapeType PlanesShape() {
   return {"-obstacle_planes", "Unbounded planes PX,PY,PZ,NX,NY,NZ,... (point and normal; the normal points into the "
           "body)", 6,
           [](const double *v, std::vector<std::unique_ptr<Facet>> &out) -> std::string {
-            if (std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]) <= 0) return "has a zero normal";
+            if (!(std::hypot(v[3], v[4], v[5]) > 0)) return "has a zero normal";
             out.push_back(std::make_unique<Plane>(v, v + 3));
             return "";
           },

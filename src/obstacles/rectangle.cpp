@@ -13,7 +13,8 @@ ShapeType RectanglesShape() {
           11,
           [](const double *v, std::vector<std::unique_ptr<Facet>> &out) -> std::string {
             const double *c = v, *normal = v + 3, *dir = v + 6, a = v[9], b = v[10];
-            const double nn = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+            // hypot: the squares of a long vector (1e200) would overflow and make it a zero one after normalising.
+            const double nn = std::hypot(normal[0], normal[1], normal[2]);
             if (!(nn > 0)) return "has a zero normal";
             if (!(a > 0 && b > 0)) return "has a half-size that is not positive; expected A > 0 and B > 0";
             double n[3], u[3], w[3];
@@ -22,8 +23,8 @@ ShapeType RectanglesShape() {
             // counter-clockwise seen from the body and the triangles' normals point into it.
             const double un = dir[0] * n[0] + dir[1] * n[1] + dir[2] * n[2];
             for (int i = 0; i < 3; ++i) u[i] = dir[i] - un * n[i];
-            const double nu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-            const double nd = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+            const double nu = std::hypot(u[0], u[1], u[2]);
+            const double nd = std::hypot(dir[0], dir[1], dir[2]);
             if (!(nu > 1e-8 * nd)) return "has a direction U along the normal; expected a direction in the plane";
             for (int i = 0; i < 3; ++i) u[i] /= nu;
             w[0] = n[1] * u[2] - n[2] * u[1], w[1] = n[2] * u[0] - n[0] * u[2], w[2] = n[0] * u[1] - n[1] * u[0];

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace signorini {
 
@@ -78,13 +79,13 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
                                     "axes; auto: METIS in 3D and from " + std::to_string(METIS_MIN_ROWS_2D) +
                                     " rows in 2D, coordinate cuts below";
   PetscCall(PetscOptionsEList("-contact_nested_dissection", ordering_help.c_str(), "", GRAPH_ORDERING_NAMES, 3,
-                              GRAPH_ORDERING_NAMES[ordering], &ordering, nullptr));
+                              GRAPH_ORDERING_NAMES[ordering], &ordering, &opts.ordering_set));
   opts.ordering.graph = (GraphOrdering)ordering;
   PetscBool parallel = opts.ordering.parallel ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PetscOptionsBool("-contact_nested_dissection_parallel",
                              "METIS's nested dissection on every rank (the partition's interfaces as the top "
                              "separators, each rank orders its own nodes) instead of the whole node graph on rank 0",
-                             "", parallel, &parallel, nullptr));
+                             "", parallel, &parallel, &opts.parallel_set));
   opts.ordering.parallel = parallel;
   PetscOptionsEnd();
   PetscFunctionReturn(0);
@@ -280,6 +281,28 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
              PETSC_ERR_USER_INPUT,
              "-contact_reuse_max_it %" PetscInt_FMT " applies to a nonlinear material (-material_model svk) with the "
              "kept factorisation (-contact_reuse_factorization and a MUMPS LU or Cholesky solver)", opts.reuse_max_it);
+  // The pivot order is computed only for the kept factorisation (MumpsSchur), and only when MUMPS is told to take it:
+  // otherwise PETSc's MUMPS interface orders by ICNTL(7) alone and these options would be ignored.
+  PetscInt icntl7 = 1;
+  PetscBool icntl7_set = PETSC_FALSE;
+  PetscCall(PetscOptionsGetInt(nullptr, "contact_", "-mat_mumps_icntl_7", &icntl7, &icntl7_set));
+  const std::string ordering = std::string("-contact_nested_dissection ") +
+                               GRAPH_ORDERING_NAMES[(int)opts.ordering.graph],
+                    parallel = std::string("-contact_nested_dissection_parallel ") +
+                               (opts.ordering.parallel ? "true" : "false");
+  for (const auto &[set, given] : {std::make_pair(opts.ordering_set, &ordering),
+                                   std::make_pair(opts.parallel_set, &parallel)}) {
+    PetscCheck(!set || (possible && opts.reuse_factorization), comm, PETSC_ERR_USER_INPUT,
+               "%s applies to the kept MUMPS factorisation only (-contact_reuse_factorization with a MUMPS LU or "
+               "Cholesky solver, the default)", given->c_str());
+    PetscCheck(!set || icntl7 == 1, comm, PETSC_ERR_USER_INPUT,
+               "%s does not apply with -contact_mat_mumps_icntl_7 %" PetscInt_FMT " (one of MUMPS's own orderings); "
+               "expected -contact_mat_mumps_icntl_7 1, or no %s", given->c_str(), icntl7,
+               given->substr(0, given->find(' ')).c_str());
+  }
+  PetscCheck(!(opts.parallel_set && opts.ordering_set && opts.ordering.graph == GraphOrdering::COORDINATES), comm,
+             PETSC_ERR_USER_INPUT, "-contact_nested_dissection_parallel applies to METIS's ordering only, not to "
+             "-contact_nested_dissection coordinates");
   reuse_ = possible && opts.reuse_factorization && dofs_->GlobalLambda() > 0;
   reuse_forced_ = reuse_ && (opts.reuse_set || opts.reuse_max_it_set);
   constant_k_ = constant_k;

@@ -67,6 +67,13 @@ elif TEST == "default_case":
     check(rc1 == 0 and rc2 == 0, "both runs succeed")
     check(strip(out1) == strip(out2), "the default case prints the same summary as options/hertz.yml")
     check("Hertz (R = 8., P = 10.)" in out1, "the default case compares with Hertz")
+    # README: any option given overrides the default case's value, the mesh too; the rest of the case stays.
+    rc3, out3 = run(["-mesh_file", "meshes/hertz.msh"])
+    check(rc3 == 0 and strip(out3) == strip(out1),
+          "-mesh_file alone runs the default case on that mesh: " + out3[-300:])
+    rc4, out4 = run(["-bc_traction", "top:0:-1.25"])
+    check(rc4 == 0 and "applied load (0, -20)" in out4, "-bc_traction alone changes only the default case's load: "
+          + out4[-300:])
 elif TEST.startswith("options_file_paths_np"):
     np = int(TEST[len("options_file_paths_np"):])
     case = os.path.join(SOURCE, "options", "beam_on_floor.yml")

@@ -13,12 +13,14 @@ struct DirichletSpec {
   std::string group;
   int component = 0;
   double value = 0;
+  std::string item; ///< the -bc_dirichlet item as written, for messages
 };
 
 /// A load on a physical group: a vector (traction, point force) or a scalar (pressure).
 struct LoadSpec {
   std::string group;
   std::vector<double> value;
+  std::string item; ///< the item as written, for messages
 };
 
 struct BoundaryConditions {

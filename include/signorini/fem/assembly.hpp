@@ -19,8 +19,14 @@ struct DirichletData {
   std::vector<double> value;
 };
 
-/// Marks the Dirichlet dofs of every local vertex (ghosts included). Unknown groups are errors. Collective.
+/// Marks the Dirichlet dofs of every local vertex (ghosts included). Unknown groups are errors, and so are two items
+/// prescribing different values to one node component (the message names the node, the component, both values and
+/// both items, the same on any number of ranks). Collective.
 [[nodiscard]] PetscErrorCode BuildDirichlet(const Mesh &mesh, const BoundaryConditions &bc, DirichletData &data);
+/// Checks the groups of the loads (-bc_traction, -bc_pressure: a physical curve in 2D, a surface in 3D;
+/// -bc_point_force: any group), so that a wrong name stops the run before the set-up; each error names the option and
+/// its item. Collective.
+[[nodiscard]] PetscErrorCode CheckLoadGroups(const Mesh &mesh, const BoundaryConditions &bc);
 
 class Assembler {
 public:

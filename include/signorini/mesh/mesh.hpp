@@ -71,11 +71,13 @@ public:
   const std::vector<std::size_t> &CellTagsBlock() const { return cell_tags_; }
 
   /// Local vertices (owned and ghost) of the physical group `name` (kept since Create); an unknown name is an error
-  /// listing the names. Collective.
-  [[nodiscard]] PetscErrorCode GroupVertices(const std::string &name, std::vector<PetscInt> &vertices) const;
+  /// listing the names, which starts with `input` (the option and item that named the group) when given. Collective.
+  [[nodiscard]] PetscErrorCode GroupVertices(const std::string &name, std::vector<PetscInt> &vertices,
+                                             const std::string &input = "") const;
   /// Owned faces of a physical curve (2D) or surface (3D), oriented outwards (Face); error if the group has another
-  /// dimension. Collective.
-  [[nodiscard]] PetscErrorCode GroupFaces(const std::string &name, std::vector<Face> &faces) const;
+  /// dimension (starting with `input`, as GroupVertices'). Collective.
+  [[nodiscard]] PetscErrorCode GroupFaces(const std::string &name, std::vector<Face> &faces,
+                                          const std::string &input = "") const;
   /// Local vertices on the boundary of the body. Collective.
   [[nodiscard]] PetscErrorCode BoundaryVertices(std::vector<PetscInt> &vertices) const;
   /// Owned faces on the boundary of the body, oriented outwards (Face). Collective.
@@ -106,7 +108,7 @@ private:
   /// Local vertices of a label; cells: the label holds cells (a group of the mesh's dimension, not completed to its
   /// closure), whose vertices are gathered over the ranks. Collective when cells.
   [[nodiscard]] PetscErrorCode LabelVertices(const std::string &label, bool cells, std::vector<PetscInt> &vertices) const;
-  [[nodiscard]] PetscErrorCode CheckGroup(const std::string &name, int required_dim) const;
+  [[nodiscard]] PetscErrorCode CheckGroup(const std::string &name, int required_dim, const std::string &input) const;
 
   MPI_Comm comm_ = MPI_COMM_NULL;
   DMH dm_;

@@ -32,7 +32,11 @@ struct SolverOptions {
   PetscBool lagged_search_set = PETSC_FALSE;
 };
 
-[[nodiscard]] PetscErrorCode ReadSolverOptions(MPI_Comm comm, SolverOptions &opts);
+/// Reads the -load_ and -newton_ options. The ones that only the nonlinear material's Newton loop uses
+/// (-load_max_cuts, -newton_max_it, -newton_linesearch, -newton_lagged_search) are an error when given with another
+/// model, so that none is ignored silently (-newton_rtol and -newton_atol bound the equilibrium residual of every
+/// model).
+[[nodiscard]] PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptions &opts);
 
 /// One line of the monitor.
 struct IterationRecord {

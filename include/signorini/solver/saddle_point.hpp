@@ -65,6 +65,7 @@ struct SaddlePointOptions {
   PetscInt reuse_max_it = 6; ///< in [0, REUSE_MAX_IT_MAX]
   PetscBool reuse_max_it_set = PETSC_FALSE;
   OrderingOptions ordering; ///< -contact_nested_dissection, -contact_nested_dissection_parallel
+  PetscBool ordering_set = PETSC_FALSE, parallel_set = PETSC_FALSE; ///< the user gave them
 };
 [[nodiscard]] PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts);
 

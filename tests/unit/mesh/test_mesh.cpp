@@ -394,10 +394,10 @@ TEST(Mesh, MissingFileIsAnError) {
 
 TEST(MeshOptions, ValuesAreReadAndValidated) {
   {
-    ScopedOptions options({{"-mesh_file", "a.msh"}, {"-mesh_size_factor", "0.5"}, {"-mesh_partitioner", "simple"}});
+    ScopedOptions options({{"-mesh_file", "a.geo"}, {"-mesh_size_factor", "0.5"}, {"-mesh_partitioner", "simple"}});
     MeshOptions opts;
     ASSERT_EQ(ReadMeshOptions(PETSC_COMM_SELF, "default.msh", opts), 0);
-    EXPECT_EQ(opts.file, "a.msh");
+    EXPECT_EQ(opts.file, "a.geo");
     EXPECT_EQ(opts.size_factor, 0.5);
     EXPECT_EQ(opts.partitioner, "simple");
   }
@@ -417,6 +417,17 @@ TEST(MeshOptions, ValuesAreReadAndValidated) {
     MeshOptions opts;
     EXPECT_NE(ReadMeshOptions(PETSC_COMM_SELF, "default.msh", opts), 0);
     EXPECT_NE(capture.Message().find(name), std::string::npos) << capture.Message();
+  }
+  // The meshing options with a .msh would be ignored: an error naming the option and what it applies to.
+  for (const auto &[name, value] : {std::pair<const char *, const char *>{"-mesh_size_factor", "0.5"},
+                                    {"-mesh_max_cells", "10"}}) {
+    SCOPED_TRACE(name);
+    ScopedOptions options({{"-mesh_file", "a.msh"}, {name, value}});
+    ErrorCapture capture;
+    MeshOptions opts;
+    EXPECT_NE(ReadMeshOptions(PETSC_COMM_SELF, "default.msh", opts), 0);
+    EXPECT_NE(capture.Message().find(std::string(name) + " " + value + " applies to meshing a .geo file only"),
+              std::string::npos) << capture.Message();
   }
 }
 
