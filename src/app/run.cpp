@@ -285,18 +285,20 @@ PetscErrorCode Run() {
                              std::pow(body.hi[2] - body.lo[2], 2));
   PetscCall(CheckLoadScale(comm, bc, L, material.E, material.thickness));
   PetscCall(ReadContactOptions(comm, L, material.E * material.thickness, contact));
-  OutputWriter output;
-  PetscCall(output.Open(mesh, output_opts));
 
   t = MPI_Wtime();
   ContactSolver solver(mesh, material, bc, obstacle, contact, solver_opts);
   PetscCall(PetscLogStagePush(stage_setup));
   ProgressBegin("set-up (supports, contact pairs, numbering, matrix pattern)");
   PetscCall(solver.Setup());
-  mesh.ReleaseDM(); // the mesh's own arrays serve from here on
   ProgressEnd();
   PetscCall(PetscLogStagePop());
   info.timings["setup"] = MPI_Wtime() - t;
+  // The output directory is opened once the set-up has checked the inputs it reads (groups, supports), so that
+  // these errors leave no directory behind.
+  OutputWriter output;
+  PetscCall(output.Open(mesh, output_opts));
+  mesh.ReleaseDM(); // the mesh's own arrays serve from here on
   output.SetObstacle(obstacle, body);
   PetscCall(output.SetContactBoundary(solver.Candidates()));
   PetscCall(PrintHeader(comm, info, material, solver));
