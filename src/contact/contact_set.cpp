@@ -44,8 +44,8 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
                         "activate only pairs whose gap at the start of the step is at most this factor times that of "
                         "the deepest penetrating pair (0: off; otherwise at least 1)", gap_factor,
                         opts.activation_gap_factor));
-  PetscCall(OptionsInt(PetscOptionsObject, "-contact_max_it", "Maximum active-set iterations per load step (svk: Newton "
-                       "iterations that change the active set)", 1,
+  PetscCall(OptionsInt(PetscOptionsObject, "-contact_max_it", "Maximum active-set iterations per load step (svk: "
+                       "Newton iterations that change the active set)", 1,
                        CONTACT_MAX_IT_LIMIT, opts.max_it));
   PetscCall(PetscOptionsBool("-contact_monitor", "Print one line per active-set iteration", "", opts.monitor,
                              &opts.monitor, nullptr));
@@ -218,7 +218,8 @@ PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const
   // Each examined node's penetration of each kind (0: unpaired, 1: prescribed): the deepest facet.
   std::vector<double> depth[2];
   depth[0].assign(nv, 0.0), depth[1].assign(nv, 0.0);
-  if (reach > 0) {
+  {
+    // Also when nothing examined has moved: a held node fixed at zero may sit inside the obstacle from the start.
     const FacetBins bins(obstacle, dim, opts.search_radius + reach);
     std::vector<PetscInt> near;
     for (PetscInt v = 0; v < nv; ++v) {

@@ -64,8 +64,9 @@ PetscErrorCode Handler(MPI_Comm comm, int line, const char *func, const char *fi
   // rank holds the same options and reads them together: report it once, from rank 0, and let every rank unwind.
   const bool options_code = file && std::strstr(file, "sys/objects/options") != nullptr;
   // The same holds while PetscInitialize reads the command line (a missing file name) and a YAML file (rank 0 reads
-  // it, every rank parses it), but not for a plain options file, which rank 0 parses while the others wait: that
-  // one is reported by rank 0, which then aborts the others. (main checks beforehand that every file is readable.)
+  // it, every rank parses it), but not for a plain options file: rank 0 parses it while the others wait (a syntax
+  // error), yet a file it names is opened by every rank. Its errors are reported by rank 0 alone, and every rank that
+  // raises one aborts the others. (main checks beforehand that every options file it can find is readable.)
   const bool option_value = options_code && PetscInitializeCalled;
   const bool plain_file = options_code && func && std::strcmp(func, "PetscOptionsInsertFilePetsc") == 0;
   if (options_code && mpi_up) MPI_Comm_rank(world, &rank), comm_size = plain_file ? 1 : world_size;
@@ -84,7 +85,7 @@ PetscErrorCode Handler(MPI_Comm comm, int line, const char *func, const char *fi
                     n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_READ || n == PETSC_ERR_FILE_WRITE ||
                     n == PETSC_ERR_FILE_UNEXPECTED || n == PETSC_ERR_ARG_OUTOFRANGE || n == PETSC_ERR_NOT_CONVERGED ||
                     n == PETSC_ERR_CONV_FAILED || n == PETSC_ERR_ARG_WRONG;
-  if (!collective || rank == 0 || plain_file) {
+  if (plain_file ? rank == 0 : !collective || rank == 0) {
     if (n == PETSC_ERR_MEM)
       std::fprintf(stderr, "signorini: error: out of memory (%s)\n", text);
     else if (user)

@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <system_error>
 #include <filesystem>
 
@@ -222,13 +224,43 @@ PetscErrorCode CheckCommandLine(int argc, char **argv) {
   PetscFunctionReturn(0);
 }
 
+namespace {
+
+/// The options files that the words name (-options_file FILE, -options_file_yaml FILE), appended to files.
+void NamedOptionsFiles(const std::vector<std::string> &words, std::vector<std::pair<std::string, std::string>> &files) {
+  for (std::size_t i = 0; i + 1 < words.size(); ++i)
+    if ((words[i] == "-options_file" || words[i] == "-options_file_yaml") && words[i + 1][0] != '-')
+      files.emplace_back(words[i], words[i + 1]), ++i;
+}
+
+/// The words of a plain options file, without its comments (PETSc's syntax: '#' starts a comment).
+std::vector<std::string> PlainFileWords(const std::string &path) {
+  std::vector<std::string> words;
+  std::ifstream in(path);
+  std::string line, word;
+  while (std::getline(in, line)) {
+    std::istringstream items(line.substr(0, line.find('#')));
+    while (items >> word) words.push_back(word);
+  }
+  return words;
+}
+
+} // namespace
+
 std::string UnreadableOptionsFile(int argc, char **argv, std::string &files) {
+  // The files of the command line, of PETSC_OPTIONS, and those that a plain options file names in turn (PETSc opens
+  // a nested one on every rank: an unreadable one would be reported by each of them).
+  std::vector<std::pair<std::string, std::string>> named; // (option, path)
+  NamedOptionsFiles(std::vector<std::string>(argv + 1, argv + argc), named);
+  if (const char *env = std::getenv("PETSC_OPTIONS")) {
+    std::istringstream items(env);
+    std::vector<std::string> words;
+    for (std::string word; items >> word;) words.push_back(word);
+    NamedOptionsFiles(words, named);
+  }
   files.clear();
-  for (int i = 1; i + 1 < argc; ++i) {
-    const std::string key = argv[i];
-    if (key != "-options_file" && key != "-options_file_yaml") continue;
-    const std::string path = argv[++i];
-    if (!path.empty() && path[0] == '-') continue; // PETSc reports the missing file name
+  for (std::size_t k = 0; k < named.size() && k < 100; ++k) {
+    const auto [key, path] = named[k];
     files += (files.empty() ? "" : ", ") + path;
     std::error_code ec;
     const auto status = std::filesystem::status(path, ec);
@@ -238,6 +270,9 @@ std::string UnreadableOptionsFile(int argc, char **argv, std::string &files) {
     else if (!std::ifstream(path)) problem = "it cannot be read";
     if (!problem.empty())
       return key + " " + path + ": " + problem + "; expected a readable YAML or PETSc options file";
+    const std::size_t dot = path.rfind('.');
+    const std::string ext = dot == std::string::npos ? "" : path.substr(dot);
+    if (key == "-options_file" && ext != ".yml" && ext != ".yaml") NamedOptionsFiles(PlainFileWords(path), named);
   }
   return "";
 }

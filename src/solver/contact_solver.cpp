@@ -438,7 +438,7 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
 PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt changes, Outcome &outcome) {
   PetscFunctionBeginUser;
   outcome = Outcome::SOLVE;
-  if (changes > 0) st.candidate_rnorm = -1; // a new active set: its residual is not a correction's
+  if (changes > 0) st.candidate_rnorm = -1, st.stalled_corrections = 0; // a new active set: not a correction's
   if (it > 0) {
     PetscCall(RecordIteration(st.step, it, st.factor, st.next, changes, st.krylov, st.rnorm, st.last_solve_time));
     // A state that may be the solution: certified, or the loop goes on (svk: Newton; linear: one more solve corrects
@@ -473,16 +473,20 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt c
       if (!st.large && st.rnorm > tol) {
         // Corrections that no longer halve the residual cannot reach the tolerance: the solves are as accurate as
         // the system's conditioning lets them be (e.g. a nearly incompressible material).
-        if (st.candidate_rnorm > 0 && st.rnorm > 0.5 * st.candidate_rnorm) {
+        // A correction that started from another residual is followed by a solve to the KSP's tolerance (below), so
+        // the loop stops only when that one does not halve the residual either.
+        const bool halved = st.candidate_rnorm <= 0 || st.rnorm <= 0.5 * st.candidate_rnorm;
+        st.stalled_corrections = halved ? 0 : st.stalled_corrections + 1;
+        if (st.stalled_corrections >= 2) {
           stats_.reason = "DIVERGED_EQUILIBRIUM_STALLED";
           char text[256];
-          std::snprintf(text, sizeof(text), "%g after the correction solve, %g before it, tolerance %g", st.rnorm,
+          std::snprintf(text, sizeof(text), "%g after two correction solves, %g before them, tolerance %g", st.rnorm,
                         st.candidate_rnorm, tol);
           stats_.violation = text;
           outcome = Outcome::STOP;
           PetscFunctionReturn(0);
         }
-        st.candidate_rnorm = st.rnorm;
+        if (halved) st.candidate_rnorm = st.rnorm;
         st.correction_rtol = st.corrected ? 0.0 : 0.1 * tol / st.rnorm;
       }
     }
@@ -712,8 +716,9 @@ PetscErrorCode ContactSolver::Certify(const std::vector<double> &u_eval, double 
   cert.search_radius = contact_.search_radius;
   // No solve can lift a node whose normal motion the supports prescribe: the input contradicts itself.
   PetscCheck(prescribed.depth <= cert.gap_tol, mesh_.Comm(), PETSC_ERR_USER_INPUT,
-             "candidate node %" PetscInt_FMT " (at %g, %g, %g) is held by -bc_dirichlet %g inside the obstacle (gap "
-             "tolerance %g); expected prescribed displacements that keep the contact candidates out of the obstacle",
+             "candidate node %" PetscInt_FMT " (at %g, %g, %g) is held by -bc_dirichlet inside the obstacle, by %g "
+             "(gap tolerance %g); expected prescribed displacements that keep the contact candidates out of the "
+             "obstacle",
              prescribed.node, prescribed.x[0], prescribed.x[1], prescribed.x[2], prescribed.depth, cert.gap_tol);
   PetscFunctionReturn(0);
 }

@@ -359,6 +359,17 @@ CASES = {
                              ["-options_file", "does_not_exist.yml", "expected"], {}),
     "options_file_bad_yaml": (["-options_file", "{here}/options/bad_options.yml"],
                               ["-options_file", "YAML", "expected"], {}),
+    "options_file_is_directory": (["-options_file", "{here}/options"],
+                                  ["-options_file", "options: it is a directory", "expected a readable"], {}),
+    # A plain options file naming one that does not exist: every rank would report it.
+    "options_file_nested_missing": (["-options_file", "{here}/options/nested_missing.txt"],
+                                    ["-options_file does_not_exist_nested.txt: no such file"], {}),
+    # The command line as PETSc reads it: what is neither an option nor its value was skipped silently.
+    "stray_case_file": (["{root}/options/beam_on_floor.yml"],
+                        ["unexpected argument", "beam_on_floor.yml", "give -options_file"], {}),
+    "stray_second_value": (["-load_steps", "2", "3"], ["unexpected argument '3'", "-name value"], {}),
+    "misspelt_options_file": (["-option_file", "{root}/options/beam_on_floor.yml"],
+                              ["unknown option -option_file", "expected -options_file FILE"], {}),
     "options_file_bad_syntax": (["-options_file", "{here}/options/bad_options.txt"],
                                 ["-options_file", "bad_options.txt line 3", "expected"], {}),
     # Failures of the solve, after the output directory was opened.
@@ -367,10 +378,15 @@ CASES = {
     # whose normal motion is prescribed the penetration went unchecked (a converged state 0.01 inside the floor).
     "dirichlet_into_obstacle": (["-options_file", "{root}/options/block_on_floor.yml", "-bc_dirichlet",
                                  "left:x,bottom:y=-0.01"],
-                                ["candidate node 1", "-bc_dirichlet 0.01 inside the obstacle",
+                                ["candidate node 1", "held by -bc_dirichlet inside the obstacle, by 0.01",
                                  "expected prescribed displacements"], {}),
     "dirichlet_node_into_obstacle": (["-bc_dirichlet", "top_centre:x,contact_point:x:y=-0.05"],
-                                     ["candidate node 4", "-bc_dirichlet 0.05 inside the obstacle"], {}),
+                                     ["candidate node 4", "inside the obstacle, by 0.05"], {}),
+    # The same node held at zero under a flat raised into the body: every other candidate is paired (the large search
+    # radius) and none has moved, and the check used to look at no facet at all.
+    "dirichlet_node_fixed_in_obstacle": (["-bc_dirichlet", "top_centre:x,contact_point:x:y", "-obstacle_segments",
+                                          "-12,-7.95,12,-7.95", "-contact_search_radius", "10"],
+                                         ["candidate node 4", "inside the obstacle, by 0.05"], {}),
     # A nearly incompressible material: the correction solves stall above the equilibrium tolerance (they went on
     # until -contact_max_it; with the kept factorisation the second one failed an internal assertion).
     "equilibrium_stalls": (["-material_nu", "0.499999"],

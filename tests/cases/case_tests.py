@@ -1760,7 +1760,8 @@ def punch_on_plate(runner):
     case = options_args(runner, "options/punch_on_plate.yml", drop=("obstacle_mesh",))
     fz_sphere = runner.run(case + ["-obstacle_spheres", "0,0,1.252,1"], "punch as a sphere").get(
         "contact.contact_force.2")
-    # The punch's .geo meshed with triangles of size h = 0.03, 0.015, 0.0075 (meshed by the run, -obstacle_mesh FILE.geo).
+    # The punch's .geo meshed with triangles of size h = 0.03, 0.015, 0.0075 (meshed by the run, -obstacle_mesh
+    # FILE.geo).
     with open(runner.path("meshes/punch.geo")) as f:
         geo = f.read()
     runner.expect_true("meshes/punch.geo sets Mesh.MeshSizeMax = 0.03", "Mesh.MeshSizeMax = 0.03;" in geo)

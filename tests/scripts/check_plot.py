@@ -41,9 +41,9 @@ def refusals(args, work):
               all(w in lines[0] for w in words) and not written)
         print("%s refuses %s: exit status %d, %s" % ("ok  " if ok else "FAIL", what, plot.returncode, lines))
         if not ok:
-            failures.append("plot.py on %s: exit status %d (expected 1), output %r (expected one 'plot.py: error:' line "
-                            "with %s), pictures written: %s" % (what, plot.returncode, plot.stdout + plot.stderr,
-                                                                 words, written))
+            failures.append("plot.py on %s: exit status %d (expected 1), output %r (expected one 'plot.py: error:' "
+                            "line with %s), pictures written: %s" % (what, plot.returncode, plot.stdout + plot.stderr,
+                                                                      words, written))
     return failures
 
 

@@ -147,6 +147,7 @@ private:
     bool corrected = false;     ///< the last solve was such a correction
     PetscInt set_changes = 0;   ///< iterations of this load step that changed the active set
     double candidate_rnorm = -1; ///< linear: the equilibrium residual of the last candidate state of this active set
+    int stalled_corrections = 0; ///< linear: corrections in a row that did not halve candidate_rnorm
     std::vector<double> gap_before{}; ///< the gaps before the last stabilised solve
     /// Condensed solves (kept factorisation): from the first solve without stabilisation and without a prescribed
     /// displacement still to apply (svk: from each lagged one), the active-set iterations run in the multiplier space
