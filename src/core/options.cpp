@@ -7,10 +7,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <system_error>
-#include <filesystem>
 
 namespace signorini {
 
@@ -201,9 +201,8 @@ PetscErrorCode CheckCommandLine(int argc, char **argv) {
     PetscCall(PetscOptionsValidKey(argv[i], &key));
     const std::string arg = argv[i];
     if (!key) {
-      const std::size_t dot = arg.rfind('.');
-      const std::string ext = dot == std::string::npos ? "" : arg.substr(dot);
-      const bool options_file = ext == ".yml" || ext == ".yaml" || ext == ".txt" || ext == ".opts";
+      const bool options_file = EndsWith(arg, ".yml") || EndsWith(arg, ".yaml") || EndsWith(arg, ".txt") ||
+                                EndsWith(arg, ".opts");
       SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
               "unexpected argument '%s': every input is an option, -name value%s", arg.c_str(),
               options_file ? ("; to read this case file, give -options_file " + arg).c_str() : "");
@@ -270,9 +269,8 @@ std::string UnreadableOptionsFile(int argc, char **argv, std::string &files) {
     else if (!std::ifstream(path)) problem = "it cannot be read";
     if (!problem.empty())
       return key + " " + path + ": " + problem + "; expected a readable YAML or PETSc options file";
-    const std::size_t dot = path.rfind('.');
-    const std::string ext = dot == std::string::npos ? "" : path.substr(dot);
-    if (key == "-options_file" && ext != ".yml" && ext != ".yaml") NamedOptionsFiles(PlainFileWords(path), named);
+    if (key == "-options_file" && !EndsWith(path, ".yml") && !EndsWith(path, ".yaml"))
+      NamedOptionsFiles(PlainFileWords(path), named);
   }
   return "";
 }

@@ -83,4 +83,8 @@ std::string Join(const std::vector<std::string> &items, const std::string &separ
   return out;
 }
 
+bool EndsWith(const std::string &text, const std::string &suffix) {
+  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
 } // namespace signorini

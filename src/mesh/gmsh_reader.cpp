@@ -19,10 +19,6 @@ namespace signorini {
 
 namespace {
 
-bool EndsWith(const std::string &s, const std::string &suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 /// Gmsh element types signorini reads: 1 line (2 nodes), 2 triangle (3), 3 quadrangle (4), 4 tetrahedron (4),
 /// 5 hexahedron (8), 7 pyramid (5; gmsh puts them between tetrahedra and the quadrilateral faces of hexahedra).
 constexpr int GMSH_LINE = 1, GMSH_TRIANGLE = 2, GMSH_QUADRANGLE = 3, GMSH_TETRAHEDRON = 4, GMSH_HEXAHEDRON = 5,

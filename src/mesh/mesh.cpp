@@ -226,7 +226,7 @@ PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, M
   PetscOptionsEnd();
   PetscCheck(!opts.file.empty(), comm, PETSC_ERR_USER_INPUT, "-mesh_file is empty; expected a .msh or .geo path");
   // Both only steer the meshing of a .geo (the reader decides by the same suffix): with a .msh they would be ignored.
-  const bool geo = opts.file.size() >= 4 && opts.file.compare(opts.file.size() - 4, 4, ".geo") == 0;
+  const bool geo = EndsWith(opts.file, ".geo");
   for (const auto &[set, name, value] : {std::make_tuple(size_factor_set, "-mesh_size_factor", opts.size_factor),
                                          std::make_tuple(max_cells_set, "-mesh_max_cells", opts.max_cells)})
     PetscCheck(geo || !set, comm, PETSC_ERR_USER_INPUT,

@@ -472,9 +472,9 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt c
       // reach the tolerance (its start's residual was not this one) is followed by a solve to the KSP's tolerance.
       if (!st.large && st.rnorm > tol) {
         // Corrections that no longer halve the residual cannot reach the tolerance: the solves are as accurate as
-        // the system's conditioning lets them be (e.g. a nearly incompressible material).
-        // A correction that started from another residual is followed by a solve to the KSP's tolerance (below), so
-        // the loop stops only when that one does not halve the residual either.
+        // the system's conditioning lets them be (e.g. a nearly incompressible material). A correction that started
+        // from another residual is followed by a solve to the KSP's tolerance (below), so the loop stops only when
+        // that one does not halve the residual either.
         const bool halved = st.candidate_rnorm <= 0 || st.rnorm <= 0.5 * st.candidate_rnorm;
         st.stalled_corrections = halved ? 0 : st.stalled_corrections + 1;
         if (st.stalled_corrections >= 2) {

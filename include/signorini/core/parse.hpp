@@ -23,4 +23,7 @@ std::string FormatNumber(double value);
 /// Joins strings with a separator (for messages).
 std::string Join(const std::vector<std::string> &items, const std::string &separator);
 
+/// Whether text ends with suffix (a file name's extension: ".geo", ".yml").
+bool EndsWith(const std::string &text, const std::string &suffix);
+
 } // namespace signorini
