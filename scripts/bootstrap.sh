@@ -12,8 +12,8 @@ case "${1:-}" in
   *) echo "usage: scripts/bootstrap.sh [--test]" >&2; exit 2 ;;
 esac
 
-packages=(petsc-dev libmumps-dev liblapack-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libmetis-dev gmsh libgmsh-dev
-          libopenblas0-serial cmake pkg-config g++ make libgtest-dev
+packages=(petsc-dev libmumps-dev libyaml-dev liblapack-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libmetis-dev gmsh
+          libgmsh-dev libopenblas0-serial cmake pkg-config g++ make libgtest-dev
           python3 python3-numpy python3-h5py python3-matplotlib python3-paraview)
 missing=()
 for p in "${packages[@]}"; do

@@ -15,12 +15,12 @@ int main(int argc, char **argv) {
   // (PETSc's own check of a directory or an unreadable file is made by rank 0 alone, while the others wait).
   MPI_Init(&argc, &argv);
   std::string files;
-  const std::string unreadable = signorini::UnreadableOptionsFile(argc, argv, files);
+  const std::string problem = signorini::OptionsFileProblem(argc, argv, files);
   signorini::SetOptionsFiles(files);
-  if (!unreadable.empty()) {
+  if (!problem.empty()) {
     int rank;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    if (rank == 0) std::fprintf(stderr, "signorini: error: %s\n", unreadable.c_str());
+    if (rank == 0) std::fprintf(stderr, "signorini: error: %s\n", problem.c_str());
     MPI_Finalize();
     return 1;
   }

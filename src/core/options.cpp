@@ -10,7 +10,10 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <map>
 #include <system_error>
+
+#include <yaml.h>
 
 namespace signorini {
 
@@ -244,9 +247,109 @@ std::vector<std::string> PlainFileWords(const std::string &path) {
   return words;
 }
 
+/// Walks a YAML document as PETSc's reader does (src/sys/objects/optionsyaml.c): a scalar value sets -PREFIXkey, a
+/// mapping value or a mapping in a sequence pushes the prefix key_, a merge key '<<' keeps the prefix, a '$$' key sets
+/// nothing. Finds what PETSc would take without a word: an option set twice in the file (PETSc keeps the last value
+/// and drops the other, where YAML wants unique keys; the one order it allows is a merge followed by the key that
+/// overrides it, as YAML means it) and an options_file key (PETSc stores it as an option and reads no file).
+class YamlOptions {
+public:
+  YamlOptions(yaml_document_t &doc, std::string path) : doc_(doc), path_(std::move(path)) {}
+
+  /// The first problem as a message naming the file, the line and the option; empty when there is none.
+  std::string Problem(yaml_node_t *root) {
+    if (root) Walk(root, "", false);
+    return problem_;
+  }
+
+private:
+  struct Setting {
+    std::size_t line;
+    bool merged;
+  };
+
+  static const char *Text(const yaml_node_t *node) { return reinterpret_cast<const char *>(node->data.scalar.value); }
+
+  void Set(const std::string &name, const yaml_node_t *key, bool merged) {
+    if (!problem_.empty()) return;
+    const std::size_t line = key->start_mark.line + 1;
+    if (name == "-options_file" || name == "-options_file_yaml") {
+      problem_ = path_ + ", line " + std::to_string(line) + ": " + name.substr(1) + " in a YAML file is not read (PETSc "
+                 "would keep it as an unused option); expected each options file on the command line with its own "
+                 "-options_file (a later one overrides an earlier one)";
+      return;
+    }
+    const auto [it, first] = seen_.emplace(name, Setting{line, merged});
+    if (first) return;
+    if (it->second.merged && !merged) { // an explicit key after a merge overrides it, as YAML means
+      it->second = {line, merged};
+      return;
+    }
+    const std::string first_line = std::to_string(it->second.line);
+    problem_ = merged ? path_ + ", line " + first_line + ": option " + name + " is set again by a later merge '<<' (its "
+                            "value on line " + std::to_string(line) + "), which PETSc would keep; expected the merge "
+                            "before the keys that override it"
+                      : path_ + ", line " + std::to_string(line) + ": option " + name + " is set again (first on line " +
+                            first_line + "); expected each option once per file (PETSc would silently keep the last "
+                            "value)";
+  }
+
+  void Walk(yaml_node_t *node, const std::string &prefix, bool merged) {
+    if (!node || node->type != YAML_MAPPING_NODE || !problem_.empty()) return; // PETSc reports other shapes
+    for (yaml_node_pair_t *pair = node->data.mapping.pairs.start; pair < node->data.mapping.pairs.top; ++pair) {
+      yaml_node_t *key = yaml_document_get_node(&doc_, pair->key), *value = yaml_document_get_node(&doc_, pair->value);
+      if (!key || !value || key->type != YAML_SCALAR_NODE) return;
+      const std::string k = Text(key);
+      if (k == "<<") {
+        if (value->type == YAML_MAPPING_NODE) Walk(value, prefix, true);
+        else if (value->type == YAML_SEQUENCE_NODE)
+          for (yaml_node_item_t *item = value->data.sequence.items.start; item < value->data.sequence.items.top;
+               ++item)
+            Walk(yaml_document_get_node(&doc_, *item), prefix, true);
+        continue;
+      }
+      if (k.rfind("$$", 0) == 0) continue;
+      if (value->type == YAML_MAPPING_NODE) {
+        Walk(value, prefix + k + "_", merged);
+        continue;
+      }
+      if (value->type == YAML_SEQUENCE_NODE)
+        for (yaml_node_item_t *item = value->data.sequence.items.start; item < value->data.sequence.items.top; ++item)
+          Walk(yaml_document_get_node(&doc_, *item), prefix + k + "_", merged);
+      Set("-" + prefix + k, key, merged);
+    }
+  }
+
+  yaml_document_t &doc_;
+  const std::string path_;
+  std::map<std::string, Setting> seen_;
+  std::string problem_;
+};
+
+/// What PETSc would take silently from the YAML options file path (YamlOptions), as a message; empty when nothing
+/// or when the file does not parse (PETSc reports that, and the error handler names the file).
+std::string YamlFileProblem(const std::string &path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  yaml_parser_t parser;
+  if (!yaml_parser_initialize(&parser)) return "";
+  yaml_parser_set_input_string(&parser, reinterpret_cast<const unsigned char *>(text.data()), text.size());
+  std::string problem;
+  for (bool more = true; more && problem.empty();) {
+    yaml_document_t doc;
+    if (!yaml_parser_load(&parser, &doc)) break;
+    yaml_node_t *root = yaml_document_get_root_node(&doc);
+    more = root != nullptr;
+    problem = YamlOptions(doc, path).Problem(root);
+    yaml_document_delete(&doc);
+  }
+  yaml_parser_delete(&parser);
+  return problem;
+}
+
 } // namespace
 
-std::string UnreadableOptionsFile(int argc, char **argv, std::string &files) {
+std::string OptionsFileProblem(int argc, char **argv, std::string &files) {
   // The files of the command line, of PETSC_OPTIONS, and those that a plain options file names in turn (PETSc opens
   // a nested one on every rank: an unreadable one would be reported by each of them).
   std::vector<std::pair<std::string, std::string>> named; // (option, path)
@@ -269,8 +372,9 @@ std::string UnreadableOptionsFile(int argc, char **argv, std::string &files) {
     else if (!std::ifstream(path)) problem = "it cannot be read";
     if (!problem.empty())
       return key + " " + path + ": " + problem + "; expected a readable YAML or PETSc options file";
-    if (key == "-options_file" && !EndsWith(path, ".yml") && !EndsWith(path, ".yaml"))
-      NamedOptionsFiles(PlainFileWords(path), named);
+    const bool yaml = key == "-options_file_yaml" || EndsWith(path, ".yml") || EndsWith(path, ".yaml");
+    if (!yaml) NamedOptionsFiles(PlainFileWords(path), named);
+    else if (const std::string taken = YamlFileProblem(path); !taken.empty()) return taken;
   }
   return "";
 }

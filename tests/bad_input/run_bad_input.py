@@ -361,6 +361,21 @@ CASES = {
                               ["-options_file", "YAML", "expected"], {}),
     "options_file_is_directory": (["-options_file", "{here}/options"],
                                   ["-options_file", "options: it is a directory", "expected a readable"], {}),
+    # YAML files with what PETSc would take silently: an option set twice (it keeps the last value), a merge after
+    # the key that overrides it (it keeps the merged value), an options_file key (it reads no file).
+    "yaml_option_twice": (["-options_file", "{here}/options/twice.yml"],
+                          ["twice.yml, line 3: option -material_E is set again (first on line 2)",
+                           "expected each option once per file"], {"no_output_dir": True}),
+    "yaml_option_twice_nested": (["-options_file", "{here}/options/twice_nested.yml"],
+                                 ["twice_nested.yml, line 4: option -contact_max_it is set again (first on line 3)"],
+                                 {"no_output_dir": True}),
+    "yaml_merge_after_key": (["-options_file_yaml", "{here}/options/merge_after_key.yml"],
+                             ["merge_after_key.yml, line 4: option -material_E is set again by a later merge",
+                              "expected the merge before the keys"], {"no_output_dir": True}),
+    "yaml_names_options_file": (["-options_file", "{root}/options/beam_on_floor.yml", "-options_file",
+                                 "{here}/options/names_options_file.yml"],
+                                ["names_options_file.yml, line 2: options_file in a YAML file is not read",
+                                 "expected each options file on the command line"], {"no_output_dir": True}),
     # A plain options file naming one that does not exist: every rank would report it.
     "options_file_nested_missing": (["-options_file", "{here}/options/nested_missing.txt"],
                                     ["-options_file does_not_exist_nested.txt: no such file"], {}),

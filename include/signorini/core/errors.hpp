@@ -11,7 +11,7 @@ namespace signorini {
 /// aborts the MPI job for errors raised on a single rank, so that no rank waits forever. Call once on all ranks,
 /// before PetscInitialize so that errors in reading -options_file are reported the same way.
 [[nodiscard]] PetscErrorCode InstallErrorHandler();
-/// The options files of the run ("a.yml, b.txt", UnreadableOptionsFile), named by the handler's message when
+/// The options files of the run ("a.yml, b.txt", OptionsFileProblem), named by the handler's message when
 /// PetscInitialize cannot read one of them.
 void SetOptionsFiles(const std::string &files);
 

@@ -61,10 +61,11 @@ struct RealRange {
 /// case), is an error that names it and says what was expected. Collective (every rank has the same arguments).
 [[nodiscard]] PetscErrorCode CheckCommandLine(int argc, char **argv);
 
-/// The first options file that cannot be read, as a message naming it and saying what was expected; empty when every
-/// one can. The files are those of -options_file FILE and -options_file_yaml FILE on the command line and in
+/// The first options file that cannot be read, or a YAML one that sets an option twice or names an options_file (PETSc
+/// would take either silently), as a message naming it and saying what was expected; empty when there is none. The
+/// files are those of -options_file FILE and -options_file_yaml FILE on the command line and in
 /// PETSC_OPTIONS, and those that a plain options file names in turn. files: the ones it saw, for SetOptionsFiles.
 /// Needs no PETSc (it runs before PetscInitialize).
-std::string UnreadableOptionsFile(int argc, char **argv, std::string &files);
+std::string OptionsFileProblem(int argc, char **argv, std::string &files);
 
 } // namespace signorini
