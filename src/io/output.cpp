@@ -23,6 +23,14 @@ PetscErrorCode ReadOutputOptions(MPI_Comm comm, OutputOptions &opts) {
   PetscCall(OptionsString(PetscOptionsObject, "-output_dir", "Directory for solution.h5/.xdmf, an .xdmf per block, "
                           "nodes.csv and summary.json (default: no files)", "a directory path", opts.dir));
   PetscOptionsEnd();
+  // A directory that cannot be made is reported now, not after the mesh and the set-up (it is opened after them).
+  PetscMPIInt rank;
+  PetscBool help;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(PetscOptionsHasHelp(nullptr, &help));
+  std::string error;
+  if (rank == 0 && !opts.dir.empty() && !help) error = OutputDirectoryProblem(opts.dir);
+  PetscCall(RaiseFromRoot(comm, error));
   PetscFunctionReturn(0);
 }
 

@@ -436,6 +436,9 @@ CASES = {
     "output_dir_under_file": (["-output_dir", "{file}/out"], ["-output_dir", "a_file/out", "expected a writable"],
                               {}),
     "output_dir_is_file": (["-output_dir", "{file}"], ["-output_dir", "a_file", "expected a writable"], {}),
+    # Reported before the mesh is read (a large mesh takes a while), so ahead of the missing mesh here.
+    "output_dir_before_mesh": (["-output_dir", "{file}/out", "-mesh_file", "{here}/meshes/does_not_exist.msh"],
+                               ["-output_dir", "a_file/out", "(its parent", "is not a directory"], {}),
     # An output file that cannot be created (strace fails its open with EACCES, on every rank): written by every rank
     # together (MPI-IO), it must still end in one error naming it.
     "output_h5_unwritable": (BEAM, ["cannot write HDF5 file", "incomplete/solution.h5", "MPI_File_open failed",

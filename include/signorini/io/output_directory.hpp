@@ -17,6 +17,11 @@ inline constexpr const char *OUTPUT_FILES[] = {"solution.h5",           "solutio
 /// DIR/incomplete/, where a run writes its files.
 std::string StagingDirectory(const std::string &dir);
 
+/// Why DIR could not become an output directory, found without touching anything: DIR, or the nearest of its parents
+/// that exists, is not a directory or not writable. Empty when it looks fine (PrepareOutputDirectory has the last
+/// word). Lets the options report a bad -output_dir before the mesh is read.
+std::string OutputDirectoryProblem(const std::string &dir);
+
 /// Removes what an interrupted run or switch left beside the published run (stale run_* directories, a temporary
 /// link), and recreates an empty DIR/incomplete/. Returns an empty string on success, else the reason.
 std::string PrepareOutputDirectory(const std::string &dir);
