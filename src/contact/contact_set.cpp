@@ -128,6 +128,22 @@ private:
   std::vector<PetscInt> everywhere_;
 };
 
+/// Whether the facets of pairs a and b of the node at x meet at a convex joint of the obstacle (each facet's centre
+/// lies behind the other's plane through the node's foot on it): the node is then outside the obstacle when it is
+/// outside either of them. False for a facet without a centre (a smooth or unbounded shape) and for coplanar facets.
+bool ConvexJoint(const Obstacle &obstacle, const ContactPair &a, const ContactPair &b, const double *x, int dim,
+                 double length) {
+  double ca[3], cb[3];
+  if (!obstacle.facets[a.facet]->Centroid(ca) || !obstacle.facets[b.facet]->Centroid(cb)) return false;
+  double behind_a = 0, behind_b = 0; // signed heights of each centre over the other facet's plane
+  for (int k = 0; k < dim; ++k) {
+    behind_a += a.n0[k] * (cb[k] - (x[k] - a.g0 * a.n0[k]));
+    behind_b += b.n0[k] * (ca[k] - (x[k] - b.g0 * b.n0[k]));
+  }
+  const double tol = 1e-12 * length;
+  return behind_a < -tol && behind_b < -tol;
+}
+
 } // namespace
 
 PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
@@ -181,14 +197,25 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
     }
     // A node over the wedge of a convex joint projects onto none of its facets: the nearest one (the first at a
     // tie, both meeting at the joint) is its own.
+    const auto nearer = [&](std::size_t p, std::size_t q) {
+      return distance[p] < distance[q] - 1e-12 * opts.search_radius ||
+             (distance[p] <= distance[q] + 1e-12 * opts.search_radius && pairs[p].facet < pairs[q].facet);
+    };
     bool any = false;
     for (std::size_t p = first; p < pairs.size(); ++p) any = any || pairs[p].inside0;
     std::size_t nearest = first;
     for (std::size_t p = first; p < pairs.size(); ++p)
-      if (distance[p] < distance[nearest] - 1e-12 * opts.search_radius ||
-          (distance[p] <= distance[nearest] + 1e-12 * opts.search_radius && pairs[p].facet < pairs[nearest].facet))
-        nearest = p;
+      if (nearer(p, nearest)) nearest = p;
     if (!any && nearest < pairs.size()) pairs[nearest].zone0 = true;
+    // A node on the apex of a convex joint projects onto both facets only by the tolerance of the projection (the
+    // edge of both), and the obstacle is outside it when it is outside either facet: the nearer facet alone is its
+    // own, as over the wedge. Both zones would hold the node in the valley of the two extended facets, whose second
+    // gap turns negative as soon as the node slides along the first one (a finely faceted arc with a vertex under a
+    // node failed its certificate so). At a concave joint the node must clear both facets and keeps both zones.
+    for (std::size_t p = first; p < pairs.size(); ++p)
+      for (std::size_t q = p + 1; q < pairs.size(); ++q)
+        if (pairs[p].zone0 && pairs[q].zone0 && ConvexJoint(obstacle, pairs[p], pairs[q], x, dim, opts.search_radius))
+          (nearer(p, q) ? pairs[q] : pairs[p]).zone0 = false;
   }
   std::sort(pairs.begin(), pairs.end(), [&](const ContactPair &a, const ContactPair &b) {
     const PetscInt oa = mesh.VertexOriginal(a.vertex), ob = mesh.VertexOriginal(b.vertex);

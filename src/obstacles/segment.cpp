@@ -41,6 +41,11 @@ std::string Segment::Describe() const {
   return s.str();
 }
 
+bool Segment::Centroid(double *c) const {
+  c[0] = 0.5 * (p0_[0] + p1_[0]), c[1] = 0.5 * (p0_[1] + p1_[1]), c[2] = 0;
+  return true;
+}
+
 std::vector<std::array<double, 2>> Segment::Polyline() const {
   return {{p0_[0], p0_[1]}, {p1_[0], p1_[1]}};
 }

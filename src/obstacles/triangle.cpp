@@ -110,6 +110,11 @@ std::string Triangle::Describe() const {
   return s.str();
 }
 
+bool Triangle::Centroid(double *c) const {
+  for (int k = 0; k < 3; ++k) c[k] = (p_[0][k] + p_[1][k] + p_[2][k]) / 3;
+  return true;
+}
+
 TriangleSoup Triangle::Surface(const Box &) const {
   return {{p_[0][0], p_[0][1], p_[0][2]}, {p_[1][0], p_[1][1], p_[1][2]}, {p_[2][0], p_[2][1], p_[2][2]}};
 }

@@ -1207,6 +1207,40 @@ def plate_on_arc(runner):
         expect_same_state(runner, arc, r, keys=("contact.active_pairs",))
 
 
+@test("arc_vertex_under_node")
+def arc_vertex_under_node(runner):
+    """The block on a bump faceted by 200 segments of 0.9 degrees, one vertex exactly under its bottom node (1, 0): the
+    node lies in the zones of both facets of that convex joint, and with both its second gap went negative as it slid
+    along the first (DIVERGED_CERTIFICATE). Now it converges, on 1 and 2 ranks alike, equals the arc given as 200
+    segments, and no bottom node ends inside the faceted obstacle (its height under each node's final position)."""
+    arc = [1, -5, 5, 180, 0, 200]
+    args = ["-options_file", "options/block_on_floor.yml", "-obstacle_segments", "-1,-1,3,-1"]
+    one = runner.run(args + ["-obstacle_arcs", ",".join(map(str, arc))], "block on a faceted bump")
+    two = runner.run(args + ["-obstacle_arcs", ",".join(map(str, arc))], "block on a faceted bump", np_=2)
+    segments = runner.run(["-options_file", "options/block_on_floor.yml", "-obstacle_segments",
+                           "-1,-1,3,-1," + arc_segments(*arc)], "block on 200 segments")
+    expect_balance(runner, one, one.label)
+    for r in (two, segments):
+        expect_same_state(runner, one, r)
+    nodes = one.nodes()
+    t = np.radians(np.linspace(180, 0, 201))
+    px, py = 1 + 5 * np.cos(t), -5 + 5 * np.sin(t)
+    bottom = np.abs(nodes["y"]) < 1e-12
+    x = nodes["x"][bottom] + nodes["u_x"][bottom]
+    y = nodes["y"][bottom] + nodes["u_y"][bottom]
+    clearance = y - np.interp(x, px, py)
+    runner.expect_true("the vertex node (1, 0) is active", bool(nodes["active"][bottom][np.argmin(
+        np.abs(nodes["x"][bottom] - 1))]))
+    runner.expect_true("no bottom node inside the faceted bump (least clearance %.3g)" % clearance.min(),
+                       clearance.min() > -1e-9)
+    # An active node rests on the facet of its zone, extended when it slides past the facet's end: over the joint's
+    # other facet it is at most its slide times the joint's angle above the obstacle.
+    active = nodes["active"][bottom] > 0
+    bound = np.abs(nodes["u_x"][bottom]) * np.tan(np.radians(0.9)) + 1e-9
+    runner.expect_true("active nodes on the bump (clearance %.3g, bound %.3g)" % (
+        np.abs(clearance[active]).max(), bound[active].max()), np.all(np.abs(clearance[active]) <= bound[active]))
+
+
 @test("activation_rules")
 def activation_rules(runner):
     """The first update's damping rules take other paths to the same state: the default (-contact_activation_gap_factor

@@ -42,6 +42,9 @@ public:
   /// Axis-aligned bounding box (lo, hi: dim values each; infinite for an unbounded facet).
   virtual void Bounds(double *lo, double *hi) const = 0;
   virtual std::string Describe() const = 0;
+  /// The centre of a flat facet of finite size (segment, triangle) into c (3 values), whether it has one: a smooth or
+  /// unbounded shape has no joints with other facets.
+  virtual bool Centroid(double *) const { return false; }
   /// The facet's shape for output in 2D: a polyline; a closed curve repeats its first point (empty in 3D).
   virtual std::vector<std::array<double, 2>> Polyline() const { return {}; }
   /// The facet's shape for output in 3D, triangulated (empty in 2D); an unbounded shape is drawn over the extent of
@@ -59,6 +62,7 @@ public:
   std::string Describe() const override;
   std::vector<std::array<double, 2>> Polyline() const override;
   TriangleSoup Surface(const Box &) const override { return {}; }
+  bool Centroid(double *c) const override;
   double Length() const { return length_; }
 
 private:
@@ -78,6 +82,7 @@ public:
   void Bounds(double *lo, double *hi) const override;
   std::string Describe() const override;
   TriangleSoup Surface(const Box &body) const override;
+  bool Centroid(double *c) const override;
   /// The point of the triangle closest to x.
   void ClosestPoint(const double *x, double *c) const;
   double Area() const { return area_; }
