@@ -274,9 +274,9 @@ private:
     if (!problem_.empty()) return;
     const std::size_t line = key->start_mark.line + 1;
     if (name == "-options_file" || name == "-options_file_yaml") {
-      problem_ = path_ + ", line " + std::to_string(line) + ": " + name.substr(1) + " in a YAML file is not read (PETSc "
-                 "would keep it as an unused option); expected each options file on the command line with its own "
-                 "-options_file (a later one overrides an earlier one)";
+      problem_ = path_ + ", line " + std::to_string(line) + ": " + name.substr(1) +
+                 " in a YAML file is not read (PETSc would keep it as an unused option); expected each options file "
+                 "on the command line with its own -options_file (a later one overrides an earlier one)";
       return;
     }
     const auto [it, first] = seen_.emplace(name, Setting{line, merged});
@@ -285,13 +285,14 @@ private:
       it->second = {line, merged};
       return;
     }
-    const std::string first_line = std::to_string(it->second.line);
-    problem_ = merged ? path_ + ", line " + first_line + ": option " + name + " is set again by a later merge '<<' (its "
-                            "value on line " + std::to_string(line) + "), which PETSc would keep; expected the merge "
-                            "before the keys that override it"
-                      : path_ + ", line " + std::to_string(line) + ": option " + name + " is set again (first on line " +
-                            first_line + "); expected each option once per file (PETSc would silently keep the last "
-                            "value)";
+    const std::string first_line = std::to_string(it->second.line), this_line = std::to_string(line);
+    if (merged)
+      problem_ = path_ + ", line " + first_line + ": option " + name + " is set again by a later merge '<<' (its " +
+                 "value on line " + this_line + "), which PETSc would keep; expected the merge before the keys that " +
+                 "override it";
+    else
+      problem_ = path_ + ", line " + this_line + ": option " + name + " is set again (first on line " + first_line +
+                 "); expected each option once per file (PETSc would silently keep the last value)";
   }
 
   void Walk(yaml_node_t *node, const std::string &prefix, bool merged) {

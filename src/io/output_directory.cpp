@@ -41,7 +41,8 @@ std::string StagingDirectory(const std::string &dir) { return (fs::path(dir) / S
 std::string OutputDirectoryProblem(const std::string &dir_name) {
   std::error_code ec;
   fs::path path = fs::absolute(fs::path(dir_name), ec);
-  if (ec) return "-output_dir '" + dir_name + "' is not a usable path (" + ec.message() + "); expected a directory path";
+  if (ec)
+    return "-output_dir '" + dir_name + "' is not a usable path (" + ec.message() + "); expected a directory path";
   // The directory itself, else the nearest parent that exists (the run creates the rest).
   while (!fs::exists(fs::symlink_status(path, ec)) && path.has_parent_path() && path.parent_path() != path)
     path = path.parent_path();
