@@ -120,14 +120,51 @@ PetscErrorCode ActiveSet::Next(const std::vector<PairState> &states, PetscInt it
     PetscCall(PetscInfo(nullptr, "first update: %" PetscInt_FMT " penetrating pair(s) held back (gap at the start of "
                         "the step above %g)\n", held, limit));
   }
+  if (single_) PetscCall(KeepOneSwitch(current, keys, next));
   PetscInt mine = 0;
   for (std::size_t p = 0; p < states.size(); ++p) mine += next[p] != active_[p];
   PetscCallMPI(MPI_Allreduce(&mine, &changes, 1, MPIU_INT, MPI_SUM, comm_));
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ActiveSet::KeepOneSwitch(const std::vector<PairState> &states, const std::vector<PairKey> &keys,
+                                        std::vector<char> &next) const {
+  PetscFunctionBeginUser;
+  const auto score = [&](std::size_t p) { return std::abs(states[p].lambda - params_.c * states[p].gap); };
+  double best = -1;
+  for (std::size_t p = 0; p < next.size(); ++p)
+    if (next[p] != active_[p]) best = std::max(best, score(p));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &best, 1, MPI_DOUBLE, MPI_MAX, comm_));
+  // The smallest (node, facet) among the pairs that reach the largest score: node first, then facet.
+  int64_t key[2] = {INT64_MAX, INT64_MAX};
+  for (int k = 0; k < 2; ++k) {
+    int64_t mine = INT64_MAX;
+    for (std::size_t p = 0; p < next.size(); ++p)
+      if (next[p] != active_[p] && score(p) == best && (k == 0 || keys[p].original == key[0]))
+        mine = std::min<int64_t>(mine, k == 0 ? keys[p].original : keys[p].facet);
+    PetscCallMPI(MPI_Allreduce(&mine, &key[k], 1, MPI_INT64_T, MPI_MIN, comm_));
+  }
+  for (std::size_t p = 0; p < next.size(); ++p)
+    if (next[p] != active_[p] && !(keys[p].original == key[0] && keys[p].facet == key[1])) next[p] = active_[p];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ActiveSet::SwitchOneAtATime(const std::vector<PairState> &states, const std::vector<PairKey> &keys,
+                                           std::vector<char> &next, PetscInt &changes) {
+  PetscFunctionBeginUser;
+  single_ = true;
+  seen_.clear();
+  std::vector<PairState> current = states;
+  for (std::size_t p = 0; p < states.size(); ++p) current[p].active = active_[p];
+  PetscCall(KeepOneSwitch(current, keys, next));
+  PetscInt mine = 0;
+  for (std::size_t p = 0; p < next.size(); ++p) mine += next[p] != active_[p];
+  PetscCallMPI(MPI_Allreduce(&mine, &changes, 1, MPIU_INT, MPI_SUM, comm_));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ActiveSet::Seen(const std::vector<char> &next, const std::vector<PairKey> &keys, int repeats,
-                               bool &cycling) {
+                               bool &cycling, bool record) {
   // An order-independent hash of the set (a sum of mixed keys), the same on every partition.
   unsigned long long mine = 0, h;
   PetscFunctionBeginUser;
@@ -141,7 +178,7 @@ PetscErrorCode ActiveSet::Seen(const std::vector<char> &next, const std::vector<
     }
   PetscCallMPI(MPI_Allreduce(&mine, &h, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm_));
   cycling = std::count(seen_.begin(), seen_.end(), h) >= repeats;
-  seen_.push_back(h);
+  if (record) seen_.push_back(h);
   PetscFunctionReturn(0);
 }
 

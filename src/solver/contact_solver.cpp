@@ -435,9 +435,33 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt changes, Outcome &outcome) {
+PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &changes, Outcome &outcome) {
   PetscFunctionBeginUser;
   outcome = Outcome::SOLVE;
+  // Once the set has cycled (one switch per update), svk switches a pair only at an equilibrium of the current set:
+  // the multipliers and gaps that choose it are then those of the set's solution, not of a Newton iterate on its way
+  // there (svk's block in the notch toggled one pair between a tensile multiplier and a penetration while the
+  // residual stayed at 4e-4).
+  if (st.large && changes > 0 && active_set_.OneAtATime() && !(st.rnorm <= EquilibriumTol(st.rscale))) {
+    st.next = active_set_.Flags();
+    changes = 0;
+  }
+  // An active set that comes back would cycle. svk with lagged searches first drops them for the rest of the step
+  // (their stale tangent can lead the set round); then, as the linear material does at once, the updates switch one
+  // pair at a time (ActiveSet::SwitchOneAtATime). A set that comes back after that ends the step (DIVERGED_CYCLING).
+  const bool lagging = st.large && opts_.lagged_search && system_->ReusesFactorization() && !st.exact_newton;
+  if (it > 0 && changes > 0 && std::isfinite(st.rnorm) && (lagging || !active_set_.OneAtATime())) {
+    bool back;
+    PetscCall(active_set_.Seen(st.next, keys_, st.large ? 3 : 1, back, false));
+    if (back && lagging) {
+      st.exact_newton = true;
+      active_set_.Forget();
+      PetscCall(PetscInfo(nullptr, "the active set came back: exact Newton steps from now on in this load step\n"));
+    } else if (back) {
+      PetscCall(active_set_.SwitchOneAtATime(states_, keys_, st.next, changes));
+      PetscCall(PetscInfo(nullptr, "the active set came back: one switch per update from now on in this load step\n"));
+    }
+  }
   if (changes > 0) st.candidate_rnorm = -1, st.stalled_corrections = 0; // a new active set: not a correction's
   if (it > 0) {
     PetscCall(RecordIteration(st.step, it, st.factor, st.next, changes, st.krylov, st.rnorm, st.last_solve_time));
@@ -538,12 +562,12 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   if (!(st.large && st.base)) {
     const bool contracting = st.lag_rnorm < 0 || st.rnorm <= LAGGED_CONTRACTION * st.lag_rnorm;
     const bool lag = st.large && opts_.lagged_search && st.searching && !st.stabilised &&
-                     system_->ReusesFactorization();
+                     !st.exact_newton && !active_set_.OneAtATime() && system_->ReusesFactorization();
     st.lagged = lag && contracting;
     st.lag_rnorm = st.rnorm;
     // A lagged step that did not contract: the factored tangent has drifted too far to precondition the current one.
     if (lag && !contracting) system_->RefactorNext();
-  } else if (st.stabilised) {
+  } else if (st.stabilised || st.exact_newton) {
     st.lagged = false; // the search is left (Condensable): a full solve from the base with the current tangent
   }
   if ((st.large && !st.lagged) || !k_assembled_) {
@@ -606,8 +630,11 @@ PetscErrorCode ContactSolver::NewtonForcing(const StepState &st, double &rtol) c
   // term is far below it (2D Hertz, 195k dofs, svk: a quarter instead of a half took 4 more preconditioner
   // applications). The KSP's tolerance is relative to the right-hand side, which carries the whole contact force (the
   // solve is for the multipliers, not their increments).
+  // Once the active set has cycled (ActiveSet::SwitchOneAtATime), every step is exact: one pair switches per step,
+  // and the gaps and multipliers that choose it must be those of the current set's solution.
   rtol = 0;
-  if (!(opts_.lagged_search && system_->ReusesFactorization()) || !(st.rnorm > 0) || !(st.rscale > 0))
+  if (!(opts_.lagged_search && system_->ReusesFactorization()) || active_set_.OneAtATime() || !(st.rnorm > 0) ||
+      !(st.rscale > 0))
     PetscFunctionReturn(0);
   const double eta = std::min(SEARCH_RTOL, std::max(0.5 * EquilibriumTol(st.rscale) / st.rnorm, st.rnorm / st.rscale));
   PetscReal bnorm;

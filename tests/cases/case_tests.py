@@ -1307,6 +1307,28 @@ def block_in_notch(runner):
                        np.any((small.nodes()["active"] == 1) & (small.nodes()["y"] == 0)))
 
 
+@test("svk_notch_cycle")
+def svk_notch_cycle(runner):
+    """svk block in the notch: with the lagged searches (the default) its active set went round a loop of 11 sets
+    and every load-step cut failed (DIVERGED_CYCLING). A set that comes back now ends the lagged searches of the load
+    step, then switches one pair per update: the default converges in one load step to the state of exact Newton
+    (-newton_lagged_search false) and of refactoring (-contact_reuse_factorization false), which reach it directly."""
+    args = ["-options_file", "options/block_in_notch.yml", "-material_model", "svk"]
+    default = runner.run(args, "svk block in notch")
+    runner.expect_equal("one load step, no cut", default.get("iterations.load_steps"), 1)
+    expect_balance(runner, default, default.label)
+    for extra, what in ((["-newton_lagged_search", "false"], "exact Newton"),
+                        (["-contact_reuse_factorization", "false"], "refactoring")):
+        r = runner.run(args + extra, "svk block in notch, " + what)
+        runner.expect_equal("%s: one load step" % what, r.get("iterations.load_steps"), 1)
+        nodes, ref = r.nodes(), default.nodes()
+        runner.expect_true("%s: the same active nodes" % what, np.array_equal(nodes["active"], ref["active"]))
+        runner.expect_equal("%s: active pairs" % what, r.get("contact.active_pairs"), default.get("contact.active_pairs"))
+        u = displacement(ref)
+        runner.expect_close("%s: displacement" % what, displacement(nodes), u, 0, 1e-8 * np.abs(u).max())
+        runner.expect_close("%s: lambda" % what, nodes["lambda"], ref["lambda"], 0, 1e-8 * np.abs(ref["lambda"]).max())
+
+
 def random_case(rng):
     """Options of a random small contact problem: a unit block (notch_block.msh) or the 2 x 1 mixed block
     (block.msh), linear or svk, supported on its left side or held only by contact, a random top traction, and a

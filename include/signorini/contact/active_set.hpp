@@ -105,7 +105,7 @@ public:
   void Set(const std::vector<char> &flags) { active_ = flags; }
   /// Starts a load step: forgets the sets seen in the previous one. load_scale: the largest nodal force of the
   /// step's loads (max |f_i|), the force scale of TensileTol with the multipliers.
-  void BeginStep(double load_scale) { seen_.clear(), load_scale_ = load_scale; }
+  void BeginStep(double load_scale) { seen_.clear(), load_scale_ = load_scale, single_ = false; }
 
   /// The set of the first solve of a load step: in the first step the pairs in their zone whose gap is within
   /// -contact_touch_tol, later the converged set of the previous step. Records the gaps at the start of the step.
@@ -122,10 +122,21 @@ public:
   [[nodiscard]] PetscErrorCode Next(const std::vector<PairState> &states, PetscInt it, const std::vector<PairKey> &keys,
                                     const std::vector<std::array<double, 3>> &normals, std::vector<char> &next,
                                     PetscInt &changes) const;
-  /// Records `next` and tells whether it came back: an earlier set of this load step (`repeats` times before).
-  /// Collective.
+  /// After the active set came back (Seen): from now on in this load step each update switches one pair only, the
+  /// one that violates its condition most (|lambda - c g|: the deepest penetration or the most tensile multiplier;
+  /// the smallest node and facet numbers at a tie), applied to `next` now (changes: 1). Updates that switch many pairs
+  /// at once can cycle between two sets that each overshoot the other (svk's block in the notch alternated between
+  /// 21 and 16 active pairs); one switch at a time walks from one to the other. The sets seen so far are forgotten:
+  /// a set that comes back in this mode ends the step. Collective.
+  [[nodiscard]] PetscErrorCode SwitchOneAtATime(const std::vector<PairState> &states, const std::vector<PairKey> &keys,
+                                                std::vector<char> &next, PetscInt &changes);
+  bool OneAtATime() const { return single_; }
+  /// Forgets the sets seen so far in this load step (the step goes on another way).
+  void Forget() { seen_.clear(); }
+  /// Records `next` (unless record is false) and tells whether it came back: an earlier set of this load step
+  /// (`repeats` times before). Collective.
   [[nodiscard]] PetscErrorCode Seen(const std::vector<char> &next, const std::vector<PairKey> &keys, int repeats,
-                                    bool &cycling);
+                                    bool &cycling, bool record = true);
   /// The certificate of a state: states hold the gaps, multipliers and active flags of the current set;
   /// equilibrium and its tolerance come from the caller's residual. Collective.
   [[nodiscard]] PetscErrorCode Certify(const std::vector<PairState> &states, const std::vector<PairKey> &keys,
@@ -145,8 +156,14 @@ private:
     return std::min(params_.ForceTol(), MULTIPLIER_RTOL * std::max(load_scale_, max_lambda));
   }
 
+  /// Keeps in `next` one of the pairs it switches against the current set: the largest |lambda - c g|, then the
+  /// smallest node and facet numbers (the same on every partition). Collective.
+  [[nodiscard]] PetscErrorCode KeepOneSwitch(const std::vector<PairState> &states, const std::vector<PairKey> &keys,
+                                             std::vector<char> &next) const;
+
   MPI_Comm comm_;
   ActiveSetParams params_;
+  bool single_ = false; ///< SwitchOneAtATime
   double load_scale_ = 0; ///< BeginStep
   std::vector<char> active_;
   std::vector<unsigned long long> seen_;

@@ -143,6 +143,7 @@ private:
     bool searching = true;   ///< the next solve's active set is a new one (the first, or a change)
     bool lagged = false;     ///< the next solve is a condensed search with the factored tangent (-newton_lagged_search)
     double lag_rnorm = -1;   ///< the residual before the last solve (none: -1), for LAGGED_CONTRACTION
+    bool exact_newton = false; ///< svk: the active set came back, no more lagged searches in this load step
     double correction_rtol = 0; ///< linear: the next solve only corrects the equilibrium residual, to this tolerance
     bool corrected = false;     ///< the last solve was such a correction
     PetscInt set_changes = 0;   ///< iterations of this load step that changed the active set
@@ -163,7 +164,7 @@ private:
   enum class Outcome { SOLVE, EXTENDED, CONVERGED, STOP };
   [[nodiscard]] PetscErrorCode LoadStep(PetscInt step, double factor, bool first, bool &ok);
   [[nodiscard]] PetscErrorCode EvaluateIterate(StepState &st, PetscInt it);
-  [[nodiscard]] PetscErrorCode StepControl(StepState &st, PetscInt it, PetscInt changes, Outcome &outcome);
+  [[nodiscard]] PetscErrorCode StepControl(StepState &st, PetscInt it, PetscInt &changes, Outcome &outcome);
   [[nodiscard]] PetscErrorCode AssembleSystem(StepState &st);
   [[nodiscard]] PetscErrorCode SolveAndUpdate(StepState &st);
   /// Whether the next solve can be condensed (StepState::base).
