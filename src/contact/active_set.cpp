@@ -7,22 +7,28 @@
 
 namespace signorini {
 
-void DropParallelPairs(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
-                       std::vector<char> &next) {
+void DropParallelPairs(const std::vector<PairState> &states, const std::vector<PairKey> &keys,
+                       const std::vector<std::array<double, 3>> &normals, double gap_tol, std::vector<char> &next) {
   const double cos_parallel = std::cos(M_PI / 180.0);
   for (std::size_t p = 0; p < keys.size(); ++p) {
     if (!next[p]) continue;
-    for (std::size_t q = p + 1; q < keys.size() && keys[q].vertex == keys[p].vertex; ++q) {
+    for (std::size_t q = p + 1; q < keys.size() && keys[q].vertex == keys[p].vertex && next[p]; ++q) {
       double dot = 0;
       for (int d = 0; d < 3; ++d) dot += normals[p][d] * normals[q][d];
-      if (next[q] && dot > cos_parallel) next[q] = 0;
+      if (!next[q] || dot <= cos_parallel) continue;
+      // The pair the node penetrates deeper by more than gap_tol stays; within it (collinear facets have the same
+      // gap), the active one, else the earlier one.
+      const bool q_deeper = states[q].gap < states[p].gap - gap_tol;
+      const bool tie = !q_deeper && !(states[p].gap < states[q].gap - gap_tol);
+      if (q_deeper || (tie && states[q].active && !states[p].active)) next[p] = 0;
+      else next[q] = 0;
     }
   }
 }
 
 void ProposeSet(const std::vector<PairState> &states, double c, double tol, double activate_tol,
                 const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
-                std::vector<char> &next) {
+                std::vector<char> &next, double gap_tol) {
   next.resize(states.size());
   for (std::size_t p = 0; p < states.size(); ++p) next[p] = NextActive(states[p], c, tol, activate_tol);
   for (std::size_t a = 0; a < states.size();) {
@@ -41,7 +47,7 @@ void ProposeSet(const std::vector<PairState> &states, double c, double tol, doub
         if (next[p] && !states[p].active && p != first) next[p] = 0;
     a = b;
   }
-  DropParallelPairs(keys, normals, next);
+  DropParallelPairs(states, keys, normals, gap_tol, next);
 }
 
 bool Certificate::Satisfied() const { return Violation().empty(); }
@@ -80,7 +86,7 @@ void ActiveSet::First(const std::vector<PairState> &states, bool first_step, con
   for (std::size_t p = 0; p < states.size(); ++p) start_gap_[p] = states[p].gap;
   for (std::size_t p = 0; p < states.size(); ++p)
     next[p] = first_step ? (states[p].InZone() && states[p].gap <= params_.touch_tol) : active_[p];
-  DropParallelPairs(keys, normals, next);
+  DropParallelPairs(states, keys, normals, params_.GapTol(), next);
 }
 
 PetscErrorCode ActiveSet::Next(const std::vector<PairState> &states, PetscInt it, const std::vector<PairKey> &keys,
@@ -106,7 +112,7 @@ PetscErrorCode ActiveSet::Next(const std::vector<PairState> &states, PetscInt it
   const double tol = TensileTol(global[1]), activate_tol = std::max(params_.ForceTol(), params_.c * frac * gdeepest);
   std::vector<PairState> current = states;
   for (std::size_t p = 0; p < states.size(); ++p) current[p].active = active_[p];
-  ProposeSet(current, params_.c, tol, activate_tol, keys, normals, next);
+  ProposeSet(current, params_.c, tol, activate_tol, keys, normals, next, params_.GapTol());
   if (it == 1 && params_.activation_gap_factor > 0 && start_gap_.size() == states.size() && gdeepest > 0) {
     double g = -INFINITY, G;
     for (std::size_t p = 0; p < states.size(); ++p)
@@ -201,7 +207,7 @@ PetscErrorCode ActiveSet::Certify(const std::vector<PairState> &states, const st
   }
   PetscCallMPI(MPI_Allreduce(m, g, 6, MPI_DOUBLE, MPI_MAX, comm_));
   const double tensile_tol = TensileTol(g[5]);
-  ProposeSet(states, params_.c, tensile_tol, params_.ForceTol(), keys, normals, next);
+  ProposeSet(states, params_.c, tensile_tol, params_.ForceTol(), keys, normals, next, params_.GapTol());
   for (std::size_t p = 0; p < states.size(); ++p) counts[0] += next[p] != (char)states[p].active;
   PetscCallMPI(MPI_Allreduce(counts, gcounts, 2, MPIU_INT, MPI_SUM, comm_));
   cert.max_penetration = std::max(0.0, g[0]);

@@ -1241,6 +1241,42 @@ def arc_vertex_under_node(runner):
         np.abs(clearance[active]).max(), bound[active].max()), np.all(np.abs(clearance[active]) <= bound[active]))
 
 
+@test("bowl_vertex_under_corners")
+def bowl_vertex_under_corners(runner):
+    """The block in a bowl of radius 5 whose two arcs are faceted by 20 segments of 0.9 degrees, with a vertex exactly
+    under each bottom corner: the corners slide up over a concave joint of two facets within 1 degree of each other,
+    which counted as one constraint and kept the facet the corner had left while it penetrated the next one
+    (DIVERGED_CERTIFICATE, 8.5e-5 deep). Now it converges on 1 and 2 ranks alike, equals the arcs given as segments,
+    and no bottom node ends inside the faceted bowl."""
+    c = np.sqrt(24.0)
+    right, left = np.degrees(np.arctan2(-c, 1)), np.degrees(np.arctan2(-c, -1))
+    arcs = [[1, c, 5, right - 9, right + 9, 20], [1, c, 5, left - 9, left + 9, 20]]
+    text = ",".join(",".join("%.17g" % v for v in a) for a in arcs)
+    args = ["-options_file", "options/block_on_floor.yml", "-obstacle_segments", "-1,-1,3,-1"]
+    one = runner.run(args + ["-obstacle_arcs", text], "block in a faceted bowl")
+    two = runner.run(args + ["-obstacle_arcs", text], "block in a faceted bowl", np_=2)
+    segments = runner.run(["-options_file", "options/block_on_floor.yml", "-obstacle_segments",
+                           "-1,-1,3,-1," + ",".join(arc_segments(*a) for a in arcs)], "block in a bowl of segments")
+    expect_balance(runner, one, one.label)
+    for r in (two, segments):
+        expect_same_state(runner, one, r)
+    nodes = one.nodes()
+    bottom = np.abs(nodes["y"]) < 1e-12
+    x = nodes["x"][bottom] + nodes["u_x"][bottom]
+    y = nodes["y"][bottom] + nodes["u_y"][bottom]
+    least = np.inf
+    for a in arcs:
+        t = np.radians(np.linspace(a[3], a[4], a[5] + 1))
+        px, py = a[0] + a[2] * np.cos(t), a[1] + a[2] * np.sin(t)
+        over = (x >= px.min()) & (x <= px.max())
+        if over.any():
+            least = min(least, float((y[over] - np.interp(x[over], px, py)).min()))
+    runner.expect_true("both corners over the bowl's arcs", np.isfinite(least))
+    runner.expect_true("no bottom node inside the faceted bowl (least clearance %.3g)" % least, least > -1e-9)
+    corners = nodes["active"][bottom][np.isin(nodes["x"][bottom], [0.0, 2.0])]
+    runner.expect_true("both bottom corners active", corners.size == 2 and bool(np.all(corners > 0)))
+
+
 @test("activation_rules")
 def activation_rules(runner):
     """The first update's damping rules take other paths to the same state: the default (-contact_activation_gap_factor

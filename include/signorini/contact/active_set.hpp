@@ -44,19 +44,22 @@ struct PairKey {
 };
 
 /// Two active pairs of one node with normals within 1 degree, e.g. at the joint of collinear segments, are the same
-/// constraint twice and would make the saddle-point matrix singular: the later pair is dropped.
-void DropParallelPairs(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
-                       std::vector<char> &next);
+/// constraint twice and would make the saddle-point matrix singular: the one the node penetrates less (by its gap in
+/// states, by more than gap_tol) is dropped; within gap_tol the inactive one, else the later one. Keeping the earlier
+/// one whatever the gaps held a node that slid over the concave joint of two facets 0.9 degrees apart on the facet it
+/// left, while it penetrated the other.
+void DropParallelPairs(const std::vector<PairState> &states, const std::vector<PairKey> &keys,
+                       const std::vector<std::array<double, 3>> &normals, double gap_tol, std::vector<char> &next);
 
 /// The set of the next solve: NextActive for each pair (activate_tol for the inactive ones), then, per node, among
 /// the pairs it would newly activate: if the node went through a facet on its path X -> x, only the facet it
 /// crossed first (at a tie, e.g. through the joint of two facets, the deeper penetration) is activated, not the
 /// facets whose infinite strip the displaced node happens to lie in; a node at a concave corner gets its second
-/// facet in a later iteration, once the first holds it. Then parallel pairs are pruned. keys: pairs of one node
-/// are adjacent.
+/// facet in a later iteration, once the first holds it. Then parallel pairs are pruned (DropParallelPairs, gap_tol).
+/// keys: pairs of one node are adjacent.
 void ProposeSet(const std::vector<PairState> &states, double c, double tol, double activate_tol,
                 const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
-                std::vector<char> &next);
+                std::vector<char> &next, double gap_tol = 0);
 
 /// The discrete Signorini conditions at a state, checked over every candidate pair; the residuals and the
 /// thresholds they are held to. Satisfied() is the only way the loop reports convergence.

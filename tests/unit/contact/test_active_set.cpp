@@ -143,6 +143,30 @@ TEST(ProposeSet, ParallelPairsOfOneNodeCountOnce) {
   EXPECT_EQ(next, (std::vector<char>{1, 0, 1}));
 }
 
+TEST(ProposeSet, ParallelPairsKeepTheDeeperPenetration) {
+  // One node, two facets 0.9 degrees apart: the active one (gap 0) and the next one, penetrated by 1e-4 after the
+  // node slid over their concave joint. The deeper one stays; within gap_tol the active one does.
+  const double a = 0.9 * M_PI / 180;
+  const std::vector<std::array<double, 3>> n = {{{0, 1, 0}}, {{-std::sin(a), std::cos(a), 0}}};
+  std::vector<PairState> s(2);
+  s[0].inside = s[1].inside = true;
+  s[0].active = true, s[0].lambda = 1, s[0].gap = 0;
+  s[1].gap = -1e-4;
+  std::vector<char> next;
+  ProposeSet(s, C, TOL, TOL, Keys({0, 0}), n, next, 1e-9);
+  EXPECT_EQ(next, (std::vector<char>{0, 1}));
+  // Penetrations that activate a pair (C 1e-8 > TOL) but lie within gap_tol 1e-7 of the active pair's gap.
+  s[1].gap = -1e-8;
+  ProposeSet(s, C, TOL, TOL, Keys({0, 0}), n, next, 1e-7);
+  EXPECT_EQ(next, (std::vector<char>{1, 0}));
+  s[0].active = false, s[0].lambda = 0, s[0].gap = -1e-8;
+  s[1].active = true, s[1].lambda = 1, s[1].gap = 0;
+  ProposeSet(s, C, TOL, TOL, Keys({0, 0}), n, next, 1e-7);
+  EXPECT_EQ(next, (std::vector<char>{0, 1}));
+  ProposeSet(s, C, TOL, TOL, Keys({0, 0}), n, next, 1e-9); // beyond gap_tol: the deeper one
+  EXPECT_EQ(next, (std::vector<char>{1, 0}));
+}
+
 TEST(Certificate, NamesTheFirstViolatedCondition) {
   Certificate c;
   c.gap_tol = 1e-9, c.lambda_tol = 1e-6, c.complementarity_tol = 1e-9, c.equilibrium_tol = 1e-8;
