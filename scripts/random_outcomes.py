@@ -1,0 +1,56 @@
+#!/usr/bin/python3
+"""Outcomes of signorini on random small contact problems: a robustness survey, for comparing two builds.
+
+    scripts/random_outcomes.py [--exe build/signorini] [--cases 300] [--seed 777]
+
+The problems are those of the property test random_cases (tests/cases/case_tests.py, random_case): a unit block or
+the 2 x 1 block, linear or svk, on a floor or a disc with optional walls, supported on its left side or held by
+contact alone, under a random top traction; many of them rightly fail (a body that nothing holds). Each case prints
+one line: its number, OK with its active-set iterations, load steps, active pairs and max |u|, or FAIL with the
+reason (DIVERGED_..., SINGULAR for the singular-system message, OTHER). Then the counts. Two builds run with the
+same --seed see the same cases, so `diff` of their outputs shows what changed (README, Robustness survey).
+"""
+import argparse
+import collections
+import os
+import re
+import subprocess
+import sys
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "tests", "cases"))
+from case_tests import random_case  # noqa: E402
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--exe", default=os.path.join(ROOT, "build", "signorini"))
+    parser.add_argument("--cases", type=int, default=300)
+    parser.add_argument("--seed", type=int, default=777)
+    opts = parser.parse_args()
+    rng = np.random.default_rng(opts.seed)
+    counts = collections.Counter()
+    for k in range(opts.cases):
+        args = random_case(rng)
+        run = subprocess.run([opts.exe] + args, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                             text=True, timeout=300)
+        if run.returncode == 0:
+            m = re.search(r"CONVERGED_\w+ after (\d+) active-set iteration\(s\) in (\d+) load step\(s\): (\d+) active",
+                          run.stdout)
+            u = re.search(r"max \|u\| (\S+)", run.stdout)
+            if not m or not u:
+                sys.exit("case %d exited 0 without a summary:\n%s" % (k, run.stdout))
+            print(k, "OK", m.group(1), m.group(2), m.group(3), u.group(1))
+            counts["OK"] += 1
+        else:
+            m = re.search(r"(DIVERGED_\w+)", run.stdout)
+            reason = m.group(1) if m else ("SINGULAR" if "is singular" in run.stdout else "OTHER")
+            print(k, "FAIL", reason)
+            counts[reason] += 1
+    print("counts:", " ".join("%s %d" % kv for kv in sorted(counts.items())))
+
+
+if __name__ == "__main__":
+    main()
