@@ -484,7 +484,9 @@ TEST(ReadGmshElements, PolylineKeepsTheFileOrderOfItsNodes) {
   for (int e = 0; e < 30; ++e) {
     const int *v = &set.nodes[set.offsets[e]];
     EXPECT_LT(set.X(v[0])[0], set.X(v[1])[0]);
-    if (e > 0) EXPECT_EQ(v[0], set.nodes[set.offsets[e - 1] + 1]);
+    if (e > 0) {
+      EXPECT_EQ(v[0], set.nodes[set.offsets[e - 1] + 1]);
+    }
   }
 }
 
