@@ -1,6 +1,8 @@
 // Gap, normal and constraint row of every candidate pair at the current displacement.
 #include "signorini/contact/constraints.hpp"
 
+#include "signorini/contact/contact_set.hpp"
+
 namespace signorini {
 
 void EvaluatePairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
@@ -55,6 +57,31 @@ void EvaluatePairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOpti
       row.coef[row.ncols] = -normals[p][k];
       ++row.ncols;
     }
+  }
+  // svk: a node on the apex of a convex joint projects onto both facets only by the projection's tolerance, and it
+  // is outside the obstacle when it is outside either: the nearer facet alone is its zone there (the first at a tie),
+  // as for the linear material's reference zones (FindContactPairs). Both zones would hold it in the valley of the
+  // two extended facets. The pairs of one node are adjacent.
+  if (!large_deformation) return;
+  for (std::size_t a = 0; a < pairs.size();) {
+    std::size_t b = a;
+    while (b < pairs.size() && pairs[b].vertex == pairs[a].vertex) ++b;
+    const double *X = mesh.X(pairs[a].vertex), *u = &u_local[pairs[a].vertex * dim];
+    double x[3] = {0, 0, 0};
+    for (int d = 0; d < dim; ++d) x[d] = X[d] + u[d];
+    for (std::size_t p = a; p < b; ++p)
+      for (std::size_t q = p + 1; q < b; ++q) {
+        if (!states[p].inside || !states[q].inside ||
+            !ConvexJoint(obstacle, {pairs[p].facet, normals[p].data(), states[p].gap},
+                         {pairs[q].facet, normals[q].data(), states[q].gap}, x, dim, opts.search_radius))
+          continue;
+        const double dp = obstacle.facets[pairs[p].facet]->Distance(x);
+        const double dq = obstacle.facets[pairs[q].facet]->Distance(x);
+        const bool q_nearer = dq < dp - 1e-12 * opts.search_radius ||
+                              (dq <= dp + 1e-12 * opts.search_radius && pairs[q].facet < pairs[p].facet);
+        states[q_nearer ? p : q].inside = false;
+      }
+    a = b;
   }
 }
 

@@ -128,23 +128,20 @@ private:
   std::vector<PetscInt> everywhere_;
 };
 
-/// Whether the facets of pairs a and b of the node at x meet at a convex joint of the obstacle (each facet's centre
-/// lies behind the other's plane through the node's foot on it): the node is then outside the obstacle when it is
-/// outside either of them. False for a facet without a centre (a smooth or unbounded shape) and for coplanar facets.
-bool ConvexJoint(const Obstacle &obstacle, const ContactPair &a, const ContactPair &b, const double *x, int dim,
+} // namespace
+
+bool ConvexJoint(const Obstacle &obstacle, const FacetSide &a, const FacetSide &b, const double *x, int dim,
                  double length) {
   double ca[3], cb[3];
   if (!obstacle.facets[a.facet]->Centroid(ca) || !obstacle.facets[b.facet]->Centroid(cb)) return false;
   double behind_a = 0, behind_b = 0; // signed heights of each centre over the other facet's plane
   for (int k = 0; k < dim; ++k) {
-    behind_a += a.n0[k] * (cb[k] - (x[k] - a.g0 * a.n0[k]));
-    behind_b += b.n0[k] * (ca[k] - (x[k] - b.g0 * b.n0[k]));
+    behind_a += a.normal[k] * (cb[k] - (x[k] - a.gap * a.normal[k]));
+    behind_b += b.normal[k] * (ca[k] - (x[k] - b.gap * b.normal[k]));
   }
   const double tol = 1e-12 * length;
   return behind_a < -tol && behind_b < -tol;
 }
-
-} // namespace
 
 PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
                                 const std::vector<char> &fixed, std::vector<ContactPair> &pairs,
@@ -214,7 +211,9 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
     // node failed its certificate so). At a concave joint the node must clear both facets and keeps both zones.
     for (std::size_t p = first; p < pairs.size(); ++p)
       for (std::size_t q = p + 1; q < pairs.size(); ++q)
-        if (pairs[p].zone0 && pairs[q].zone0 && ConvexJoint(obstacle, pairs[p], pairs[q], x, dim, opts.search_radius))
+        if (pairs[p].zone0 && pairs[q].zone0 &&
+            ConvexJoint(obstacle, {pairs[p].facet, pairs[p].n0, pairs[p].g0},
+                        {pairs[q].facet, pairs[q].n0, pairs[q].g0}, x, dim, opts.search_radius))
           (nearer(p, q) ? pairs[q] : pairs[p]).zone0 = false;
   }
   std::sort(pairs.begin(), pairs.end(), [&](const ContactPair &a, const ContactPair &b) {

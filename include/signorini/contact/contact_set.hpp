@@ -49,6 +49,20 @@ struct ContactPair {
                       ///< an svk re-pairing), the start of the path X -> x of the activation rule
 };
 
+/// A facet as a node at x sees it: its index, the unit normal and the gap.
+struct FacetSide {
+  PetscInt facet;
+  const double *normal;
+  double gap;
+};
+
+/// Whether facets a and b, both seen from the node at x, meet at a convex joint of the obstacle (each facet's centre
+/// lies behind the other's plane through the node's foot on it): the node is then outside the obstacle when it is
+/// outside either of them. False for a facet without a centre (a smooth or unbounded shape) and for coplanar facets.
+/// length: the scale of the tolerance (1e-12 of it).
+bool ConvexJoint(const Obstacle &obstacle, const FacetSide &a, const FacetSide &b, const double *x, int dim,
+                 double length);
+
 /// Finds the candidate pairs of the owned candidate nodes whose every component is not fixed (fixed[v*dim+k] != 0
 /// marks a Dirichlet dof), at the positions X + u_local (u_local: dim values per local vertex; null: the reference
 /// configuration). Pairs are sorted by (node in file order, facet) so that every partition finds the same pairs.
