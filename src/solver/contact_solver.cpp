@@ -896,7 +896,10 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     }
     const std::string &why = stats_.reason;
     const std::string what =
-        why == "DIVERGED_CYCLING"                     ? "the active set cycles (an earlier active set came back)"
+        why == "DIVERGED_CYCLING"
+            ? "the active set cycles (an earlier set came back, also with one pair switched per update); a body held "
+              "only by contact at a point it can rock about (e.g. a block on a disc) cycles so: check that the "
+              "supports and obstacles hold every rigid-body motion"
         : why == "DIVERGED_NONINVERTIBLE_DEFORMATION" ? "the deformation became non-invertible (det F <= 0)"
         : why == "DIVERGED_NOT_HELD"
             ? "the body is not held: along a rigid-body motion that the supports and the active contact leave free, "
