@@ -30,7 +30,8 @@ fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 # mpiexec otherwise waits 2 s after a rank exits non-zero (README, Running).
 export OMPI_MCA_odls_base_sigkill_timeout=0
-jobs=$(nproc)
+# nproc honours OMP_NUM_THREADS (set to 1 above for the runs): the cores without it, for the build and CTest.
+jobs=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)
 if [ ! -f "$build_dir/CMakeCache.txt" ]; then
   cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release
 fi
