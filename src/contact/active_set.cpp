@@ -150,8 +150,14 @@ PetscErrorCode ActiveSet::KeepOneSwitch(const std::vector<PairState> &states, co
         mine = std::min<int64_t>(mine, k == 0 ? keys[p].original : keys[p].facet);
     PetscCallMPI(MPI_Allreduce(&mine, &key[k], 1, MPI_INT64_T, MPI_MIN, comm_));
   }
-  for (std::size_t p = 0; p < next.size(); ++p)
-    if (next[p] != active_[p] && !(keys[p].original == key[0] && keys[p].facet == key[1])) next[p] = active_[p];
+  for (std::size_t p = 0; p < next.size(); ++p) {
+    if (next[p] == active_[p]) continue;
+    if (keys[p].original == key[0] && keys[p].facet == key[1])
+      PetscCall(PetscInfo(nullptr, "one switch: node %" PetscInt_FMT " facet %" PetscInt_FMT " %s (lambda %g, gap %g)\n",
+                          keys[p].original, keys[p].facet, next[p] ? "activated" : "released", states[p].lambda,
+                          states[p].gap));
+    else next[p] = active_[p];
+  }
   PetscFunctionReturn(0);
 }
 

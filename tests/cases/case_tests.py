@@ -1251,6 +1251,34 @@ def arc_vertex_under_node(runner):
     runner.expect_true("svk: no bottom node inside the faceted bump (least clearance %.3g)" % least, least > -1e-9)
 
 
+@test("floor_end_under_beam")
+def floor_end_under_beam(runner):
+    """The cantilever beam pushed onto a floor that ends under it (x = 6): past the end nothing holds the beam, which
+    bends over the floor's corner. The nodes beyond the end used to take the floor as their zone when they were within
+    -contact_search_radius of it (the nearest-facet rule of a convex joint's wedge), held on its extended line: 1, 1
+    and 13 active nodes, max |u| 0.241, 0.202 and 0.053 for radii 0.08, 0.3 and 3. Now every radius gives one state,
+    on 1 and 2 ranks, with the floor's end node the only active one and the beam below the floor's line past it;
+    svk, whose zones are the current projections, agrees with itself for every radius."""
+    base = ["-options_file", "options/beam_on_floor.yml", "-obstacle_segments", "2,-0.05,6,-0.05"]
+    ref = runner.run(base, "beam over a floor's end")
+    for radius in ("0.08", "0.3", "3"):
+        expect_same_state(runner, ref, runner.run(base + ["-contact_search_radius", radius],
+                                                  "beam over a floor's end, radius " + radius))
+    expect_same_state(runner, ref, runner.run(base + ["-contact_search_radius", "3"], "radius 3", np_=2))
+    nodes = ref.nodes()
+    active = nodes["active"] > 0
+    runner.expect_true("the floor's end node (6, 0) alone is active (%s)" % list(zip(nodes["x"][active],
+                                                                                    nodes["y"][active])),
+                       active.sum() == 1 and abs(nodes["x"][active][0] - 6) < 1e-9 and nodes["y"][active][0] == 0)
+    past = (nodes["y"] == 0) & (nodes["x"] > 6.2)
+    runner.expect_true("the beam below the floor's line past its end (highest %.4g < -0.05)" %
+                       (nodes["y"][past] + nodes["u_y"][past]).max(),
+                       np.all(nodes["y"][past] + nodes["u_y"][past] < -0.05))
+    svk = [runner.run(base + ["-material_model", "svk", "-contact_search_radius", radius],
+                      "svk beam over a floor's end, radius " + radius) for radius in ("0.3", "3")]
+    expect_same_state(runner, svk[0], svk[1])
+
+
 @test("bowl_vertex_under_corners")
 def bowl_vertex_under_corners(runner):
     """The block in a bowl of radius 5 whose two arcs are faceted by 20 segments of 0.9 degrees, with a vertex exactly
