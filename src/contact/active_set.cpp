@@ -152,11 +152,11 @@ PetscErrorCode ActiveSet::KeepOneSwitch(const std::vector<PairState> &states, co
   }
   for (std::size_t p = 0; p < next.size(); ++p) {
     if (next[p] == active_[p]) continue;
-    if (keys[p].original == key[0] && keys[p].facet == key[1])
-      PetscCall(PetscInfo(nullptr, "one switch: node %" PetscInt_FMT " facet %" PetscInt_FMT " %s (lambda %g, gap %g)\n",
-                          keys[p].original, keys[p].facet, next[p] ? "activated" : "released", states[p].lambda,
-                          states[p].gap));
-    else next[p] = active_[p];
+    if (keys[p].original != key[0] || keys[p].facet != key[1]) next[p] = active_[p];
+    else
+      PetscCall(PetscInfo(nullptr, "one switch: node %" PetscInt_FMT " facet %" PetscInt_FMT " %s (lambda %g, gap "
+                          "%g)\n", keys[p].original, keys[p].facet, next[p] ? "activated" : "released",
+                          states[p].lambda, states[p].gap));
   }
   PetscFunctionReturn(0);
 }
