@@ -203,19 +203,21 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
     std::size_t nearest = first;
     for (std::size_t p = first; p < pairs.size(); ++p)
       if (nearer(p, nearest)) nearest = p;
-    // Only over such a wedge: another of the node's facets is as near (both nearest points are the joint) and meets
-    // the nearest one at a convex joint. Beyond the free end of a facet (a floor that ends under a beam) the obstacle
-    // is not below the node: the nearest-facet zone held the nodes there on the floor's extended line, so that the
-    // result depended on -contact_search_radius (the beam beyond a floor's end: 1, 1 and 13 active nodes, max |u|
-    // 0.241, 0.202 and 0.053 for radii 0.08, 0.3 and 3).
+    // Only there, or where the node is nearly over the facet's edge: its distance past the edge (along the facet) at
+    // most its height over the facet's plane, as on a symmetry plane where a quarter of a meshed surface ends (the
+    // punch). Beyond the free end of a facet (a floor that ends under a beam) the obstacle is not below the node: the
+    // nearest-facet zone held the nodes there on the floor's extended line as far as -contact_search_radius reached,
+    // so that the result depended on it (the beam beyond a floor's end: 1, 1 and 13 active nodes, max |u| 0.241,
+    // 0.202 and 0.053 for radii 0.08, 0.3 and 3).
     if (!any && nearest < pairs.size()) {
-      bool wedge = false;
-      for (std::size_t q = first; q < pairs.size() && !wedge; ++q)
-        wedge = q != nearest &&
-                std::abs(distance[q] - distance[nearest]) <= 1e-9 * distance[nearest] + 1e-12 * opts.search_radius &&
-                ConvexJoint(obstacle, {pairs[nearest].facet, pairs[nearest].n0, pairs[nearest].g0},
-                            {pairs[q].facet, pairs[q].n0, pairs[q].g0}, x, dim, opts.search_radius);
-      pairs[nearest].zone0 = wedge;
+      const ContactPair &n = pairs[nearest];
+      bool own = distance[nearest] * distance[nearest] <= 2 * n.g0 * n.g0; // past the edge by at most the height
+      for (std::size_t q = first; q < pairs.size() && !own; ++q)
+        own = q != nearest &&
+              std::abs(distance[q] - distance[nearest]) <= 1e-9 * distance[nearest] + 1e-12 * opts.search_radius &&
+              ConvexJoint(obstacle, {n.facet, n.n0, n.g0}, {pairs[q].facet, pairs[q].n0, pairs[q].g0}, x, dim,
+                          opts.search_radius);
+      pairs[nearest].zone0 = own;
     }
     // A node on the apex of a convex joint projects onto both facets only by the tolerance of the projection (the
     // edge of both), and the obstacle is outside it when it is outside either facet: the nearer facet alone is its
