@@ -75,10 +75,9 @@ void EvaluatePairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOpti
             !ConvexJoint(obstacle, {pairs[p].facet, normals[p].data(), states[p].gap},
                          {pairs[q].facet, normals[q].data(), states[q].gap}, x, dim, opts.search_radius))
           continue;
-        const double dp = obstacle.facets[pairs[p].facet]->Distance(x);
-        const double dq = obstacle.facets[pairs[q].facet]->Distance(x);
-        const bool q_nearer = dq < dp - 1e-12 * opts.search_radius ||
-                              (dq <= dp + 1e-12 * opts.search_radius && pairs[q].facet < pairs[p].facet);
+        const bool q_nearer = NearerFacet(obstacle.facets[pairs[q].facet]->Distance(x), pairs[q].facet,
+                                          obstacle.facets[pairs[p].facet]->Distance(x), pairs[p].facet,
+                                          opts.search_radius);
         states[q_nearer ? p : q].inside = false;
       }
     a = b;

@@ -195,8 +195,7 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
     // A node over the wedge of a convex joint projects onto none of its facets: the nearest one (the first at a
     // tie, both meeting at the joint) is its own.
     const auto nearer = [&](std::size_t p, std::size_t q) {
-      return distance[p] < distance[q] - 1e-12 * opts.search_radius ||
-             (distance[p] <= distance[q] + 1e-12 * opts.search_radius && pairs[p].facet < pairs[q].facet);
+      return NearerFacet(distance[p], pairs[p].facet, distance[q], pairs[q].facet, opts.search_radius);
     };
     bool any = false;
     for (std::size_t p = first; p < pairs.size(); ++p) any = any || pairs[p].inside0;

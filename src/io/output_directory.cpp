@@ -40,13 +40,14 @@ std::string StagingDirectory(const std::string &dir) { return (fs::path(dir) / S
 
 std::string OutputDirectoryProblem(const std::string &dir_name) {
   std::error_code ec;
-  fs::path path = fs::absolute(fs::path(dir_name), ec);
+  const fs::path requested = fs::absolute(fs::path(dir_name), ec);
   if (ec)
     return "-output_dir '" + dir_name + "' is not a usable path (" + ec.message() + "); expected a directory path";
   // The directory itself, else the nearest parent that exists (the run creates the rest).
+  fs::path path = requested;
   while (!fs::exists(fs::symlink_status(path, ec)) && path.has_parent_path() && path.parent_path() != path)
     path = path.parent_path();
-  const std::string what = path == fs::absolute(fs::path(dir_name), ec) ? "" : " (its parent '" + path.string() + "')";
+  const std::string what = path == requested ? "" : " (its parent '" + path.string() + "')";
   if (!fs::is_directory(path, ec))
     return "-output_dir '" + dir_name + "'" + what + " is not a directory; expected a writable directory";
   if (access(path.c_str(), W_OK | X_OK) != 0)

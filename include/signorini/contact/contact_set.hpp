@@ -56,6 +56,12 @@ struct FacetSide {
   double gap;
 };
 
+/// Whether a facet at distance dp (index fp) is nearer to a node than one at distance dq (index fq): by more than
+/// 1e-12 length, else the smaller index (the first at a tie, e.g. both meeting at a joint under the node).
+inline bool NearerFacet(double dp, PetscInt fp, double dq, PetscInt fq, double length) {
+  return dp < dq - 1e-12 * length || (dp <= dq + 1e-12 * length && fp < fq);
+}
+
 /// Whether facets a and b, both seen from the node at x, meet at a convex joint of the obstacle (each facet's centre
 /// lies behind the other's plane through the node's foot on it): the node is then outside the obstacle when it is
 /// outside either of them. False for a facet without a centre (a smooth or unbounded shape) and for coplanar facets.
