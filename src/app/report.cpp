@@ -233,7 +233,9 @@ std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &s
       .Integer("load_steps", st.steps)
       .Integer("step_cuts", st.cuts)
       .Integer("stabilised_solves", st.stabilised_solves)
-      .Integer("repairings", st.repairings);
+      .Integer("repairings", st.repairings)
+      .Integer("search_widenings", st.search_widenings)
+      .Number("search_radius", st.search_radius);
   j.BeginArray("history");
   for (const auto &r : st.history)
     j.BeginObject()

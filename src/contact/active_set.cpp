@@ -59,10 +59,10 @@ std::string Certificate::Violation() const {
                   gap_tol);
   else if (!(unpaired_penetration <= gap_tol))
     std::snprintf(text, sizeof(text),
-                  "node %" PetscInt_FMT " (at %g, %g, %g) penetrates the obstacle by %g but has no contact pair: it "
-                  "was farther than -contact_search_radius %g from the obstacle when the pairs were found; raise "
-                  "-contact_search_radius", unpaired_node, unpaired_x[0], unpaired_x[1], unpaired_x[2],
-                  unpaired_penetration, search_radius);
+                  "node %" PetscInt_FMT " (at %g, %g, %g) penetrates the obstacle by %g on a facet it has no contact "
+                  "pair with: the facet was farther than -contact_search_radius %g from the node when the pairs were "
+                  "found, or (linear material) its zone did not hold the node there", unpaired_node, unpaired_x[0],
+                  unpaired_x[1], unpaired_x[2], unpaired_penetration, search_radius);
   else if (!(min_active_lambda >= -lambda_tol))
     std::snprintf(text, sizeof(text), "an active pair carries a tensile multiplier %g (tolerance %g)",
                   min_active_lambda, lambda_tol);

@@ -15,7 +15,7 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
   // beyond 1e-2 projects a node off its facet, a radius beyond 1e5 diagonals pairs everything anyway (and keeps the
   // bin search finite), a gap factor beyond 1e6 holds nothing back, and c far from E t makes lambda - c g compare
   // numbers of unrelated magnitudes.
-  const RealRange radius{0, 1e5, true, false, L, "body diagonal"}, gap{0, 1e-3, false, false, L, "body diagonal"};
+  const RealRange radius{0, SEARCH_RADIUS_MAX, true, false, L, "body diagonal"}, gap{0, 1e-3, false, false, L, "body diagonal"};
   const RealRange alpha{0, 1e-2}, fraction{0, 1, false, true}, gap_factor{0, 1e6};
   const RealRange c{1e-6, 1e6, false, false, k, "E x thickness"};
   PetscFunctionBeginUser;
@@ -28,7 +28,8 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
   PetscCall(OptionsStringList(PetscOptionsObject, "-contact_groups", "Physical groups of candidate nodes (default: "
                               "whole boundary)", "no candidate nodes", "physical group names", opts.groups));
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_search_radius", "Pair a node with the facets within this "
-                        "distance (default 0.1 x body diagonal)", radius, opts.search_radius));
+                        "distance (default 0.1 x body diagonal); a load step that ends with a node without a pair "
+                        "inside the obstacle is repeated with a wider radius", radius, opts.search_radius));
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_touch_tol", "Initial gap that counts as touching (default 1e-8 "
                         "x diagonal)", gap, opts.touch_tol));
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_gap_tol", "Penetration tolerance of the active-set rule "
@@ -240,13 +241,16 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
 PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
                                const std::vector<char> &candidate, const std::vector<char> &held,
                                const std::vector<char> &fixed, const std::vector<ContactPair> &pairs,
-                               const double *u_local, Penetration &unpaired, Penetration &prescribed) {
+                               const double *u_local, Penetration &unpaired, Penetration &prescribed,
+                               std::vector<std::array<PetscInt, 2>> *found) {
   const int dim = mesh.Dim();
   const PetscInt nv = mesh.NumLocalVertices();
   PetscFunctionBeginUser;
-  std::vector<char> paired(nv, 0);
-  for (const auto &p : pairs) paired[p.vertex] = 1;
-  const auto examined = [&](PetscInt v) { return (candidate[v] || held[v]) && !paired[v] && mesh.Owned(v); };
+  std::vector<std::array<PetscInt, 2>> paired(pairs.size());
+  for (std::size_t p = 0; p < pairs.size(); ++p) paired[p] = {pairs[p].vertex, pairs[p].facet};
+  std::sort(paired.begin(), paired.end());
+  const auto examined = [&](PetscInt v) { return (candidate[v] || held[v]) && mesh.Owned(v); };
+  if (found) found->clear();
   double reach = 0;
   for (PetscInt v = 0; v < nv; ++v)
     if (examined(v)) {
@@ -268,6 +272,7 @@ PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const
       for (int k = 0; k < dim; ++k) x[k] = mesh.X(v)[k] + u_local[v * dim + k];
       bins.Find(x, near);
       for (PetscInt f : near) {
+        if (std::binary_search(paired.begin(), paired.end(), std::array<PetscInt, 2>{v, f})) continue;
         const Projection p = obstacle.facets[f]->Project(x, opts.alpha_tol);
         if (!p.inside) continue;
         // As in FindContactPairs: a facet whose normal lies in the node's fixed components gets no pair.
@@ -276,6 +281,7 @@ PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const
           if (!fixed[v * dim + k]) free2 += p.normal[k] * p.normal[k];
         double &d = depth[free2 < 1e-12 ? 1 : 0][v];
         d = std::max(d, -p.gap);
+        if (found && free2 >= 1e-12 && -p.gap > opts.gap_tol) found->push_back({v, f});
       }
     }
   }

@@ -329,7 +329,7 @@ private:
 
 /// What PETSc would take silently from the YAML options file path (YamlOptions), as a message; empty when nothing
 /// or when the file does not parse (PETSc reports that, and the error handler names the file).
-std::string YamlFileProblem(const std::string &path) {
+std::string YamlFileProblem(const std::string &key, const std::string &path) {
   std::ifstream in(path, std::ios::binary);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   yaml_parser_t parser;
@@ -338,7 +338,13 @@ std::string YamlFileProblem(const std::string &path) {
   std::string problem;
   for (bool more = true; more && problem.empty();) {
     yaml_document_t doc;
-    if (!yaml_parser_load(&parser, &doc)) break;
+    if (!yaml_parser_load(&parser, &doc)) {
+      // A syntax error: named here with its line, as PETSc's own report names neither the option nor the line.
+      problem = key + " " + path + ", line " + std::to_string(parser.problem_mark.line + 1) + ", column " +
+                std::to_string(parser.problem_mark.column + 1) + ": " + (parser.problem ? parser.problem : "error") +
+                (parser.context ? std::string(" ") + parser.context : std::string()) + "; expected a valid YAML file";
+      break;
+    }
     yaml_node_t *root = yaml_document_get_root_node(&doc);
     more = root != nullptr;
     problem = YamlOptions(doc, path).Problem(root);
@@ -375,7 +381,7 @@ std::string OptionsFileProblem(int argc, char **argv, std::string &files) {
       return key + " " + path + ": " + problem + "; expected a readable YAML or PETSc options file";
     const bool yaml = key == "-options_file_yaml" || EndsWith(path, ".yml") || EndsWith(path, ".yaml");
     if (!yaml) NamedOptionsFiles(PlainFileWords(path), named);
-    else if (const std::string taken = YamlFileProblem(path); !taken.empty()) return taken;
+    else if (const std::string taken = YamlFileProblem(key, path); !taken.empty()) return taken;
   }
   return "";
 }

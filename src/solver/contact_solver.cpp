@@ -348,7 +348,9 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
   PetscReal load_scale;
   PetscCall(VecNorm(fext_, NORM_INFINITY, &load_scale));
   active_set_.BeginStep(load_scale);
-  for (PetscInt it = 0;; ++it) {
+  widen_to_ = 0;
+  PetscInt it = 0;
+  for (;; ++it) {
     PetscInt changes = 0;
     PetscCall(EvaluateIterate(st, it));
     {
@@ -374,6 +376,90 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     PetscCall(AssembleSystem(st));
     PetscCall(SolveAndUpdate(st));
   }
+  if (!ok) PetscCall(UnpairedAfterFailure(st, it));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
+  const int dim = mesh_.Dim();
+  const bool large = material_.model == MaterialModel::SVK;
+  PetscFunctionBeginUser;
+  widen_to_ = 0;
+  if (stats_.reason == "DIVERGED_NONINVERTIBLE_DEFORMATION" || stats_.search_widenings >= MAX_WIDENINGS)
+    PetscFunctionReturn(0);
+  // The displacement of the step's last iterate (a condensed search keeps it at its base until it is expanded).
+  if (st.condensed) PetscCall(Materialise(st, it));
+  Penetration unpaired, prescribed;
+  std::vector<std::array<PetscInt, 2>> found;
+  PetscCall(DeepestUnpaired(mesh_, obstacle_, contact_, candidate_, held_, dirichlet_.fixed, pairs_, st.u_eval.data(),
+                            unpaired, prescribed, &found));
+  if (!(unpaired.depth > contact_.gap_tol)) PetscFunctionReturn(0);
+  // A node that went into the obstacle farther than the radius reaches, or started there deeper than it: the radius
+  // must cover the candidates' displacements, with room for the repeated step to move them on. The linear material
+  // also gets the pairs of the facets its nodes went into: a facet within the radius whose zone did not hold the
+  // node in the reference configuration has no pair, however wide the radius (a block pushed 0.3 sideways by its
+  // supports went 0.1 into a wall unseen while its corner was paired with the floor).
+  double reach = 0;
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    if (candidate_[v]) {
+      double u2 = 0;
+      for (int k = 0; k < dim; ++k) u2 += st.u_eval[v * dim + k] * st.u_eval[v * dim + k];
+      reach = std::max(reach, std::sqrt(u2));
+    }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &reach, 1, MPI_DOUBLE, MPI_MAX, mesh_.Comm()));
+  const double radius = std::min(std::max({2 * contact_.search_radius, 2 * reach, 2 * unpaired.depth}),
+                                 SEARCH_RADIUS_MAX * contact_.length);
+  bool more = !large && !found.empty();
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &more, 1, MPI_CXX_BOOL, MPI_LOR, mesh_.Comm()));
+  if (radius <= contact_.search_radius && !more) PetscFunctionReturn(0);
+  if (!large)
+    for (const auto &vf : found)
+      if (std::find(extra_pairs_.begin(), extra_pairs_.end(), vf) == extra_pairs_.end()) extra_pairs_.push_back(vf);
+  widen_to_ = std::max(radius, contact_.search_radius);
+  widen_node_ = unpaired.node;
+  widen_depth_ = unpaired.depth;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::WidenSearch(const std::vector<double> &lambda, const std::vector<double> &mult,
+                                          const std::vector<char> &active) {
+  const int dim = mesh_.Dim();
+  PetscFunctionBeginUser;
+  contact_.search_radius = widen_to_;
+  stats_.search_widenings++;
+  if (material_.model == MaterialModel::SVK) {
+    // svk searches its pairs again at the start of every load step (Repair), now with the wider radius.
+    PetscCall(AdoptPairs(pairs_, lambda, mult, active));
+    PetscFunctionReturn(0);
+  }
+  std::vector<ContactPair> pairs;
+  std::vector<char> candidate;
+  PetscCall(FindContactPairs(mesh_, obstacle_, contact_, dirichlet_.fixed, pairs, candidate));
+  pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [](const ContactPair &p) { return !p.zone0; }), pairs.end());
+  // The facets the nodes went into count in their zone from now on (the gap g0 + n0 u of the reference
+  // configuration, exact for a flat facet).
+  for (const auto &[v, f] : extra_pairs_) {
+    if (std::any_of(pairs.begin(), pairs.end(), [&](const ContactPair &p) { return p.vertex == v && p.facet == f; }))
+      continue;
+    const double *X = mesh_.X(v);
+    const Projection pr = obstacle_.facets[f]->Project(X, contact_.alpha_tol);
+    ContactPair pair{v, f, {pr.normal[0], pr.normal[1], pr.normal[2]}, pr.gap, pr.inside, true, {0, 0, 0}};
+    for (int k = 0; k < dim; ++k) pair.x0[k] = X[k];
+    pairs.push_back(pair);
+  }
+  std::sort(pairs.begin(), pairs.end(), [&](const ContactPair &a, const ContactPair &b) {
+    const PetscInt oa = mesh_.VertexOriginal(a.vertex), ob = mesh_.VertexOriginal(b.vertex);
+    return oa != ob ? oa < ob : a.facet < b.facet;
+  });
+  std::map<std::pair<PetscInt, PetscInt>, std::size_t> old;
+  for (std::size_t p = 0; p < pairs_.size(); ++p) old[{pairs_[p].vertex, pairs_[p].facet}] = p;
+  std::vector<double> l(pairs.size(), 0.0), m(pairs.size(), 0.0);
+  std::vector<char> a(pairs.size(), 0);
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const auto it = old.find({pairs[p].vertex, pairs[p].facet});
+    if (it != old.end()) l[p] = lambda[it->second], m[p] = mult[it->second], a[p] = active[it->second];
+  }
+  PetscCall(AdoptPairs(std::move(pairs), l, m, a));
   PetscFunctionReturn(0);
 }
 
@@ -894,6 +980,23 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
       PetscCall(step_done(step, t));
       continue;
     }
+    if (widen_to_ > 0) {
+      // A candidate went into a facet it has no pair with: the step is repeated, from the last converged state, with
+      // pairs found within a wider radius (linear material: and that pair; not a cut: the increment stays).
+      PetscCall(PetscPrintf(comm, "Load step at factor %g failed (%s) with node %" PetscInt_FMT " %g inside the "
+                            "obstacle, on a facet it has no contact pair with: searching the pairs again within %g (was "
+                            "%g)\n", t_try,
+                            stats_.reason.c_str(), widen_node_, widen_depth_, widen_to_, contact_.search_radius));
+      PetscCall(SetOwnedDisplacement(u_saved));
+      k_assembled_ = false;
+      pairs_ = pairs_saved;
+      PetscCall(WidenSearch(lambda_saved, mult_saved, active_saved));
+      pairs_saved = pairs_;
+      lambda_saved = lambda_;
+      mult_saved = mult_;
+      active_saved = active_set_.Flags();
+      continue;
+    }
     const std::string &why = stats_.reason;
     const std::string what =
         why == "DIVERGED_CYCLING"
@@ -937,6 +1040,7 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     mult_ = mult_saved;
     active_set_.Set(active_saved);
   }
+  stats_.search_radius = contact_.search_radius;
   // The final state is the last converged step's, whose pairs (states_), internal force (fint_) and certificate
   // StepControl left as they are.
   PetscCheck(certificate_.Satisfied(), comm, PETSC_ERR_NOT_CONVERGED,

@@ -1161,19 +1161,21 @@ def arc_segments(cx, cy, radius, theta0, theta1, n):
     return ",".join("%.17g,%.17g,%.17g,%.17g" % (x[k], y[k], x[k + 1], y[k + 1]) for k in range(n))
 
 
-def expect_same_state(runner, ref, r, keys=("iterations.active_set", "contact.active_pairs", "contact.active_nodes")):
+def expect_same_state(runner, ref, r, keys=("iterations.active_set", "contact.active_pairs", "contact.active_nodes"),
+                      tol=1e-10):
     """Two runs of one problem (e.g. the same obstacle given two ways): the same summary integers keys, the same active
-    nodes, and displacements and multipliers equal to round-off (1e-10 of the largest value: the same active set
-    gives the same linear system, assembled from coordinates that agree to the last digit or two)."""
+    nodes, and displacements and multipliers equal to round-off (tol of the largest value, 1e-10: the same active set
+    gives the same linear system, assembled from coordinates that agree to the last digit or two; svk's states from
+    two Newton paths agree to its tolerance, 1e-8)."""
     for key in keys:
         runner.expect_equal("%s: %s" % (r.label, key), r.get(key), ref.get(key))
     nodes, ref_nodes = r.nodes(), ref.nodes()
     runner.expect_true("%s: the same %d active nodes" % (r.label, int(ref_nodes["active"].sum())),
                        np.array_equal(nodes["active"], ref_nodes["active"]))
     u = displacement(ref_nodes)
-    runner.expect_close("%s: displacement" % r.label, displacement(nodes), u, 0, 1e-10 * np.abs(u).max())
+    runner.expect_close("%s: displacement" % r.label, displacement(nodes), u, 0, tol * np.abs(u).max())
     runner.expect_close("%s: lambda" % r.label, nodes["lambda"], ref_nodes["lambda"], 0,
-                        1e-10 * np.abs(ref_nodes["lambda"]).max())
+                        tol * np.abs(ref_nodes["lambda"]).max())
 
 
 def expect_balance(runner, r, what, atol=None):
@@ -1277,6 +1279,69 @@ def floor_end_under_beam(runner):
     svk = [runner.run(base + ["-material_model", "svk", "-contact_search_radius", radius],
                       "svk beam over a floor's end, radius " + radius) for radius in ("0.3", "3")]
     expect_same_state(runner, svk[0], svk[1])
+
+
+@test("search_radius_widened")
+def search_radius_widened(runner):
+    """A search radius too small for the problem is widened, not an error: a load step that ends with a candidate
+    node without a pair inside the obstacle is repeated with pairs found within a wider radius, and the run reaches
+    the state of a radius large enough from the start. Before, each of these runs stopped with DIVERGED_CERTIFICATE
+    ("raise -contact_search_radius"). 2D and 3D Hertz (nodes that travel farther than the radius), a block that starts
+    0.31 deep in an inclined wall (deeper than the default radius 0.22), linear and svk, on 1 and 2 ranks."""
+    hertz = ["-options_file", "options/hertz.yml"]
+    block = ["-mesh_file", "meshes/block.msh", "-material_E", "582.953", "-material_nu", "0.270", "-contact_groups",
+             "bottom,left,right", "-bc_dirichlet", "left:x", "-bc_traction", "top:0.0113083:-0.275243",
+             "-obstacle_segments", "-0.5,-0.0223755,2.5,-0.0223755,0,2,0,-0.5,1.39927,-0.0223755,2.39927,1.18651"]
+    cases = [(hertz, "0.01", "1e6", "2D Hertz"), (["-options_file", "options/hertz3d.yml"], "0.02", "1e6", "3D Hertz"),
+             (block, None, "3", "block deep in a wall"),
+             (hertz + ["-material_model", "svk"], "0.001", None, "svk 2D Hertz")]
+    for args, small, large, what in cases:
+        narrow = runner.run(args + (["-contact_search_radius", small] if small else []), what + ", narrow radius")
+        runner.expect_true("%s: the search was widened (%d times, to %g)" %
+                           (what, narrow.get("iterations.search_widenings"), narrow.get("iterations.search_radius")),
+                           narrow.get("iterations.search_widenings") >= 1 and
+                           narrow.get("iterations.search_radius") > float(small or 0.2236))
+        runner.expect_true("%s: the widening is reported" % what, "searching the pairs again within" in narrow.output)
+        ref = runner.run(args + (["-contact_search_radius", large] if large else []), what + ", wide radius")
+        runner.expect_equal("%s: no widening with the wide radius" % what, ref.get("iterations.search_widenings"), 0)
+        expect_same_state(runner, ref, narrow, keys=("contact.active_pairs", "contact.active_nodes"),
+                          tol=1e-8 if "svk" in args else 1e-10)
+    two = runner.run(block, "block deep in a wall, 2 ranks", np_=2)
+    expect_same_state(runner, runner.run(block, "block deep in a wall, 1 rank", np_=1), two,
+                      keys=("contact.active_pairs", "iterations.search_widenings"))
+
+
+@test("pushed_into_unpaired_wall")
+def pushed_into_unpaired_wall(runner):
+    """The unit block on a floor (candidates: its bottom only), pushed 0.3 to the right by its supports (left:x=0.3)
+    towards a steep wall from (1.2, 0) to (1.3, 1). The bottom corner (1, 0) is paired with the floor; the wall, 0.2
+    away, is within the search radius of 2 but its zone does not hold the corner in the reference configuration (the
+    corner projects onto the floor), so the corner had no pair with it. Before, the run converged at once with the
+    corner 0.1 inside the wall and a certificate that saw nothing, with any radius. Now the certificate examines every
+    facet a node has no pair with, the load step is repeated with the wall's pair for the corner, and no bottom node
+    ends inside the wall or the floor (checked from the node table against the polyline)."""
+    base = ["-mesh_file", "meshes/notch_block.msh", "-material_E", "100", "-material_nu", "0.3", "-contact_groups",
+            "bottom", "-bc_dirichlet", "left:x=0.3", "-bc_traction", "top:0:-0.5", "-obstacle_segments",
+            "-0.5,0,3,0,1.2,0,1.3,1"]
+    for radius in (None, "2"):
+        r = runner.run(base + (["-contact_search_radius", radius] if radius else []),
+                       "block pushed into a wall, radius %s" % (radius or "default"))
+        runner.expect_true("the load step was repeated with more pairs (%d)" % r.get("iterations.search_widenings"),
+                           r.get("iterations.search_widenings") >= 1)
+        nodes = r.nodes()
+        px, py = nodes["x"] + nodes["u_x"], nodes["y"] + nodes["u_y"]
+        ax, ay, bx, by = 1.2, 0.0, 1.3, 1.0
+        length = np.hypot(bx - ax, by - ay)
+        t = ((px - ax) * (bx - ax) + (py - ay) * (by - ay)) / length ** 2
+        inside_wall = ((px - ax) * (by - ay) - (py - ay) * (bx - ax)) / length  # > 0: on the wall's obstacle side
+        over = (t >= 0) & (t <= 1) & (nodes["y"] == 0)  # the candidates: the bottom
+        gap_tol = r.get("certificate")["gap_tol"]
+        runner.expect_true("no bottom node inside the wall (deepest %.3g)" % inside_wall[over].max(initial=-1),
+                           np.all(inside_wall[over] <= gap_tol))
+        runner.expect_true("no node inside the floor (lowest %.3g)" % py.min(), py.min() >= -gap_tol)
+        corner = (nodes["x"] == 1) & (nodes["y"] == 0)
+        runner.expect_true("the corner (1, 0) is active", nodes["active"][corner].sum() == 1)
+        runner.expect_true("the corner stopped at the wall (x = %.4g)" % px[corner][0], px[corner][0] < 1.2 + 1e-9)
 
 
 @test("bowl_vertex_under_corners")

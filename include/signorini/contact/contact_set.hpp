@@ -5,6 +5,7 @@
 #include "signorini/mesh/mesh.hpp"
 #include "signorini/obstacles/obstacle.hpp"
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,8 @@ namespace signorini {
 
 /// Upper bound of -contact_max_it: an active set that needs more iterations is cycling, not converging.
 constexpr PetscInt CONTACT_MAX_IT_LIMIT = 10000;
+/// The largest -contact_search_radius, in body diagonals: beyond it every facet is paired anyway.
+constexpr double SEARCH_RADIUS_MAX = 1e5;
 
 /// Contact options (prefix -contact_), read by ReadContactOptions.
 struct ContactOptions {
@@ -87,9 +90,10 @@ struct Penetration {
   double x[3] = {0, 0, 0};
 };
 
-/// The deepest penetrations of the obstacle, at the positions X + u_local, by owned candidate nodes without a pair,
-/// the same on every rank: unpaired, by a node that has no pair at all (it was farther than the search radius from
-/// every facet when the pairs were found); prescribed, by a node whose motion along the facet's normal the Dirichlet
+/// The deepest penetrations of the obstacle, at the positions X + u_local, by owned candidate nodes of facets they
+/// have no pair with, the same on every rank: unpaired, of a facet that was farther than the search radius from the
+/// node when the pairs were found, or (linear material) whose zone did not hold the node there (found: if given,
+/// each such local vertex and facet deeper than the gap tolerance); prescribed, by a node whose motion along the facet's normal the Dirichlet
 /// conditions prescribe (fixed: as for FindContactPairs; such a facet gets no pair, the supports hold the node, so
 /// the prescribed values put it there), or of a held node (FindContactPairs). Every facet within search radius +
 /// max |u| of a node is examined, so none that the node can have reached is missed. At a tie the node with the
@@ -98,7 +102,8 @@ struct Penetration {
                                              const std::vector<char> &candidate, const std::vector<char> &held,
                                              const std::vector<char> &fixed,
                                              const std::vector<ContactPair> &pairs, const double *u_local,
-                                             Penetration &unpaired, Penetration &prescribed);
+                                             Penetration &unpaired, Penetration &prescribed,
+                                             std::vector<std::array<PetscInt, 2>> *found = nullptr);
 
 /// Tributary length (2D) or area (3D) of every local candidate vertex: the integral of its shape function over each
 /// adjacent boundary face whose every vertex is a candidate (half of an edge, a third of a triangle, a quarter of a

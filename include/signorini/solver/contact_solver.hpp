@@ -50,6 +50,8 @@ struct SolveStats {
   double time_assembly = 0, time_active_set = 0, time_solve = 0;
   PetscInt solves = 0, active_set_iterations = 0, krylov_iterations = 0, steps = 0, cuts = 0;
   PetscInt repairings = 0;        ///< svk: pair searches that changed the pairs (each rebuilds the pattern)
+  PetscInt search_widenings = 0;  ///< load steps repeated with a wider search radius (WidenSearch)
+  double search_radius = 0;       ///< the search radius of the final pairs
   PetscInt stabilised_solves = 0; ///< solves with the stabilisation springs (the active set did not hold the body)
   std::vector<IterationRecord> history;
   std::string reason;
@@ -163,6 +165,13 @@ private:
   };
   enum class Outcome { SOLVE, EXTENDED, CONVERGED, STOP };
   [[nodiscard]] PetscErrorCode LoadStep(PetscInt step, double factor, bool first, bool &ok);
+  /// After a failed load step: the radius a repeated step needs (0: none), when a candidate node without a pair
+  /// penetrates the obstacle at the step's last iterate. Collective.
+  [[nodiscard]] PetscErrorCode UnpairedAfterFailure(StepState &st, PetscInt it);
+  /// Finds the pairs again with the radius widen_to_ (linear material: in the reference configuration, with the pairs
+  /// of extra_pairs_ in their zone), carrying the multipliers and active flags of the pairs that persist. Collective.
+  [[nodiscard]] PetscErrorCode WidenSearch(const std::vector<double> &lambda, const std::vector<double> &mult,
+                                           const std::vector<char> &active);
   [[nodiscard]] PetscErrorCode EvaluateIterate(StepState &st, PetscInt it);
   [[nodiscard]] PetscErrorCode StepControl(StepState &st, PetscInt it, PetscInt &changes, Outcome &outcome);
   [[nodiscard]] PetscErrorCode AssembleSystem(StepState &st);
@@ -182,10 +191,18 @@ private:
   const Material &material_;
   const BoundaryConditions &bc_;
   const Obstacle &obstacle_;
-  const ContactOptions &contact_;
+  ContactOptions contact_; ///< a copy: a failed load step may widen its search radius (WidenSearch)
   const SolverOptions &opts_;
   DirichletData dirichlet_;
   std::vector<ContactPair> pairs_;
+  double widen_to_ = 0; ///< the search radius a failed load step asks for (UnpairedAfterFailure), 0: none
+  PetscInt widen_node_ = -1; ///< the deepest unpaired node then (file number, 1-based) and its depth
+  /// Linear material: the local vertices and facets found inside each other without a pair after a failed step; the
+  /// pair search adds them from then on (WidenSearch).
+  std::vector<std::array<PetscInt, 2>> extra_pairs_;
+  double widen_depth_ = 0;
+  /// Load steps repeated with a wider search radius in a run, at most (each at least doubles it).
+  static constexpr PetscInt MAX_WIDENINGS = 8;
   std::vector<char> candidate_;
   std::vector<char> held_; ///< contact-group nodes whose every component is fixed (FindContactPairs)
   std::vector<PairKey> keys_;
