@@ -1281,6 +1281,33 @@ def floor_end_under_beam(runner):
     expect_same_state(runner, svk[0], svk[1])
 
 
+@test("floor_end_beside_block")
+def floor_end_beside_block(runner):
+    """The unit block pushed down 0.35 by its top onto a floor 0.3 below it that ends at x = 0.9, under its last
+    bottom segment: the corner (1, 0), 0.1 past the floor's end and 0.3 above its line, is not over the floor and
+    nothing may hold it. The nearly-over-the-edge rule (past the edge by at most the height) gave it the floor as its
+    zone and held it on the floor's extended line, active with a multiplier of 0.28; that rule now applies only on a
+    symmetry plane where a meshed surface ends (the punch). Now the corner is free and sags below the floor's line,
+    the floor's end node carries the edge, and every search radius gives that state."""
+    base = ["-mesh_file", "meshes/notch_block.msh", "-material_E", "100", "-material_nu", "0.3", "-contact_groups",
+            "bottom", "-bc_dirichlet", "top:x:y=-0.35", "-obstacle_segments", "-0.5,-0.3,0.9,-0.3"]
+    ref = runner.run(base, "block beside a floor's end")
+    # The default radius (0.14) reaches no facet from the bottom, 0.3 above the floor: the first attempt goes through
+    # it and the load step is repeated with a wider radius (search_radius_widened).
+    runner.expect_true("the default radius was widened", ref.get("iterations.search_widenings") >= 1)
+    for radius in ("0.5", "3"):
+        expect_same_state(runner, ref, runner.run(base + ["-contact_search_radius", radius],
+                                                  "block beside a floor's end, radius " + radius),
+                          keys=("contact.active_pairs", "contact.active_nodes"))
+    nodes = ref.nodes()
+    corner = (nodes["x"] == 1) & (nodes["y"] == 0)
+    end = (np.abs(nodes["x"] - 0.9) < 1e-9) & (nodes["y"] == 0)
+    runner.expect_true("the corner (1, 0) is inactive", nodes["active"][corner].sum() == 0)
+    runner.expect_true("the corner below the floor's line (y = %.4g)" % (nodes["u_y"][corner][0]),
+                       nodes["u_y"][corner][0] < -0.3 - 1e-3)
+    runner.expect_true("the floor's end node (0.9, 0) is active", nodes["active"][end].sum() == 1)
+
+
 @test("search_radius_widened")
 def search_radius_widened(runner):
     """A search radius too small for the problem is widened, not an error: a load step that ends with a candidate
