@@ -7,21 +7,25 @@ The problems are those of the property test random_cases (tests/cases/case_tests
 the 2 x 1 block, linear or svk, on a floor or a disc with optional walls, supported on its left side or held by
 contact alone, under a random top traction; many of them rightly fail (a body that nothing holds). Each case prints
 one line: its number, OK with its active-set iterations, load steps, active pairs and max |u|, or FAIL with the
-reason (DIVERGED_..., SINGULAR for the singular-system message, OTHER). Then the counts. Two builds run with the
+reason (DIVERGED_..., SINGULAR for the singular-system message, OTHER). A converged state is also checked against the
+obstacles' geometry from its node table (case_tests.geometric_penetration, independent of the solver's pairs): one
+with a candidate inside an obstacle beyond the gap tolerance is counted INSIDE, with its depth. Then the counts. Two builds run with the
 same --seed see the same cases, so `diff` of their outputs shows what changed (README, Robustness survey).
 """
 import argparse
 import collections
+import json
 import os
 import re
 import subprocess
 import sys
+import tempfile
 
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tests", "cases"))
-from case_tests import random_case  # noqa: E402
+from case_tests import geometric_penetration, random_case  # noqa: E402
 
 
 def main():
@@ -34,16 +38,24 @@ def main():
     counts = collections.Counter()
     for k in range(opts.cases):
         args = random_case(rng)
-        run = subprocess.run([opts.exe] + args, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                             text=True, timeout=300)
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "out")
+            run = subprocess.run([opts.exe] + args + ["-output_dir", out], cwd=ROOT, stdout=subprocess.PIPE,
+                                 stderr=subprocess.STDOUT, text=True, timeout=300)
+            if run.returncode == 0:
+                nodes = np.genfromtxt(os.path.join(out, "nodes.csv"), delimiter=",", names=True)
+                with open(os.path.join(out, "summary.json")) as f:
+                    gap_tol = json.load(f)["certificate"]["gap_tol"]
+                depth = geometric_penetration(nodes, args)
         if run.returncode == 0:
             m = re.search(r"CONVERGED_\w+ after (\d+) active-set iteration\(s\) in (\d+) load step\(s\): (\d+) active",
                           run.stdout)
             u = re.search(r"max \|u\| (\S+)", run.stdout)
             if not m or not u:
                 sys.exit("case %d exited 0 without a summary:\n%s" % (k, run.stdout))
-            print(k, "OK", m.group(1), m.group(2), m.group(3), u.group(1))
-            counts["OK"] += 1
+            inside = depth > gap_tol
+            print(k, "INSIDE %.3g" % depth if inside else "OK", m.group(1), m.group(2), m.group(3), u.group(1))
+            counts["INSIDE" if inside else "OK"] += 1
         else:
             m = re.search(r"(DIVERGED_\w+)", run.stdout)
             reason = m.group(1) if m else ("SINGULAR" if "is singular" in run.stdout else "OTHER")

@@ -1524,6 +1524,31 @@ def random_case(rng):
     return args
 
 
+def geometric_penetration(nodes, args):
+    """The deepest penetration of the obstacles of args (-obstacle_segments: the side to the right of each segment's
+    direction, where a node projects onto it; -obstacle_discs: the inside) by the final positions of the boundary
+    nodes of a random_case block (the candidates: x = 0, x = W, y = 0), computed from the node table and the options
+    alone, independently of the solver's pairs."""
+    px, py = nodes["x"] + nodes["u_x"], nodes["y"] + nodes["u_y"]
+    width = nodes["x"].max()
+    boundary = (np.abs(nodes["x"]) < 1e-9) | (np.abs(nodes["x"] - width) < 1e-9) | (np.abs(nodes["y"]) < 1e-9)
+    px, py = px[boundary], py[boundary]
+    deepest = 0.0
+    values = lambda name: [float(v) for v in args[args.index(name) + 1].split(",")] if name in args else []
+    seg = values("-obstacle_segments")
+    for ax, ay, bx, by in (seg[i:i + 4] for i in range(0, len(seg), 4)):
+        length = np.hypot(bx - ax, by - ay)
+        t = ((px - ax) * (bx - ax) + (py - ay) * (by - ay)) / length ** 2
+        behind = ((px - ax) * (by - ay) - (py - ay) * (bx - ax)) / length
+        over = (t >= 0) & (t <= 1)
+        if over.any():
+            deepest = max(deepest, behind[over].max())
+    disc = values("-obstacle_discs")
+    for cx, cy, radius in (disc[i:i + 3] for i in range(0, len(disc), 3)):
+        deepest = max(deepest, (radius - np.hypot(px - cx, py - cy)).max())
+    return deepest
+
+
 @test("random_cases")
 def random_cases(runner):
     """Property test over 50 random small cases: every exit 0 is a certified contact state, checked again from the
@@ -1547,6 +1572,11 @@ def random_cases(runner):
         c, nodes = r.get("certificate"), r.nodes()
         gaps = nodes["gap"][~np.isnan(nodes["gap"])]
         runner.expect_true("%s: node gaps >= -gap_tol" % label, gaps.size == 0 or gaps.min() >= -c["gap_tol"])
+        # From the obstacles' geometry alone: the pairs' gaps above cover only the facets a node has a pair with (a
+        # node paired with the floor went 0.07-0.17 into an inclined wall unseen, 14 of 300 random cases).
+        depth = geometric_penetration(nodes, args)
+        runner.expect_true("%s: no candidate inside an obstacle (deepest %.3g)" % (label, depth),
+                           depth <= c["gap_tol"])
         runner.expect_true("%s: node multipliers >= -tol" % label, nodes["lambda"].min() >= -c["lambda_tol"])
         total = np.array(r.get("contact.contact_force")) + np.array(r.get("contact.reaction_force")) + \
             np.array(r.get("contact.applied_force"))
