@@ -9,8 +9,9 @@ contact alone, under a random top traction; many of them rightly fail (a body th
 one line: its number, OK with its active-set iterations, load steps, active pairs and max |u|, or FAIL with the
 reason (DIVERGED_..., SINGULAR for the singular-system message, OTHER). A converged state is also checked against the
 obstacles' geometry from its node table (case_tests.geometric_penetration, independent of the solver's pairs): one
-with a candidate inside an obstacle beyond the gap tolerance is counted INSIDE, with its depth. Then the counts. Two builds run with the
-same --seed see the same cases, so `diff` of their outputs shows what changed (README, Robustness survey).
+with a candidate inside an obstacle beyond the gap tolerance is counted INSIDE, with its depth. Then the counts.
+Two builds run with the same --seed see the same cases, so `diff` of their outputs shows what changed (README,
+Robustness survey).
 """
 import argparse
 import collections
@@ -57,7 +58,7 @@ def main():
             print(k, "INSIDE %.3g" % depth if inside else "OK", m.group(1), m.group(2), m.group(3), u.group(1))
             counts["INSIDE" if inside else "OK"] += 1
         else:
-            m = re.search(r"(DIVERGED_\w+)", run.stdout)
+            m = re.search(r"signorini: error: .*?(DIVERGED_\w+)", run.stdout)  # the final reason, not a repeated step's
             reason = m.group(1) if m else ("SINGULAR" if "is singular" in run.stdout else "OTHER")
             print(k, "FAIL", reason)
             counts[reason] += 1

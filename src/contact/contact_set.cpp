@@ -15,7 +15,8 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
   // beyond 1e-2 projects a node off its facet, a radius beyond 1e5 diagonals pairs everything anyway (and keeps the
   // bin search finite), a gap factor beyond 1e6 holds nothing back, and c far from E t makes lambda - c g compare
   // numbers of unrelated magnitudes.
-  const RealRange radius{0, SEARCH_RADIUS_MAX, true, false, L, "body diagonal"}, gap{0, 1e-3, false, false, L, "body diagonal"};
+  const RealRange radius{0, SEARCH_RADIUS_MAX, true, false, L, "body diagonal"};
+  const RealRange gap{0, 1e-3, false, false, L, "body diagonal"};
   const RealRange alpha{0, 1e-2}, fraction{0, 1, false, true}, gap_factor{0, 1e6};
   const RealRange c{1e-6, 1e6, false, false, k, "E x thickness"};
   PetscFunctionBeginUser;

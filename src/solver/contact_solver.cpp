@@ -393,7 +393,16 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   std::vector<std::array<PetscInt, 2>> found;
   PetscCall(DeepestUnpaired(mesh_, obstacle_, contact_, candidate_, held_, dirichlet_.fixed, pairs_, st.u_eval.data(),
                             unpaired, prescribed, &found));
-  if (!(unpaired.depth > contact_.gap_tol)) PetscFunctionReturn(0);
+  // A set that cycles or leaves the body free may lack the facets that would hold it, beyond the radius: such a step
+  // is repeated once with a radius of at least the body's diagonal (a block pushed towards an inclined wall 0.1 away
+  // cycled with the default radius and converged with 0.3; a body that nothing holds then says so,
+  // DIVERGED_NOT_HELD, where it cycled before).
+  // svk cuts the load step first (a smaller increment is the usual cure of a cycle, and its pairs within the whole
+  // diagonal would be many: the svk punch cut once in 1.5 s, and took 14.6 s with such a radius).
+  const bool can_cut = large && stats_.cuts < opts_.max_cuts && stats_.reason != "DIVERGED_NOT_HELD";
+  const bool unheld = (stats_.reason == "DIVERGED_CYCLING" || stats_.reason == "DIVERGED_NOT_HELD") && !can_cut;
+  const bool penetrates = unpaired.depth > contact_.gap_tol;
+  if (!penetrates && !(unheld && !widened_unheld_)) PetscFunctionReturn(0);
   // A node that went into the obstacle farther than the radius reaches, or started there deeper than it: the radius
   // must cover the candidates' displacements, with room for the repeated step to move them on. The linear material
   // also gets the pairs of the facets its nodes went into: a facet within the radius whose zone did not hold the
@@ -407,8 +416,11 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
       reach = std::max(reach, std::sqrt(u2));
     }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &reach, 1, MPI_DOUBLE, MPI_MAX, mesh_.Comm()));
-  const double radius = std::min(std::max({2 * contact_.search_radius, 2 * reach, 2 * unpaired.depth}),
-                                 SEARCH_RADIUS_MAX * contact_.length);
+  // (Without a penetration the displacement of a cycling or free iterate is no measure of the travel.)
+  const double radius =
+      std::min(penetrates ? std::max({2 * contact_.search_radius, 2 * reach, 2 * unpaired.depth})
+                          : std::max(2 * contact_.search_radius, contact_.length),
+               SEARCH_RADIUS_MAX * contact_.length);
   bool more = !large && !found.empty();
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &more, 1, MPI_CXX_BOOL, MPI_LOR, mesh_.Comm()));
   if (radius <= contact_.search_radius && !more) PetscFunctionReturn(0);
@@ -416,8 +428,9 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
     for (const auto &vf : found)
       if (std::find(extra_pairs_.begin(), extra_pairs_.end(), vf) == extra_pairs_.end()) extra_pairs_.push_back(vf);
   widen_to_ = std::max(radius, contact_.search_radius);
-  widen_node_ = unpaired.node;
+  widen_node_ = penetrates ? unpaired.node : -1;
   widen_depth_ = unpaired.depth;
+  widened_unheld_ = widened_unheld_ || !penetrates;
   PetscFunctionReturn(0);
 }
 
@@ -983,10 +996,15 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     if (widen_to_ > 0) {
       // A candidate went into a facet it has no pair with: the step is repeated, from the last converged state, with
       // pairs found within a wider radius (linear material: and that pair; not a cut: the increment stays).
-      PetscCall(PetscPrintf(comm, "Load step at factor %g failed (%s) with node %" PetscInt_FMT " %g inside the "
-                            "obstacle, on a facet it has no contact pair with: searching the pairs again within %g (was "
-                            "%g)\n", t_try,
-                            stats_.reason.c_str(), widen_node_, widen_depth_, widen_to_, contact_.search_radius));
+      if (widen_node_ >= 0)
+        PetscCall(PetscPrintf(comm, "Load step at factor %g failed (%s) with node %" PetscInt_FMT " %g inside the "
+                              "obstacle, on a facet it has no contact pair with: searching the pairs again within %g "
+                              "(was %g)\n", t_try, stats_.reason.c_str(), widen_node_, widen_depth_, widen_to_,
+                              contact_.search_radius));
+      else
+        PetscCall(PetscPrintf(comm, "Load step at factor %g failed (%s): searching the pairs again within %g (was %g), "
+                              "for facets beyond the radius that may hold the body\n", t_try, stats_.reason.c_str(),
+                              widen_to_, contact_.search_radius));
       PetscCall(SetOwnedDisplacement(u_saved));
       k_assembled_ = false;
       pairs_ = pairs_saved;

@@ -1308,6 +1308,36 @@ def floor_end_beside_block(runner):
     runner.expect_true("the floor's end node (0.9, 0) is active", nodes["active"][end].sum() == 1)
 
 
+@test("inclined_wall_beyond_radius")
+def inclined_wall_beyond_radius(runner):
+    """Random case 15 of the survey (seed 777): the unit block held by contact alone on a floor, pushed right by its
+    top traction towards an inclined wall 0.09 away, farther than the default search radius (0.14) from all but its
+    corner. With the default radius the active set cycled (DIVERGED_CYCLING, "check that every rigid-body motion is
+    held"): the facets that hold the block were not paired. A step that cycles or leaves the body free is now
+    repeated once with a radius of the body's diagonal; the run reaches the state of radii 0.3 and 1.5 (no node inside
+    an obstacle, from the node table). Random case 108, a block that rests on a disc beside an inclined wall and that
+    they do not hold (it rocks), cycled too and now ends as DIVERGED_NOT_HELD, which says so."""
+    args = ["-mesh_file", "meshes/notch_block.msh", "-material_E", "538.984", "-material_nu", "0.419",
+            "-contact_groups", "bottom,left,right", "-bc_traction", "top:0.0680351:-0.562698", "-obstacle_segments",
+            "-0.5,-0.036185,1.5,-0.036185,0,2,0,-0.5,1.0885,-0.036185,2.0885,1.03976"]
+    r = runner.run(args, "block pushed towards an inclined wall")
+    runner.expect_true("the step was repeated for facets beyond the radius",
+                       "for facets beyond the radius that may hold the body" in r.output and
+                       r.get("iterations.search_widenings") >= 1)
+    depth = geometric_penetration(r.nodes(), args)
+    runner.expect_true("no candidate inside an obstacle (deepest %.3g)" % depth,
+                       depth <= r.get("certificate")["gap_tol"])
+    for radius in ("0.3", "1.5"):
+        expect_same_state(runner, r, runner.run(args + ["-contact_search_radius", radius], "radius " + radius),
+                          keys=("contact.active_pairs", "contact.active_nodes"))
+    loose = ["-mesh_file", "meshes/notch_block.msh", "-material_E", "1214.81", "-material_nu", "0.369",
+             "-contact_groups", "bottom,left,right", "-bc_traction", "top:0.00521992:-0.300851", "-obstacle_segments",
+             "0.994634,-0.0437555,1.99463,1.18488", "-obstacle_discs", "0.544461,-1.04376,1"]
+    status, out, _ = runner.run_any(loose, "block on a disc beside an inclined wall", timeout=60)
+    runner.expect_true("the loose block ends as DIVERGED_NOT_HELD (exit %d)" % status,
+                       status != 0 and "DIVERGED_NOT_HELD" in out)
+
+
 @test("search_radius_widened")
 def search_radius_widened(runner):
     """A search radius too small for the problem is widened, not an error: a load step that ends with a candidate
