@@ -430,7 +430,7 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   widen_to_ = std::max(radius, contact_.search_radius);
   widen_node_ = penetrates ? unpaired.node : -1;
   widen_depth_ = unpaired.depth;
-  widened_unheld_ = widened_unheld_ || !penetrates;
+  if (!penetrates) widened_unheld_ = true, first_unheld_ = stats_.reason;
   PetscFunctionReturn(0);
 }
 
@@ -1015,6 +1015,10 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
       active_saved = active_set_.Flags();
       continue;
     }
+    // A body found free, then repeated with the facets of a wider radius, stays free when the repeat fails otherwise
+    // (it cycles or deforms without bound): the first finding is the clearer report.
+    const bool fatal = !(large && stats_.cuts < opts_.max_cuts);
+    if (first_unheld_ == "DIVERGED_NOT_HELD" && stats_.reason != first_unheld_ && fatal) stats_.reason = first_unheld_;
     const std::string &why = stats_.reason;
     const std::string what =
         why == "DIVERGED_CYCLING"

@@ -1316,7 +1316,8 @@ def inclined_wall_beyond_radius(runner):
     held"): the facets that hold the block were not paired. A step that cycles or leaves the body free is now
     repeated once with a radius of the body's diagonal; the run reaches the state of radii 0.3 and 1.5 (no node inside
     an obstacle, from the node table). Random case 108, a block that rests on a disc beside an inclined wall and that
-    they do not hold (it rocks), cycled too and now ends as DIVERGED_NOT_HELD, which says so."""
+    they do not hold (it rocks), cycled too and now ends as DIVERGED_NOT_HELD, which says so; and a block found free
+    (DIVERGED_NOT_HELD) keeps that report when its repeated step then cycles."""
     args = ["-mesh_file", "meshes/notch_block.msh", "-material_E", "538.984", "-material_nu", "0.419",
             "-contact_groups", "bottom,left,right", "-bc_traction", "top:0.0680351:-0.562698", "-obstacle_segments",
             "-0.5,-0.036185,1.5,-0.036185,0,2,0,-0.5,1.0885,-0.036185,2.0885,1.03976"]
@@ -1336,6 +1337,15 @@ def inclined_wall_beyond_radius(runner):
     status, out, _ = runner.run_any(loose, "block on a disc beside an inclined wall", timeout=60)
     runner.expect_true("the loose block ends as DIVERGED_NOT_HELD (exit %d)" % status,
                        status != 0 and "DIVERGED_NOT_HELD" in out)
+    # Random case 54: the 2 x 1 block pushed right on a frictionless floor, away from the wall at its left. Found free,
+    # its step is repeated with the wider radius, which then cycles: the report stays DIVERGED_NOT_HELD.
+    free = ["-mesh_file", "meshes/block.msh", "-material_E", "3441.21", "-material_nu", "0.435", "-contact_groups",
+            "bottom,left,right", "-bc_traction", "top:2.57396:-10.5632", "-obstacle_segments",
+            "-0.5,-0.0298311,2.5,-0.0298311,0,2,0,-0.5"]
+    status, out, _ = runner.run_any(free, "block pushed away from a wall", timeout=60)
+    runner.expect_true("the free block ends as DIVERGED_NOT_HELD after the repeat (exit %d)" % status,
+                       status != 0 and "searching the pairs again" in out and
+                       "signorini: error: the contact solve did not converge at load factor 1.: DIVERGED_NOT_HELD" in out)
 
 
 @test("search_radius_widened")

@@ -202,6 +202,7 @@ private:
   std::vector<std::array<PetscInt, 2>> extra_pairs_;
   double widen_depth_ = 0;
   bool widened_unheld_ = false; ///< a step that cycled or left the body free was repeated with a wider radius (once)
+  std::string first_unheld_;     ///< the reason of that step's failure
   /// Load steps repeated with a wider search radius in a run, at most (each at least doubles it).
   static constexpr PetscInt MAX_WIDENINGS = 8;
   std::vector<char> candidate_;
