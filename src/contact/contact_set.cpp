@@ -29,8 +29,9 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
   PetscCall(OptionsStringList(PetscOptionsObject, "-contact_groups", "Physical groups of candidate nodes (default: "
                               "whole boundary)", "no candidate nodes", "physical group names", opts.groups));
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_search_radius", "Pair a node with the facets within this "
-                        "distance (default 0.1 x body diagonal); a load step that ends with a node without a pair "
-                        "inside the obstacle is repeated with a wider radius", radius, opts.search_radius));
+                        "distance (default 0.1 x body diagonal); a load step that ends with a node inside a facet it "
+                        "has no pair with, or that cycles or leaves the body free, is repeated with a wider radius",
+                        radius, opts.search_radius));
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_touch_tol", "Initial gap that counts as touching (default 1e-8 "
                         "x diagonal)", gap, opts.touch_tol));
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_gap_tol", "Penetration tolerance of the active-set rule "

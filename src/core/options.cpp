@@ -327,8 +327,8 @@ private:
   std::string problem_;
 };
 
-/// What PETSc would take silently from the YAML options file path (YamlOptions), as a message; empty when nothing
-/// or when the file does not parse (PETSc reports that, and the error handler names the file).
+/// What PETSc would take silently from the YAML options file path (YamlOptions), or its syntax error with the line,
+/// as a message naming key (the option that gave the file); empty when there is nothing.
 std::string YamlFileProblem(const std::string &key, const std::string &path) {
   std::ifstream in(path, std::ios::binary);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

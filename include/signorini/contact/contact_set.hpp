@@ -93,11 +93,11 @@ struct Penetration {
 /// The deepest penetrations of the obstacle, at the positions X + u_local, by owned candidate nodes of facets they
 /// have no pair with, the same on every rank: unpaired, of a facet that was farther than the search radius from the
 /// node when the pairs were found, or (linear material) whose zone did not hold the node there (found: if given,
-/// each such local vertex and facet deeper than the gap tolerance); prescribed, by a node whose motion along the facet's normal the Dirichlet
-/// conditions prescribe (fixed: as for FindContactPairs; such a facet gets no pair, the supports hold the node, so
-/// the prescribed values put it there), or of a held node (FindContactPairs). Every facet within search radius +
-/// max |u| of a node is examined, so none that the node can have reached is missed. At a tie the node with the
-/// smallest file number is reported, whatever the partition. Collective.
+/// each such local vertex and facet deeper than the gap tolerance); prescribed, by a node whose motion along the
+/// facet's normal the Dirichlet conditions prescribe (fixed: as for FindContactPairs; such a facet gets no pair, the
+/// supports hold the node, so the prescribed values put it there), or of a held node (FindContactPairs). Every facet
+/// within search radius + max |u| of a node is examined, so none that the node can have reached is missed. At a tie
+/// the node with the smallest file number is reported, whatever the partition. Collective.
 [[nodiscard]] PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
                                              const std::vector<char> &candidate, const std::vector<char> &held,
                                              const std::vector<char> &fixed,

@@ -165,8 +165,10 @@ private:
   };
   enum class Outcome { SOLVE, EXTENDED, CONVERGED, STOP };
   [[nodiscard]] PetscErrorCode LoadStep(PetscInt step, double factor, bool first, bool &ok);
-  /// After a failed load step: the radius a repeated step needs (0: none), when a candidate node without a pair
-  /// penetrates the obstacle at the step's last iterate. Collective.
+  /// After a failed load step: the search radius a repeated step needs (widen_to_; 0: none), when a candidate node
+  /// is inside a facet it has no pair with at the step's last iterate (linear material: that pair goes to
+  /// extra_pairs_), or, once per run, when the step cycled or left the body free (DIVERGED_CYCLING, _NOT_HELD; svk
+  /// only when it can cut the step no more). Collective.
   [[nodiscard]] PetscErrorCode UnpairedAfterFailure(StepState &st, PetscInt it);
   /// Finds the pairs again with the radius widen_to_ (linear material: in the reference configuration, with the pairs
   /// of extra_pairs_ in their zone), carrying the multipliers and active flags of the pairs that persist. Collective.
