@@ -243,18 +243,22 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
                         {pairs[q].facet, pairs[q].n0, pairs[q].g0}, x, dim, opts.search_radius))
           (nearer(p, q) ? pairs[q] : pairs[p]).zone0 = false;
   }
+  SortPairs(mesh, pairs);
+  PetscFunctionReturn(0);
+}
+
+void SortPairs(const Mesh &mesh, std::vector<ContactPair> &pairs) {
   std::sort(pairs.begin(), pairs.end(), [&](const ContactPair &a, const ContactPair &b) {
     const PetscInt oa = mesh.VertexOriginal(a.vertex), ob = mesh.VertexOriginal(b.vertex);
     return oa != ob ? oa < ob : a.facet < b.facet;
   });
-  PetscFunctionReturn(0);
 }
 
 PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
                                const std::vector<char> &candidate, const std::vector<char> &held,
                                const std::vector<char> &fixed, const std::vector<ContactPair> &pairs,
                                const double *u_local, Penetration &unpaired, Penetration &prescribed,
-                               std::vector<std::array<PetscInt, 2>> *found) {
+                               std::vector<std::array<PetscInt, 2>> *found, double *reach_out) {
   const int dim = mesh.Dim();
   const PetscInt nv = mesh.NumLocalVertices();
   PetscFunctionBeginUser;
@@ -271,6 +275,7 @@ PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const
       reach = std::max(reach, std::sqrt(u2));
     }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &reach, 1, MPI_DOUBLE, MPI_MAX, mesh.Comm()));
+  if (reach_out) *reach_out = reach;
   // Each examined node's penetration of each kind (0: unpaired, 1: prescribed): the deepest facet.
   std::vector<double> depth[2];
   depth[0].assign(nv, 0.0), depth[1].assign(nv, 0.0);

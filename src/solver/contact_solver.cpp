@@ -74,6 +74,23 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptio
   PetscFunctionReturn(0);
 }
 
+namespace {
+
+PairIndex IndexPairs(const std::vector<ContactPair> &pairs) {
+  PairIndex index;
+  for (std::size_t p = 0; p < pairs.size(); ++p) index[{pairs[p].vertex, pairs[p].facet}] = p;
+  return index;
+}
+
+/// Linear material: a pair's zone is fixed in the reference configuration (EvaluatePairs: inside = zone0), so a pair
+/// outside it can never be active. Dropping it keeps a fine obstacle mesh (a node within the search radius of many
+/// facets) from adding a multiplier, an identity row and a stabilising spring per facet.
+void DropOutOfZone(std::vector<ContactPair> &pairs) {
+  pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [](const ContactPair &p) { return !p.zone0; }), pairs.end());
+}
+
+} // namespace
+
 PetscErrorCode ContactSolver::Setup() {
   MPI_Comm comm = mesh_.Comm();
   const int dim = mesh_.Dim();
@@ -87,12 +104,7 @@ PetscErrorCode ContactSolver::Setup() {
   }
   PetscCall(BuildDirichlet(mesh_, bc_, dirichlet_));
   PetscCall(FindContactPairs(mesh_, obstacle_, contact_, dirichlet_.fixed, pairs_, candidate_, nullptr, &held_));
-  // Linear material: a pair's zone is fixed in the reference configuration (EvaluatePairs: inside = zone0), so a pair
-  // outside it can never be active. Dropping it keeps a fine obstacle mesh (a node within the search radius of many
-  // facets) from adding a multiplier, an identity row and a stabilising spring per facet.
-  if (material_.model != MaterialModel::SVK)
-    pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), [](const ContactPair &p) { return !p.zone0; }),
-                 pairs_.end());
+  if (material_.model != MaterialModel::SVK) DropOutOfZone(pairs_);
   PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size()));
   assembler_ = std::make_unique<Assembler>(mesh_, material_, dofs_, dirichlet_);
   PetscCall(assembler_->CheckCells());
@@ -177,8 +189,7 @@ PetscErrorCode ContactSolver::Repair(const std::vector<double> &u_eval, bool for
     for (std::size_t p = 0; p < pairs.size(); ++p) pairs_[p] = pairs[p];
     PetscFunctionReturn(0);
   }
-  std::map<std::pair<PetscInt, PetscInt>, std::size_t> old;
-  for (std::size_t p = 0; p < pairs_.size(); ++p) old[{pairs_[p].vertex, pairs_[p].facet}] = p;
+  const PairIndex old = IndexPairs(pairs_);
   // Pairs that are new but farther than half the radius from their node are not needed before the next search (it
   // comes before any candidate has moved half the radius): if every new pair is such, the current pairs stay (those
   // found again move the start of their path), and so do the system and its factorisation. The contact zone growing
@@ -198,14 +209,7 @@ PetscErrorCode ContactSolver::Repair(const std::vector<double> &u_eval, bool for
     PetscFunctionReturn(0);
   }
   // New pairs: carry the multiplier and the active flag of every pair that persists, then a new pattern.
-  std::vector<double> lambda(pairs.size(), 0.0), mult(pairs.size(), 0.0);
-  std::vector<char> active(pairs.size(), 0);
-  for (std::size_t p = 0; p < pairs.size(); ++p) {
-    const auto it = old.find({pairs[p].vertex, pairs[p].facet});
-    if (it == old.end()) continue;
-    lambda[p] = lambda_[it->second], mult[p] = mult_[it->second], active[p] = active_set_.Flags()[it->second];
-  }
-  PetscCall(AdoptPairs(std::move(pairs), lambda, mult, active));
+  PetscCall(AdoptPairsFrom(std::move(pairs), old, lambda_, mult_, active_set_.Flags()));
   stats_.repairings++;
   rebuilt = true;
   PetscFunctionReturn(0);
@@ -223,6 +227,20 @@ PetscErrorCode ContactSolver::AdoptPairs(std::vector<ContactPair> pairs, const s
   lambda_ = lambda, mult_ = mult;
   active_set_.Reset(pairs_.size());
   active_set_.Set(active);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::AdoptPairsFrom(std::vector<ContactPair> pairs, const PairIndex &old,
+                                             const std::vector<double> &lambda, const std::vector<double> &mult,
+                                             const std::vector<char> &active) {
+  std::vector<double> l(pairs.size(), 0.0), m(pairs.size(), 0.0);
+  std::vector<char> a(pairs.size(), 0);
+  PetscFunctionBeginUser;
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const auto it = old.find({pairs[p].vertex, pairs[p].facet});
+    if (it != old.end()) l[p] = lambda[it->second], m[p] = mult[it->second], a[p] = active[it->second];
+  }
+  PetscCall(AdoptPairs(std::move(pairs), l, m, a));
   PetscFunctionReturn(0);
 }
 
@@ -381,7 +399,6 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
 }
 
 PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
-  const int dim = mesh_.Dim();
   const bool large = material_.model == MaterialModel::SVK;
   PetscFunctionBeginUser;
   widen_to_ = 0;
@@ -391,8 +408,9 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   if (st.condensed) PetscCall(Materialise(st, it));
   Penetration unpaired, prescribed;
   std::vector<std::array<PetscInt, 2>> found;
+  double reach;
   PetscCall(DeepestUnpaired(mesh_, obstacle_, contact_, candidate_, held_, dirichlet_.fixed, pairs_, st.u_eval.data(),
-                            unpaired, prescribed, &found));
+                            unpaired, prescribed, &found, &reach));
   // A set that cycles or leaves the body free may lack the facets that would hold it, beyond the radius: such a step
   // is repeated once with a radius of at least the body's diagonal (a block pushed towards an inclined wall 0.1 away
   // cycled with the default radius and converged with 0.3; a body that nothing holds then says so,
@@ -408,14 +426,6 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   // also gets the pairs of the facets its nodes went into: a facet within the radius whose zone did not hold the
   // node in the reference configuration has no pair, however wide the radius (a block pushed 0.3 sideways by its
   // supports went 0.1 into a wall unseen while its corner was paired with the floor).
-  double reach = 0;
-  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
-    if (candidate_[v]) {
-      double u2 = 0;
-      for (int k = 0; k < dim; ++k) u2 += st.u_eval[v * dim + k] * st.u_eval[v * dim + k];
-      reach = std::max(reach, std::sqrt(u2));
-    }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &reach, 1, MPI_DOUBLE, MPI_MAX, mesh_.Comm()));
   // (Without a penetration the displacement of a cycling or free iterate is no measure of the travel.)
   const double radius =
       std::min(penetrates ? std::max({2 * contact_.search_radius, 2 * reach, 2 * unpaired.depth})
@@ -424,9 +434,7 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   bool more = !large && !found.empty();
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &more, 1, MPI_CXX_BOOL, MPI_LOR, mesh_.Comm()));
   if (radius <= contact_.search_radius && !more) PetscFunctionReturn(0);
-  if (!large)
-    for (const auto &vf : found)
-      if (std::find(extra_pairs_.begin(), extra_pairs_.end(), vf) == extra_pairs_.end()) extra_pairs_.push_back(vf);
+  if (!large) extra_pairs_.insert(found.begin(), found.end());
   widen_to_ = std::max(radius, contact_.search_radius);
   widen_node_ = penetrates ? unpaired.node : -1;
   widen_depth_ = unpaired.depth;
@@ -448,31 +456,20 @@ PetscErrorCode ContactSolver::WidenSearch(const std::vector<double> &lambda, con
   std::vector<ContactPair> pairs;
   std::vector<char> candidate;
   PetscCall(FindContactPairs(mesh_, obstacle_, contact_, dirichlet_.fixed, pairs, candidate));
-  pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [](const ContactPair &p) { return !p.zone0; }), pairs.end());
+  DropOutOfZone(pairs);
   // The facets the nodes went into count in their zone from now on (the gap g0 + n0 u of the reference
   // configuration, exact for a flat facet).
+  const PairIndex found = IndexPairs(pairs);
   for (const auto &[v, f] : extra_pairs_) {
-    if (std::any_of(pairs.begin(), pairs.end(), [&](const ContactPair &p) { return p.vertex == v && p.facet == f; }))
-      continue;
+    if (found.count({v, f})) continue;
     const double *X = mesh_.X(v);
     const Projection pr = obstacle_.facets[f]->Project(X, contact_.alpha_tol);
     ContactPair pair{v, f, {pr.normal[0], pr.normal[1], pr.normal[2]}, pr.gap, pr.inside, true, {0, 0, 0}};
     for (int k = 0; k < dim; ++k) pair.x0[k] = X[k];
     pairs.push_back(pair);
   }
-  std::sort(pairs.begin(), pairs.end(), [&](const ContactPair &a, const ContactPair &b) {
-    const PetscInt oa = mesh_.VertexOriginal(a.vertex), ob = mesh_.VertexOriginal(b.vertex);
-    return oa != ob ? oa < ob : a.facet < b.facet;
-  });
-  std::map<std::pair<PetscInt, PetscInt>, std::size_t> old;
-  for (std::size_t p = 0; p < pairs_.size(); ++p) old[{pairs_[p].vertex, pairs_[p].facet}] = p;
-  std::vector<double> l(pairs.size(), 0.0), m(pairs.size(), 0.0);
-  std::vector<char> a(pairs.size(), 0);
-  for (std::size_t p = 0; p < pairs.size(); ++p) {
-    const auto it = old.find({pairs[p].vertex, pairs[p].facet});
-    if (it != old.end()) l[p] = lambda[it->second], m[p] = mult[it->second], a[p] = active[it->second];
-  }
-  PetscCall(AdoptPairs(std::move(pairs), l, m, a));
+  SortPairs(mesh_, pairs);
+  PetscCall(AdoptPairsFrom(std::move(pairs), IndexPairs(pairs_), lambda, mult, active));
   PetscFunctionReturn(0);
 }
 

@@ -72,6 +72,9 @@ inline bool NearerFacet(double dp, PetscInt fp, double dq, PetscInt fq, double l
 bool ConvexJoint(const Obstacle &obstacle, const FacetSide &a, const FacetSide &b, const double *x, int dim,
                  double length);
 
+/// Sorts pairs by (node in file order, facet), the order every partition agrees on.
+void SortPairs(const Mesh &mesh, std::vector<ContactPair> &pairs);
+
 /// Finds the candidate pairs of the owned candidate nodes whose every component is not fixed (fixed[v*dim+k] != 0
 /// marks a Dirichlet dof), at the positions X + u_local (u_local: dim values per local vertex; null: the reference
 /// configuration). Pairs are sorted by (node in file order, facet) so that every partition finds the same pairs.
@@ -97,13 +100,15 @@ struct Penetration {
 /// facet's normal the Dirichlet conditions prescribe (fixed: as for FindContactPairs; such a facet gets no pair, the
 /// supports hold the node, so the prescribed values put it there), or of a held node (FindContactPairs). Every facet
 /// within search radius + max |u| of a node is examined, so none that the node can have reached is missed. At a tie
-/// the node with the smallest file number is reported, whatever the partition. Collective.
+/// the node with the smallest file number is reported, whatever the partition. reach (if given): max |u| of the
+/// examined nodes over all ranks. Collective.
 [[nodiscard]] PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
                                              const std::vector<char> &candidate, const std::vector<char> &held,
                                              const std::vector<char> &fixed,
                                              const std::vector<ContactPair> &pairs, const double *u_local,
                                              Penetration &unpaired, Penetration &prescribed,
-                                             std::vector<std::array<PetscInt, 2>> *found = nullptr);
+                                             std::vector<std::array<PetscInt, 2>> *found = nullptr,
+                                             double *reach = nullptr);
 
 /// Tributary length (2D) or area (3D) of every local candidate vertex: the integral of its shape function over each
 /// adjacent boundary face whose every vertex is a candidate (half of an edge, a third of a triangle, a quarter of a

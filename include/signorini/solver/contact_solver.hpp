@@ -11,7 +11,9 @@
 #include "signorini/solver/saddle_point.hpp"
 
 #include <functional>
+#include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -57,6 +59,9 @@ struct SolveStats {
   std::string reason;
   std::string violation; ///< the certificate's failed condition, with reason DIVERGED_CERTIFICATE
 };
+
+/// Index of pairs by (local vertex, facet).
+using PairIndex = std::map<std::pair<PetscInt, PetscInt>, std::size_t>;
 
 class ContactSolver {
 public:
@@ -114,6 +119,11 @@ private:
   /// Takes new pairs (with their multipliers and active flags), keeping the displacement. Collective.
   [[nodiscard]] PetscErrorCode AdoptPairs(std::vector<ContactPair> pairs, const std::vector<double> &lambda,
                                           const std::vector<double> &mult, const std::vector<char> &active);
+  /// AdoptPairs, carrying from the current pairs (old: their index by vertex and facet) the multipliers and active
+  /// flags lambda, mult, active of those that persist; new pairs start inactive at zero. Collective.
+  [[nodiscard]] PetscErrorCode AdoptPairsFrom(std::vector<ContactPair> pairs, const PairIndex &old,
+                                              const std::vector<double> &lambda, const std::vector<double> &mult,
+                                              const std::vector<char> &active);
   [[nodiscard]] PetscErrorCode OwnedDisplacement(std::vector<double> &u) const;
   [[nodiscard]] PetscErrorCode SetOwnedDisplacement(const std::vector<double> &u);
   [[nodiscard]] PetscErrorCode UpdateLocal();
@@ -201,7 +211,7 @@ private:
   PetscInt widen_node_ = -1; ///< the deepest unpaired node then (file number, 1-based) and its depth
   /// Linear material: the local vertices and facets found inside each other without a pair after a failed step; the
   /// pair search adds them from then on (WidenSearch).
-  std::vector<std::array<PetscInt, 2>> extra_pairs_;
+  std::set<std::array<PetscInt, 2>> extra_pairs_;
   double widen_depth_ = 0;
   bool widened_unheld_ = false; ///< a step that cycled or left the body free was repeated with a wider radius (once)
   std::string first_unheld_;     ///< the reason of that step's failure
