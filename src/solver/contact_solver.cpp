@@ -501,7 +501,7 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
       st.base = false;
       st.u_base.Reset();
       st.next.assign(pairs_.size(), 0);
-      st.gap_before.clear();
+      st.u_before.clear();
       PetscCall(VecZeroEntries(fext_));
       PetscCall(assembler_->AssembleLoads(bc_, st.factor, fext_));
     }
@@ -610,23 +610,50 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
         st.correction_rtol = st.corrected ? 0.0 : 0.1 * tol / st.rnorm;
       }
     }
-    if (st.stabilised && changes == 0 && st.gap_before.size() == pairs_.size()) {
-      // The springs let the body move along the rigid motions its active set leaves free, and no pair closed. If
-      // some pair came nearer, the step is extended (a line search along the increment) to twice the distance at
-      // which the nearest such pair would close, so that the next update activates it; if none did, the load moves
-      // the body away from every obstacle.
+    if (st.stabilised && changes == 0 && st.u_before.size() == u_local_.size()) {
+      // The springs let the body move along the rigid motions its active set leaves free, and no pair closed. Where
+      // the body goes is the free rigid part of the solve's displacement (RigidModes::FreeMotion), not the whole of
+      // it: the elastic deformation of the step moves nodes by amounts unrelated to that, and a pair it brought a
+      // little nearer used to stretch the step by a huge factor (a block pushed away from its only wall along a
+      // frictionless floor then cycled instead of being reported free). If that motion brings some pair to close on
+      // its facet, the body is moved along it past the point where the nearest such pair closes (once more the
+      // motion beyond it), so that the next update activates it; if none, the load moves the body away from every
+      // obstacle (a block on a disc held at two nodes rolls about the disc's centre, which closes no pair on it). A
+      // pair closes on its facet: linear material, in its zone (fixed); svk, where the node's path meets the facet's
+      // plane projects onto the facet (a node beside the foot of an inclined wall enters its zone as it slides
+      // towards it). A touching pair (gap 0) that the motion drives in closes at once.
+      const int dim = mesh_.Dim();
+      std::vector<double> du(u_local_.size());
+      for (std::size_t i = 0; i < du.size(); ++i) du[i] = u_local_[i] - st.u_before[i];
+      std::array<double, 6> motion;
+      PetscCall(rigid_.FreeMotion(keys_, normals_, active_set_.Flags(), du.data(), motion));
+      const double size = rigid_.Magnitude(motion);
       double reach = INFINITY;
       for (std::size_t p = 0; p < pairs_.size(); ++p) {
-        const double closing = st.gap_before[p] - states_[p].gap;
-        if (states_[p].InZone() && closing > 1e-12 * contact_.length && states_[p].gap > 0)
-          reach = std::min(reach, states_[p].gap / closing);
+        const double *X = mesh_.X(keys_[p].vertex);
+        const double closing = -rigid_.Along(X, normals_[p].data(), motion);
+        if (!(closing > CLOSING * size && states_[p].gap >= 0)) continue;
+        const double t = states_[p].gap / closing;
+        bool on_facet = states_[p].InZone();
+        if (st.large) {
+          double x[3] = {0, 0, 0};
+          for (int k = 0; k < dim; ++k) {
+            double e[3] = {0, 0, 0};
+            e[k] = 1;
+            x[k] = X[k] + u_local_[keys_[p].vertex * dim + k] + t * rigid_.Along(X, e, motion);
+          }
+          on_facet = obstacle_.facets[pairs_[p].facet]->Project(x, contact_.alpha_tol).inside;
+        }
+        if (on_facet) reach = std::min(reach, t);
       }
       PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &reach, 1, MPI_DOUBLE, MPI_MIN, mesh_.Comm()));
+      PetscCall(PetscInfo(nullptr, "stabilised state: free rigid motion of size %g, nearest pair closes at %g of it\n",
+                          size, reach));
       if (!std::isfinite(reach) || reach > 1e12) {
         stats_.reason = "DIVERGED_NOT_HELD";
         outcome = Outcome::STOP;
       } else {
-        PetscCall(ExtendStep(1 + 2 * reach));
+        PetscCall(MoveRigidly(motion, 1 + 2 * reach));
         outcome = Outcome::EXTENDED;
       }
       PetscFunctionReturn(0);
@@ -686,10 +713,7 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
     PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
     PetscFunctionReturn(0);
   }
-  if (st.stabilised) {
-    st.gap_before.resize(pairs_.size());
-    for (std::size_t p = 0; p < pairs_.size(); ++p) st.gap_before[p] = states_[p].gap;
-  }
+  if (st.stabilised) st.u_before = u_local_;
   // Right-hand side: f - F_int on free rows, 0 on Dirichlet rows, the current gap on active multiplier rows.
   PetscScalar *b;
   const PetscScalar *fi, *fe;
@@ -792,7 +816,6 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
   if (condensed) PetscFunctionReturn(0);
   double step_length;
   PetscCall(UpdateSolution(st.rnorm, st.stabilised, step_length));
-  last_step_ = step_length;
   // What a shortened step left of the prescribed increment comes in the next solve; a full step lands exactly.
   for (double &d : st.delta) d *= 1.0 - step_length;
   if (step_length == 1.0) PetscCall(SetDirichlet(st.factor));
@@ -815,7 +838,6 @@ PetscErrorCode ContactSolver::Materialise(StepState &st, PetscInt it) {
   PetscCall(VecCopy(st.u_base, u_));
   double step_length;
   PetscCall(UpdateSolution(st.base_rnorm, false, step_length));
-  last_step_ = step_length;
   st.condensed = false;
   // The expansion used up the condensed right-hand side: a solve after it (svk: the next Newton step; linear: a
   // correction of an equilibrium residual the certificate refused) condenses again or solves in full.
@@ -852,17 +874,22 @@ double ContactSolver::EquilibriumTol(double scale) const {
   return opts_.newton_rtol * scale + std::min(opts_.newton_atol, 1e-6 * scale);
 }
 
-PetscErrorCode ContactSolver::ExtendStep(double extra) {
-  const PetscScalar *x;
+PetscErrorCode ContactSolver::MoveRigidly(const std::array<double, 6> &motion, double t) {
+  const int dim = mesh_.Dim();
   PetscScalar *u;
   PetscFunctionBeginUser;
-  // u += extra s du, du: the displacement part of the last solution (zero on the Dirichlet rows after a full step),
-  // s the step length it was applied with.
-  PetscCall(VecGetArrayRead(system_->Solution(), &x));
+  // u += t m(x) a on the owned displacement rows; a free mode moves no fixed component (its Dirichlet rows are in
+  // the Gram matrix whose null space it is), which are skipped all the same.
   PetscCall(VecGetArray(u_, &u));
-  for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) u[i] += extra * last_step_ * x[i];
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    if (mesh_.Owned(v))
+      for (int k = 0; k < dim; ++k) {
+        if (dirichlet_.fixed[v * dim + k]) continue;
+        double e[3] = {0, 0, 0};
+        e[k] = 1;
+        u[dofs_.LocalOffset(v, k)] += t * rigid_.Along(mesh_.X(v), e, motion);
+      }
   PetscCall(VecRestoreArray(u_, &u));
-  PetscCall(VecRestoreArrayRead(system_->Solution(), &x));
   PetscCall(UpdateLocal());
   PetscFunctionReturn(0);
 }
@@ -922,7 +949,7 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0, bool stabilised, double 
   if (large && stabilised) {
     // svk: a stabilised step moves the body along its free motions; it is cut to a quarter of the search radius,
     // so that the pairs searched again at the new position still see the obstacle it approaches (StepControl then
-    // extends it from there).
+    // moves the body along its free rigid motion from there).
     double m = 0;
     for (PetscInt i = 0; i < nu; ++i) m = std::max(m, std::abs(dir[i]));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &m, 1, MPI_DOUBLE, MPI_MAX, mesh_.Comm()));

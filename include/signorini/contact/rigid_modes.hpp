@@ -26,12 +26,29 @@ public:
   /// Whether the Dirichlet rows and the active pairs (normals at their vertices) hold every rigid mode. Collective.
   [[nodiscard]] PetscErrorCode Held(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
                                     const std::vector<char> &active, bool &held) const;
+  /// The rigid motion nearest to the displacement du (local vertex layout, du[v*dim+k]; least squares over the owned
+  /// vertices) among those the Dirichlet rows and the active pairs leave free: its mode coefficients a (zero when
+  /// every mode is held). Collective.
+  [[nodiscard]] PetscErrorCode FreeMotion(const std::vector<PairKey> &keys,
+                                          const std::vector<std::array<double, 3>> &normals,
+                                          const std::vector<char> &active, const double *du,
+                                          std::array<double, 6> &a) const;
+  /// The displacement along dir at x of the rigid motion with mode coefficients a.
+  double Along(const double *x, const double *dir, const std::array<double, 6> &a) const;
+  /// The size of a rigid motion: the norm of its coefficients (a rotation's is the displacement it gives at the
+  /// body's size from its centre).
+  double Magnitude(const std::array<double, 6> &a) const;
 
 private:
+  /// The Gram matrix of the Dirichlet rows and the active pairs' rows (nmodes_ x nmodes_). Collective.
+  [[nodiscard]] PetscErrorCode Gram(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
+                                    const std::vector<char> &active, std::array<double, 36> &gram) const;
+
   const Mesh *mesh_ = nullptr;
   int nmodes_ = 3;
   double centre_[3] = {0, 0, 0}, size_ = 1;
   std::array<double, 36> g_dirichlet_{};
+  std::array<double, 36> m_vertices_{}; ///< sum over the vertices of the rows of every direction (the fit's matrix)
 };
 
 } // namespace signorini

@@ -1,4 +1,4 @@
-// Eigenvalues of a small dense symmetric matrix (cyclic Jacobi rotations), for rigid-mode checks and tests.
+// Eigenvalues and eigenvectors of a small dense symmetric matrix (cyclic Jacobi rotations), for rigid-mode checks.
 #pragma once
 
 #include <algorithm>
@@ -7,8 +7,13 @@
 
 namespace signorini {
 
-/// Eigenvalues, ascending, of the symmetric n x n matrix a (row major).
-inline std::vector<double> SymmetricEigenvalues(std::vector<double> a, int n) {
+/// Eigenvalues of the symmetric n x n matrix a (row major), in the order of the columns of v (n x n, row major, the
+/// orthonormal eigenvectors) when v is given; unsorted.
+inline std::vector<double> SymmetricEigen(std::vector<double> a, int n, std::vector<double> *v = nullptr) {
+  if (v) {
+    v->assign(n * n, 0.0);
+    for (int i = 0; i < n; ++i) (*v)[i * n + i] = 1.0;
+  }
   for (int sweep = 0; sweep < 100; ++sweep) {
     double off = 0, total = 0;
     for (int p = 0; p < n; ++p)
@@ -31,10 +36,22 @@ inline std::vector<double> SymmetricEigenvalues(std::vector<double> a, int n) {
           a[p * n + k] = c * apk - s * aqk;
           a[q * n + k] = s * apk + c * aqk;
         }
+        if (v)
+          for (int k = 0; k < n; ++k) {
+            const double vkp = (*v)[k * n + p], vkq = (*v)[k * n + q];
+            (*v)[k * n + p] = c * vkp - s * vkq;
+            (*v)[k * n + q] = s * vkp + c * vkq;
+          }
       }
   }
   std::vector<double> eig(n);
   for (int i = 0; i < n; ++i) eig[i] = a[i * n + i];
+  return eig;
+}
+
+/// Eigenvalues, ascending, of the symmetric n x n matrix a (row major).
+inline std::vector<double> SymmetricEigenvalues(const std::vector<double> &a, int n) {
+  std::vector<double> eig = SymmetricEigen(a, n);
   std::sort(eig.begin(), eig.end());
   return eig;
 }

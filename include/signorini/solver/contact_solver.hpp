@@ -75,8 +75,12 @@ public:
   /// Initial weight of the springs on the normals of the inactive pairs, relative to the stiffness scale, in the
   /// solves whose active set leaves a rigid-body motion free (RigidModes). They pull the increment towards the
   /// previous iterate, so they vanish at convergence, and the final solve of a load step is always made without
-  /// them. When a stabilised solve closes no pair but brings some nearer, its step is extended past the nearest.
+  /// them. When a stabilised solve closes no pair but its free rigid motion brings some nearer, the body is moved
+  /// along that motion past the nearest.
   static constexpr double STABILISATION = 1e-4;
+  /// A pair closes along a free rigid motion when its gap shrinks by more than this fraction of the motion's size (a
+  /// pair along which the body slides, a floor under a block moving sideways, is round-off away from 0).
+  static constexpr double CLOSING = 1e-9;
   /// Relative residual of a lagged (modified) Newton step of the active-set search (-newton_lagged_search) that cannot
   /// be condensed (a prescribed displacement still to apply): the step only has to find the next active set. Also
   /// the largest forcing term of the inexact Newton steps after it settles (NewtonForcing).
@@ -130,9 +134,8 @@ private:
   /// The equilibrium tolerance of Newton and of the certificate at a force scale ||F_int|| + ||f||:
   /// -newton_rtol scale + min(-newton_atol, 1e-6 scale).
   double EquilibriumTol(double scale) const;
-  /// Adds extra times the last applied increment (step length times the displacement part of the last solution) to
-  /// u. Collective.
-  [[nodiscard]] PetscErrorCode ExtendStep(double extra);
+  /// Adds t times the rigid motion with mode coefficients motion (RigidModes) to u. Collective.
+  [[nodiscard]] PetscErrorCode MoveRigidly(const std::array<double, 6> &motion, double t);
   /// Norm of R(u, lambda) = F_int - f - B^T lambda on the free rows, a force scale, and optionally direction . R.
   [[nodiscard]] PetscErrorCode Residual(const std::vector<double> &lambda, double &norm, double &scale,
                                         const PetscScalar *direction = nullptr, double *dot = nullptr);
@@ -161,7 +164,7 @@ private:
     PetscInt set_changes = 0;   ///< iterations of this load step that changed the active set
     double candidate_rnorm = -1; ///< linear: the equilibrium residual of the last candidate state of this active set
     int stalled_corrections = 0; ///< linear: corrections in a row that did not halve candidate_rnorm
-    std::vector<double> gap_before{}; ///< the gaps before the last stabilised solve
+    std::vector<double> u_before{}; ///< the displacement (local layout) before the last stabilised solve
     /// Condensed solves (kept factorisation): from the first solve without stabilisation and without a prescribed
     /// displacement still to apply (svk: from each lagged one), the active-set iterations run in the multiplier space
     /// against that solve's right-hand side, condensed once (its base: u_base, the gaps g_base), the displacement
@@ -229,7 +232,6 @@ private:
   DofMap dofs_;
   std::unique_ptr<Assembler> assembler_;
   std::unique_ptr<SaddlePointSystem> system_;
-  double last_step_ = 1;          ///< the step length of the last Newton update
   std::vector<double> paired_at_; ///< displacement (per local vertex dof) at the last pair search
   VecH u_, du_, fext_, fint_, fdir_, u_seq_;
   VecScatter scatter_ = nullptr;

@@ -1,6 +1,7 @@
-// The active-set rule NextActive on hand-built pair states.
+// The active-set rule NextActive on hand-built pair states; the rigid modes a set of constraints leaves free.
 #include "signorini/contact/active_set.hpp"
 #include "signorini/contact/rigid_modes.hpp"
+#include "signorini/mesh/mesh.hpp"
 
 #include <cmath>
 
@@ -198,6 +199,85 @@ TEST(RigidModes, FloorAloneLeavesTheHorizontalTranslationFree) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) g[i * 3 + j] += row[i] * row[j];
   EXPECT_GT(RelativeSmallestEigenvalue(3, g), 1e-3);
+}
+
+/// The beam mesh (2D) and its rigid modes without supports.
+class BeamModes : public ::testing::Test {
+protected:
+  void SetUp() override {
+    MeshOptions opts;
+    opts.file = SIGNORINI_SOURCE_DIR "/meshes/beam.msh";
+    ASSERT_EQ(mesh_.Create(PETSC_COMM_SELF, opts), 0);
+    fixed_.assign(2 * mesh_.NumLocalVertices(), 0);
+    ASSERT_EQ(modes_.Setup(mesh_, fixed_), 0);
+    ylow_ = INFINITY;
+    for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v) ylow_ = std::min(ylow_, mesh_.X(v)[1]);
+  }
+  /// du[v*2+k]: the rigid motion (tx, ty, omega about (cx, cy)) plus a stretch s (x - cx) along x.
+  std::vector<double> Displacement(double tx, double ty, double omega, double s) const {
+    std::vector<double> du(2 * mesh_.NumLocalVertices());
+    for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v) {
+      const double x = mesh_.X(v)[0] - 0.3, y = mesh_.X(v)[1] - 0.1;
+      du[2 * v] = tx - omega * y + s * x;
+      du[2 * v + 1] = ty + omega * x;
+    }
+    return du;
+  }
+  /// Pairs with a floor under the bottom vertices (normal +y), all active.
+  void Floor(std::vector<PairKey> &keys, std::vector<std::array<double, 3>> &normals) const {
+    for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+      if (mesh_.X(v)[1] < ylow_ + 1e-12) {
+        keys.push_back({v, v, 0});
+        normals.push_back({0, 1, 0});
+      }
+  }
+  Mesh mesh_;
+  std::vector<char> fixed_;
+  RigidModes modes_;
+  double ylow_ = 0;
+};
+
+TEST_F(BeamModes, EveryModeFreeGivesTheRigidMotionBack) {
+  const std::vector<double> du = Displacement(0.3, -0.2, 0.05, 0);
+  std::array<double, 6> a;
+  ASSERT_EQ(modes_.FreeMotion({}, {}, {}, du.data(), a), 0);
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    for (int k = 0; k < 2; ++k) {
+      const double e[2] = {k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0};
+      EXPECT_NEAR(modes_.Along(mesh_.X(v), e, a), du[2 * v + k], 1e-12);
+    }
+}
+
+TEST_F(BeamModes, AFloorLeavesOnlyTheSlideAndTheStretchIsNotMotion) {
+  std::vector<PairKey> keys;
+  std::vector<std::array<double, 3>> normals;
+  Floor(keys, normals);
+  ASSERT_GT(keys.size(), 2u);
+  const std::vector<char> active(keys.size(), 1);
+  // A translation (0.3, -0.2): the floor holds y and the rotation, so the free motion is the slide by 0.3.
+  const std::vector<double> du = Displacement(0.3, -0.2, 0, 0);
+  std::array<double, 6> a;
+  ASSERT_EQ(modes_.FreeMotion(keys, normals, active, du.data(), a), 0);
+  const double right[2] = {1, 0}, up[2] = {0, 1};
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); v += 7) {
+    EXPECT_NEAR(modes_.Along(mesh_.X(v), right, a), 0.3, 1e-12);
+    EXPECT_NEAR(modes_.Along(mesh_.X(v), up, a), 0.0, 1e-12);
+  }
+  EXPECT_NEAR(modes_.Magnitude(a), 0.3, 1e-12);
+  // The stretch s (x - 0.3) adds its mean over the vertices to the slide, nothing across it.
+  double mean = 0;
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v) mean += 0.01 * (mesh_.X(v)[0] - 0.3);
+  mean /= (double)mesh_.NumLocalVertices();
+  const std::vector<double> stretched = Displacement(0.3, -0.2, 0, 0.01);
+  ASSERT_EQ(modes_.FreeMotion(keys, normals, active, stretched.data(), a), 0);
+  EXPECT_NEAR(modes_.Along(mesh_.X(0), right, a), 0.3 + mean, 1e-12);
+  EXPECT_NEAR(modes_.Along(mesh_.X(0), up, a), 0.0, 1e-12);
+  // Every mode held (a wall at x = 0 as well): no free motion.
+  keys.push_back({0, 0, 1});
+  normals.push_back({1, 0, 0});
+  std::vector<char> all(keys.size(), 1);
+  ASSERT_EQ(modes_.FreeMotion(keys, normals, all, du.data(), a), 0);
+  EXPECT_EQ(modes_.Magnitude(a), 0.0);
 }
 
 } // namespace
