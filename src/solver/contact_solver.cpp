@@ -653,7 +653,11 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
         stats_.reason = "DIVERGED_NOT_HELD";
         outcome = Outcome::STOP;
       } else {
+        // The next check, when the move closes no pair, is made without a solve in between: it must see the same
+        // solve's motion, so the move shifts the displacement it is measured from (u_before) as well.
+        const std::vector<double> before = u_local_;
         PetscCall(MoveRigidly(motion, 1 + 2 * reach));
+        for (std::size_t i = 0; i < u_local_.size(); ++i) st.u_before[i] += u_local_[i] - before[i];
         outcome = Outcome::EXTENDED;
       }
       PetscFunctionReturn(0);
