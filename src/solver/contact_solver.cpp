@@ -501,7 +501,7 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
       st.base = false;
       st.u_base.Reset();
       st.next.assign(pairs_.size(), 0);
-      st.u_before.clear();
+      st.measured = false;
       PetscCall(VecZeroEntries(fext_));
       PetscCall(assembler_->AssembleLoads(bc_, st.factor, fext_));
     }
@@ -538,9 +538,11 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
   // the multipliers and gaps that choose it are then those of the set's solution, not of a Newton iterate on its way
   // there (svk's block in the notch toggled one pair between a tensile multiplier and a penetration while the
   // residual stayed at 4e-4).
+  bool deferred = false; // svk: a switch put off until an equilibrium (below): not a state to judge the body by
   if (st.large && changes > 0 && active_set_.OneAtATime() && !(st.rnorm <= EquilibriumTol(st.rscale))) {
     st.next = active_set_.Flags();
     changes = 0;
+    deferred = true;
   }
   // An active set that comes back would cycle. svk with lagged searches first drops them for the rest of the step
   // (their stale tangent can lead the set round); then, as the linear material does at once, the updates switch one
@@ -610,7 +612,7 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
         st.correction_rtol = st.corrected ? 0.0 : 0.1 * tol / st.rnorm;
       }
     }
-    if (st.stabilised && changes == 0 && st.u_before.size() == u_local_.size()) {
+    if (st.stabilised && changes == 0 && !deferred && st.measured) {
       // The springs let the body move along the rigid motions its active set leaves free, and no pair closed. Where
       // the body goes is the free rigid part of the solve's displacement (RigidModes::FreeMotion), not the whole of
       // it: the elastic deformation of the step moves nodes by amounts unrelated to that, and a pair it brought a
@@ -717,7 +719,7 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
     PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
     PetscFunctionReturn(0);
   }
-  if (st.stabilised) st.u_before = u_local_;
+  if (st.stabilised) st.u_before = u_local_, st.measured = true;
   // Right-hand side: f - F_int on free rows, 0 on Dirichlet rows, the current gap on active multiplier rows.
   PetscScalar *b;
   const PetscScalar *fi, *fe;

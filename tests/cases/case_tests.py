@@ -1360,9 +1360,9 @@ def free_along_floor(runner):
     """A body whose active set leaves a rigid motion free is moved along the free rigid part of its stabilised solve
     (RigidModes::FreeMotion), not along the whole displacement. Before, a pair that the elastic deformation of that
     solve brought a little nearer stretched the step by a huge factor, and the 2 x 1 block pushed right along a
-    frictionless floor, away from its only wall, ended with DIVERGED_CYCLING (15 of 300 random cases of the survey,
-    seed 777: cases 23, 26, 190, 231, 285 among them); no rigid motion holds it, and it now ends with
-    DIVERGED_NOT_HELD. An svk block 0.01 into the floor, pushed right towards the foot of an inclined wall 0.145 away
+    frictionless floor, away from its only wall, ended with DIVERGED_CYCLING (random case 23 of seed 777; 14 of the 15
+    cycling cases of that survey are blocks pushed away from their only wall); no rigid motion holds it, and it now
+    ends with DIVERGED_NOT_HELD. An svk block 0.01 into the floor, pushed right towards the foot of an inclined wall 0.145 away
     (random case 196), has no pair in its zone on that wall yet: its nodes' paths along the free motion enter the
     wall's zone, so the step moves it there. It converged only after two load-step cuts (noninvertible deformation
     after the stretched step); it now converges in one load step to the state of eight load steps."""
@@ -1545,8 +1545,8 @@ def block_in_notch(runner):
     runner.expect_close("lambda = anchored", nodes["lambda"], ref["lambda"], 0, 1e-10 * np.abs(ref["lambda"]).max())
     runner.expect_close("anchor reaction", held.get("contact.reaction_force"), [0, 0], 0,
                         1e-10 * np.linalg.norm(held.get("contact.applied_force")))
-    # A load a million times smaller: the stabilised solve barely moves the block, its step is extended until the
-    # floor is reached, and the state is again certified (Runner.run) and balanced.
+    # A load a million times smaller: the stabilised solve barely moves the block, which is then moved along that
+    # free motion until the floor is reached, and the state is again certified (Runner.run) and balanced.
     small = runner.run(["-options_file", "options/block_in_notch.yml", "-bc_traction", "top:0:-1e-6"],
                        "block in notch, small load")
     # The forces are K u with u dominated by the rigid drop onto the floor (0.05), so their round-off is of order

@@ -21,7 +21,8 @@ double RelativeSmallestEigenvalue(int n, const double *a);
 
 class RigidModes {
 public:
-  /// Accumulates the Dirichlet rows (fixed[v*dim+k] marks a fixed dof) of the owned vertices. Collective.
+  /// Accumulates the Dirichlet rows (fixed[v*dim+k] marks a fixed dof) of the owned vertices, and the rows of every
+  /// direction at every owned vertex (the matrix of FreeMotion's fit). Collective.
   [[nodiscard]] PetscErrorCode Setup(const Mesh &mesh, const std::vector<char> &fixed);
   /// Whether the Dirichlet rows and the active pairs (normals at their vertices) hold every rigid mode. Collective.
   [[nodiscard]] PetscErrorCode Held(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,

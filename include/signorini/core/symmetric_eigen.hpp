@@ -1,4 +1,5 @@
-// Eigenvalues and eigenvectors of a small dense symmetric matrix (cyclic Jacobi rotations), for rigid-mode checks.
+// Eigenvalues and eigenvectors of a small dense symmetric matrix (cyclic Jacobi rotations), for rigid-mode checks and
+// tests.
 #pragma once
 
 #include <algorithm>

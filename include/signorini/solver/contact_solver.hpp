@@ -165,6 +165,7 @@ private:
     double candidate_rnorm = -1; ///< linear: the equilibrium residual of the last candidate state of this active set
     int stalled_corrections = 0; ///< linear: corrections in a row that did not halve candidate_rnorm
     std::vector<double> u_before{}; ///< the displacement (local layout) before the last stabilised solve
+    bool measured = false; ///< u_before is that of the current pairs (the same on every rank: a rank may own none)
     /// Condensed solves (kept factorisation): from the first solve without stabilisation and without a prescribed
     /// displacement still to apply (svk: from each lagged one), the active-set iterations run in the multiplier space
     /// against that solve's right-hand side, condensed once (its base: u_base, the gaps g_base), the displacement

@@ -213,7 +213,7 @@ protected:
     ylow_ = INFINITY;
     for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v) ylow_ = std::min(ylow_, mesh_.X(v)[1]);
   }
-  /// du[v*2+k]: the rigid motion (tx, ty, omega about (cx, cy)) plus a stretch s (x - cx) along x.
+  /// du[v*2+k]: the rigid motion (tx, ty, omega about the point (0.3, 0.1)) plus a stretch s (x - 0.3) along x.
   std::vector<double> Displacement(double tx, double ty, double omega, double s) const {
     std::vector<double> du(2 * mesh_.NumLocalVertices());
     for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v) {
@@ -248,7 +248,7 @@ TEST_F(BeamModes, EveryModeFreeGivesTheRigidMotionBack) {
     }
 }
 
-TEST_F(BeamModes, AFloorLeavesOnlyTheSlideAndTheStretchIsNotMotion) {
+TEST_F(BeamModes, AFloorLeavesOnlyTheSlideAndAStretchAddsItsMean) {
   std::vector<PairKey> keys;
   std::vector<std::array<double, 3>> normals;
   Floor(keys, normals);
@@ -272,12 +272,42 @@ TEST_F(BeamModes, AFloorLeavesOnlyTheSlideAndTheStretchIsNotMotion) {
   ASSERT_EQ(modes_.FreeMotion(keys, normals, active, stretched.data(), a), 0);
   EXPECT_NEAR(modes_.Along(mesh_.X(0), right, a), 0.3 + mean, 1e-12);
   EXPECT_NEAR(modes_.Along(mesh_.X(0), up, a), 0.0, 1e-12);
-  // Every mode held (a wall at x = 0 as well): no free motion.
+  // Every mode held (a pair with normal +x at vertex 0 as well): no free motion.
   keys.push_back({0, 0, 1});
   normals.push_back({1, 0, 0});
   std::vector<char> all(keys.size(), 1);
   ASSERT_EQ(modes_.FreeMotion(keys, normals, all, du.data(), a), 0);
   EXPECT_EQ(modes_.Magnitude(a), 0.0);
+}
+
+TEST_F(BeamModes, OnePairLeavesTheRotationsAboutItsNode) {
+  // One pair with normal +y at a bottom vertex X0: the free modes are the slide along x and the rotations about X0
+  // (eigenvectors that mix a translation and the rotation). A rotation about X0 plus a slide is free: the fit gives
+  // it back exactly; a lift along +y is not, and the fit leaves it out.
+  std::vector<PairKey> keys;
+  std::vector<std::array<double, 3>> normals;
+  Floor(keys, normals);
+  keys.resize(1), normals.resize(1);
+  const double *X0 = mesh_.X(keys[0].vertex);
+  std::vector<double> du(2 * mesh_.NumLocalVertices());
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v) {
+    const double x = mesh_.X(v)[0] - X0[0], y = mesh_.X(v)[1] - X0[1], omega = 0.02;
+    du[2 * v] = 0.1 - omega * y;
+    du[2 * v + 1] = omega * x;
+  }
+  std::array<double, 6> a;
+  ASSERT_EQ(modes_.FreeMotion(keys, normals, {1}, du.data(), a), 0);
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    for (int k = 0; k < 2; ++k) {
+      const double e[2] = {k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0};
+      EXPECT_NEAR(modes_.Along(mesh_.X(v), e, a), du[2 * v + k], 1e-12);
+    }
+  std::vector<double> lifted = du;
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v) lifted[2 * v + 1] += 0.3;
+  std::array<double, 6> b;
+  ASSERT_EQ(modes_.FreeMotion(keys, normals, {1}, lifted.data(), b), 0);
+  const double up[2] = {0, 1};
+  EXPECT_NEAR(modes_.Along(X0, up, b), 0.0, 1e-12); // the pair's node does not move along its normal
 }
 
 } // namespace
