@@ -156,6 +156,14 @@ double RigidModes::Along(const double *x, const double *dir, const std::array<do
   return s;
 }
 
+void RigidModes::Motion(const double *x, const std::array<double, 6> &a, double *v) const {
+  for (int k = 0; k < mesh_->Dim(); ++k) {
+    double e[3] = {0, 0, 0};
+    e[k] = 1;
+    v[k] = Along(x, e, a);
+  }
+}
+
 double RigidModes::Magnitude(const std::array<double, 6> &a) const {
   double s = 0;
   for (int i = 0; i < nmodes_; ++i) s += a[i] * a[i];

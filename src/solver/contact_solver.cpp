@@ -639,11 +639,8 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
         bool on_facet = states_[p].InZone();
         if (st.large) {
           double x[3] = {0, 0, 0};
-          for (int k = 0; k < dim; ++k) {
-            double e[3] = {0, 0, 0};
-            e[k] = 1;
-            x[k] = X[k] + u_local_[keys_[p].vertex * dim + k] + t * rigid_.Along(X, e, motion);
-          }
+          rigid_.Motion(X, motion, x);
+          for (int k = 0; k < dim; ++k) x[k] = X[k] + u_local_[keys_[p].vertex * dim + k] + t * x[k];
           on_facet = obstacle_.facets[pairs_[p].facet]->Project(x, contact_.alpha_tol).inside;
         }
         if (on_facet) reach = std::min(reach, t);
@@ -887,14 +884,13 @@ PetscErrorCode ContactSolver::MoveRigidly(const std::array<double, 6> &motion, d
   // u += t m(x) a on the owned displacement rows; a free mode moves no fixed component (its Dirichlet rows are in
   // the Gram matrix whose null space it is), which are skipped all the same.
   PetscCall(VecGetArray(u_, &u));
-  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
-    if (mesh_.Owned(v))
-      for (int k = 0; k < dim; ++k) {
-        if (dirichlet_.fixed[v * dim + k]) continue;
-        double e[3] = {0, 0, 0};
-        e[k] = 1;
-        u[dofs_.LocalOffset(v, k)] += t * rigid_.Along(mesh_.X(v), e, motion);
-      }
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v) {
+    if (!mesh_.Owned(v)) continue;
+    double m[3];
+    rigid_.Motion(mesh_.X(v), motion, m);
+    for (int k = 0; k < dim; ++k)
+      if (!dirichlet_.fixed[v * dim + k]) u[dofs_.LocalOffset(v, k)] += t * m[k];
+  }
   PetscCall(VecRestoreArray(u_, &u));
   PetscCall(UpdateLocal());
   PetscFunctionReturn(0);

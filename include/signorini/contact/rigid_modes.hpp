@@ -36,6 +36,8 @@ public:
                                           std::array<double, 6> &a) const;
   /// The displacement along dir at x of the rigid motion with mode coefficients a.
   double Along(const double *x, const double *dir, const std::array<double, 6> &a) const;
+  /// The displacement v (dim values) at x of the rigid motion with mode coefficients a.
+  void Motion(const double *x, const std::array<double, 6> &a, double *v) const;
   /// The size of a rigid motion: the norm of its coefficients (a rotation's is the displacement it gives at the
   /// body's size from its centre).
   double Magnitude(const std::array<double, 6> &a) const;
