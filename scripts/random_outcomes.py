@@ -1,11 +1,12 @@
 #!/usr/bin/python3
 """Outcomes of signorini on random small contact problems: a robustness survey, for comparing two builds.
 
-    scripts/random_outcomes.py [--exe build/signorini] [--cases 300] [--seed 777]
+    scripts/random_outcomes.py [--exe build/signorini] [--cases 300] [--seed 777] [--dim 2]
 
 The problems are those of the property test random_cases (tests/cases/case_tests.py, random_case): a unit block or
 the 2 x 1 block, linear or svk, on a floor or a disc with optional walls, supported on its left side or held by
-contact alone, under a random top traction; many of them rightly fail (a body that nothing holds). Each case prints
+contact alone, under a random top traction; many of them rightly fail (a body that nothing holds). --dim 3: the unit
+cube on a floor plane or a sphere with optional walls and an inclined plane (random_case_3d). Each case prints
 one line: its number, OK with its active-set iterations, load steps, active pairs and max |u|, or FAIL with the
 reason (DIVERGED_..., SINGULAR for the singular-system message, OTHER). A converged state is also checked against the
 obstacles' geometry from its node table (case_tests.geometric_penetration, independent of the solver's pairs): one
@@ -26,7 +27,7 @@ import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tests", "cases"))
-from case_tests import geometric_penetration, random_case  # noqa: E402
+from case_tests import geometric_penetration, random_case, random_case_3d  # noqa: E402
 
 
 def main():
@@ -34,11 +35,12 @@ def main():
     parser.add_argument("--exe", default=os.path.join(ROOT, "build", "signorini"))
     parser.add_argument("--cases", type=int, default=300)
     parser.add_argument("--seed", type=int, default=777)
+    parser.add_argument("--dim", type=int, choices=(2, 3), default=2)
     opts = parser.parse_args()
     rng = np.random.default_rng(opts.seed)
     counts = collections.Counter()
     for k in range(opts.cases):
-        args = random_case(rng)
+        args = random_case(rng) if opts.dim == 2 else random_case_3d(rng)
         with tempfile.TemporaryDirectory() as tmp:
             out = os.path.join(tmp, "out")
             run = subprocess.run([opts.exe] + args + ["-output_dir", out], cwd=ROOT, stdout=subprocess.PIPE,

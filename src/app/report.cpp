@@ -235,6 +235,7 @@ std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &s
       .Integer("stabilised_solves", st.stabilised_solves)
       .Integer("repairings", st.repairings)
       .Integer("search_widenings", st.search_widenings)
+      .Integer("pivoted_sets", st.pivoted_sets)
       .Number("search_radius", st.search_radius);
   j.BeginArray("history");
   for (const auto &r : st.history)

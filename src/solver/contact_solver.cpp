@@ -383,6 +383,14 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     }
     Outcome outcome;
     PetscCall(StepControl(st, it, changes, outcome));
+    if (outcome == Outcome::STOP && st.pivoted < 2 &&
+        (stats_.reason == "DIVERGED_CYCLING" || stats_.reason == "DIVERGED_NOT_HELD")) {
+      // The rule's sets cycled, or the body seemed free: the linear material's last resort, a finite method (again
+      // after a set that came back was pivoted: the sets from it may have cycled, or not held the body).
+      bool found;
+      PetscCall(PivotedActiveSet(st, it, stats_.reason.c_str(), found));
+      if (found) outcome = Outcome::SOLVE, changes = 1;
+    }
     st.searching = it == 0 || changes > 0;
     if (outcome == Outcome::CONVERGED) ok = true;
     if (outcome == Outcome::CONVERGED || outcome == Outcome::STOP) break;
@@ -395,6 +403,51 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     PetscCall(SolveAndUpdate(st));
   }
   if (!ok) PetscCall(UnpairedAfterFailure(st, it));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const char *why, bool &found) {
+  PetscFunctionBeginUser;
+  found = false;
+  if (st.large || st.moving || !system_->ExactFactorization() || dofs_.GlobalLambda() > LCP_MAX_ROWS)
+    PetscFunctionReturn(0);
+  st.pivoted++;
+  // The problem from the current iterate: the gaps and F_int there (a condensed iterate is expanded first), the
+  // right-hand side f - F_int with no active row, condensed onto the multipliers.
+  if (st.condensed) PetscCall(Materialise(st, it));
+  PetscCall(Residual(lambda_, st.rnorm, st.rscale));
+  st.next.assign(pairs_.size(), 0);
+  st.stabilised = false;
+  st.base = false;
+  PetscCall(AssembleSystem(st));
+  LcpStatus status = LcpStatus::PIVOT_LIMIT;
+  int pivots = 0;
+  {
+    ScopedTimer t(stats_.time_solve);
+    PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
+    PetscCall(system_->Condense());
+    if (system_->ExactFactorization()) {
+      std::vector<double> gap(pairs_.size()), key(pairs_.size());
+      const double nf = (double)obstacle_.facets.size() + 1;
+      for (std::size_t p = 0; p < pairs_.size(); ++p) {
+        gap[p] = states_[p].gap;
+        key[p] = (double)keys_[p].original * nf + (double)keys_[p].facet;
+      }
+      PetscCall(system_->ContactLcp(gap, key, st.next, status, pivots));
+    }
+    PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
+  }
+  PetscInt active = 0;
+  for (char a : st.next) active += a;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &active, 1, MPIU_INT, MPI_SUM, mesh_.Comm()));
+  PetscCall(PetscInfo(nullptr, "%s after %d iterations: the complementarity problem in the multipliers: %s after %d "
+                      "pivots, %" PetscInt_FMT " active\n", why, (int)it, LcpStatusName(status), pivots, active));
+  stats_.pivoted_sets++;
+  found = status == LcpStatus::SOLVED;
+  if (!found) PetscFunctionReturn(0);
+  // The step goes on from that set with the usual rule, its earlier sets forgotten.
+  active_set_.Restart();
+  stats_.reason.clear();
   PetscFunctionReturn(0);
 }
 
@@ -556,8 +609,24 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
       active_set_.Forget();
       PetscCall(PetscInfo(nullptr, "the active set came back: exact Newton steps from now on in this load step\n"));
     } else if (back) {
-      PetscCall(active_set_.SwitchOneAtATime(states_, keys_, st.next, changes));
-      PetscCall(PetscInfo(nullptr, "the active set came back: one switch per update from now on in this load step\n"));
+      // The linear material solves its complementarity problem first (PivotedActiveSet, finite), the first time.
+      bool found = false;
+      if (!st.large && st.pivoted == 0) {
+        const std::vector<char> current = active_set_.Flags(), next = st.next;
+        PetscCall(PivotedActiveSet(st, it, "the active set came back", found));
+        PetscInt differ = 0;
+        for (std::size_t p = 0; p < current.size() && found; ++p) differ += current[p] != st.next[p];
+        PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &differ, 1, MPIU_INT, MPI_SUM, mesh_.Comm()));
+        // Its solution's set is the current one, which the rule would change: nothing new to go on from.
+        found = found && differ > 0;
+        if (found) changes = differ;
+        else st.next = next;
+      }
+      if (!found) {
+        PetscCall(active_set_.SwitchOneAtATime(states_, keys_, st.next, changes));
+        PetscCall(
+            PetscInfo(nullptr, "the active set came back: one switch per update from now on in this load step\n"));
+      }
     }
   }
   if (changes > 0) st.candidate_rnorm = -1, st.stalled_corrections = 0; // a new active set: not a correction's

@@ -524,6 +524,18 @@ PetscErrorCode MumpsSchur::Condense(Vec b) {
   PetscFunctionReturn(0);
 }
 
+void MumpsSchur::ReducedOperator(std::vector<double> &h, std::vector<double> &condensed) const {
+  const std::size_t m = d0_.size();
+  h.clear();
+  condensed.clear();
+  if (rank_ != 0 || !condensed_) return;
+  h.assign(m * m, 0.0);
+  for (std::size_t j = 0; j < m; ++j)
+    for (std::size_t i = 0; i < m; ++i) h[i + j * m] = -0.5 * (s0_[i + j * m] + s0_[j + i * m]);
+  for (std::size_t i = 0; i < m; ++i) h[i + i * m] += d0_[i];
+  condensed = condensed_u_;
+}
+
 PetscErrorCode MumpsSchur::Expand(Vec x) {
   const PetscInt m = (PetscInt)d0_.size();
   PetscFunctionBeginUser;

@@ -4,6 +4,9 @@
 #include "signorini/core/options.hpp"
 #include "signorini/core/progress.hpp"
 
+#include <petscblaslapack.h>
+
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -629,6 +632,82 @@ PetscErrorCode SaddlePointSystem::Expand(double &residual) {
   // measures the modified Newton step, not the solve; the factorisation's null-pivot check and the Newton iteration
   // judge it (only a non-finite result is an error here).
   PetscCall(CheckAndConvert(KSP_CONVERGED_ITS, 1, residual, constant_k_ ? ACCEPTED_RESIDUAL : INFINITY));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::ContactLcp(const std::vector<double> &gap, const std::vector<double> &key,
+                                            std::vector<char> &active, LcpStatus &status, int &pivots) {
+  MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCheck(reuse_ && factored_ && constant_k_ && mumps_schur_.Condensed(), comm, PETSC_ERR_ORDER,
+             "the contact problem in the multipliers needs the kept factorisation of a constant K and a Condense");
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  std::vector<PetscScalar> g, order, z_root;
+  PetscCall(ToRoot(gap, g));
+  PetscCall(ToRoot(key, order));
+  int code[3] = {0, 0, 0}; // status, pivots, LAPACK's info (rank 0)
+  std::vector<double> h, condensed;
+  if (rank == 0) mumps_schur_.ReducedOperator(h, condensed);
+  const PetscInt m = (PetscInt)g.size();
+  // H = V diag(eta) V^T; P + eps I = V diag(1 + eps - r eta) V^T commutes with H.
+  std::vector<double> eta(m);
+  if (rank == 0 && m > 0) {
+    PetscBLASInt n, lwork = -1, info;
+    double query;
+    PetscCall(PetscBLASIntCast(m, &n));
+    LAPACKsyev_("V", "L", &n, h.data(), &n, eta.data(), &query, &lwork, &info);
+    lwork = std::max<PetscBLASInt>(1, (PetscBLASInt)query);
+    std::vector<double> work(lwork);
+    LAPACKsyev_("V", "L", &n, h.data(), &n, eta.data(), work.data(), &lwork, &info);
+    code[2] = (int)info;
+  }
+  PetscCallMPI(MPI_Bcast(&code[2], 1, MPI_INT, 0, comm));
+  PetscCheck(code[2] == 0, comm, PETSC_ERR_LIB, "LAPACK syev of the multipliers' reduced operator failed: info %d",
+             code[2]);
+  if (rank == 0) {
+    std::vector<double> inv(m), proj(m, 0.0);
+    for (PetscInt k = 0; k < m; ++k) {
+      eta[k] = std::max(eta[k], 0.0);
+      inv[k] = 1 / std::max(1 + LCP_REGULARISATION - aug_ * eta[k], LCP_REGULARISATION);
+      for (PetscInt i = 0; i < m; ++i) proj[k] -= h[i + k * m] * condensed[i]; // V^T c, c = -A21 A11^-1 b_u
+    }
+    // The rows in key order.
+    std::vector<PetscInt> perm(m);
+    for (PetscInt i = 0; i < m; ++i) perm[i] = i;
+    std::sort(perm.begin(), perm.end(), [&](PetscInt a, PetscInt b) { return order[a] < order[b]; });
+    // q = g + V diag(inv) V^T c; M = W W^T with W = V diag(sqrt(eta inv)), rows permuted.
+    std::vector<double> M((std::size_t)m * m, 0.0), q(m), W((std::size_t)m * m);
+    for (PetscInt a = 0; a < m; ++a) {
+      const PetscInt i = perm[a];
+      double pc = 0;
+      for (PetscInt k = 0; k < m; ++k) {
+        pc += h[i + k * m] * inv[k] * proj[k];
+        W[a + k * m] = h[i + k * m] * std::sqrt(eta[k] * inv[k]);
+      }
+      q[a] = g[i] + pc;
+    }
+    if (m > 0) {
+      PetscBLASInt n;
+      const double one = 1, zero = 0;
+      PetscCall(PetscBLASIntCast(m, &n));
+      BLASgemm_("N", "T", &n, &n, &n, &one, W.data(), &n, W.data(), &n, &zero, M.data(), &n);
+    }
+    std::vector<double> z, w;
+    status = SolveLcp((int)m, M, q, z, w, &pivots);
+    z_root.assign(m, 0.0);
+    for (PetscInt a = 0; a < m; ++a) z_root[perm[a]] = z[a] > 0 ? 1.0 : 0.0;
+    code[0] = (int)status;
+    code[1] = pivots;
+  }
+  PetscCallMPI(MPI_Bcast(code, 2, MPI_INT, 0, comm));
+  status = (LcpStatus)code[0];
+  pivots = code[1];
+  if (rank != 0) z_root.assign(g.size(), 0.0);
+  std::vector<double> owned;
+  PetscCall(FromRoot(z_root, owned));
+  active.assign(owned.size(), 0);
+  for (std::size_t p = 0; p < owned.size(); ++p) active[p] = owned[p] > 0.5;
   PetscFunctionReturn(0);
 }
 

@@ -1391,6 +1391,47 @@ def free_along_floor(runner):
                       keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
+@test("cycling_set_pivoted")
+def cycling_set_pivoted(runner):
+    """The linear material's last resort when its active sets cycle or it finds the body free: the contact problem
+    from the current iterate as a linear complementarity problem in the multipliers, solved by Lemke's method
+    (ContactSolver::PivotedActiveSet), which is finite. A block on a floor between a vertical wall and an inclined one,
+    held by contact alone and pushed down and towards the inclined wall (random case 151 of seed 777): with the radius
+    1.19, its sets cycled in every repeated step and it ended with DIVERGED_CYCLING (so did the default radius, after
+    repeats). The complementarity problem's solution over those pairs puts a corner inside the inclined wall, whose
+    zone did not hold it in the reference configuration: the certificate refuses it, the step is repeated with that
+    pair, and the run reaches the state of the radius 0.3, which needs no pivoting (1e-10), with no candidate inside an
+    obstacle by the obstacles' geometry. Then a 3D case (below)."""
+    block = ["-mesh_file", "meshes/notch_block.msh", "-material_E", "6239.61", "-material_nu", "0.260",
+             "-contact_groups", "bottom,left,right", "-bc_traction", "top:0.598869:-19.9327", "-obstacle_segments",
+             "-0.5,-0.0390607,1.5,-0.0390607,0,2,0,-0.5,1.1408,-0.0390607,2.1408,0.724722"]
+    ref = runner.run(block + ["-contact_search_radius", "0.3"], "radius 0.3")
+    runner.expect_equal("radius 0.3: no pivoting", ref.get("iterations.pivoted_sets"), 0)
+    for radius in (None, "1.19033"):
+        what = "radius " + (radius or "default")
+        r = runner.run(block + (["-contact_search_radius", radius] if radius else []), what)
+        runner.expect_true("%s: pivoted (%d)" % (what, r.get("iterations.pivoted_sets")),
+                           r.get("iterations.pivoted_sets") >= 1)
+        depth = geometric_penetration(r.nodes(), block)
+        runner.expect_true("%s: no candidate inside an obstacle (deepest %.3g)" % (what, depth),
+                           depth <= r.get("certificate")["gap_tol"])
+        expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"))
+    # 3D, the same code path: the unit cube held by contact alone on a sphere, against a vertical wall on each of two
+    # sides and an inclined plane on the third, pushed down and against the front wall. It ran out of active-set
+    # iterations (DIVERGED_MAX_IT: 50 per load step) with one load step or two, and converged in 48 iterations over four
+    # load steps.
+    cube = ["-mesh_file", "meshes/cube.msh", "-material_E", "5225.03", "-material_nu", "0.231", "-contact_groups",
+            "bottom,front,left", "-bc_traction", "top:0.00995024:-0.1381:-0.501535", "-obstacle_planes",
+            "-0.00749805,0,0,1,0,0,0,-0.0277454,0,0,1,0,1.09108,0,0,-0.797339,0,0.603531",
+            "-obstacle_spheres", "0.5,0.5,-1.02047,1"]
+    r = runner.run(cube, "3D cube on a sphere")
+    runner.expect_true("3D: pivoted (%d)" % r.get("iterations.pivoted_sets"), r.get("iterations.pivoted_sets") >= 1)
+    runner.expect_true("3D: at most 20 active-set iterations (%d)" % r.get("iterations.active_set"),
+                       r.get("iterations.active_set") <= 20)
+    expect_same_state(runner, runner.run(cube + ["-load_steps", "4"], "3D, four load steps"), r,
+                      keys=("contact.active_pairs", "contact.active_nodes"))
+
+
 @test("search_radius_widened")
 def search_radius_widened(runner):
     """A search radius too small for the problem is widened, not an error: a load step that ends with a candidate
@@ -1578,19 +1619,25 @@ def svk_notch_cycle(runner):
         runner.expect_close("%s: lambda" % what, nodes["lambda"], ref["lambda"], 0, 1e-8 * np.abs(ref["lambda"]).max())
 
 
+def random_body(rng, mesh, groups):
+    """The body of a random case (random_case, random_case_3d): the mesh, E and nu, the candidate groups, linear or
+    svk, supported normally on its side x = 0 or held only by contact; and the traction scale q."""
+    E = 10 ** rng.uniform(2, 4)
+    args = ["-mesh_file", mesh, "-material_E", "%.6g" % E, "-material_nu", "%.3f" % rng.uniform(0, 0.45),
+            "-contact_groups", groups]
+    if rng.random() < 0.3:
+        args += ["-material_model", "svk"]
+    if rng.random() < 0.4:
+        args += ["-bc_dirichlet", "left:x"]
+    return args, E * 10 ** rng.uniform(-4, -2)
+
+
 def random_case(rng):
     """Options of a random small contact problem: a unit block (notch_block.msh) or the 2 x 1 mixed block
     (block.msh), linear or svk, supported on its left side or held only by contact, a random top traction, and a
     floor or a disc (which may start penetrating the block) with an optional left wall and inclined wall."""
     mesh, W = [("meshes/notch_block.msh", 1.0), ("meshes/block.msh", 2.0)][rng.integers(2)]
-    E = 10 ** rng.uniform(2, 4)
-    args = ["-mesh_file", mesh, "-material_E", "%.6g" % E, "-material_nu", "%.3f" % rng.uniform(0, 0.45),
-            "-contact_groups", "bottom,left,right"]
-    if rng.random() < 0.3:
-        args += ["-material_model", "svk"]
-    if rng.random() < 0.4:
-        args += ["-bc_dirichlet", "left:x"]
-    q = E * 10 ** rng.uniform(-4, -2)
+    args, q = random_body(rng, mesh, "bottom,left,right")
     args += ["-bc_traction", "top:%.6g:%.6g" % (q * rng.uniform(-0.3, 0.3), -q)]
     floor = rng.uniform(-0.01, 0.05)  # negative: the block starts penetrating the floor
     disc = rng.random() < 0.3  # a disc under the block instead of the flat floor
@@ -1607,17 +1654,54 @@ def random_case(rng):
     return args
 
 
+def random_case_3d(rng):
+    """Options of a random small 3D contact problem, like random_case: the unit cube (cube.msh, 180 nodes; candidates
+    on its faces x = 0, y = 0 and z = 0), linear or svk, supported normally on its face x = 0 or held only by contact,
+    a random top traction, and a floor plane or a unit sphere under it (which may start penetrating the cube), with
+    optional walls touching its faces x = 0 and y = 0 and an inclined plane rising in x."""
+    args, q = random_body(rng, "meshes/cube.msh", "bottom,front,left")
+    args += ["-bc_traction", "top:%.6g:%.6g:%.6g" % (q * rng.uniform(-0.3, 0.3), q * rng.uniform(-0.3, 0.3), -q)]
+    floor = rng.uniform(-0.01, 0.05)  # negative: the cube starts penetrating the floor
+    sphere = rng.random() < 0.3
+    planes = [] if sphere else [0, 0, -floor, 0, 0, 1]
+    if rng.random() < 0.8:
+        planes += [0, 0, 0, 1, 0, 0]  # a wall that the face x = 0 touches
+    if rng.random() < 0.8:
+        planes += [0, 0, 0, 0, 1, 0]  # a wall that the face y = 0 touches
+    if rng.random() < 0.4:
+        slope = rng.uniform(0.3, 1.5)
+        planes += [rng.uniform(0.6, 1.2), 0, -floor, -slope, 0, 1]  # rising in x; the normal points into the body
+    if planes:
+        args += ["-obstacle_planes", ",".join("%.6g" % v for v in planes)]
+    if sphere:
+        args += ["-obstacle_spheres", "%.6g,%.6g,%.6g,1" % (rng.uniform(0.3, 0.7), rng.uniform(0.3, 0.7), -floor - 1.0)]
+    return args
+
+
 def geometric_penetration(nodes, args):
     """The deepest penetration of the obstacles of args (-obstacle_segments: the side to the right of each segment's
     direction, where a node projects onto it; -obstacle_discs: the inside) by the final positions of the boundary
     nodes of a random_case block (the candidates: x = 0, x = W, y = 0), computed from the node table and the options
-    alone, independently of the solver's pairs."""
+    alone, independently of the solver's pairs. 3D (random_case_3d): -obstacle_planes (the side against the normal)
+    and -obstacle_spheres (the inside), for the candidates on the faces x = 0, y = 0 and z = 0."""
+    values = lambda name: [float(v) for v in args[args.index(name) + 1].split(",")] if name in args else []
+    if "u_z" in nodes.dtype.names:
+        p = np.stack([nodes[c] + nodes["u_" + c] for c in "xyz"], axis=1)
+        p = p[(np.abs(nodes["x"]) < 1e-9) | (np.abs(nodes["y"]) < 1e-9) | (np.abs(nodes["z"]) < 1e-9)]
+        deepest = 0.0
+        planes = values("-obstacle_planes")
+        for plane in (planes[i:i + 6] for i in range(0, len(planes), 6)):
+            n = np.array(plane[3:]) / np.linalg.norm(plane[3:])
+            deepest = max(deepest, (-(p - np.array(plane[:3])) @ n).max())
+        spheres = values("-obstacle_spheres")
+        for sphere in (spheres[i:i + 4] for i in range(0, len(spheres), 4)):
+            deepest = max(deepest, (sphere[3] - np.linalg.norm(p - np.array(sphere[:3]), axis=1)).max())
+        return deepest
     px, py = nodes["x"] + nodes["u_x"], nodes["y"] + nodes["u_y"]
     width = nodes["x"].max()
     boundary = (np.abs(nodes["x"]) < 1e-9) | (np.abs(nodes["x"] - width) < 1e-9) | (np.abs(nodes["y"]) < 1e-9)
     px, py = px[boundary], py[boundary]
     deepest = 0.0
-    values = lambda name: [float(v) for v in args[args.index(name) + 1].split(",")] if name in args else []
     seg = values("-obstacle_segments")
     for ax, ay, bx, by in (seg[i:i + 4] for i in range(0, len(seg), 4)):
         length = np.hypot(bx - ax, by - ay)

@@ -136,6 +136,8 @@ public:
   bool OneAtATime() const { return single_; }
   /// Forgets the sets seen so far in this load step (the step goes on another way).
   void Forget() { seen_.clear(); }
+  /// Forgets them and the one-at-a-time mode: the step starts again from another set.
+  void Restart() { seen_.clear(), single_ = false; }
   /// Records `next` (unless record is false) and tells whether it came back: an earlier set of this load step
   /// (`repeats` times before). Collective.
   [[nodiscard]] PetscErrorCode Seen(const std::vector<char> &next, const std::vector<PairKey> &keys, int repeats,

@@ -53,6 +53,7 @@ struct SolveStats {
   PetscInt solves = 0, active_set_iterations = 0, krylov_iterations = 0, steps = 0, cuts = 0;
   PetscInt repairings = 0;        ///< svk: pair searches that changed the pairs (each rebuilds the pattern)
   PetscInt search_widenings = 0;  ///< load steps repeated with a wider search radius (WidenSearch)
+  PetscInt pivoted_sets = 0;      ///< complementarity problems solved by Lemke's method (PivotedActiveSet)
   double search_radius = 0;       ///< the search radius of the final pairs
   PetscInt stabilised_solves = 0; ///< solves with the stabilisation springs (the active set did not hold the body)
   std::vector<IterationRecord> history;
@@ -166,6 +167,7 @@ private:
     int stalled_corrections = 0; ///< linear: corrections in a row that did not halve candidate_rnorm
     std::vector<double> u_before{}; ///< the displacement (local layout) before the last stabilised solve
     bool measured = false; ///< u_before is that of the current pairs (the same on every rank: a rank may own none)
+    int pivoted = 0;       ///< complementarity problems of this step (PivotedActiveSet), at most 2
     /// Condensed solves (kept factorisation): from the first solve without stabilisation and without a prescribed
     /// displacement still to apply (svk: from each lagged one), the active-set iterations run in the multiplier space
     /// against that solve's right-hand side, condensed once (its base: u_base, the gaps g_base), the displacement
@@ -184,6 +186,16 @@ private:
   /// extra_pairs_), or, once per run, when the step cycled or left the body free (DIVERGED_CYCLING, _NOT_HELD; svk
   /// only when it can cut the step no more). Collective.
   [[nodiscard]] PetscErrorCode UnpairedAfterFailure(StepState &st, PetscInt it);
+  /// Linear material with the kept factorisation, at most twice per load step: when an active set first comes back
+  /// (instead of one switch per update, which follows only when this finds nothing new), and when the step ends with
+  /// DIVERGED_CYCLING or _NOT_HELD, the contact problem from the current iterate as a linear complementarity problem
+  /// in the multipliers (SaddlePointSystem::ContactLcp), solved by Lemke's method, which is finite. found: it has a
+  /// solution, whose active set is now st.next; the step goes on from it, its earlier sets forgotten (its solves and
+  /// the certificate decide, as for any set). why: for -info. Collective.
+  [[nodiscard]] PetscErrorCode PivotedActiveSet(StepState &st, PetscInt it, const char *why, bool &found);
+  /// PivotedActiveSet's problem size (multipliers) at most: its eigendecomposition and pivots cost O(m^3) on rank 0
+  /// (Lemke on a dense m = 1000 problem with 500 pivots: 0.56 s).
+  static constexpr PetscInt LCP_MAX_ROWS = 2000;
   /// Finds the pairs again with the radius widen_to_ (linear material: in the reference configuration, with the pairs
   /// of extra_pairs_ in their zone), carrying the multipliers and active flags of the pairs that persist. Collective.
   [[nodiscard]] PetscErrorCode WidenSearch(const std::vector<double> &lambda, const std::vector<double> &mult,

@@ -85,6 +85,11 @@ public:
   /// The whole solution x for the right-hand side of the last Condense and the multiplier part of the last
   /// SolveReduced (or Solve): MUMPS's backward substitution. A new Condense is needed after it. Collective.
   [[nodiscard]] PetscErrorCode Expand(Vec x);
+  /// Rank 0 (elsewhere both empty): A21 A11^-1 A12 = D0 - S0 (m x m, column major, Schur order; symmetrised) and
+  /// A21 A11^-1 b_u of the last Condense. Not collective.
+  void ReducedOperator(std::vector<double> &h, std::vector<double> &condensed) const;
+  /// A Condense holds a right-hand side that Expand has not used yet (every rank).
+  bool Condensed() const { return condensed_; }
   /// Frees the factors and every array (MUMPS's JOB = -2); a new Factor starts again. Collective.
   void Release();
   /// Null pivots MUMPS met in A11 (INFOG(28)).

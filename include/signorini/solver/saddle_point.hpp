@@ -36,6 +36,7 @@
 
 #include "signorini/core/handle.hpp"
 #include "signorini/fem/dof_map.hpp"
+#include "signorini/solver/lcp.hpp"
 #include "signorini/solver/mumps_schur.hpp"
 
 #include <functional>
@@ -143,6 +144,19 @@ public:
   [[nodiscard]] PetscErrorCode SolveCondensed(const std::vector<double> &bm, std::vector<double> &lambda,
                                               std::vector<double> &shift, double &residual);
   [[nodiscard]] PetscErrorCode Expand(double &residual);
+  /// Reuse mode with a constant K, after Condense of a right-hand side whose multiplier rows are zero: the contact
+  /// problem of the linear material from that state as a linear complementarity problem in the multipliers, solved
+  /// by Lemke's method (SolveLcp) on rank 0, and the active set of its solution. gap: the current gap per owned row;
+  /// key: a number per owned row that orders the rows the same way on any number of ranks (the problem's rows are
+  /// taken in that order). With H = B A11^-1 B^T (A11 = K + r B^T B) and c = B A11^-1 b_u, a multiplier vector lambda
+  /// gives the gaps g + P^-1 c + H P^-1 lambda, P = I - r H, which is singular along the rigid motions that K leaves
+  /// free (a body held by contact alone); P + LCP_REGULARISATION I is taken instead, so that such a motion is held
+  /// by a weak spring and the problem stays solvable. The set is a proposal that the caller's exact solves confirm.
+  /// Collective.
+  [[nodiscard]] PetscErrorCode ContactLcp(const std::vector<double> &gap, const std::vector<double> &key,
+                                          std::vector<char> &active, LcpStatus &status, int &pivots);
+  /// See ContactLcp.
+  static constexpr double LCP_REGULARISATION = 1e-8;
 
 private:
   /// The KSP from the options (-contact_ prefix, before the matrix exists); fieldsplit: its PC is a fieldsplit.
