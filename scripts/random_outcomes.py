@@ -62,7 +62,8 @@ def main():
         else:
             m = re.search(r"signorini: error: .*?(DIVERGED_\w+)", run.stdout)  # the final reason, not a repeated step's
             reason = m.group(1) if m else ("SINGULAR" if "is singular" in run.stdout else "OTHER")
-            print(k, "FAIL", reason)
+            last = run.stdout.strip().splitlines()[-1:]
+            print(k, "FAIL", reason if reason != "OTHER" else "OTHER (exit %d): %s" % (run.returncode, last))
             counts[reason] += 1
     print("counts:", " ".join("%s %d" % kv for kv in sorted(counts.items())))
 

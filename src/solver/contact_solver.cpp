@@ -367,6 +367,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
   PetscCall(VecNorm(fext_, NORM_INFINITY, &load_scale));
   active_set_.BeginStep(load_scale);
   widen_to_ = 0;
+  unheld_detail_.clear();
   PetscInt it = 0;
   for (;; ++it) {
     PetscInt changes = 0;
@@ -384,12 +385,18 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     Outcome outcome;
     PetscCall(StepControl(st, it, changes, outcome));
     if (outcome == Outcome::STOP && st.pivoted < 2 &&
-        (stats_.reason == "DIVERGED_CYCLING" || stats_.reason == "DIVERGED_NOT_HELD")) {
+        (stats_.reason == "DIVERGED_CYCLING" || stats_.reason == "DIVERGED_NOT_HELD" ||
+         stats_.reason == "DIVERGED_MAX_IT")) {
       // The rule's sets cycled, or the body seemed free: the linear material's last resort, a finite method (again
-      // after a set that came back was pivoted: the sets from it may have cycled, or not held the body).
-      bool found;
-      PetscCall(PivotedActiveSet(st, it, stats_.reason.c_str(), found));
-      if (found) outcome = Outcome::SOLVE, changes = 1;
+      // after a set that came back was pivoted: the sets from it may have cycled, or not held the body). Out of
+      // iterations, only its verdict on the body counts.
+      Pivot pivot;
+      PetscCall(PivotedActiveSet(st, it, stats_.reason.c_str(), pivot));
+      if (pivot == Pivot::UNHELD) stats_.reason = "DIVERGED_NOT_HELD";
+      else if (pivot == Pivot::SET && stats_.reason != "DIVERGED_MAX_IT") {
+        outcome = Outcome::SOLVE, changes = 1;
+        stats_.reason.clear();
+      }
     }
     st.searching = it == 0 || changes > 0;
     if (outcome == Outcome::CONVERGED) ok = true;
@@ -406,9 +413,9 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const char *why, bool &found) {
+PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const char *why, Pivot &pivot) {
   PetscFunctionBeginUser;
-  found = false;
+  pivot = Pivot::NONE;
   if (st.large || st.moving || !system_->ExactFactorization() || dofs_.GlobalLambda() > LCP_MAX_ROWS)
     PetscFunctionReturn(0);
   st.pivoted++;
@@ -422,6 +429,7 @@ PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const
   PetscCall(AssembleSystem(st));
   LcpStatus status = LcpStatus::PIVOT_LIMIT;
   int pivots = 0;
+  double unbalanced = 0;
   {
     ScopedTimer t(stats_.time_solve);
     PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
@@ -433,7 +441,7 @@ PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const
         gap[p] = states_[p].gap;
         key[p] = (double)keys_[p].original * nf + (double)keys_[p].facet;
       }
-      PetscCall(system_->ContactLcp(gap, key, st.next, status, pivots));
+      PetscCall(system_->ContactLcp(gap, key, st.next, status, pivots, unbalanced));
     }
     PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
   }
@@ -441,13 +449,24 @@ PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const
   for (char a : st.next) active += a;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &active, 1, MPIU_INT, MPI_SUM, mesh_.Comm()));
   PetscCall(PetscInfo(nullptr, "%s after %d iterations: the complementarity problem in the multipliers: %s after %d "
-                      "pivots, %" PetscInt_FMT " active\n", why, (int)it, LcpStatusName(status), pivots, active));
+                      "pivots, %" PetscInt_FMT " active, %g of the load along rigid motions unbalanced\n", why,
+                      (int)it, LcpStatusName(status), pivots, active, unbalanced));
   stats_.pivoted_sets++;
-  found = status == LcpStatus::SOLVED;
-  if (!found) PetscFunctionReturn(0);
+  if (status != LcpStatus::SOLVED) PetscFunctionReturn(0);
+  if (unbalanced > LCP_UNHELD) {
+    pivot = Pivot::UNHELD;
+    st.pivoted = 2; // the verdict stands for this step
+    char text[256];
+    std::snprintf(text, sizeof(text),
+                  "no contact forces on its %" PetscInt_FMT " candidate pairs balance the load (the complementarity "
+                  "problem leaves %.2g of it along rigid-body motions unbalanced)",
+                  dofs_.GlobalLambda(), unbalanced);
+    unheld_detail_ = text;
+    PetscFunctionReturn(0);
+  }
   // The step goes on from that set with the usual rule, its earlier sets forgotten.
+  pivot = Pivot::SET;
   active_set_.Restart();
-  stats_.reason.clear();
   PetscFunctionReturn(0);
 }
 
@@ -613,7 +632,15 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
       bool found = false;
       if (!st.large && st.pivoted == 0) {
         const std::vector<char> current = active_set_.Flags(), next = st.next;
-        PetscCall(PivotedActiveSet(st, it, "the active set came back", found));
+        Pivot pivot;
+        PetscCall(PivotedActiveSet(st, it, "the active set came back", pivot));
+        if (pivot == Pivot::UNHELD) {
+          // No contact forces on these pairs hold the body (the step may then be repeated with wider pairs).
+          stats_.reason = "DIVERGED_NOT_HELD";
+          outcome = Outcome::STOP;
+          PetscFunctionReturn(0);
+        }
+        found = pivot == Pivot::SET;
         PetscInt differ = 0;
         for (std::size_t p = 0; p < current.size() && found; ++p) differ += current[p] != st.next[p];
         PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &differ, 1, MPIU_INT, MPI_SUM, mesh_.Comm()));
@@ -1122,9 +1149,12 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
               "supports and obstacles hold every rigid-body motion"
         : why == "DIVERGED_NONINVERTIBLE_DEFORMATION" ? "the deformation became non-invertible (det F <= 0)"
         : why == "DIVERGED_NOT_HELD"
-            ? "the body is not held: along a rigid-body motion that the supports and the active contact leave free, "
-              "the load moves it away from every obstacle (add Dirichlet conditions, or check the obstacle's position "
-              "and orientation and -contact_search_radius)"
+            ? (unheld_detail_.empty()
+                   ? std::string("the body is not held: along a rigid-body motion that the supports and the active "
+                                 "contact leave free, the load moves it away from every obstacle")
+                   : "the body is not held: " + unheld_detail_) +
+                  " (add Dirichlet conditions, or check the obstacle's position and orientation and "
+                  "-contact_search_radius)"
         : why == "DIVERGED_CERTIFICATE"
             ? "the state is not a contact solution (" + stats_.violation + ") and the active-set rule cannot change it"
         : why == "DIVERGED_EQUILIBRIUM_STALLED"

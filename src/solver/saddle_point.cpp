@@ -636,7 +636,8 @@ PetscErrorCode SaddlePointSystem::Expand(double &residual) {
 }
 
 PetscErrorCode SaddlePointSystem::ContactLcp(const std::vector<double> &gap, const std::vector<double> &key,
-                                            std::vector<char> &active, LcpStatus &status, int &pivots) {
+                                            std::vector<char> &active, LcpStatus &status, int &pivots,
+                                            double &unbalanced) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   PetscMPIInt rank;
   PetscFunctionBeginUser;
@@ -644,6 +645,7 @@ PetscErrorCode SaddlePointSystem::ContactLcp(const std::vector<double> &gap, con
              "the contact problem in the multipliers needs the kept factorisation of a constant K and a Condense");
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   std::vector<PetscScalar> g, order, z_root;
+  unbalanced = 0;
   PetscCall(ToRoot(gap, g));
   PetscCall(ToRoot(key, order));
   int code[3] = {0, 0, 0}; // status, pivots, LAPACK's info (rank 0)
@@ -696,11 +698,25 @@ PetscErrorCode SaddlePointSystem::ContactLcp(const std::vector<double> &gap, con
     std::vector<double> z, w;
     status = SolveLcp((int)m, M, q, z, w, &pivots);
     z_root.assign(m, 0.0);
-    for (PetscInt a = 0; a < m; ++a) z_root[perm[a]] = z[a] > 0 ? 1.0 : 0.0;
+    std::vector<double> lambda(m, 0.0);
+    for (PetscInt a = 0; a < m; ++a) z_root[perm[a]] = z[a] > 0 ? 1.0 : 0.0, lambda[perm[a]] = z[a];
+    // A rigid motion rho that only contact holds is a null vector v = B rho of P (H v = v / r): along it, V^T lambda
+    // is the work of the contact forces and r V^T c that of the load, so their sum is the force that the weak spring
+    // carries instead of the obstacles.
+    double carried = 0, load = 0;
+    for (PetscInt k = 0; k < m && status == LcpStatus::SOLVED; ++k) {
+      if (1 - aug_ * eta[k] > LCP_RIGID_TOL) continue;
+      double work = 0;
+      for (PetscInt i = 0; i < m; ++i) work += h[i + k * m] * lambda[i];
+      carried += (work + aug_ * proj[k]) * (work + aug_ * proj[k]);
+      load += std::max(work * work, aug_ * proj[k] * aug_ * proj[k]);
+    }
+    unbalanced = load > 0 ? std::sqrt(carried / load) : 0.0;
     code[0] = (int)status;
     code[1] = pivots;
   }
   PetscCallMPI(MPI_Bcast(code, 2, MPI_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(&unbalanced, 1, MPI_DOUBLE, 0, comm));
   status = (LcpStatus)code[0];
   pivots = code[1];
   if (rank != 0) z_root.assign(g.size(), 0.0);

@@ -1398,10 +1398,11 @@ def cycling_set_pivoted(runner):
     (ContactSolver::PivotedActiveSet), which is finite. A block on a floor between a vertical wall and an inclined one,
     held by contact alone and pushed down and towards the inclined wall (random case 151 of seed 777): with the radius
     1.19, its sets cycled in every repeated step and it ended with DIVERGED_CYCLING (so did the default radius, after
-    repeats). The complementarity problem's solution over those pairs puts a corner inside the inclined wall, whose
-    zone did not hold it in the reference configuration: the certificate refuses it, the step is repeated with that
-    pair, and the run reaches the state of the radius 0.3, which needs no pivoting (1e-10), with no candidate inside an
-    obstacle by the obstacles' geometry. Then a 3D case (below)."""
+    repeats). With 1.19 the complementarity problem's solution puts a corner inside the inclined wall, whose zone did
+    not hold it in the reference configuration: the certificate refuses it and the step is repeated with that pair.
+    With the default radius the pairs lack that wall, the problem finds the body not held by them, and the step is
+    repeated with wider pairs. Both reach the state of the radius 0.3, which needs no pivoting (1e-10), with no
+    candidate inside an obstacle by the obstacles' geometry. Then 3D cases (below)."""
     block = ["-mesh_file", "meshes/notch_block.msh", "-material_E", "6239.61", "-material_nu", "0.260",
              "-contact_groups", "bottom,left,right", "-bc_traction", "top:0.598869:-19.9327", "-obstacle_segments",
              "-0.5,-0.0390607,1.5,-0.0390607,0,2,0,-0.5,1.1408,-0.0390607,2.1408,0.724722"]
@@ -1430,6 +1431,19 @@ def cycling_set_pivoted(runner):
                        r.get("iterations.active_set") <= 20)
     expect_same_state(runner, runner.run(cube + ["-load_steps", "4"], "3D, four load steps"), r,
                       keys=("contact.active_pairs", "contact.active_nodes"))
+    # A verdict: the cube on a sphere pushed away from its wall at y = 0, which it can slide or roll along (random
+    # case 290 of random_outcomes.py --dim 3, seed 777). It ran out of active-set iterations; the complementarity
+    # problem's solution leaves 8 % of the load along rigid motions to the regularisation's spring, so no contact
+    # forces on the pairs hold it, also after the repeat with the pairs within the cube's diagonal.
+    free = ["-mesh_file", "meshes/cube.msh", "-material_E", "1228.63", "-material_nu", "0.163", "-contact_groups",
+            "bottom,front,left", "-bc_traction", "top:0.0197162:0.0408767:-0.149286", "-obstacle_planes",
+            "0,0,0,1,0,0,0,0,0,0,1,0,1.05037,0,-0.0342131,-1.46851,0,1", "-obstacle_spheres",
+            "0.666416,0.593367,-1.03421,1"]
+    status, out, _ = runner.run_any(free, "3D cube sliding off its sphere", timeout=120)
+    errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
+    runner.expect_true("one error line, DIVERGED_NOT_HELD by the complementarity problem (exit %d): %s" %
+                       (status, errors), status != 0 and len(errors) == 1 and "DIVERGED_NOT_HELD" in errors[0] and
+                       "no contact forces on its" in errors[0])
 
 
 @test("search_radius_widened")

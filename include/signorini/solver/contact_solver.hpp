@@ -188,11 +188,18 @@ private:
   [[nodiscard]] PetscErrorCode UnpairedAfterFailure(StepState &st, PetscInt it);
   /// Linear material with the kept factorisation, at most twice per load step: when an active set first comes back
   /// (instead of one switch per update, which follows only when this finds nothing new), and when the step ends with
-  /// DIVERGED_CYCLING or _NOT_HELD, the contact problem from the current iterate as a linear complementarity problem
-  /// in the multipliers (SaddlePointSystem::ContactLcp), solved by Lemke's method, which is finite. found: it has a
-  /// solution, whose active set is now st.next; the step goes on from it, its earlier sets forgotten (its solves and
-  /// the certificate decide, as for any set). why: for -info. Collective.
-  [[nodiscard]] PetscErrorCode PivotedActiveSet(StepState &st, PetscInt it, const char *why, bool &found);
+  /// DIVERGED_CYCLING, _NOT_HELD or _MAX_IT, the contact problem from the current iterate as a linear complementarity
+  /// problem in the multipliers (SaddlePointSystem::ContactLcp), solved by Lemke's method, which is finite. pivot:
+  /// SET, it has a solution, whose active set is now st.next, and the step goes on from it, its earlier sets
+  /// forgotten (its solves and the certificate decide, as for any set); UNHELD, the solution leaves more than
+  /// LCP_UNHELD of the load along rigid motions to the regularisation's spring: no contact forces on these pairs hold
+  /// the body (DIVERGED_NOT_HELD); NONE, no solution or no such problem. why: for -info. Collective.
+  enum class Pivot { NONE, SET, UNHELD };
+  [[nodiscard]] PetscErrorCode PivotedActiveSet(StepState &st, PetscInt it, const char *why, Pivot &pivot);
+  /// See PivotedActiveSet: a body that its pairs hold leaves about SaddlePointSystem::LCP_REGULARISATION (1e-10) of
+  /// the load to the spring (8.6e-9 and 8.9e-7 in two random cases, the second moved 0.16 rigidly), one that rolls
+  /// off a disc or a sphere, or slides away along a frictionless floor, 0.03 to 0.08.
+  static constexpr double LCP_UNHELD = 1e-3;
   /// PivotedActiveSet's problem size (multipliers) at most: its eigendecomposition and pivots cost O(m^3) on rank 0
   /// (Lemke on a dense m = 1000 problem with 500 pivots: 0.56 s).
   static constexpr PetscInt LCP_MAX_ROWS = 2000;
@@ -231,6 +238,7 @@ private:
   double widen_depth_ = 0;
   bool widened_unheld_ = false; ///< a step that cycled or left the body free was repeated with a wider radius (once)
   std::string first_unheld_;     ///< the reason of that step's failure
+  std::string unheld_detail_;    ///< PivotedActiveSet's finding that the pairs cannot hold the body (this load step)
   /// Load steps repeated with a wider search radius in a run, at most (each at least doubles it).
   static constexpr PetscInt MAX_WIDENINGS = 8;
   std::vector<char> candidate_;

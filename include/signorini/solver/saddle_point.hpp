@@ -152,11 +152,15 @@ public:
   /// gives the gaps g + P^-1 c + H P^-1 lambda, P = I - r H, which is singular along the rigid motions that K leaves
   /// free (a body held by contact alone); P + LCP_REGULARISATION I is taken instead, so that such a motion is held
   /// by a weak spring and the problem stays solvable. The set is a proposal that the caller's exact solves confirm.
-  /// Collective.
+  /// unbalanced: the part of the load along those motions that the spring carries in the solution, relative to the
+  /// load or the contact forces along them (whichever is larger): about LCP_REGULARISATION when the pairs hold the
+  /// body, of order 1 when no contact forces on them can (a body that rolls off a disc). Collective.
   [[nodiscard]] PetscErrorCode ContactLcp(const std::vector<double> &gap, const std::vector<double> &key,
-                                          std::vector<char> &active, LcpStatus &status, int &pivots);
-  /// See ContactLcp.
-  static constexpr double LCP_REGULARISATION = 1e-8;
+                                          std::vector<char> &active, LcpStatus &status, int &pivots,
+                                          double &unbalanced);
+  /// See ContactLcp. The rigid motions are the eigenvectors of r H whose eigenvalue is within LCP_RIGID_TOL of 1 (an
+  /// elastic mode is there only for a body some 1000 times longer than thick).
+  static constexpr double LCP_REGULARISATION = 1e-10, LCP_RIGID_TOL = 1e-9;
 
 private:
   /// The KSP from the options (-contact_ prefix, before the matrix exists); fieldsplit: its PC is a fieldsplit.
