@@ -420,7 +420,8 @@ PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const
     PetscFunctionReturn(0);
   st.pivoted++;
   // The problem from the current iterate: the gaps and F_int there (a condensed iterate is expanded first), the
-  // right-hand side f - F_int with no active row, condensed onto the multipliers.
+  // right-hand side f - F_int with no active row, condensed onto the multipliers: the base of the condensed solves
+  // that follow (the next solve's active set only changes the multiplier rows).
   if (st.condensed) PetscCall(Materialise(st, it));
   PetscCall(Residual(lambda_, st.rnorm, st.rscale));
   st.next.assign(pairs_.size(), 0);
@@ -433,7 +434,7 @@ PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const
   {
     ScopedTimer t(stats_.time_solve);
     PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
-    PetscCall(system_->Condense());
+    PetscCall(CondenseBase(st));
     if (system_->ExactFactorization()) {
       std::vector<double> gap(pairs_.size()), key(pairs_.size());
       const double nf = (double)obstacle_.facets.size() + 1;
@@ -875,18 +876,10 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
     const double t0 = MPI_Wtime();
     PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
     const bool search = st.large ? st.lagged && system_->ReusesFactorization() : system_->ExactFactorization();
-    if (!st.base && !st.stabilised && !st.moving && search) {
-      // Linear material, kept factorisation, no stabilisation and no prescribed displacement still to apply: the
-      // right-hand side assembled now is the base of the solves after it, which run in the multiplier space
-      // (condensed) until Materialise.
-      if (!st.u_base) PetscCall(VecDuplicate(u_, st.u_base.out()));
-      PetscCall(VecCopy(u_, st.u_base));
-      st.g_base.resize(pairs_.size());
-      for (std::size_t p = 0; p < pairs_.size(); ++p) st.g_base[p] = states_[p].gap;
-      PetscCall(system_->Condense());
-      st.base = true;
-      st.base_rnorm = st.rnorm;
-    }
+    // Linear material, kept factorisation, no stabilisation and no prescribed displacement still to apply: the
+    // right-hand side assembled now is the base of the solves after it, which run in the multiplier space (condensed)
+    // until Materialise.
+    if (!st.base && !st.stabilised && !st.moving && search) PetscCall(CondenseBase(st));
     condensed = Condensable(st);
     if (condensed) {
       std::vector<double> bm(pairs_.size());
@@ -918,6 +911,18 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
   // What a shortened step left of the prescribed increment comes in the next solve; a full step lands exactly.
   for (double &d : st.delta) d *= 1.0 - step_length;
   if (step_length == 1.0) PetscCall(SetDirichlet(st.factor));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::CondenseBase(StepState &st) {
+  PetscFunctionBeginUser;
+  if (!st.u_base) PetscCall(VecDuplicate(u_, st.u_base.out()));
+  PetscCall(VecCopy(u_, st.u_base));
+  st.g_base.resize(pairs_.size());
+  for (std::size_t p = 0; p < pairs_.size(); ++p) st.g_base[p] = states_[p].gap;
+  PetscCall(system_->Condense());
+  st.base = true;
+  st.base_rnorm = st.rnorm;
   PetscFunctionReturn(0);
 }
 

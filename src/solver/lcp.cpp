@@ -80,11 +80,8 @@ LcpStatus SolveLcp(int m, const std::vector<double> &M, const std::vector<double
   }
   if (pivots) *pivots = count;
   if (status != LcpStatus::SOLVED) return status;
-  for (int i = 0; i < m; ++i) {
-    const double v = std::max(at(i, rhs), 0.0);
-    if (basis[i] < m) z[basis[i]] = 0; // w basic: set below
-    else if (basis[i] < 2 * m) z[basis[i] - m] = v;
-  }
+  for (int i = 0; i < m; ++i)
+    if (basis[i] >= m && basis[i] < z0) z[basis[i] - m] = std::max(at(i, rhs), 0.0); // z basic; w from z below
   for (int i = 0; i < m; ++i) {
     double wi = q[i];
     for (int j = 0; j < m; ++j) wi += M[i + (std::size_t)j * m] * z[j];

@@ -198,7 +198,8 @@ private:
   [[nodiscard]] PetscErrorCode PivotedActiveSet(StepState &st, PetscInt it, const char *why, Pivot &pivot);
   /// See PivotedActiveSet: a body that its pairs hold leaves about SaddlePointSystem::LCP_REGULARISATION (1e-10) of
   /// the load to the spring (8.6e-9 and 8.9e-7 in two random cases, the second moved 0.16 rigidly), one that rolls
-  /// off a disc or a sphere, or slides away along a frictionless floor, 0.03 to 0.08.
+  /// off a disc or a sphere, or slides away along a frictionless floor, 0.03 to 0.17 in the surveys (README), and 1
+  /// when its load pulls it off every obstacle.
   static constexpr double LCP_UNHELD = 1e-3;
   /// PivotedActiveSet's problem size (multipliers) at most: its eigendecomposition and pivots cost O(m^3) on rank 0
   /// (Lemke on a dense m = 1000 problem with 500 pivots: 0.56 s).
@@ -215,6 +216,9 @@ private:
   /// The relative tolerance of an svk solve that is not lagged: an inexact Newton step (0: the KSP's).
   [[nodiscard]] PetscErrorCode NewtonForcing(const StepState &st, double &rtol) const;
   bool Condensable(const StepState &st) const;
+  /// The right-hand side assembled for the current iterate as the base of the condensed solves (StepState::base):
+  /// u_base, g_base, base_rnorm, and its condensation. Collective.
+  [[nodiscard]] PetscErrorCode CondenseBase(StepState &st);
   /// After condensed solves: the expansion of the last one (the whole solution for the base's right-hand side with the
   /// current constraints), and the displacement u_base + du; the pairs evaluated there. Collective.
   [[nodiscard]] PetscErrorCode Materialise(StepState &st, PetscInt it);

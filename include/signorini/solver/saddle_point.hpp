@@ -154,7 +154,7 @@ public:
   /// by a weak spring and the problem stays solvable. The set is a proposal that the caller's exact solves confirm.
   /// unbalanced: the part of the load along those motions that the spring carries in the solution, relative to the
   /// load or the contact forces along them (whichever is larger): about LCP_REGULARISATION when the pairs hold the
-  /// body, of order 1 when no contact forces on them can (a body that rolls off a disc). Collective.
+  /// body, 0.03 to 1 in the surveys when no contact forces on them can (a body that rolls off a disc). Collective.
   [[nodiscard]] PetscErrorCode ContactLcp(const std::vector<double> &gap, const std::vector<double> &key,
                                           std::vector<char> &active, LcpStatus &status, int &pivots,
                                           double &unbalanced);
