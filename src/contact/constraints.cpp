@@ -19,7 +19,7 @@ void EvaluatePairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOpti
     double x[3] = {0, 0, 0};
     for (int d = 0; d < dim; ++d) x[d] = X[d] + u[d];
     const Facet &facet = *obstacle.facets[pair.facet];
-    const Projection proj = facet.Project(x, opts.alpha_tol);
+    const Projection proj = facet.Project(x, opts.alpha_tol, opts.length);
     states[p].inside = proj.inside;
     if (large_deformation) {
       states[p].gap = proj.gap;
@@ -44,7 +44,7 @@ void EvaluatePairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOpti
       const double t = pair.g0 / (pair.g0 - g);
       double c[3] = {0, 0, 0};
       for (int d = 0; d < dim; ++d) c[d] = pair.x0[d] + t * (x[d] - pair.x0[d]);
-      states[p].entered = facet.Project(c, opts.alpha_tol).inside;
+      states[p].entered = facet.Project(c, opts.alpha_tol, opts.length).inside;
       states[p].crossing = t;
     } else {
       states[p].entered = pair.g0 < -opts.touch_tol && pair.inside0 && g < 0;

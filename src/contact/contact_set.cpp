@@ -184,7 +184,7 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
     for (PetscInt f : near) {
       const Facet &facet = *obstacle.facets[f];
       if (facet.Distance(x) > opts.search_radius) continue;
-      const Projection p = facet.Project(x, opts.alpha_tol);
+      const Projection p = facet.Project(x, opts.alpha_tol, opts.length);
       // A pair whose normal lies in the node's fixed components has an empty constraint row: the supports already
       // hold the node in that direction.
       double free2 = 0;
@@ -290,7 +290,7 @@ PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const
       bins.Find(x, near);
       for (PetscInt f : near) {
         if (std::binary_search(paired.begin(), paired.end(), std::array<PetscInt, 2>{v, f})) continue;
-        const Projection p = obstacle.facets[f]->Project(x, opts.alpha_tol);
+        const Projection p = obstacle.facets[f]->Project(x, opts.alpha_tol, opts.length);
         if (!p.inside) continue;
         // As in FindContactPairs: a facet whose normal lies in the node's fixed components gets no pair.
         double free2 = 0;

@@ -19,7 +19,7 @@ double Ball::CentreDistance(const double *x) const {
   return std::sqrt(d2);
 }
 
-Projection Ball::Project(const double *x, double) const {
+Projection Ball::Project(const double *x, double, double) const {
   Projection p;
   const double d = CentreDistance(x);
   p.gap = d - r_;

@@ -22,7 +22,7 @@ double Cylinder::Radial(const double *x, double *r) const {
   return std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
 }
 
-Projection Cylinder::Project(const double *x, double) const {
+Projection Cylinder::Project(const double *x, double, double) const {
   Projection p;
   double r[3];
   const double d = Radial(x, r);

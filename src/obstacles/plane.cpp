@@ -12,7 +12,7 @@ Plane::Plane(const double *point, const double *normal) {
   for (int i = 0; i < 3; ++i) p_[i] = point[i], n_[i] = normal[i] / norm;
 }
 
-Projection Plane::Project(const double *x, double) const {
+Projection Plane::Project(const double *x, double, double) const {
   Projection p;
   p.gap = n_[0] * (x[0] - p_[0]) + n_[1] * (x[1] - p_[1]) + n_[2] * (x[2] - p_[2]);
   for (int i = 0; i < 3; ++i) p.normal[i] = n_[i];
@@ -20,7 +20,7 @@ Projection Plane::Project(const double *x, double) const {
   return p;
 }
 
-double Plane::Distance(const double *x) const { return std::abs(Project(x, 0).gap); }
+double Plane::Distance(const double *x) const { return std::abs(Project(x, 0, 0).gap); }
 
 void Plane::Bounds(double *lo, double *hi) const {
   for (int i = 0; i < 3; ++i) lo[i] = -std::numeric_limits<double>::infinity(), hi[i] = -lo[i];

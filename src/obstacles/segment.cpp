@@ -14,14 +14,15 @@ Segment::Segment(const double *p0, const double *p1) {
   n_[1] = (p1[0] - p0[0]) / length_;
 }
 
-Projection Segment::Project(const double *x, double alpha_tol) const {
+Projection Segment::Project(const double *x, double alpha_tol, double length) const {
   Projection p;
   const double d[2] = {p1_[0] - p0_[0], p1_[1] - p0_[1]};
   // Eq. 24: alpha = (B - A) . (R - A) / |B - A|^2; Eq. 25: gap = n . (R - R*) = n . (R - A).
   p.alpha = (d[0] * (x[0] - p0_[0]) + d[1] * (x[1] - p0_[1])) / (length_ * length_);
   p.gap = n_[0] * (x[0] - p0_[0]) + n_[1] * (x[1] - p0_[1]);
   p.normal[0] = n_[0], p.normal[1] = n_[1];
-  p.inside = p.alpha >= -alpha_tol && p.alpha <= 1 + alpha_tol;
+  const double tol = alpha_tol * std::min(1.0, EDGE_TOL_LENGTH * length / length_);
+  p.inside = p.alpha >= -tol && p.alpha <= 1 + tol;
   return p;
 }
 

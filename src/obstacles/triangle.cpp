@@ -34,6 +34,11 @@ Triangle::Triangle(const double *p0, const double *p1, const double *p2) {
   // Gram matrix G = [e1.e1 e1.e2; e1.e2 e2.e2], det G = |e1 x e2|^2.
   const double a = Dot(e1, e1), b = Dot(e1, e2), d = Dot(e2, e2), det = twice_area * twice_area;
   gram_inv_[0] = d / det, gram_inv_[1] = -b / det, gram_inv_[2] = a / det;
+  for (int k = 0; k < 3; ++k) {
+    double e[3];
+    for (int i = 0; i < 3; ++i) e[i] = p_[(k + 2) % 3][i] - p_[(k + 1) % 3][i];
+    height_[k] = twice_area / std::sqrt(Dot(e, e));
+  }
 }
 
 void Triangle::Barycentric(const double *x, double *b) const {
@@ -47,7 +52,7 @@ void Triangle::Barycentric(const double *x, double *b) const {
   b[0] = 1 - b[1] - b[2];
 }
 
-Projection Triangle::Project(const double *x, double alpha_tol) const {
+Projection Triangle::Project(const double *x, double alpha_tol, double length) const {
   Projection p;
   double b[3], w[3];
   Barycentric(x, b);
@@ -55,7 +60,8 @@ Projection Triangle::Project(const double *x, double alpha_tol) const {
     w[i] = x[i] - p_[0][i], p.normal[i] = n_[i];
   p.gap = Dot(n_, w);
   p.alpha = std::min({b[0], b[1], b[2]});
-  p.inside = p.alpha >= -alpha_tol;
+  p.inside = true;
+  for (int k = 0; k < 3; ++k) p.inside = p.inside && b[k] >= -alpha_tol * std::min(1.0, EDGE_TOL_LENGTH * length / height_[k]);
   return p;
 }
 

@@ -536,7 +536,7 @@ PetscErrorCode ContactSolver::WidenSearch(const std::vector<double> &lambda, con
   for (const auto &[v, f] : extra_pairs_) {
     if (found.count({v, f})) continue;
     const double *X = mesh_.X(v);
-    const Projection pr = obstacle_.facets[f]->Project(X, contact_.alpha_tol);
+    const Projection pr = obstacle_.facets[f]->Project(X, contact_.alpha_tol, contact_.length);
     ContactPair pair{v, f, {pr.normal[0], pr.normal[1], pr.normal[2]}, pr.gap, pr.inside, true, {0, 0, 0}};
     for (int k = 0; k < dim; ++k) pair.x0[k] = X[k];
     pairs.push_back(pair);
@@ -738,7 +738,7 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
           double x[3] = {0, 0, 0};
           rigid_.Motion(X, motion, x);
           for (int k = 0; k < dim; ++k) x[k] = X[k] + u_local_[keys_[p].vertex * dim + k] + t * x[k];
-          on_facet = obstacle_.facets[pairs_[p].facet]->Project(x, contact_.alpha_tol).inside;
+          on_facet = obstacle_.facets[pairs_[p].facet]->Project(x, contact_.alpha_tol, contact_.length).inside;
         }
         if (on_facet) reach = std::min(reach, t);
       }

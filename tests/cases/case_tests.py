@@ -1308,6 +1308,36 @@ def floor_end_beside_block(runner):
     runner.expect_true("the floor's end node (0.9, 0) is active", nodes["active"][end].sum() == 1)
 
 
+@test("long_facet_end")
+def long_facet_end(runner):
+    """A facet's end holds no node past it, however long the facet: -contact_alpha_tol was relative to the facet's
+    size alone, so the 2 x 1 block on a floor 1e9 long ending at x = 1.5 under it (default alpha_tol 1e-8: 10 past the
+    end) had the bottom nodes up to 0.5 past the end active, carrying multipliers: the state of a floor under the whole
+    block. The tolerance is now relative to the smaller of the facet's size and a tenth of the body's diagonal, so the
+    long floor, and a floor 100 long with alpha_tol 1e-2, give the state of a floor 2 long that ends at the same place
+    (the overhang free). 3D: the unit cube on a rectangle 100 wide ending at x = 0.5 (alpha_tol 1e-2 reached 1 past its
+    end and held the whole bottom) against one 0.5 wide ending there."""
+    base = ["-options_file", "options/block_on_floor.yml"]
+    ref = runner.run(base + ["-obstacle_segments", "-0.5,0,1.5,0"], "block on a floor ending at 1.5")
+    nodes = ref.nodes()
+    runner.expect_true("no bottom node past the floor's end is active",
+                       nodes["active"][(nodes["y"] == 0) & (nodes["x"] > 1.5 + 1e-9)].sum() == 0)
+    for floor, extra in (("-1e9,0,1.5,0", []), ("-98.5,0,1.5,0", ["-contact_alpha_tol", "1e-2"])):
+        expect_same_state(runner, ref, runner.run(base + ["-obstacle_segments", floor, "-contact_search_radius", "1"] +
+                                                  extra, "block on the floor %s %s" % (floor, " ".join(extra))),
+                          keys=("contact.active_pairs", "contact.active_nodes"))
+    cube = ["-mesh_file", "meshes/cube.msh", "-material_E", "1000", "-bc_dirichlet", "left:x,front:y", "-bc_pressure",
+            "top:2", "-contact_groups", "bottom", "-contact_search_radius", "1", "-contact_alpha_tol", "1e-2"]
+    ref3 = runner.run(cube + ["-obstacle_rectangles", "0.25,0.5,0,0,0,1,1,0,0,0.25,50"], "cube on a rectangle ending "
+                      "at x = 0.5")
+    nodes = ref3.nodes()
+    runner.expect_true("no bottom node past the rectangle's end is active",
+                       nodes["active"][(nodes["z"] == 0) & (nodes["x"] > 0.5 + 1e-9)].sum() == 0)
+    expect_same_state(runner, ref3, runner.run(cube + ["-obstacle_rectangles", "-49.75,0.5,0,0,0,1,1,0,0,50.25,50"],
+                                               "cube on a rectangle 100 wide ending at x = 0.5"),
+                      keys=("contact.active_pairs", "contact.active_nodes"))
+
+
 @test("inclined_wall_beyond_radius")
 def inclined_wall_beyond_radius(runner):
     """Random case 15 of the survey (seed 777): the unit block held by contact alone on a floor, pushed right by its

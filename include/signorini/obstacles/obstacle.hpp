@@ -32,11 +32,18 @@ struct Projection {
   bool inside = false;     ///< the projection falls on the facet (seed Fig. 4), within the tolerance
 };
 
+/// The largest facet size that the alpha tolerance is relative to, as a fraction of the body's diagonal.
+constexpr double EDGE_TOL_LENGTH = 0.1;
+
 class Facet {
 public:
   virtual ~Facet() = default;
-  /// Projects the point x (dim values) on the facet; alpha_tol widens the facet's parameter range.
-  virtual Projection Project(const double *x, double alpha_tol) const = 0;
+  /// Projects the point x (dim values) on the facet. A bounded facet counts a foot up to alpha_tol times the smaller
+  /// of its own size and EDGE_TOL_LENGTH `length` (the body's diagonal) past an edge as on it: relative to the facet
+  /// as in the seed's Eq. 27, but never farther than alpha_tol / 10 body diagonals (at most 1e-3 of them, the bound
+  /// of the gap tolerances), so that a long facet does not hold a node far past its end (a floor 1e9 long held nodes
+  /// 10 past its end with alpha_tol 1e-8).
+  virtual Projection Project(const double *x, double alpha_tol, double length) const = 0;
   /// Euclidean distance from x to the facet (for the pair search).
   virtual double Distance(const double *x) const = 0;
   /// Axis-aligned bounding box (lo, hi: dim values each; infinite for an unbounded facet).
@@ -56,7 +63,7 @@ public:
 class Segment final : public Facet {
 public:
   Segment(const double *p0, const double *p1);
-  Projection Project(const double *x, double alpha_tol) const override;
+  Projection Project(const double *x, double alpha_tol, double length) const override;
   double Distance(const double *x) const override;
   void Bounds(double *lo, double *hi) const override;
   std::string Describe() const override;
@@ -72,12 +79,13 @@ private:
 /// An oriented triangle P0, P1, P2 (3D), the flat facet of a meshed rigid surface; its normal
 /// (P1 - P0) x (P2 - P0) / |.| follows the node order by the right-hand rule. Like a segment, its gap is the distance
 /// to its plane, n . (x - P0), and `inside` says whether the foot of x on the plane falls on the triangle: its
-/// barycentric coordinates are all >= -alpha_tol (alpha: the smallest of them). Distance is the exact distance to the
+/// barycentric coordinates are all >= -alpha_tol min(1, EDGE_TOL_LENGTH length / height) for the height onto each
+/// edge (alpha: the smallest of them). Distance is the exact distance to the
 /// closest point of the triangle (its interior, an edge or a vertex).
 class Triangle final : public Facet {
 public:
   Triangle(const double *p0, const double *p1, const double *p2);
-  Projection Project(const double *x, double alpha_tol) const override;
+  Projection Project(const double *x, double alpha_tol, double length) const override;
   double Distance(const double *x) const override;
   void Bounds(double *lo, double *hi) const override;
   std::string Describe() const override;
@@ -91,6 +99,7 @@ private:
   /// Barycentric coordinates (of P0, P1, P2) of the foot of x on the triangle's plane.
   void Barycentric(const double *x, double *b) const;
   double p_[3][3], n_[3], area_;
+  double height_[3]; ///< the height onto the edge opposite each corner (the barycentric coordinate's unit length)
   double gram_inv_[3]; ///< inverse of the Gram matrix of the edges P1 - P0, P2 - P0: (00, 01, 11)
 };
 
@@ -99,7 +108,7 @@ private:
 class Ball final : public Facet {
 public:
   Ball(const double *centre, double radius, int dim);
-  Projection Project(const double *x, double alpha_tol) const override;
+  Projection Project(const double *x, double alpha_tol, double length) const override;
   double Distance(const double *x) const override;
   void Bounds(double *lo, double *hi) const override;
   std::string Describe() const override;
@@ -122,7 +131,7 @@ private:
 class Plane final : public Facet {
 public:
   Plane(const double *point, const double *normal);
-  Projection Project(const double *x, double alpha_tol) const override;
+  Projection Project(const double *x, double alpha_tol, double length) const override;
   double Distance(const double *x) const override;
   void Bounds(double *lo, double *hi) const override;
   std::string Describe() const override;
@@ -137,7 +146,7 @@ private:
 class Cylinder final : public Facet {
 public:
   Cylinder(const double *point, const double *axis, double radius);
-  Projection Project(const double *x, double alpha_tol) const override;
+  Projection Project(const double *x, double alpha_tol, double length) const override;
   double Distance(const double *x) const override;
   void Bounds(double *lo, double *hi) const override;
   std::string Describe() const override;

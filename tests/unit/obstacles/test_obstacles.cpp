@@ -18,7 +18,7 @@ using test::ScopedOptions;
 
 Projection ProjectOn(const Facet &facet, double x, double y, double alpha_tol = 0.0) {
   const double p[2] = {x, y};
-  return facet.Project(p, alpha_tol);
+  return facet.Project(p, alpha_tol, INFINITY);
 }
 
 double DistanceTo(const Facet &facet, double x, double y) {
@@ -96,6 +96,23 @@ TEST(Segment, InsideFlagUsesTheAlphaTolerance) {
   EXPECT_FALSE(ProjectOn(s, 10.3, -1, 0.02).inside);
 }
 
+TEST(Segment, EndToleranceIsCappedByTheBodyLength) {
+  // A floor 1000 long ending at x = 1.5: relative to its length alone, alpha_tol 1e-8 reaches 1e-5 past its end;
+  // capped by a tenth of a body of diagonal 2 it reaches 2e-9.
+  const double a[2] = {-998.5, 0}, b[2] = {1.5, 0};
+  const Segment floor(a, b);
+  const double past[2] = {1.5 + 1e-6, 0.1}, near[2] = {1.5 + 1.5e-9, 0.1}, beyond[2] = {1.5 + 2.5e-9, 0.1};
+  EXPECT_TRUE(floor.Project(past, 1e-8, INFINITY).inside);
+  EXPECT_FALSE(floor.Project(past, 1e-8, 2).inside);
+  EXPECT_TRUE(floor.Project(near, 1e-8, 2).inside);
+  EXPECT_FALSE(floor.Project(beyond, 1e-8, 2).inside);
+  // A segment shorter than a tenth of the body keeps the tolerance relative to its length (1e-2 x 1 past its end).
+  const double p0[2] = {0, 0}, p1[2] = {1, 0}, inside[2] = {1.009, 0.1}, outside[2] = {1.011, 0.1};
+  const Segment unit(p0, p1);
+  EXPECT_TRUE(unit.Project(inside, 1e-2, 100).inside);
+  EXPECT_FALSE(unit.Project(outside, 1e-2, 100).inside);
+}
+
 TEST(Segment, DistanceIsToTheFiniteSegment) {
   const double p0[2] = {0, 0}, p1[2] = {2, 0};
   const Segment s(p0, p1);
@@ -165,7 +182,7 @@ TEST(Plane, GapIsTheSignedDistanceAlongTheUnitNormalEverywhere) {
   const double p[3] = {1, 2, 3}, n[3] = {0, 3, 4}; // normalised to (0, 0.6, 0.8)
   const Plane plane(p, n);
   const double x[3] = {-50, 2 + 0.6 * 2, 3 + 0.8 * 2}, behind[3] = {7, 2 - 0.6, 3 - 0.8};
-  const Projection a = plane.Project(x, 0), b = plane.Project(behind, 0);
+  const Projection a = plane.Project(x, 0, 0), b = plane.Project(behind, 0, 0);
   EXPECT_NEAR(a.gap, 2.0, 1e-14);
   EXPECT_NEAR(b.gap, -1.0, 1e-14);
   EXPECT_NEAR(plane.Distance(behind), 1.0, 1e-14);
@@ -183,7 +200,7 @@ TEST(Sphere, GapAndNormalAreRadialIn3D) {
   const double c[3] = {1, 2, -1};
   const Ball sphere(c, 2.0, 3);
   const double out[3] = {1 + 2, 2 + 4, -1 + 4}, in[3] = {1, 2, -1 + 1.5};
-  const Projection a = sphere.Project(out, 0), b = sphere.Project(in, 0);
+  const Projection a = sphere.Project(out, 0, 0), b = sphere.Project(in, 0, 0);
   EXPECT_NEAR(a.gap, 4.0, 1e-14); // |x - c| = 6
   EXPECT_NEAR(a.normal[0], 1.0 / 3, 1e-15);
   EXPECT_NEAR(a.normal[1], 2.0 / 3, 1e-15);
@@ -202,7 +219,7 @@ TEST(Cylinder, GapIgnoresThePositionAlongTheAxis) {
   const Cylinder cylinder(p, axis, r);
   for (double along : {-100.0, 0.0, 3.0}) {
     const double x[3] = {along, 0.6, 1 + 0.8}, in[3] = {along, 0, 1 - 0.2};
-    const Projection a = cylinder.Project(x, 0), b = cylinder.Project(in, 0);
+    const Projection a = cylinder.Project(x, 0, 0), b = cylinder.Project(in, 0, 0);
     EXPECT_NEAR(a.gap, 0.5, 1e-14);
     EXPECT_NEAR(a.normal[0], 0.0, 1e-15);
     EXPECT_NEAR(a.normal[1], 0.6, 1e-15);
@@ -474,14 +491,14 @@ TEST(Rectangle, TwoTrianglesOrientedIntoTheBodyCoverIt) {
   const double x[3] = {2.9, 1.75, 3.4}, out[3] = {3.1, 1.75, 3};
   int on = 0;
   for (const auto &f : facets) {
-    const Projection p = f->Project(x, 1e-8);
+    const Projection p = f->Project(x, 1e-8, INFINITY);
     if (!p.inside) continue;
     ++on;
     EXPECT_NEAR(p.gap, 0.25, 1e-14);
     EXPECT_NEAR(p.normal[1], -1, 1e-14);
   }
   EXPECT_GE(on, 1);
-  for (const auto &f : facets) EXPECT_FALSE(f->Project(out, 1e-8).inside);
+  for (const auto &f : facets) EXPECT_FALSE(f->Project(out, 1e-8, INFINITY).inside);
   const double zero[11] = {0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 1}, along[11] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 1, 1};
   EXPECT_NE(Shape("-obstacle_rectangles").build(zero, facets), "");
   EXPECT_NE(Shape("-obstacle_rectangles").build(along, facets), "");

@@ -19,7 +19,7 @@ Triangle Unit() {
 
 Projection At(const Facet &f, double x, double y, double z, double tol = 0) {
   const double p[3] = {x, y, z};
-  return f.Project(p, tol);
+  return f.Project(p, tol, INFINITY);
 }
 
 double DistanceTo(const Facet &f, double x, double y, double z) {
@@ -76,6 +76,23 @@ TEST(Triangle, InsideFlagUsesTheAlphaToleranceOnEveryEdge) {
   EXPECT_TRUE(At(t, 1, -1e-6, 0.1, 1e-6).inside);
   EXPECT_FALSE(At(t, 1, -1e-6, 0.1, 1e-7).inside);
   EXPECT_FALSE(At(t, 3, 3, 0).inside);
+}
+
+TEST(Triangle, EdgeToleranceIsCappedByTheBodyLength) {
+  // A large triangle (legs 1000): relative to its heights alone, alpha_tol 1e-8 would reach 1e-5 past an edge;
+  // capped by a tenth of a body of diagonal 2 it reaches 2e-9.
+  const double a[3] = {0, 0, 0}, b[3] = {1000, 0, 0}, c[3] = {0, 1000, 0};
+  const Triangle t(a, b, c);
+  const double past[3] = {1, -1e-6, 0.1}, near[3] = {1, -1.5e-9, 0.1}, beyond[3] = {1, -2.5e-9, 0.1};
+  EXPECT_TRUE(t.Project(past, 1e-8, INFINITY).inside);
+  EXPECT_FALSE(t.Project(past, 1e-8, 2).inside);
+  EXPECT_TRUE(t.Project(near, 1e-8, 2).inside);
+  EXPECT_FALSE(t.Project(beyond, 1e-8, 2).inside);
+  // A triangle smaller than a tenth of the body keeps the tolerance relative to its own heights (1e-6 x 2 past the
+  // edge y = 0).
+  const double inside[3] = {1, -1.5e-6, 0.1}, outside[3] = {1, -2.5e-6, 0.1};
+  EXPECT_TRUE(Unit().Project(inside, 1e-6, 100).inside);
+  EXPECT_FALSE(Unit().Project(outside, 1e-6, 100).inside);
 }
 
 TEST(Triangle, DistanceIsToTheInteriorEdgesAndVertices) {
