@@ -46,10 +46,12 @@ const std::vector<std::string> DEFAULT_CASE_GROUPS = {"top_centre", "contact_poi
 /// run gives a case of its own: a -mesh_file together with any support, load, obstacle or candidate group. A
 /// -mesh_file alone (a finer Hertz mesh, meshes/hertz.geo with -mesh_size_factor) keeps the rest of the default case
 /// instead of running a body that nothing loads or holds; on_user_mesh then tells CheckDefaultCaseMesh to check it.
-PetscErrorCode ApplyDefaultCase(bool &on_user_mesh) {
+/// hertz_filled: the default case filled in -report_hertz (its P then need not be the load the run gives).
+PetscErrorCode ApplyDefaultCase(bool &on_user_mesh, bool &hertz_filled) {
   PetscBool has_mesh;
   PetscFunctionBeginUser;
   on_user_mesh = false;
+  hertz_filled = false;
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-mesh_file", &has_mesh));
   if (has_mesh) {
     std::vector<std::string> own = {"-bc_dirichlet", "-bc_traction", "-bc_pressure", "-bc_point_force",
@@ -76,6 +78,7 @@ PetscErrorCode ApplyDefaultCase(bool &on_user_mesh) {
     PetscBool set;
     PetscCall(PetscOptionsHasName(nullptr, nullptr, name, &set));
     if (!set) PetscCall(PetscOptionsSetValue(nullptr, name, value.c_str()));
+    if (!set && std::string(name) == "-report_hertz") hertz_filled = true;
   }
   PetscFunctionReturn(0);
 }
@@ -235,8 +238,8 @@ PetscErrorCode Run() {
                           "obstacles.\nEvery input is a PETSc option. The built-in 2D Hertz case (options/hertz.yml) "
                           "fills in every option not given, unless the run gives a case of its own: -mesh_file with "
                           "any of -bc_*, -obstacle_*, -contact_groups.\n\n"));
-  bool default_on_user_mesh;
-  PetscCall(ApplyDefaultCase(default_on_user_mesh));
+  bool default_on_user_mesh, hertz_filled;
+  PetscCall(ApplyDefaultCase(default_on_user_mesh, hertz_filled));
   PetscCall(ReadProgressOptions(comm));
 
   MeshOptions mesh_opts;
@@ -253,6 +256,7 @@ PetscErrorCode Run() {
   PetscCall(ReadSolverOptions(comm, material.model, solver_opts));
   PetscCall(ReadOutputOptions(comm, output_opts));
   PetscCall(ReadReportOptions(comm, hertz));
+  hertz.check_load = !hertz_filled;
   if (help) {
     PetscCall(ReadBoundaryConditions(comm, 0, bc));
     PetscCall(ReadContactOptions(comm, 1.0, material.E * material.thickness, contact));

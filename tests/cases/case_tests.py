@@ -157,6 +157,18 @@ def hertz3d_refinement(runner):
     hertz_refinement_levels(runner, "hertz3d", HERTZ3D_FACTORS, HERTZ3D_H_CONTACT, 0.03, check_load, heap_check=False)
 
 
+@test("hertz_thickness")
+def hertz_thickness(runner):
+    """-report_hertz's P is per unit thickness in 2D: the Hertz case with -material_thickness 2 (the same traction,
+    twice the force) has the same half-width and peak pressure, and its comparison is the same as with thickness 1
+    (before, the doubled force was compared with P: -29 % on a and p0)."""
+    ref = runner.run([], "hertz, thickness 1")
+    thick = runner.run(["-material_thickness", "2"], "hertz, thickness 2")
+    for key in ("hertz.fraction", "hertz.P_model", "hertz.a", "hertz.a_computed", "hertz.p0", "hertz.p0_computed"):
+        runner.expect_close(key, thick.get(key), ref.get(key), 1e-9, 0)
+    runner.expect_close("hertz.P_model is P", ref.get("hertz.P_model"), 10, 1e-3, 0)
+
+
 @test("block_on_floor")
 def block_on_floor(runner):
     """Block under uniform pressure on a rigid floor: every bottom node active, lambda_i = q w_i, the exact field."""
