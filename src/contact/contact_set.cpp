@@ -158,9 +158,23 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
     PetscCall(mesh.BoundaryVertices(vertices));
     for (PetscInt v : vertices) candidate[v] = 1;
   } else {
+    // A candidate is a node of the body's boundary: a group of the body's dimension (or one with interior nodes)
+    // would make interior nodes candidates.
+    std::vector<char> boundary(nv, 0);
+    PetscCall(mesh.BoundaryVertices(vertices));
+    for (PetscInt v : vertices) boundary[v] = 1;
     for (const auto &g : opts.groups) {
       PetscCall(mesh.GroupVertices(g, vertices, "-contact_groups " + g));
-      for (PetscInt v : vertices) candidate[v] = 1;
+      PetscInt interior = 0;
+      for (PetscInt v : vertices) {
+        candidate[v] = 1;
+        interior += mesh.Owned(v) && !boundary[v];
+      }
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &interior, 1, MPIU_INT, MPI_SUM, mesh.Comm()));
+      PetscCheck(interior == 0, mesh.Comm(), PETSC_ERR_USER_INPUT,
+                 "-contact_groups %s: physical group '%s' has %" PetscInt_FMT " node(s) inside the body, off its "
+                 "boundary; expected a group on the boundary (curves in 2D, surfaces in 3D, or points on them)",
+                 g.c_str(), g.c_str(), interior);
     }
   }
   // Seed section 4.2.1: nodes with every component fixed cannot move and are no candidates.

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""scripts/plot.py on the output of a small run (beam_on_floor with a Hertz block, so that the analytical curve is
-drawn, and two load steps): it exits 0 and writes deformed.png, contact_pressure.png and active_set.png, each a valid
+"""scripts/plot.py on the output of a small run (the Hertz case, whose summary has a Hertz block, so that the
+analytical curve is drawn, in two load steps): it exits 0 and writes deformed.png, contact_pressure.png and active_set.png, each a valid
 PNG (signature, non-empty, an image matplotlib reads back, at least 200 pixels each way). It refuses, with one line
 naming the reason, no traceback, exit status 1 and no picture written: a 3D output (cube_on_plane; the message says it
 draws 2D results and names ParaView and the output's solution.xdmf), a directory that does not exist, and one that is
@@ -56,8 +56,8 @@ def main():
     args = parser.parse_args()
     work = tempfile.mkdtemp(prefix="signorini_plot_np%d_" % args.np)
     out = os.path.join(work, "out")
-    cmd = [args.mpiexec, "-n", str(args.np), args.exe, "-options_file", "options/beam_on_floor.yml", "-load_steps",
-           "2", "-report_hertz", "8,10", "-output_dir", out]
+    cmd = [args.mpiexec, "-n", str(args.np), args.exe, "-options_file", "options/hertz.yml", "-load_steps", "2",
+           "-output_dir", out]
     failures = []
     run = subprocess.run(cmd, cwd=args.source_dir, capture_output=True, text=True)
     if run.returncode != 0:
