@@ -281,6 +281,7 @@ PetscErrorCode Run() {
   PetscCall(CheckLoadGroups(mesh, bc));
   PetscCall(CheckObstacleDimension(comm, obstacle, mesh.Dim()));
   PetscCall(LoadObstacleMeshes(comm, mesh.Dim(), obstacle));
+  PetscCall(CheckContactOptionsApply(comm, obstacle));
 
   // The body's bounding box: its diagonal L is the length scale of the problem's checks and tolerances.
   Box body;

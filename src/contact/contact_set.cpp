@@ -10,6 +10,26 @@
 
 namespace signorini {
 
+PetscErrorCode CheckContactOptionsApply(MPI_Comm comm, const Obstacle &obstacle) {
+  // -contact_monitor and -contact_converged_reason still print the (single) iteration and its reason; the solver's
+  // own -contact_ksp_, -contact_pc_ and -contact_mat_ options solve the elastic problem.
+  static const char *const contact_only[] = {
+      "-contact_groups", "-contact_search_radius", "-contact_touch_tol", "-contact_gap_tol", "-contact_alpha_tol",
+      "-contact_complementarity_c", "-contact_activation_fraction", "-contact_activation_gap_factor",
+      "-contact_max_it", "-contact_reuse_factorization", "-contact_reuse_max_it", "-contact_nested_dissection",
+      "-contact_nested_dissection_parallel"};
+  PetscFunctionBeginUser;
+  if (!obstacle.facets.empty()) PetscFunctionReturn(0);
+  for (const char *name : contact_only) {
+    PetscBool set;
+    PetscCall(PetscOptionsHasName(nullptr, nullptr, name, &set));
+    PetscCheck(!set, comm, PETSC_ERR_USER_INPUT,
+               "%s is given, but the case has no obstacle (no -obstacle_* option), so there is no contact for it to "
+               "act on; expected an obstacle, or no contact options", name);
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOptions &opts) {
   // Ranges (README): a penetration or touching gap beyond 1e-3 of the body's size is a visibly wrong state, alpha
   // beyond 1e-2 projects a node off its facet, a radius beyond 1e5 diagonals pairs everything anyway (and keeps the

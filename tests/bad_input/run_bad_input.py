@@ -254,6 +254,8 @@ CASES = {
                                               "0.001 by item 'b:x=0.001'"], {}),
     "contact_unknown_group": (["-contact_groups", "bottom"], ["-contact_groups bottom: physical group 'bottom'",
                                                               "not in the mesh"], {"no_output_dir": True}),
+    "contact_option_without_obstacle": (["-options_file", "{root}/options/lame_cylinder.yml", "-contact_gap_tol",
+                                         "1e-3"], ["-contact_gap_tol is given", "no obstacle"], {}),
     "contact_group_interior": (["-contact_groups", "body"], ["-contact_groups body", "node(s) inside the body",
                                                              "on the boundary"], {}),
     "contact_groups_empty": (["-contact_groups", ""], ["-contact_groups", "without a value", "no candidate nodes"], {}),

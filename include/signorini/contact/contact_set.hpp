@@ -38,6 +38,10 @@ struct ContactOptions {
 /// (length scale L, stiffness scale k), and the ranges of the tolerances are relative to them (README). Collective.
 [[nodiscard]] PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOptions &opts);
 
+/// A case without an obstacle has no contact: an option that acts only on contact (the pairs, the active-set rule,
+/// the kept factorisation of the contact solve) would be ignored, so giving one is an error. Collective.
+[[nodiscard]] PetscErrorCode CheckContactOptionsApply(MPI_Comm comm, const Obstacle &obstacle);
+
 /// One candidate pair, stored on the rank that owns its node.
 struct ContactPair {
   PetscInt vertex;    ///< local vertex
