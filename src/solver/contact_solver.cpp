@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 namespace signorini {
@@ -384,7 +385,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     }
     Outcome outcome;
     PetscCall(StepControl(st, it, changes, outcome));
-    if (outcome == Outcome::STOP && st.pivoted < 2 &&
+    if (outcome == Outcome::STOP && !st.singular && st.pivoted < 2 &&
         (stats_.reason == "DIVERGED_CYCLING" || stats_.reason == "DIVERGED_NOT_HELD" ||
          stats_.reason == "DIVERGED_MAX_IT")) {
       // The rule's sets cycled, or the body seemed free: the linear material's last resort, a finite method (again
@@ -408,7 +409,11 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     st.stabilised = !held;
     PetscCall(AssembleSystem(st));
     PetscCall(SolveAndUpdate(st));
+    if (st.singular) break;
   }
+  // A factorisation found null pivots: the supports and the candidate pairs do not hold the body, or the MUMPS controls
+  // call regular pivots null (the step may be repeated with the pairs of a wider radius, UnpairedAfterFailure).
+  if (st.singular) stats_.reason = "DIVERGED_SINGULAR";
   if (!ok) PetscCall(UnpairedAfterFailure(st, it));
   PetscFunctionReturn(0);
 }
@@ -435,7 +440,7 @@ PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const
     ScopedTimer t(stats_.time_solve);
     PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
     PetscCall(CondenseBase(st));
-    if (system_->ExactFactorization()) {
+    if (system_->ExactFactorization() && !st.singular) {
       std::vector<double> gap(pairs_.size()), key(pairs_.size());
       const double nf = (double)obstacle_.facets.size() + 1;
       for (std::size_t p = 0; p < pairs_.size(); ++p) {
@@ -446,6 +451,7 @@ PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const
     }
     PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
   }
+  if (st.singular) PetscFunctionReturn(0);
   PetscInt active = 0;
   for (char a : st.next) active += a;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &active, 1, MPIU_INT, MPI_SUM, mesh_.Comm()));
@@ -477,8 +483,9 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   widen_to_ = 0;
   if (stats_.reason == "DIVERGED_NONINVERTIBLE_DEFORMATION" || stats_.search_widenings >= MAX_WIDENINGS)
     PetscFunctionReturn(0);
-  // The displacement of the step's last iterate (a condensed search keeps it at its base until it is expanded).
-  if (st.condensed) PetscCall(Materialise(st, it));
+  // The displacement of the step's last iterate (a condensed search keeps it at its base until it is expanded; a
+  // singular refactorisation left nothing to expand).
+  if (st.condensed && !st.singular) PetscCall(Materialise(st, it));
   Penetration unpaired, prescribed;
   std::vector<std::array<PetscInt, 2>> found;
   double reach;
@@ -493,7 +500,12 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   const bool can_cut = large && stats_.cuts < opts_.max_cuts && stats_.reason != "DIVERGED_NOT_HELD";
   const bool unheld = (stats_.reason == "DIVERGED_CYCLING" || stats_.reason == "DIVERGED_NOT_HELD") && !can_cut;
   const bool penetrates = unpaired.depth > contact_.gap_tol;
-  if (!penetrates && !(unheld && !widened_unheld_)) PetscFunctionReturn(0);
+  // A singular system (null pivots) with pairs found within less than the body's diagonal: the facets that would
+  // hold the body may be beyond the radius (a block 0.05 above the floor of its notch, searched within 0.01, had
+  // pairs with its side wall alone). Only pairs within the whole diagonal that leave it singular say it is not held.
+  const bool singular = stats_.reason == "DIVERGED_SINGULAR" && contact_.search_radius < contact_.length &&
+                        !obstacle_.facets.empty();
+  if (!penetrates && !(unheld && !widened_unheld_) && !singular) PetscFunctionReturn(0);
   // A node that went into the obstacle farther than the radius reaches, or started there deeper than it: the radius
   // must cover the candidates' displacements, with room for the repeated step to move them on. The linear material
   // also gets the pairs of the facets its nodes went into: a facet within the radius whose zone did not hold the
@@ -511,7 +523,7 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   widen_to_ = std::max(radius, contact_.search_radius);
   widen_node_ = penetrates ? unpaired.node : -1;
   widen_depth_ = unpaired.depth;
-  if (!penetrates) widened_unheld_ = true, first_unheld_ = stats_.reason;
+  if (!penetrates && unheld) widened_unheld_ = true, first_unheld_ = stats_.reason;
   PetscFunctionReturn(0);
 }
 
@@ -635,6 +647,10 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
         const std::vector<char> current = active_set_.Flags(), next = st.next;
         Pivot pivot;
         PetscCall(PivotedActiveSet(st, it, "the active set came back", pivot));
+        if (st.singular) {
+          outcome = Outcome::STOP;
+          PetscFunctionReturn(0);
+        }
         if (pivot == Pivot::UNHELD) {
           // No contact forces on these pairs hold the body (the step may then be repeated with wider pairs).
           stats_.reason = "DIVERGED_NOT_HELD";
@@ -881,7 +897,9 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
     // until Materialise.
     if (!st.base && !st.stabilised && !st.moving && search) PetscCall(CondenseBase(st));
     condensed = Condensable(st);
-    if (condensed) {
+    if (st.singular) {
+      // The condensation found null pivots: nothing to solve (LoadStep ends the step).
+    } else if (condensed) {
       std::vector<double> bm(pairs_.size());
       for (std::size_t p = 0; p < pairs_.size(); ++p) bm[p] = st.next[p] ? st.g_base[p] : 0.0;
       PetscCall(system_->SolveCondensed(bm, lambda_, st.shift, st.solve_residual));
@@ -892,7 +910,7 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
       st.base = false;
       double rtol = st.lagged ? SEARCH_RTOL : st.correction_rtol;
       if (st.large && !st.lagged) PetscCall(NewtonForcing(st, rtol));
-      PetscCall(system_->Solve(st.krylov, st.solve_residual, rtol));
+      PetscCall(system_->Solve(st.krylov, st.solve_residual, st.singular, rtol));
       st.corrected = st.correction_rtol > 0;
       st.correction_rtol = 0;
     }
@@ -900,6 +918,7 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
     const double dt = MPI_Wtime() - t0;
     PetscCallMPI(MPI_Allreduce(&dt, &st.last_solve_time, 1, MPI_DOUBLE, MPI_MAX, mesh_.Comm()));
   }
+  if (st.singular) PetscFunctionReturn(0);
   stats_.solves++;
   stats_.active_set_iterations++;
   stats_.krylov_iterations += st.krylov;
@@ -920,7 +939,8 @@ PetscErrorCode ContactSolver::CondenseBase(StepState &st) {
   PetscCall(VecCopy(u_, st.u_base));
   st.g_base.resize(pairs_.size());
   for (std::size_t p = 0; p < pairs_.size(); ++p) st.g_base[p] = states_[p].gap;
-  PetscCall(system_->Condense());
+  PetscCall(system_->Condense(st.singular));
+  if (st.singular) PetscFunctionReturn(0);
   st.base = true;
   st.base_rnorm = st.rnorm;
   PetscFunctionReturn(0);
@@ -1147,8 +1167,18 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     const bool fatal = !(large && stats_.cuts < opts_.max_cuts);
     if (first_unheld_ == "DIVERGED_NOT_HELD" && stats_.reason != first_unheld_ && fatal) stats_.reason = first_unheld_;
     const std::string &why = stats_.reason;
+    // A singular system is no matter of the increment: never cut.
+    const bool singular = why == "DIVERGED_SINGULAR";
+    char within[128] = "no obstacle";
+    if (!obstacle_.facets.empty())
+      std::snprintf(within, sizeof(within), "the candidate pairs within -contact_search_radius %g",
+                    contact_.search_radius);
     const std::string what =
-        why == "DIVERGED_CYCLING"
+        singular
+            ? system_->SingularReport(std::string("the body is not held by the supports and ") + within +
+                                      "; add Dirichlet conditions (e.g. on a symmetry line) or candidate contact "
+                                      "nodes so that every rigid-body motion is removed")
+        : why == "DIVERGED_CYCLING"
             ? "the active set cycles (an earlier set came back, also with one pair switched per update); a body held "
               "only by contact at a point it can rock about (e.g. a block on a disc) cycles so: check that the "
               "supports and obstacles hold every rigid-body motion"
@@ -1169,9 +1199,9 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
         : large ? "the Newton loop reached its iteration limit (-newton_max_it Newton iterations, of which at most "
                   "-contact_max_it change the active set)"
                 : "the active-set loop reached its iteration limit (-contact_max_it)";
-    PetscCheck(large && stats_.cuts < opts_.max_cuts && why != "DIVERGED_NOT_HELD", comm, PETSC_ERR_NOT_CONVERGED,
-               "the contact solve did not converge at load factor %g: %s: %s%s", t_try, why.c_str(), what.c_str(),
-               large ? "; no more load-step cuts allowed (-load_max_cuts)" : "");
+    PetscCheck(large && stats_.cuts < opts_.max_cuts && why != "DIVERGED_NOT_HELD" && !singular, comm,
+               PETSC_ERR_NOT_CONVERGED, "the contact solve did not converge at load factor %g: %s: %s%s", t_try,
+               why.c_str(), what.c_str(), large && !singular ? "; no more load-step cuts allowed (-load_max_cuts)" : "");
     stats_.cuts++;
     dt *= 0.5;
     PetscCall(PetscPrintf(comm, "Load step at factor %g failed (%s); cutting the increment to %g\n", t_try,

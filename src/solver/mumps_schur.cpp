@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace signorini {
@@ -33,6 +34,67 @@ PetscErrorCode RegisterEvents() {
   PetscFunctionReturn(0);
 }
 } // namespace
+
+PetscInt MumpsControls::Icntl(int k, PetscInt fallback) const {
+  for (const auto &[i, v] : icntl)
+    if (i == k) return v;
+  return fallback;
+}
+
+std::string MumpsControls::PivotControls() const {
+  std::string list;
+  const auto add = [&list](const std::string &item) { list += (list.empty() ? "" : ", ") + item; };
+  for (const auto &[k, v] : icntl)
+    if (k == 6 || k == 8 || k == 12 || k == 24 || k == 56)
+      add("-contact_mat_mumps_icntl_" + std::to_string(k) + " " + std::to_string(v));
+  char value[32];
+  for (const auto &[k, v] : cntl) {
+    std::snprintf(value, sizeof(value), "%g", v);
+    add("-contact_mat_mumps_cntl_" + std::to_string(k) + " " + value);
+  }
+  return list;
+}
+
+PetscErrorCode ReadMumpsControls(MPI_Comm comm, MumpsControls &controls) {
+  PetscFunctionBeginUser;
+  controls = MumpsControls{};
+  // Under the solver's prefix, as PETSc's interface reads them (MUMPS 5.5 has 60 ICNTL and 15 CNTL entries).
+  const auto name = [](const char *array, int k) { return "-mat_mumps_" + std::string(array) + "_" + std::to_string(k); };
+  for (int k = 1; k <= 60; ++k) {
+    PetscInt v;
+    PetscBool set;
+    PetscCall(PetscOptionsGetInt(nullptr, "contact_", name("icntl", k).c_str(), &v, &set));
+    if (set) controls.icntl.emplace_back(k, v);
+  }
+  for (int k = 1; k <= 15; ++k) {
+    PetscReal v;
+    PetscBool set;
+    PetscCall(PetscOptionsGetReal(nullptr, "contact_", name("cntl", k).c_str(), &v, &set));
+    if (!set) continue;
+    // A NaN compares false with every pivot: MUMPS would take it without a word.
+    if (!std::isfinite(v)) {
+      char text[64];
+      PetscCall(PetscOptionsGetString(nullptr, "contact_", name("cntl", k).c_str(), text, sizeof(text), nullptr));
+      SETERRQ(comm, PETSC_ERR_USER_INPUT, "-contact_mat_mumps_cntl_%d %s: expected a finite number (MUMPS's CNTL(%d))",
+              k, text, k);
+    }
+    controls.cntl.emplace_back(k, v);
+  }
+  // ICNTL(7), the ordering (MUMPS 5.5): 0 AMD, 1 the given one (the kept factorisation's nested dissection), 2 AMF,
+  // 3 SCOTCH, 4 PORD, 5 METIS, 6 QAMD, 7 automatic. MUMPS replaces an ordering it was built without (Debian's: SCOTCH
+  // and METIS) by its automatic choice, and PETSc's interface stops at the factorisation on any other value.
+  const PetscInt order = controls.Icntl(7, 7);
+  PetscCheck(order >= 0 && order <= 7, comm, PETSC_ERR_USER_INPUT,
+             "-contact_mat_mumps_icntl_7 %" PetscInt_FMT ": expected a MUMPS ordering, 0 (AMD), 1 (the nested "
+             "dissection of -contact_nested_dissection), 2 (AMF), 4 (PORD), 6 (QAMD) or 7 (automatic)", order);
+  PetscCheck(order != MumpsControls::ICNTL7_SCOTCH && order != MumpsControls::ICNTL7_METIS, comm,
+             PETSC_ERR_USER_INPUT,
+             "-contact_mat_mumps_icntl_7 %" PetscInt_FMT ": this MUMPS is built without %s (it would order by its "
+             "automatic choice instead); expected 0 (AMD), 1 (the nested dissection of -contact_nested_dissection, "
+             "METIS's in 3D), 2 (AMF), 4 (PORD), 6 (QAMD) or 7 (automatic)", order,
+             order == MumpsControls::ICNTL7_METIS ? "METIS" : "SCOTCH");
+  PetscFunctionReturn(0);
+}
 
 MumpsSchur::~MumpsSchur() { Release(); }
 
@@ -272,10 +334,11 @@ PetscErrorCode MumpsSchur::ReadValues(Mat A, bool pattern) {
 
 PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows, const std::vector<PetscScalar> &d0,
                                   bool symmetric, PetscInt owned_u, PetscInt node_size,
-                                  const std::vector<double> &coords, OrderingOptions ordering, bool keep_values,
-                                  bool may_decline) {
+                                  const std::vector<double> &coords, OrderingOptions ordering,
+                                  const MumpsControls &controls, bool keep_values, bool may_decline) {
   PetscInt rstart, rend, N;
   PetscFunctionBeginUser;
+  Release(); // an earlier factorisation (one that found null pivots) goes first
   declined_ = false;
   PetscCall(RegisterEvents());
   symmetric_ = symmetric;
@@ -310,9 +373,8 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   id_.ICNTL(24) = 1; // null-pivot detection
   id_.CNTL(3) = 1e-12;
   id_.ICNTL(14) = MUMPS_WORKSPACE_INCREASE; // see saddle_point.cpp
-  // The user's MUMPS controls under the solver's prefix (-contact_mat_mumps_icntl_<k>, -contact_mat_mumps_cntl_<k>),
-  // as PETSc's interface reads them, except the ones this class relies on (input/Schur/right-hand-side layout).
-  const auto control = [](const char *array, int k) { return "-mat_mumps_" + std::string(array) + "_" + std::to_string(k); };
+  // The user's MUMPS controls (ReadMumpsControls), as PETSc's interface takes them, except the ones this class relies
+  // on (input/Schur/right-hand-side layout).
   // Ordering: a nested dissection of the node graph, given to MUMPS (ICNTL(7) = 1; Debian's MUMPS has only AMD, AMF,
   // QAMD and PORD built in), unless -contact_mat_mumps_icntl_7 picks one of those. With a Schur complement MUMPS's
   // own choice (AMD) nearly doubles the elimination flops of the 2D Hertz matrices (3.8e8 at 20k rows, METIS 2.0e8).
@@ -321,21 +383,12 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   id_.ICNTL(7) = 1;
   if (ordering.graph == GraphOrdering::AUTO)
     ordering.graph = node_size == 3 || N >= METIS_MIN_ROWS_2D ? GraphOrdering::METIS : GraphOrdering::COORDINATES;
-  for (int k = 1; k <= 60; ++k) {
-    PetscInt v;
-    PetscBool set;
-    PetscCall(PetscOptionsGetInt(nullptr, "contact_", control("icntl", k).c_str(), &v, &set));
-    if (!set) continue;
+  for (const auto &[k, v] : controls.icntl) {
     PetscCheck(k != 18 && k != 19 && k != 20 && k != 21 && k != 26, comm_, PETSC_ERR_USER_INPUT,
                "-contact_mat_mumps_icntl_%d cannot be set with -contact_reuse_factorization (the solver sets it)", k);
     id_.ICNTL(k) = (MUMPS_INT)v;
   }
-  for (int k = 1; k <= 15; ++k) {
-    PetscReal v;
-    PetscBool set;
-    PetscCall(PetscOptionsGetReal(nullptr, "contact_", control("cntl", k).c_str(), &v, &set));
-    if (set) id_.CNTL(k) = v;
-  }
+  for (const auto &[k, v] : controls.cntl) id_.CNTL(k) = v;
   id_.n = (MUMPS_INT)N;
   id_.nnz_loc = (MUMPS_INT8)val_.size();
   id_.irn_loc = irn_.data();

@@ -214,6 +214,14 @@ PetscErrorCode SaddlePointSystem::CreateKsp(MPI_Comm comm, bool &fieldsplit) {
   PetscCall(KSPCreate(comm, ksp_.out()));
   PetscCall(SetDefaultSolver(ksp_));
   PetscCall(KSPSetFromOptions(ksp_));
+  // Every solve must end within ACCEPTED_RESIDUAL (CheckAndConvert): a looser Krylov tolerance would only fail after
+  // the solve. The iterative presets take 1e-10 (PETSc reads no tolerance for KSPPREONLY, the direct presets).
+  PetscReal rtol;
+  PetscCall(KSPGetTolerances(ksp_, &rtol, nullptr, nullptr, nullptr));
+  PetscCheck(rtol <= ACCEPTED_RESIDUAL, comm, PETSC_ERR_USER_INPUT,
+             "-contact_ksp_rtol %g: a saddle-point solve must leave a relative residual of at most %g; expected a "
+             "value in [0, %g] (the solver presets take 1e-10)",
+             (double)rtol, ACCEPTED_RESIDUAL, ACCEPTED_RESIDUAL);
   PetscCall(KSPGetPC(ksp_, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &is_fieldsplit));
   fieldsplit = is_fieldsplit;
@@ -272,6 +280,7 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
       // differently from run to run in parallel, and a 3D hexahedral mesh then stopped about every other 2-rank run
       // with INFOG(1) = -9 (workspace too small); -contact_mat_mumps_icntl_14 overrides.
       PetscCall(MatMumpsSetIcntl(mumps_factor_, 14, MUMPS_WORKSPACE_INCREASE));
+      PetscCall(ReadMumpsControls(comm, mumps_controls_));
     }
   }
   SaddlePointOptions opts;
@@ -286,9 +295,7 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
              "kept factorisation (-contact_reuse_factorization and a MUMPS LU or Cholesky solver)", opts.reuse_max_it);
   // The pivot order is computed only for the kept factorisation (MumpsSchur), and only when MUMPS is told to take it:
   // otherwise PETSc's MUMPS interface orders by ICNTL(7) alone and these options would be ignored.
-  PetscInt icntl7 = 1;
-  PetscBool icntl7_set = PETSC_FALSE;
-  PetscCall(PetscOptionsGetInt(nullptr, "contact_", "-mat_mumps_icntl_7", &icntl7, &icntl7_set));
+  const PetscInt icntl7 = mumps_controls_.Icntl(7, 1);
   const std::string ordering = std::string("-contact_nested_dissection ") +
                                GRAPH_ORDERING_NAMES[(int)opts.ordering.graph],
                     parallel = std::string("-contact_nested_dissection_parallel ") +
@@ -307,6 +314,12 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
              PETSC_ERR_USER_INPUT, "-contact_nested_dissection_parallel applies to METIS's ordering only, not to "
              "-contact_nested_dissection coordinates");
   reuse_ = possible && opts.reuse_factorization && dofs_->GlobalLambda() > 0;
+  // PETSc's MUMPS interface takes no given ordering (it would stop at the factorisation).
+  PetscCheck(!(possible && !reuse_ && mumps_controls_.Icntl(7, 7) == 1), comm, PETSC_ERR_USER_INPUT,
+             "-contact_mat_mumps_icntl_7 1 (the given nested dissection) applies to the kept factorisation only "
+             "(-contact_reuse_factorization with contact candidates); expected 0, 2, 4, 6 or 7, one of MUMPS's own "
+             "orderings");
+  ordering_set_ = opts.ordering_set || opts.parallel_set;
   reuse_forced_ = reuse_ && (opts.reuse_set || opts.reuse_max_it_set);
   constant_k_ = constant_k;
   reuse_max_it_ = opts.reuse_max_it;
@@ -507,16 +520,25 @@ PetscErrorCode SaddlePointSystem::Factor() {
   PetscCall(MultiplierDiagonal(d));
   ProgressBegin("analysis and factorisation (MUMPS with the Schur complement on the candidates)");
   PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_, dofs_->OwnedU(), dofs_->Dim(), coords_, ordering_,
-                                !constant_k_, !reuse_forced_));
+                                mumps_controls_, !constant_k_, !reuse_forced_));
   ProgressEnd();
   if (mumps_schur_.Declined()) {
     // The dense Schur complement would cost more than it saves (many candidates on a body that factors cheaply, such
     // as a thin plate): the KSP's MUMPS factorises the matrix, which stays in the augmented form, at every change.
+    // PETSc's interface takes no given pivot order, so an ordering the user asked for is said not to apply.
     reuse_ = false;
+    if (ordering_set_)
+      PetscCall(PetscPrintf(PetscObjectComm((PetscObject)A_.get()),
+                            "Note: -contact_nested_dissection and -contact_nested_dissection_parallel do not apply "
+                            "here: the kept factorisation declined its dense Schur complement on the %" PetscInt_FMT
+                            " candidates (it would cost more than a refactorisation per active-set change), and "
+                            "PETSc's MUMPS, which refactorises instead, orders by its own choice "
+                            "(-contact_mat_mumps_icntl_7); -contact_reuse_factorization keeps the Schur complement "
+                            "and the ordering\n", dofs_->GlobalLambda()));
     PetscFunctionReturn(0);
   }
-  factored_ = true;
-  PetscCall(CheckNullPivots());
+  null_pivots_ = mumps_schur_.NullPivots();
+  factored_ = null_pivots_ == 0;
   PetscFunctionReturn(0);
 }
 
@@ -527,18 +549,17 @@ PetscErrorCode SaddlePointSystem::Refactor() {
   ProgressBegin("numerical refactorisation (MUMPS with the Schur complement on the candidates)");
   PetscCall(mumps_schur_.Refactor(A_, d));
   ProgressEnd();
-  PetscCall(CheckNullPivots());
+  null_pivots_ = mumps_schur_.NullPivots();
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::CheckNullPivots() const {
-  PetscFunctionBeginUser;
-  const PetscInt null_pivots = mumps_schur_.NullPivots();
-  PetscCheck(null_pivots == 0, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_NOT_CONVERGED,
-             "the saddle-point system is singular (MUMPS found %" PetscInt_FMT " null pivot(s)): the body is not "
-             "held; add Dirichlet conditions (e.g. on a symmetry line) or candidate contact nodes so that every "
-             "rigid-body motion is removed", null_pivots);
-  PetscFunctionReturn(0);
+std::string SaddlePointSystem::SingularReport(const std::string &cause) const {
+  std::string report = "the saddle-point system is singular (MUMPS found " + std::to_string(null_pivots_) +
+                       " null pivot(s)): ";
+  const std::string controls = mumps_controls_.PivotControls();
+  if (!controls.empty())
+    report += "the MUMPS controls " + controls + " may count regular pivots as null (expected them unset), or ";
+  return report + cause;
 }
 
 PetscErrorCode SaddlePointSystem::ApplyKeptFactor(PC pc, Vec b, Vec x) {
@@ -583,18 +604,21 @@ PetscErrorCode SaddlePointSystem::SolveWithKeptFactor(const std::vector<PetscSca
   }
   // The tangent has drifted too far from the factored one (or -contact_reuse_max_it 0): factor the current one.
   PetscCall(Refactor());
+  if (null_pivots_ > 0) PetscFunctionReturn(0); // singular: the caller reports it (Solve)
   PetscCall(mumps_schur_.Solve(d, b_, x_));
   refactor_next_ = false;
   ++iterations;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::Condense() {
+PetscErrorCode SaddlePointSystem::Condense(bool &singular) {
   PetscFunctionBeginUser;
   PetscCheck(reuse_ && !released_, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
              "a condensation needs the kept factorisation");
   PetscCall(Factor());
-  if (!reuse_) PetscFunctionReturn(0); // declined: the caller solves in full (ExactFactorization() is false now)
+  singular = null_pivots_ > 0;
+  // Declined: the caller solves in full (ExactFactorization() is false now).
+  if (!reuse_ || singular) PetscFunctionReturn(0);
   PetscCall(mumps_schur_.Condense(b_));
   PetscFunctionReturn(0);
 }
@@ -754,13 +778,14 @@ PetscErrorCode SaddlePointSystem::InitialGuess() {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &residual, double rtol) {
+PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &residual, bool &singular,
+                                        double rtol) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   KSPConvergedReason reason;
   PetscFunctionBeginUser;
   PetscCheck(!released_, comm, PETSC_ERR_ORDER, "a saddle-point solve after Release()");
   PetscCall(InitialGuess());
-  PetscInt null_pivots = 0;
+  singular = false;
   double check_tol = ACCEPTED_RESIDUAL; // the relative residual above which a solve is an error (CheckAndConvert)
   PetscReal known_residual[2] = {-1, -1}; // ||b - A x||, ||b|| of the final x_ when the restart loop computed them
   // The first solve of the reuse mode factors the current matrix (or declines the Schur complement: Factor).
@@ -768,12 +793,16 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
   if (fresh) PetscCall(Factor());
   if (reuse_) {
     // Later solves are exact for a constant K (only D changed), else the kept factorisation preconditions the current
-    // matrix.
+    // matrix (and may refactor it).
     std::vector<PetscScalar> d;
     PetscCall(MultiplierDiagonal(d));
     krylov_iterations = 1;
+    singular = null_pivots_ > 0;
+    if (singular) PetscFunctionReturn(0);
     if (fresh || constant_k_) PetscCall(mumps_schur_.Solve(d, b_, x_));
     else PetscCall(SolveWithKeptFactor(d, rtol, krylov_iterations, check_tol));
+    singular = null_pivots_ > 0;
+    if (singular) PetscFunctionReturn(0);
     reason = KSP_CONVERGED_ITS;
   } else {
     // KSPSetUp sets the preconditioner up (a factorisation, for the direct presets) before KSPSolve would.
@@ -823,11 +852,9 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
     if (rtol > ksp_rtol) PetscCall(KSPSetTolerances(ksp_, ksp_rtol, abstol, dtol, max_it));
   }
   if (mumps_factor_ && !reuse_) {
-    PetscCall(MatMumpsGetInfog(mumps_factor_, 28, &null_pivots));
-    PetscCheck(null_pivots == 0, comm, PETSC_ERR_NOT_CONVERGED,
-               "the saddle-point system is singular (MUMPS found %" PetscInt_FMT " null pivot(s)): the body is not "
-               "held; add Dirichlet conditions (e.g. on a symmetry line) so that the initial contact and the supports "
-               "remove every rigid-body motion", null_pivots);
+    PetscCall(MatMumpsGetInfog(mumps_factor_, 28, &null_pivots_));
+    singular = null_pivots_ > 0;
+    if (singular) PetscFunctionReturn(0);
   }
   const PetscReal *known = known_residual[0] >= 0 ? known_residual : nullptr;
   PetscCall(CheckAndConvert(reason, krylov_iterations, residual, check_tol, known));

@@ -345,6 +345,29 @@ CASES = {
                                                 "only"], {}),
     "reuse_factorization_mumps_layout": (["-contact_mat_mumps_icntl_19", "1"],
                                          ["-contact_mat_mumps_icntl_19", "cannot be set"], {}),
+    # An iterative solver's tolerance above what a solve must reach: refused before any solve (the solve used to fail
+    # after it, blaming a singular block and advising to raise the tolerance).
+    "contact_ksp_rtol_above_accepted": (["-options_file", "{root}/options/solver/fieldsplit_gamg.yml",
+                                         "-contact_ksp_rtol", "0.5"],
+                                        ["-contact_ksp_rtol 0.5", "at most 1e-06", "expected a value in [0, 1e-06]"],
+                                        {}),
+    # MUMPS's controls: MUMPS took a NaN threshold and an unknown ordering without a word.
+    "mumps_cntl_nan": (["-contact_mat_mumps_cntl_3", "nan"],
+                       ["-contact_mat_mumps_cntl_3 nan", "expected a finite number"], {}),
+    "mumps_cntl_nan_refactorising": (["-contact_reuse_factorization", "false", "-contact_mat_mumps_cntl_1", "nan"],
+                                     ["-contact_mat_mumps_cntl_1 nan", "expected a finite number"], {}),
+    "mumps_icntl_7_out_of_range": (["-contact_mat_mumps_icntl_7", "99"],
+                                   ["-contact_mat_mumps_icntl_7 99", "expected a MUMPS ordering", "7 (automatic)"], {}),
+    "mumps_icntl_7_not_built": (["-contact_mat_mumps_icntl_7", "5"],
+                                ["-contact_mat_mumps_icntl_7 5", "built without METIS", "expected 0 (AMD)"], {}),
+    "mumps_icntl_7_given_refactorising": (["-contact_reuse_factorization", "false", "-contact_mat_mumps_icntl_7", "1"],
+                                          ["-contact_mat_mumps_icntl_7 1", "kept factorisation only",
+                                           "expected 0, 2, 4, 6 or 7"], {}),
+    # A null-pivot threshold that calls half the pivots null on a held body: the report names it as a possible cause.
+    "mumps_cntl_3_pivots_null": (["-options_file", "{root}/options/block_in_notch.yml", "-contact_mat_mumps_cntl_3",
+                                  "0.5"],
+                                 ["DIVERGED_SINGULAR", "null pivot(s)", "the MUMPS controls -contact_mat_mumps_cntl_3 "
+                                  "0.5 may count regular pivots as null", "or the body is not held"], {}),
     # A Schur fieldsplit on a body that nothing holds (no Dirichlet condition, no obstacle): the message says why its
     # block is singular and names the solver that reports it directly.
     "fieldsplit_on_loose_body": (LOOSE_BEAM + ["-options_file", "{root}/options/solver/fieldsplit_gamg.yml",

@@ -1653,6 +1653,35 @@ def block_in_notch(runner):
                        np.any((small.nodes()["active"] == 1) & (small.nodes()["y"] == 0)))
 
 
+@test("singular_narrow_radius")
+def singular_narrow_radius(runner):
+    """A search radius too small to pair the facets that hold the body makes its saddle-point system singular (MUMPS's
+    null pivots): the block in the notch searched within 0.01 or 1e-3 has pairs with its side wall alone, and the run
+    used to stop with "the body is not held". The step is now repeated with the pairs within the body's diagonal and
+    reaches the state of the default radius (1e-8), linear and svk. A body that nothing holds still ends with the
+    not-held report, once pairs within its whole diagonal leave it singular: the beam pulled up off a floor."""
+    notch = ["-options_file", "options/block_in_notch.yml"]
+    for model in ("linear", "svk"):
+        ref = runner.run(notch + ["-material_model", model], "%s, default radius" % model)
+        for radius in ("0.01", "1e-3"):
+            narrow = runner.run(notch + ["-material_model", model, "-contact_search_radius", radius],
+                                "%s, radius %s" % (model, radius))
+            runner.expect_true("%s, radius %s: the singular step was repeated within the diagonal (%g)" %
+                               (model, radius, narrow.get("iterations.search_radius")),
+                               "failed (DIVERGED_SINGULAR): searching the pairs again within" in narrow.output and
+                               narrow.get("iterations.search_widenings") == 1 and
+                               narrow.get("iterations.search_radius") >= 1.414)
+            expect_same_state(runner, ref, narrow, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+    loose = ["-mesh_file", "meshes/beam.msh", "-material_E", "1000", "-bc_pressure", "top:0.2", "-bc_point_force",
+             "top:0:1", "-obstacle_segments", "-10,-0.5,10,-0.5"]
+    status, out, _ = runner.run_any(loose, "beam pulled up off a floor", timeout=60)
+    errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
+    runner.expect_true("one error line, not held within the diagonal (exit %d): %s" % (status, errors),
+                       status != 0 and len(errors) == 1 and "DIVERGED_SINGULAR" in errors[0] and
+                       "the body is not held by the supports and the candidate pairs within" in errors[0] and
+                       "searching the pairs again within" in out)
+
+
 @test("svk_notch_cycle")
 def svk_notch_cycle(runner):
     """svk block in the notch: with the lagged searches (the default) its active set went round a loop of 11 sets

@@ -168,6 +168,7 @@ private:
     std::vector<double> u_before{}; ///< the displacement (local layout) before the last stabilised solve
     bool measured = false; ///< u_before is that of the current pairs (the same on every rank: a rank may own none)
     int pivoted = 0;       ///< complementarity problems of this step (PivotedActiveSet), at most 2
+    bool singular = false; ///< a factorisation found null pivots: nothing was solved, the step ends (DIVERGED_SINGULAR)
     /// Condensed solves (kept factorisation): from the first solve without stabilisation and without a prescribed
     /// displacement still to apply (svk: from each lagged one), the active-set iterations run in the multiplier space
     /// against that solve's right-hand side, condensed once (its base: u_base, the gaps g_base), the displacement
@@ -184,7 +185,8 @@ private:
   /// After a failed load step: the search radius a repeated step needs (widen_to_; 0: none), when a candidate node
   /// is inside a facet it has no pair with at the step's last iterate (linear material: that pair goes to
   /// extra_pairs_), or, once per run, when the step cycled or left the body free (DIVERGED_CYCLING, _NOT_HELD; svk
-  /// only when it can cut the step no more). Collective.
+  /// only when it can cut the step no more), or when its system was singular (DIVERGED_SINGULAR) with a radius below
+  /// the body's diagonal. Collective.
   [[nodiscard]] PetscErrorCode UnpairedAfterFailure(StepState &st, PetscInt it);
   /// Linear material with the kept factorisation, at most twice per load step: when an active set first comes back
   /// (instead of one switch per update, which follows only when this finds nothing new), and when the step ends with

@@ -14,6 +14,8 @@
 
 #include <dmumps_c.h>
 
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace signorini {
@@ -39,6 +41,27 @@ struct OrderingOptions {
   bool parallel = true;
 };
 
+/// The MUMPS controls given for the saddle-point solver (-contact_mat_mumps_icntl_<k>, k in 1..60, and
+/// -contact_mat_mumps_cntl_<k>, k in 1..15), which both MUMPS paths take: PETSc's interface and MumpsSchur.
+struct MumpsControls {
+  /// ICNTL(7) values of the orderings that this MUMPS lacks (Debian's has no SCOTCH, 3, and no METIS, 5, of its
+  /// own): MUMPS would replace them by its automatic choice without a word.
+  static constexpr PetscInt ICNTL7_SCOTCH = 3, ICNTL7_METIS = 5;
+  std::vector<std::pair<int, PetscInt>> icntl; ///< (k, value) of every ICNTL given
+  std::vector<std::pair<int, double>> cntl;    ///< (k, value) of every CNTL given
+  /// ICNTL(k) as given, else fallback.
+  PetscInt Icntl(int k, PetscInt fallback) const;
+  /// The controls given that decide which pivots MUMPS counts as null (every CNTL; ICNTL 6, 8, 12, 24 and 56:
+  /// matching, scaling, the symmetric ordering strategy, null-pivot detection, rank revelation) as
+  /// "-contact_mat_mumps_cntl_3 0.5, ..."; empty when none was.
+  std::string PivotControls() const;
+};
+
+/// Reads the controls and checks them: a CNTL must be finite (MUMPS compares pivots with it), ICNTL(7) an ordering of
+/// MUMPS 5.5 (0 to 7) that this build has. Called where the saddle-point solver reads its options, before any
+/// factorisation. Collective.
+[[nodiscard]] PetscErrorCode ReadMumpsControls(MPI_Comm comm, MumpsControls &controls);
+
 class MumpsSchur {
 public:
   MumpsSchur() = default;
@@ -54,10 +77,12 @@ public:
   /// keep_values: keep the matrix entries in MUMPS's format for Refactor (else they are freed). may_decline: after the
   /// analysis, decline (Declined(), nothing factored, everything released) when the dense Schur complement would cost
   /// more than the sparse factorisation it saves (DenseCostsMore). Collective.
+  /// controls: the user's (ReadMumpsControls), applied over this class's defaults.
   [[nodiscard]] PetscErrorCode Factor(Mat A, const std::vector<PetscInt> &schur_rows,
                                       const std::vector<PetscScalar> &d0, bool symmetric, PetscInt owned_u,
                                       PetscInt node_size, const std::vector<double> &coords, OrderingOptions ordering,
-                                      bool keep_values = false, bool may_decline = false);
+                                      const MumpsControls &controls, bool keep_values = false,
+                                      bool may_decline = false);
   /// The last Factor declined the Schur complement.
   bool Declined() const { return declined_; }
   /// The rule of Factor's may_decline, from the analysis' estimate: a dense LDL^T of the m x m Schur complement, which

@@ -40,6 +40,7 @@
 #include "signorini/solver/mumps_schur.hpp"
 
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace signorini {
@@ -123,8 +124,15 @@ public:
   /// rtol > 0: the relative residual that FGMRES on a kept factorisation of an earlier tangent may stop at (an
   /// inexact Newton step; otherwise the KSP's tolerance), and that an iterative KSP may stop at if it is looser than
   /// the KSP's own (a correction solve, see ContactSolver::StepControl); it does not apply to direct solves.
+  /// singular: a MUMPS factorisation found null pivots (ICNTL(24)): nothing is solved, and SingularReport() says so;
+  /// the caller decides what the singularity means (a body that the supports and the candidate pairs do not hold).
   /// Collective.
-  [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual, double rtol = 0);
+  [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual, bool &singular,
+                                     double rtol = 0);
+  /// "the saddle-point system is singular (MUMPS found N null pivot(s)): " and cause (the caller's: what leaves the
+  /// body free), with the MUMPS controls given that decide which pivots are null (-contact_mat_mumps_cntl_<k>, ...)
+  /// named first as another possible cause.
+  std::string SingularReport(const std::string &cause) const;
 
   /// Frees the factorisations and preconditioners (MUMPS's factors, the fieldsplit's blocks, GAMG's hierarchy), so
   /// that what follows the last solve (the output of the last load step) does not add to them; the matrix and the
@@ -139,8 +147,8 @@ public:
   /// on inactive rows) and B_p du, the normal displacement of the solution's increment (the gap change), and the
   /// residual of the reduced system. Expand then gives the whole solution of the last SolveCondensed in Solution(),
   /// as Solve() does (one backward substitution), with residual ||b - A x|| for the right-hand side [b_u; bm] that
-  /// the caller has written into Rhs(). Collective.
-  [[nodiscard]] PetscErrorCode Condense();
+  /// the caller has written into Rhs(). Condense's singular: as Solve's (nothing condensed). Collective.
+  [[nodiscard]] PetscErrorCode Condense(bool &singular);
   [[nodiscard]] PetscErrorCode SolveCondensed(const std::vector<double> &bm, std::vector<double> &lambda,
                                               std::vector<double> &shift, double &residual);
   [[nodiscard]] PetscErrorCode Expand(double &residual);
@@ -189,7 +197,8 @@ private:
   /// Reuse mode: a value per owned multiplier row to rank 0 (Schur order; empty elsewhere), and back. Collective.
   [[nodiscard]] PetscErrorCode ToRoot(const std::vector<double> &owned, std::vector<PetscScalar> &root);
   [[nodiscard]] PetscErrorCode FromRoot(const std::vector<PetscScalar> &root, std::vector<double> &owned);
-  /// Reuse mode: the analysis and factorisation with the Schur complement, once; a singular A11 is an error. Unless
+  /// Reuse mode: the analysis and factorisation with the Schur complement, once; a singular A11 sets null_pivots_
+  /// (and leaves the system unfactored). Unless
   /// -contact_reuse_factorization was given, the Schur complement is declined when it would cost more than it saves
   /// (MumpsSchur::DenseCostsMore): the reuse mode ends, and the KSP factorises the augmented matrix at every change.
   /// Collective.
@@ -197,10 +206,8 @@ private:
   /// ||b - A x|| and ||b|| for the current x_. Collective.
   [[nodiscard]] PetscErrorCode TrueResidual(PetscReal &rnorm, PetscReal &bnorm);
   /// Reuse mode, changing K: the numerical refactorisation of the current matrix (the analysis of Factor); a singular
-  /// A11 is an error. Collective.
+  /// A11 sets null_pivots_. Collective.
   [[nodiscard]] PetscErrorCode Refactor();
-  /// The error for null pivots in the last MUMPS factorisation. Collective.
-  [[nodiscard]] PetscErrorCode CheckNullPivots() const;
   /// Reuse mode, changing K: x_ from FGMRES on the current matrix preconditioned by the kept factorisation, or, when
   /// it does not converge within -contact_reuse_max_it iterations (or the last solve contracted too slowly),
   /// after a refactorisation. d: the current multiplier diagonal (rank 0); rtol: see Solve. iterations: FGMRES's, plus
@@ -272,6 +279,9 @@ private:
   KSPH ksp_;
   NullSpaceH near_null_;
   Mat mumps_factor_ = nullptr; ///< the MUMPS factor of a direct solve (owned by the PC), for the null-pivot check
+  MumpsControls mumps_controls_; ///< -contact_mat_mumps_icntl_<k>, _cntl_<k> (a MUMPS solver only)
+  PetscInt null_pivots_ = 0;     ///< null pivots of the last MUMPS factorisation (INFOG(28))
+  bool ordering_set_ = false;    ///< -contact_nested_dissection or _parallel given
 
 public:
   SaddlePointSystem() = default;
