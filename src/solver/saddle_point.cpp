@@ -319,7 +319,9 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
              "-contact_mat_mumps_icntl_7 1 (the given nested dissection) applies to the kept factorisation only "
              "(-contact_reuse_factorization with contact candidates); expected 0, 2, 4, 6 or 7, one of MUMPS's own "
              "orderings");
-  ordering_set_ = opts.ordering_set || opts.parallel_set;
+  ordering_given_.clear();
+  if (opts.ordering_set) ordering_given_ = ordering;
+  if (opts.parallel_set) ordering_given_ += (ordering_given_.empty() ? "" : " and ") + parallel;
   reuse_forced_ = reuse_ && (opts.reuse_set || opts.reuse_max_it_set);
   constant_k_ = constant_k;
   reuse_max_it_ = opts.reuse_max_it;
@@ -527,14 +529,13 @@ PetscErrorCode SaddlePointSystem::Factor() {
     // as a thin plate): the KSP's MUMPS factorises the matrix, which stays in the augmented form, at every change.
     // PETSc's interface takes no given pivot order, so an ordering the user asked for is said not to apply.
     reuse_ = false;
-    if (ordering_set_)
+    if (!ordering_given_.empty())
       PetscCall(PetscPrintf(PetscObjectComm((PetscObject)A_.get()),
-                            "Note: -contact_nested_dissection and -contact_nested_dissection_parallel do not apply "
-                            "here: the kept factorisation declined its dense Schur complement on the %" PetscInt_FMT
-                            " candidates (it would cost more than a refactorisation per active-set change), and "
-                            "PETSc's MUMPS, which refactorises instead, orders by its own choice "
-                            "(-contact_mat_mumps_icntl_7); -contact_reuse_factorization keeps the Schur complement "
-                            "and the ordering\n", dofs_->GlobalLambda()));
+                            "Note: %s does not apply: the kept factorisation declined its dense Schur complement on "
+                            "the %" PetscInt_FMT " candidates (it would cost more than a refactorisation per "
+                            "active-set change), and PETSc's MUMPS, which refactorises instead, orders by its own "
+                            "choice (-contact_mat_mumps_icntl_7); -contact_reuse_factorization keeps the Schur "
+                            "complement and the ordering\n", ordering_given_.c_str(), dofs_->GlobalLambda()));
     PetscFunctionReturn(0);
   }
   null_pivots_ = mumps_schur_.NullPivots();

@@ -281,7 +281,7 @@ private:
   Mat mumps_factor_ = nullptr; ///< the MUMPS factor of a direct solve (owned by the PC), for the null-pivot check
   MumpsControls mumps_controls_; ///< -contact_mat_mumps_icntl_<k>, _cntl_<k> (a MUMPS solver only)
   PetscInt null_pivots_ = 0;     ///< null pivots of the last MUMPS factorisation (INFOG(28))
-  bool ordering_set_ = false;    ///< -contact_nested_dissection or _parallel given
+  std::string ordering_given_;   ///< "-contact_nested_dissection X" and/or "..._parallel Y" as given (else empty)
 
 public:
   SaddlePointSystem() = default;
