@@ -6,25 +6,61 @@
 
 namespace signorini {
 
+namespace {
+
+/// Whether z >= 0 and w = q + M z solve the problem to tol (w is recomputed here): w_i >= -tol s_i and
+/// |z_i w_i| <= tol s_i z_i, with s_i = max|q| + sum_j |M_ij z_j|, the size of the terms that w_i sums (its backward
+/// error: a row whose terms cancel can only be that accurate).
+bool IsSolution(int m, const std::vector<double> &M, const std::vector<double> &q, const std::vector<double> &z,
+                std::vector<double> &w, double tol) {
+  double qmax = 0;
+  for (double v : q) qmax = std::max(qmax, std::abs(v));
+  bool ok = true;
+  for (int i = 0; i < m; ++i) {
+    double wi = q[i], size = qmax;
+    for (int j = 0; j < m; ++j) {
+      const double term = M[i + (std::size_t)j * m] * z[j];
+      wi += term, size += std::abs(term);
+    }
+    w[i] = wi;
+    ok = ok && std::isfinite(wi) && z[i] >= 0 && wi >= -tol * size && std::abs(wi) * z[i] <= tol * size * z[i];
+  }
+  return ok;
+}
+
+} // namespace
+
 LcpStatus SolveLcp(int m, const std::vector<double> &M, const std::vector<double> &q, std::vector<double> &z,
                    std::vector<double> &w, int *pivots, int max_pivots) {
   z.assign(m, 0.0);
   w = q;
   if (pivots) *pivots = 0;
   if (m == 0 || *std::min_element(q.begin(), q.end()) >= 0) return LcpStatus::SOLVED;
+  // Units: the method runs on M / mref and q / |q|_max, mref the smallest of the rows' largest |M_ij| (z scales by
+  // |q|_max / mref, w by |q|_max), and each row of the tableau is divided by its largest M entry, at least 1 there:
+  // the same numbers, so the same pivots, in any units. Then an entry is round-off when it is within 1e-12 of the
+  // largest in its column, and ratios tie within 1e-12 of the larger or of 1 (a right-hand side of order 1). M = 0:
+  // w = q < 0 for every z.
+  double mref = INFINITY, qmax = 0;
+  std::vector<double> rowmax(m, 0.0);
+  for (int i = 0; i < m; ++i) {
+    for (int j = 0; j < m; ++j) rowmax[i] = std::max(rowmax[i], std::abs(M[i + (std::size_t)j * m]));
+    if (rowmax[i] > 0) mref = std::min(mref, rowmax[i]);
+  }
+  for (double v : q) qmax = std::max(qmax, std::abs(v));
+  if (!std::isfinite(mref)) return LcpStatus::RAY;
   // The tableau of w - M z - e z0 = q: columns w (0..m-1), z (m..2m-1), z0 (2m), the right-hand side (2m+1); row i
-  // holds basic variable basis[i]. Rows are scaled to their largest entry so that one tolerance fits all.
+  // holds basic variable basis[i].
   const int nc = 2 * m + 2, z0 = 2 * m, rhs = 2 * m + 1;
   std::vector<double> t((std::size_t)m * nc, 0.0);
   auto at = [&](int i, int j) -> double & { return t[(std::size_t)i * nc + j]; };
   std::vector<int> basis(m);
   for (int i = 0; i < m; ++i) {
-    double scale = 1;
-    for (int j = 0; j < m; ++j) scale = std::max(scale, std::abs(M[i + (std::size_t)j * m]));
+    const double scale = std::max(1.0, rowmax[i] / mref);
     at(i, i) = 1 / scale;
-    for (int j = 0; j < m; ++j) at(i, m + j) = -M[i + (std::size_t)j * m] / scale;
+    for (int j = 0; j < m; ++j) at(i, m + j) = -M[i + (std::size_t)j * m] / mref / scale;
     at(i, z0) = -1 / scale;
-    at(i, rhs) = q[i] / scale;
+    at(i, rhs) = q[i] / qmax / scale;
     basis[i] = i;
   }
   auto pivot = [&](int r, int c) {
@@ -40,7 +76,7 @@ LcpStatus SolveLcp(int m, const std::vector<double> &M, const std::vector<double
     basis[r] = c;
   };
   if (max_pivots <= 0) max_pivots = 10 * m + 100;
-  // z0 enters where q is most negative (relative to the row's scale).
+  // z0 enters where q is most negative.
   int r = 0;
   for (int i = 1; i < m; ++i)
     if (at(i, rhs) / -at(i, z0) < at(r, rhs) / -at(r, z0)) r = i;
@@ -50,20 +86,18 @@ LcpStatus SolveLcp(int m, const std::vector<double> &M, const std::vector<double
   LcpStatus status = LcpStatus::PIVOT_LIMIT;
   for (; count < max_pivots; ++count) {
     const int entering = leaving < m ? leaving + m : leaving - m; // the complement of the variable that left
-    double cmax = 0;
-    for (int i = 0; i < m; ++i) cmax = std::max(cmax, std::abs(at(i, entering)));
-    const double tol = 1e-12 * std::max(cmax, 1e-300);
+    double column = 0;
+    for (int i = 0; i < m; ++i) column = std::max(column, std::abs(at(i, entering)));
     // Minimum ratio; at a tie z0 leaves first (the solution), then the smallest variable index (no cycling in
     // practice on these problems; the pivot limit bounds a degenerate one).
     r = -1;
     double best = INFINITY;
     for (int i = 0; i < m; ++i) {
       const double d = at(i, entering);
-      if (d <= tol) continue;
+      if (d <= 1e-12 * column) continue;
       const double ratio = std::max(at(i, rhs), 0.0) / d;
       const bool tie = r >= 0 && std::abs(ratio - best) <= 1e-12 * std::max(1.0, std::abs(best));
-      if (r < 0 || (!tie && ratio < best) ||
-          (tie && (basis[i] == z0 || (basis[r] != z0 && basis[i] < basis[r]))))
+      if (r < 0 || (!tie && ratio < best) || (tie && (basis[i] == z0 || (basis[r] != z0 && basis[i] < basis[r]))))
         r = i, best = ratio;
     }
     if (r < 0) {
@@ -81,12 +115,10 @@ LcpStatus SolveLcp(int m, const std::vector<double> &M, const std::vector<double
   if (pivots) *pivots = count;
   if (status != LcpStatus::SOLVED) return status;
   for (int i = 0; i < m; ++i)
-    if (basis[i] >= m && basis[i] < z0) z[basis[i] - m] = std::max(at(i, rhs), 0.0); // z basic; w from z below
-  for (int i = 0; i < m; ++i) {
-    double wi = q[i];
-    for (int j = 0; j < m; ++j) wi += M[i + (std::size_t)j * m] * z[j];
-    w[i] = wi;
-  }
+    if (basis[i] >= m && basis[i] < z0) z[basis[i] - m] = std::max(at(i, rhs), 0.0) * (qmax / mref);
+  // A solution only if it is one: round-off in a degenerate or ill-conditioned tableau can end on a basis that is not
+  // (INACCURATE, no verdict; z and w are what was found).
+  if (!IsSolution(m, M, q, z, w, LCP_TOL)) return LcpStatus::INACCURATE;
   return status;
 }
 

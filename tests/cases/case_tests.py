@@ -1488,6 +1488,43 @@ def cycling_set_pivoted(runner):
                        "no contact forces on its" in errors[0])
 
 
+@test("not_held_in_any_units")
+def not_held_in_any_units(runner):
+    """The complementarity problem's answers do not depend on the units. Random case 8 of seed 777 (the 2 x 1 block
+    on a disc beside a wall, held by contact alone) with E and the load times 1e-6: Lemke's method, whose row scale
+    and tolerances were absolute, found one or two active pairs where the problem has three, which left 0.42 and 0.32
+    of the load along rigid motions, and the run ended with DIVERGED_NOT_HELD. A block held between a floor and an inclined wall under
+    a load 1e-4 of the survey's: the regularisation's spring carries eps r times the rigid travel, 0.0039 of that
+    load (a fraction proportional to E / load), above the verdict's 1e-3, and it ended with DIVERGED_NOT_HELD. Both now
+    converge to the state of -contact_reuse_factorization false (which has no complementarity problem). A free body
+    in small units (free_along_floor's block pushed away from its wall, load times 1e-4) is still found not held,
+    with the fraction of the load that nothing balances of the unscaled case (0.18)."""
+    disc = ["-mesh_file", "meshes/block.msh", "-material_E", "0.000941803", "-material_nu", "0.167", "-contact_groups",
+            "bottom,left,right", "-bc_traction", "top:-9.99894e-08:-5.09574e-07", "-obstacle_segments", "0,2,0,-0.5",
+            "-obstacle_discs", "1.36854,-0.995587,1"]
+    wall = ["-mesh_file", "meshes/block.msh", "-material_E", "159.398", "-material_nu", "0.099", "-contact_groups",
+            "bottom,left,right", "-bc_traction", "top:2.20444e-06:-1.10633e-05", "-obstacle_segments",
+            "-0.5,-0.00417123,2.5,-0.00417123,0,2,0,-0.5,1.74823,-0.00417123,2.74823,1.09528"]
+    # The same active set gives the same linear system, solved by two factorisations: 1e-8 of the largest value; the
+    # wedged block's multipliers 1e-6 (they differ by 1e-7 between the two, on 1 and on 2 ranks: the wall's small
+    # angle to the floor amplifies the round-off of the force balance into the normal forces).
+    for args, what, tol in ((disc, "block on a disc, E x 1e-6", 1e-8),
+                            (wall, "block between floor and wall, load x 1e-4", 1e-6)):
+        r = runner.run(args, what)
+        runner.expect_true("%s: pivoted (%d)" % (what, r.get("iterations.pivoted_sets")),
+                           r.get("iterations.pivoted_sets") >= 1)
+        ref = runner.run(args + ["-contact_reuse_factorization", "false"], what + ", no kept factorisation")
+        expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=tol)
+    free = ["-mesh_file", "meshes/block.msh", "-material_E", "130.924", "-material_nu", "0.093", "-contact_groups",
+            "bottom,left,right", "-bc_traction", "top:1.67226e-05:-8.9568e-05", "-obstacle_segments",
+            "-0.5,-0.026905,2.5,-0.026905,0,2,0,-0.5"]
+    status, out, _ = runner.run_any(free, "block pushed away from its wall, load x 1e-4", timeout=60)
+    errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
+    runner.expect_true("one error line, DIVERGED_NOT_HELD by the complementarity problem, 0.18 unbalanced (exit %d): %s"
+                       % (status, errors), status != 0 and len(errors) == 1 and "DIVERGED_NOT_HELD" in errors[0] and
+                       "leaves 0.18 of it" in errors[0])
+
+
 @test("search_radius_widened")
 def search_radius_widened(runner):
     """A search radius too small for the problem is widened, not an error: a load step that ends with a candidate

@@ -194,14 +194,15 @@ private:
   /// problem in the multipliers (SaddlePointSystem::ContactLcp), solved by Lemke's method, which is finite. pivot:
   /// SET, it has a solution, whose active set is now st.next, and the step goes on from it, its earlier sets
   /// forgotten (its solves and the certificate decide, as for any set); UNHELD, the solution leaves more than
-  /// LCP_UNHELD of the load along rigid motions to the regularisation's spring: no contact forces on these pairs hold
-  /// the body (DIVERGED_NOT_HELD); NONE, no solution or no such problem. why: for -info. Collective.
+  /// LCP_UNHELD of the load along rigid motions unbalanced, to the regularisation's spring however weak it is: no
+  /// contact forces on these pairs hold the body (DIVERGED_NOT_HELD); NONE, no solution or no such problem. why: for -info. Collective.
   enum class Pivot { NONE, SET, UNHELD };
   [[nodiscard]] PetscErrorCode PivotedActiveSet(StepState &st, PetscInt it, const char *why, Pivot &pivot);
-  /// See PivotedActiveSet: a body that its pairs hold leaves about SaddlePointSystem::LCP_REGULARISATION (1e-10) of
-  /// the load to the spring (8.6e-9 and 8.9e-7 in two random cases, the second moved 0.16 rigidly), one that rolls
-  /// off a disc or a sphere, or slides away along a frictionless floor, 0.03 to 0.17 in the surveys (README), and 1
-  /// when its load pulls it off every obstacle.
+  /// See PivotedActiveSet and SaddlePointSystem::ContactLcp: the unbalanced fraction does not depend on the spring's
+  /// stiffness, so not on E / load or the mesh (the spring itself carried 0.004 of the load of a block held between a
+  /// floor and a wall under a small load). A body that its pairs hold leaves round-off (3e-8 at most in the tests), one
+  /// that rolls off a disc or a sphere, or slides away along a frictionless floor, 0.009 to 0.3 in the tests and
+  /// surveys (README), and 1 when its load pulls it off every obstacle.
   static constexpr double LCP_UNHELD = 1e-3;
   /// PivotedActiveSet's problem size (multipliers) at most: its eigendecomposition and pivots cost O(m^3) on rank 0
   /// (Lemke on a dense m = 1000 problem with 500 pivots: 0.56 s).

@@ -8,13 +8,23 @@
 
 namespace signorini {
 
-enum class LcpStatus { SOLVED, RAY, PIVOT_LIMIT };
+/// INACCURATE: the method ended on a basis whose z, w fail the check of a solution (round-off), no verdict.
+enum class LcpStatus { SOLVED, RAY, PIVOT_LIMIT, INACCURATE };
 inline const char *LcpStatusName(LcpStatus s) {
-  return s == LcpStatus::SOLVED ? "solved" : s == LcpStatus::RAY ? "ray (no solution)" : "pivot limit";
+  return s == LcpStatus::SOLVED        ? "solved"
+         : s == LcpStatus::RAY         ? "ray (no solution)"
+         : s == LcpStatus::PIVOT_LIMIT ? "pivot limit"
+                                       : "inaccurate";
 }
 
+/// SOLVED's check: z >= 0, w >= -LCP_TOL s_i and |w_i| <= LCP_TOL s_i where z_i > 0, s_i = max|q| + sum_j |M_ij z_j|
+/// (the size of the terms that w_i sums: its backward error).
+constexpr double LCP_TOL = 1e-8;
+
 /// Solves the m x m problem (M column major: M[i + j m]) by Lemke's method with the covering vector of ones, at most
-/// max_pivots pivots (0: 10 m + 100). z and w get the solution (zero where not basic); pivots the count.
+/// max_pivots pivots (0: 10 m + 100). Scale invariant: the same pivots for (s M, t q), s, t > 0, with z scaled by t / s
+/// and w by t. SOLVED only when z, w pass the check of LCP_TOL. z and w get the solution (zero where not basic);
+/// pivots the count.
 LcpStatus SolveLcp(int m, const std::vector<double> &M, const std::vector<double> &q, std::vector<double> &z,
                    std::vector<double> &w, int *pivots = nullptr, int max_pivots = 0);
 

@@ -1,7 +1,8 @@
 // Lemke's method (SolveLcp) against brute force over every complementary basis, on random positive definite,
-// positive semidefinite and ill-scaled problems, and its ray on problems without a solution.
+// positive semidefinite and ill-scaled problems in units from 1e-12 to 1e12, and its ray on problems without one.
 #include "signorini/solver/lcp.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -139,6 +140,38 @@ TEST(Lcp, IllScaledRowsAsInTheContactProblem) {
     for (double &v : q) v = n(gen);
     ASSERT_EQ(SolveLcp(m, M, q, z, w), LcpStatus::SOLVED) << "trial " << trial;
     ExpectSolution(m, M, q, z, w, 1e-7);
+  }
+}
+
+TEST(Lcp, ScaleInvariantAgainstBruteForce) {
+  // (s M, t q) for s, t from 1e-12 to 1e12: the verdict of brute force on (M, q), the pivots of (M, q) and its z
+  // times t / s. Before, rows were scaled to max(1, max |M_ij|) and ties were absolute: with s = 1e-12 false rays,
+  // with s = 1e12 "solutions" that were none.
+  std::mt19937 gen(5);
+  std::normal_distribution<double> n(0, 1);
+  for (int trial = 0; trial < 120; ++trial) {
+    const int m = 2 + trial % 7;
+    const int k = trial % 3 == 0 ? 1 + trial % (m - 1) : m + 2; // semidefinite or positive definite
+    const std::vector<double> M = RandomGram(m, k, gen, std::vector<double>(m, 1.0));
+    std::vector<double> q(m), z0, w0;
+    for (int i = 0; i < m; ++i) q[i] = i % 2 == 0 && trial % 2 == 0 ? -0.5 : n(gen);
+    int pivots0 = 0;
+    const LcpStatus status0 = SolveLcp(m, M, q, z0, w0, &pivots0);
+    ASSERT_EQ(status0 == LcpStatus::SOLVED, BruteForceSolvable(m, M, q)) << "trial " << trial;
+    double zmax = 0;
+    for (double v : z0) zmax = std::max(zmax, v);
+    for (double s : {1e-12, 1e-8, 1e-4, 1.0, 1e4, 1e8, 1e12})
+      for (double t : {1e-12, 1.0, 1e12}) {
+        std::vector<double> Ms(M), qs(q), z, w;
+        for (double &v : Ms) v *= s;
+        for (double &v : qs) v *= t;
+        int pivots = 0;
+        ASSERT_EQ(SolveLcp(m, Ms, qs, z, w, &pivots), status0) << "trial " << trial << " s " << s << " t " << t;
+        EXPECT_EQ(pivots, pivots0) << "trial " << trial << " s " << s << " t " << t;
+        if (status0 != LcpStatus::SOLVED) continue;
+        ExpectSolution(m, Ms, qs, z, w, 1e-9);
+        for (int i = 0; i < m; ++i) EXPECT_NEAR(z[i] * s / t, z0[i], 1e-12 * zmax) << "trial " << trial;
+      }
   }
 }
 
