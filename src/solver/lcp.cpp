@@ -28,10 +28,11 @@ bool IsSolution(int m, const std::vector<double> &M, const std::vector<double> &
   return ok;
 }
 
-} // namespace
-
-LcpStatus SolveLcp(int m, const std::vector<double> &M, const std::vector<double> &q, std::vector<double> &z,
-                   std::vector<double> &w, int *pivots, int max_pivots) {
+/// One run of Lemke's method (SolveLcp). equilibrate: in the units described there, with tolerances relative to a
+/// column's largest entry; else M over its largest entry, rows as they are, pivots and ties relative to the row's
+/// largest entry and to the larger ratio.
+LcpStatus Lemke(int m, const std::vector<double> &M, const std::vector<double> &q, std::vector<double> &z,
+                std::vector<double> &w, int *pivots, int max_pivots, bool equilibrate) {
   z.assign(m, 0.0);
   w = q;
   if (pivots) *pivots = 0;
@@ -41,14 +42,16 @@ LcpStatus SolveLcp(int m, const std::vector<double> &M, const std::vector<double
   // the same numbers, so the same pivots, in any units. Then an entry is round-off when it is within 1e-12 of the
   // largest in its column, and ratios tie within 1e-12 of the larger or of 1 (a right-hand side of order 1). M = 0:
   // w = q < 0 for every z.
-  double mref = INFINITY, qmax = 0;
+  double mref = INFINITY, mmax = 0, qmax = 0;
   std::vector<double> rowmax(m, 0.0);
   for (int i = 0; i < m; ++i) {
     for (int j = 0; j < m; ++j) rowmax[i] = std::max(rowmax[i], std::abs(M[i + (std::size_t)j * m]));
     if (rowmax[i] > 0) mref = std::min(mref, rowmax[i]);
+    mmax = std::max(mmax, rowmax[i]);
   }
   for (double v : q) qmax = std::max(qmax, std::abs(v));
   if (!std::isfinite(mref)) return LcpStatus::RAY;
+  if (!equilibrate) mref = mmax;
   // The tableau of w - M z - e z0 = q: columns w (0..m-1), z (m..2m-1), z0 (2m), the right-hand side (2m+1); row i
   // holds basic variable basis[i].
   const int nc = 2 * m + 2, z0 = 2 * m, rhs = 2 * m + 1;
@@ -56,7 +59,7 @@ LcpStatus SolveLcp(int m, const std::vector<double> &M, const std::vector<double
   auto at = [&](int i, int j) -> double & { return t[(std::size_t)i * nc + j]; };
   std::vector<int> basis(m);
   for (int i = 0; i < m; ++i) {
-    const double scale = std::max(1.0, rowmax[i] / mref);
+    const double scale = equilibrate ? std::max(1.0, rowmax[i] / mref) : 1.0;
     at(i, i) = 1 / scale;
     for (int j = 0; j < m; ++j) at(i, m + j) = -M[i + (std::size_t)j * m] / mref / scale;
     at(i, z0) = -1 / scale;
@@ -94,9 +97,14 @@ LcpStatus SolveLcp(int m, const std::vector<double> &M, const std::vector<double
     double best = INFINITY;
     for (int i = 0; i < m; ++i) {
       const double d = at(i, entering);
-      if (d <= 1e-12 * column) continue;
+      double row = column;
+      if (!equilibrate) {
+        row = 0;
+        for (int j = 0; j < rhs; ++j) row = std::max(row, std::abs(at(i, j)));
+      }
+      if (d <= 1e-12 * row) continue;
       const double ratio = std::max(at(i, rhs), 0.0) / d;
-      const bool tie = r >= 0 && std::abs(ratio - best) <= 1e-12 * std::max(1.0, std::abs(best));
+      const bool tie = r >= 0 && std::abs(ratio - best) <= 1e-12 * std::max(equilibrate ? 1.0 : 0.0, std::abs(best));
       if (r < 0 || (!tie && ratio < best) || (tie && (basis[i] == z0 || (basis[r] != z0 && basis[i] < basis[r]))))
         r = i, best = ratio;
     }
@@ -120,6 +128,22 @@ LcpStatus SolveLcp(int m, const std::vector<double> &M, const std::vector<double
   // (INACCURATE, no verdict; z and w are what was found).
   if (!IsSolution(m, M, q, z, w, LCP_TOL)) return LcpStatus::INACCURATE;
   return status;
+}
+
+} // namespace
+
+LcpStatus SolveLcp(int m, const std::vector<double> &M, const std::vector<double> &q, std::vector<double> &z,
+                   std::vector<double> &w, int *pivots, int max_pivots) {
+  // Each run's solution is checked, so a second run in the other units may stand for a first that ends on a ray or
+  // a basis that is no solution through round-off (the 3D cube of test cycling_set_pivoted needs the second).
+  const LcpStatus status = Lemke(m, M, q, z, w, pivots, max_pivots, true);
+  if (status == LcpStatus::SOLVED) return status;
+  std::vector<double> z2, w2;
+  int pivots2 = 0;
+  if (Lemke(m, M, q, z2, w2, &pivots2, max_pivots, false) != LcpStatus::SOLVED) return status;
+  z = z2, w = w2;
+  if (pivots) *pivots = pivots2;
+  return LcpStatus::SOLVED;
 }
 
 } // namespace signorini
