@@ -283,6 +283,8 @@ private:
   Mat mumps_factor_ = nullptr; ///< the MUMPS factor of a direct solve (owned by the PC), for the null-pivot check
   MumpsControls mumps_controls_; ///< -contact_mat_mumps_icntl_<k>, _cntl_<k> (a MUMPS solver only)
   PetscInt null_pivots_ = 0;     ///< null pivots of the last MUMPS factorisation (INFOG(28))
+  double singular_residual_ = 0; ///< the relative residual of a direct solve that found no null pivot but solved
+                                 ///< nothing (a matrix singular to round-off), else 0
   std::string ordering_given_;   ///< "-contact_nested_dissection X" and/or "..._parallel Y" as given (else empty)
 
 public:
