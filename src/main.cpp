@@ -33,7 +33,11 @@ int main(int argc, char **argv) {
   }
   PetscErrorCode ierr = signorini::CheckCommandLine(argc, argv);
   if (!ierr) ierr = signorini::Run();
-  if (ierr) (void)PetscOptionsSetValue(nullptr, "-options_left", "0");
+  if (ierr) {
+    // No half-written output: the staging directory of a run that failed goes (an earlier good output stays).
+    signorini::RemoveFailedOutput();
+    (void)PetscOptionsSetValue(nullptr, "-options_left", "0");
+  }
   PetscCall(PetscFinalize());
   MPI_Finalize(); // PETSc leaves MPI to whoever initialised it
   return ierr ? 1 : 0;

@@ -3,6 +3,7 @@
 
 #include "signorini/app/report.hpp"
 #include "signorini/contact/contact_results.hpp"
+#include "signorini/core/options.hpp"
 #include "signorini/core/parse.hpp"
 #include "signorini/core/progress.hpp"
 #include "signorini/io/output.hpp"
@@ -195,24 +196,6 @@ std::vector<Field> NodeTableFields(ContactSolver &solver, const NodeContact &nod
           {"pressure", 1, false, nodes.pressure}, {"gap", 1, false, nodes.gap}, {"active", 1, false, nodes.active}};
 }
 
-/// Reports options that were set but never read (a misspelled option must not pass silently).
-PetscErrorCode ReportUnusedOptions(MPI_Comm comm) {
-  PetscBool report = PETSC_TRUE;
-  PetscInt n;
-  char **names, **values;
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-options_left", &report, nullptr));
-  PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
-  if (report)
-    for (PetscInt i = 0; i < n; ++i)
-      PetscCall(PetscPrintf(comm, "WARNING! option -%s%s%s was set but not used (misspelled?)\n", names[i],
-                            values[i] ? " " : "", values[i] ? values[i] : ""));
-  PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
-  // PETSc's own report at PetscFinalize would repeat the list.
-  PetscCall(PetscOptionsSetValue(nullptr, "-options_left", "0"));
-  PetscFunctionReturn(0);
-}
-
 } // namespace
 
 void HoldGenericHelp() { PetscHelpPrintf = HoldHelpPrintf; }
@@ -299,6 +282,8 @@ PetscErrorCode Run() {
   ProgressEnd();
   PetscCall(PetscLogStagePop());
   info.timings["setup"] = MPI_Wtime() - t;
+  // Every option but the saddle-point solver's has been read by now: a misspelt one stops the run here.
+  PetscCall(CheckUnusedOptions(comm, UnusedOptions::AFTER_SETUP));
   // The output directory is opened once the set-up has checked the inputs it reads (groups, supports), so that
   // these errors leave no directory behind.
   OutputWriter output;
@@ -352,9 +337,9 @@ PetscErrorCode Run() {
     PetscCallMPI(MPI_Allreduce(&v, &m, 1, MPI_DOUBLE, MPI_MAX, comm));
     v = m;
   }
+  PetscCall(CheckUnusedOptions(comm, UnusedOptions::AFTER_SOLVE));
   PetscCall(output.Publish(SummaryJson(info, material, solver, summary, hertz)));
   ProgressEnd();
-  PetscCall(ReportUnusedOptions(comm));
   PetscFunctionReturn(0);
 }
 

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <sstream>
 #include <vector>
 
@@ -14,6 +15,11 @@ namespace {
 std::string &OptionsFiles() {
   static std::string files;
   return files;
+}
+
+std::string &FailedOutput() {
+  static std::string dir;
+  return dir;
 }
 
 /// Rewrites PETSc's "Input string abc has no numeric value" (and its integer and logical variants) to name the option
@@ -94,13 +100,25 @@ PetscErrorCode Handler(MPI_Comm comm, int line, const char *func, const char *fi
       std::fprintf(stderr, "signorini: error: %s [PETSc error %d in %s() at %s:%d]\n", text, (int)n, func, file, line);
     std::fflush(stderr);
   }
-  if (!collective && world_size > 1) MPI_Abort(world, 1);
+  if (!collective && world_size > 1) {
+    // A signal leaves the staging directory as it is: the interrupted run's files are there to be looked at.
+    if (n != PETSC_ERR_SIG) RemoveFailedOutput();
+    MPI_Abort(world, 1);
+  }
   return n;
 }
 
 } // namespace
 
 void SetOptionsFiles(const std::string &files) { OptionsFiles() = files; }
+
+void RemoveOnFailure(const std::string &dir) { FailedOutput() = dir; }
+
+void RemoveFailedOutput() {
+  std::error_code ignored;
+  if (!FailedOutput().empty()) std::filesystem::remove_all(FailedOutput(), ignored);
+  FailedOutput().clear();
+}
 
 PetscErrorCode InstallErrorHandler() {
   PetscFunctionBeginUser;
@@ -116,25 +134,30 @@ PetscErrorCode CheckCollective(MPI_Comm comm, bool ok, const std::string &messag
   PetscMPIInt mine = ok ? size : rank, first;
   PetscCallMPI(MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm));
   if (first == size) PetscFunctionReturn(0);
-  int len = rank == first ? (int)message.size() : 0;
-  PetscCallMPI(MPI_Bcast(&len, 1, MPI_INT, first, comm));
-  std::vector<char> buf(len + 1, '\0');
-  if (rank == first) std::memcpy(buf.data(), message.data(), len);
-  PetscCallMPI(MPI_Bcast(buf.data(), len, MPI_CHAR, first, comm));
-  SETERRQ(comm, PETSC_ERR_USER_INPUT, "%s", buf.data());
+  std::string text = message;
+  PetscCall(Broadcast(comm, first, text));
+  SETERRQ(comm, PETSC_ERR_USER_INPUT, "%s", text.c_str());
 }
 
 PetscErrorCode RaiseFromRoot(MPI_Comm comm, const std::string &message_on_root) {
+  std::string text = message_on_root;
+  PetscFunctionBeginUser;
+  PetscCall(Broadcast(comm, 0, text));
+  PetscCheck(text.empty(), comm, PETSC_ERR_USER_INPUT, "%s", text.c_str());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Broadcast(MPI_Comm comm, PetscMPIInt root, std::string &text) {
   PetscMPIInt rank;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  int len = rank == 0 ? (int)message_on_root.size() : 0;
-  PetscCallMPI(MPI_Bcast(&len, 1, MPI_INT, 0, comm));
-  if (len == 0) PetscFunctionReturn(0);
+  int len = rank == root ? (int)text.size() : 0;
+  PetscCallMPI(MPI_Bcast(&len, 1, MPI_INT, root, comm));
   std::vector<char> buf(len + 1, '\0');
-  if (rank == 0) std::memcpy(buf.data(), message_on_root.data(), len);
-  PetscCallMPI(MPI_Bcast(buf.data(), len, MPI_CHAR, 0, comm));
-  SETERRQ(comm, PETSC_ERR_USER_INPUT, "%s", buf.data());
+  if (rank == root) std::memcpy(buf.data(), text.data(), len);
+  PetscCallMPI(MPI_Bcast(buf.data(), len, MPI_CHAR, root, comm));
+  text.assign(buf.data(), len);
+  PetscFunctionReturn(0);
 }
 
 } // namespace signorini

@@ -1,16 +1,19 @@
 // Strict readers of option values: no value ignored, no hexadecimal or overflowing number, every range checked.
 #include "signorini/core/options.hpp"
 
+#include "signorini/core/errors.hpp"
 #include "signorini/core/parse.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <map>
+#include <set>
+#include <sstream>
 #include <system_error>
 
 #include <yaml.h>
@@ -174,6 +177,74 @@ PetscErrorCode OptionsRequireValue(PetscOptionItems *PetscOptionsObject, const c
 
 namespace {
 
+/// PETSc's generic options (-help lists them) that PETSc reads only in PetscFinalize or when the feature they tune
+/// starts (a debugger, a shared temporary directory): given, they are not misspelt, whether or not they were read.
+constexpr const char *GENERIC_READ_LATE[] = {"options_view",   "citations", "get_total_flops", "debugger_ranks",
+                                             "debugger_pause", "tmp",       "shared_tmp",      "not_shared_tmp"};
+
+/// The kinds of PETSc object whose options the saddle-point KSP (prefix contact_) and what it creates read while
+/// the solve runs: the KSP and PC themselves, the factor matrix (-contact_mat_mumps_*), fieldsplit's blocks, and the
+/// sub-solvers of block Jacobi/ASM, multigrid levels, redundant, telescope, LSC, redistribute, Galerkin, HMG, patch,
+/// deflation and FETI-DP.
+constexpr const char *SOLVER_PREFIX = "contact_";
+constexpr const char *SOLVER_OBJECTS[] = {"ksp_",      "pc_",        "mat_",       "fieldsplit_", "sub_",
+                                          "mg_",       "redundant_", "telescope_", "lsc_",        "redistribute_",
+                                          "galerkin_", "hmg_",       "patch_",     "deflation_",  "fetidp_"};
+/// The kinds of PETSc object that the solve makes or assembles without a prefix, whose generic options
+/// (-vec_view, -mat_view, ...) it reads then.
+constexpr const char *UNPREFIXED_OBJECTS[] = {"vec_", "mat_", "is_", "sf_", "vecscatter_", "viewer_", "draw_"};
+
+/// Whether name (without its '-') is prefix followed by one of the object kinds.
+template <std::size_t N>
+bool NamesObject(const std::string &name, const std::string &prefix, const char *const (&objects)[N]) {
+  return name.rfind(prefix, 0) == 0 && std::any_of(std::begin(objects), std::end(objects), [&](const char *k) {
+           return name.compare(prefix.size(), std::strlen(k), k) == 0;
+         });
+}
+
+} // namespace
+
+PetscErrorCode CheckUnusedOptions(MPI_Comm comm, UnusedOptions when) {
+  PetscBool refuse = PETSC_TRUE;
+  PetscInt n;
+  char **names, **values;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-options_left", &refuse, nullptr));
+  std::set<std::string> mine; // "-name value" of the options this rank has not read
+  PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
+  for (PetscInt i = 0; i < n; ++i) {
+    const std::string name = names[i];
+    if (std::find(std::begin(GENERIC_READ_LATE), std::end(GENERIC_READ_LATE), name) != std::end(GENERIC_READ_LATE))
+      continue;
+    if (when == UnusedOptions::AFTER_SETUP &&
+        (NamesObject(name, SOLVER_PREFIX, SOLVER_OBJECTS) || NamesObject(name, "", UNPREFIXED_OBJECTS)))
+      continue;
+    mine.insert("-" + name + (values[i] ? std::string(" ") + values[i] : ""));
+  }
+  PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
+  // Every rank holds the same options; an option counts as unused when no rank has read it (rank 0's list, agreed).
+  std::string list = Join(std::vector<std::string>(mine.begin(), mine.end()), "\n");
+  PetscCall(Broadcast(comm, 0, list));
+  const std::vector<std::string> candidates = list.empty() ? std::vector<std::string>() : Split(list, '\n');
+  std::vector<int> unused(candidates.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    unused[i] = mine.count(candidates[i]) ? 1 : 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, unused.data(), (int)unused.size(), MPI_INT, MPI_LAND, comm));
+  std::vector<std::string> refused;
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (unused[i]) refused.push_back(candidates[i]);
+  PetscCheck(!refuse || refused.empty(), comm, PETSC_ERR_USER_INPUT,
+             "%s %s set but never read (misspelt, or not an option of this run); expected only options that this run "
+             "reads (-help lists them; -options_left 0 lets unread options pass)",
+             refused.size() == 1 ? "option" : "options",
+             (Join(refused, ", ") + (refused.size() == 1 ? " is" : " are")).c_str());
+  // PETSc's own report in PetscFinalize would list them again.
+  if (when == UnusedOptions::AFTER_SOLVE) PetscCall(PetscOptionsSetValue(nullptr, "-options_left", "0"));
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
 /// The edit distance between a and b (insertions, deletions, substitutions).
 std::size_t EditDistance(const std::string &a, const std::string &b) {
   std::vector<std::size_t> row(b.size() + 1);
@@ -199,6 +270,8 @@ PetscErrorCode CheckCommandLine(int argc, char **argv) {
   // -prefix_pop none; any other key takes the next argument when that is not a key.
   static const char *const WITH_OPERAND[] = {"-options_file", "-options_file_yaml", "-options_string_yaml",
                                              "-prefix_push"};
+  std::map<std::string, std::string> given; // option (lower case, as PETSc compares names) -> its first value
+  std::vector<std::string> prefixes;        // -prefix_push / -prefix_pop
   for (int i = 1; i < argc; ++i) {
     PetscBool key;
     PetscCall(PetscOptionsValidKey(argv[i], &key));
@@ -214,14 +287,30 @@ PetscErrorCode CheckCommandLine(int argc, char **argv) {
     if (name != "options_file" && EditDistance(name, "options_file") <= 2)
       SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "unknown option %s; expected -options_file FILE",
               arg.c_str());
-    if (std::find_if(std::begin(WITH_OPERAND), std::end(WITH_OPERAND),
-                     [&](const char *k) { return arg == k; }) != std::end(WITH_OPERAND)) {
+    const bool with_operand = std::find_if(std::begin(WITH_OPERAND), std::end(WITH_OPERAND),
+                                           [&](const char *k) { return arg == k; }) != std::end(WITH_OPERAND);
+    if (arg == "-prefix_push" && i + 1 < argc) prefixes.push_back(argv[i + 1]);
+    if (arg == "-prefix_pop" && !prefixes.empty()) prefixes.pop_back();
+    std::string value;
+    if (with_operand) {
       ++i;
     } else if (arg != "-prefix_pop" && i + 1 < argc) {
       PetscBool next_key;
       PetscCall(PetscOptionsValidKey(argv[i + 1], &next_key));
-      if (!next_key) ++i;
+      if (!next_key) value = argv[++i];
     }
+    // The same option twice: PETSc keeps the last value without a word (-bc_traction twice drops the first load).
+    // Options files may be layered; an option of the command line overrides the same option of a file.
+    if (with_operand || arg == "-prefix_pop") continue;
+    std::string option = "-" + Join(prefixes, "") + name;
+    std::transform(option.begin(), option.end(), option.begin(), [](unsigned char c) { return std::tolower(c); });
+    const auto [first, fresh] = given.emplace(option, value);
+    PetscCheck(fresh, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+               "option %s is given twice on the command line (%s, then %s), and only one value would be used; "
+               "expected each option once (a value on the command line overrides the same option's in an "
+               "-options_file or PETSC_OPTIONS)",
+               ("-" + Join(prefixes, "") + name).c_str(), first->second.empty() ? "no value" : first->second.c_str(),
+               value.empty() ? "no value" : value.c_str());
   }
   PetscFunctionReturn(0);
 }
@@ -247,18 +336,24 @@ std::vector<std::string> PlainFileWords(const std::string &path) {
   return words;
 }
 
-/// Walks a YAML document as PETSc's reader does (src/sys/objects/optionsyaml.c): a scalar value sets -PREFIXkey, a
-/// mapping value or a mapping in a sequence pushes the prefix key_, a merge key '<<' keeps the prefix, a '$$' key sets
-/// nothing. Finds what PETSc would take without a word: an option set twice in the file (PETSc keeps the last value
-/// and drops the other, where YAML wants unique keys; the one order it allows is a merge followed by the key that
-/// overrides it, as YAML means it) and an options_file key (PETSc stores it as an option and reads no file).
+/// Walks the documents of a YAML file as PETSc's reader does (src/sys/objects/optionsyaml.c): a scalar value sets
+/// -PREFIXkey, a mapping value or a mapping in a sequence pushes the prefix key_, a merge key '<<' keeps the prefix, a
+/// '$$' key sets nothing. Finds what PETSc would take without a word: an option set twice in the file, in one document
+/// or in two ('---' between them; PETSc keeps the last value and drops the other, where YAML wants unique keys; the
+/// one order it allows is a merge followed by the key that overrides it in the same document, as YAML means it) and
+/// an options_file key (PETSc stores it as an option and reads no file).
 class YamlOptions {
 public:
-  YamlOptions(yaml_document_t &doc, std::string path) : doc_(doc), path_(std::move(path)) {}
+  explicit YamlOptions(std::string path) : path_(std::move(path)) {}
 
-  /// The first problem as a message naming the file, the line and the option; empty when there is none.
-  std::string Problem(yaml_node_t *root) {
-    if (root) Walk(root, "", false);
+  /// The first problem up to document doc (the documents of the file in order) as a message naming the file, the
+  /// line and the option; empty when there is none.
+  std::string Problem(yaml_document_t &doc) {
+    doc_ = &doc;
+    if (yaml_node_t *root = yaml_document_get_root_node(&doc)) Walk(root, "", false);
+    // A merge overrides nothing of a later document: a key set there again is set twice.
+    for (auto &[name, setting] : seen_)
+      setting.merged = false;
     return problem_;
   }
 
@@ -292,13 +387,14 @@ private:
                  "override it";
     else
       problem_ = path_ + ", line " + this_line + ": option " + name + " is set again (first on line " + first_line +
-                 "); expected each option once per file (PETSc would silently keep the last value)";
+                 "); expected each option once per file, in all its documents (PETSc would silently keep the last "
+                 "value)";
   }
 
   void Walk(yaml_node_t *node, const std::string &prefix, bool merged) {
     if (!node || node->type != YAML_MAPPING_NODE || !problem_.empty()) return; // PETSc reports other shapes
     for (yaml_node_pair_t *pair = node->data.mapping.pairs.start; pair < node->data.mapping.pairs.top; ++pair) {
-      yaml_node_t *key = yaml_document_get_node(&doc_, pair->key), *value = yaml_document_get_node(&doc_, pair->value);
+      yaml_node_t *key = yaml_document_get_node(doc_, pair->key), *value = yaml_document_get_node(doc_, pair->value);
       if (!key || !value || key->type != YAML_SCALAR_NODE) return;
       const std::string k = Text(key);
       if (k == "<<") {
@@ -306,7 +402,7 @@ private:
         else if (value->type == YAML_SEQUENCE_NODE)
           for (yaml_node_item_t *item = value->data.sequence.items.start; item < value->data.sequence.items.top;
                ++item)
-            Walk(yaml_document_get_node(&doc_, *item), prefix, true);
+            Walk(yaml_document_get_node(doc_, *item), prefix, true);
         continue;
       }
       if (k.rfind("$$", 0) == 0) continue;
@@ -316,12 +412,12 @@ private:
       }
       if (value->type == YAML_SEQUENCE_NODE)
         for (yaml_node_item_t *item = value->data.sequence.items.start; item < value->data.sequence.items.top; ++item)
-          Walk(yaml_document_get_node(&doc_, *item), prefix + k + "_", merged);
+          Walk(yaml_document_get_node(doc_, *item), prefix + k + "_", merged);
       Set("-" + prefix + k, key, merged);
     }
   }
 
-  yaml_document_t &doc_;
+  yaml_document_t *doc_ = nullptr;
   const std::string path_;
   std::map<std::string, Setting> seen_;
   std::string problem_;
@@ -336,6 +432,7 @@ std::string YamlFileProblem(const std::string &key, const std::string &path) {
   if (!yaml_parser_initialize(&parser)) return "";
   yaml_parser_set_input_string(&parser, reinterpret_cast<const unsigned char *>(text.data()), text.size());
   std::string problem;
+  YamlOptions options(path);
   for (bool more = true; more && problem.empty();) {
     yaml_document_t doc;
     if (!yaml_parser_load(&parser, &doc)) {
@@ -345,9 +442,8 @@ std::string YamlFileProblem(const std::string &key, const std::string &path) {
                 (parser.context ? std::string(" ") + parser.context : std::string()) + "; expected a valid YAML file";
       break;
     }
-    yaml_node_t *root = yaml_document_get_root_node(&doc);
-    more = root != nullptr;
-    problem = YamlOptions(doc, path).Problem(root);
+    more = yaml_document_get_root_node(&doc) != nullptr;
+    problem = options.Problem(doc);
     yaml_document_delete(&doc);
   }
   yaml_parser_delete(&parser);

@@ -87,7 +87,10 @@ PetscErrorCode OutputWriter::Open(const Mesh &mesh, const OutputOptions &opts) {
   PetscCall(RegisterEvents());
   PetscCallMPI(MPI_Comm_rank(mesh.Comm(), &rank));
   std::string error;
-  if (rank == 0) error = PrepareOutputDirectory(opts_.dir);
+  if (rank == 0) {
+    error = PrepareOutputDirectory(opts_.dir);
+    RemoveOnFailure(Staging()); // from here on, a failed run removes what it wrote (main, the error handler)
+  }
   PetscCall(RaiseFromRoot(mesh.Comm(), error));
   PetscCall(BuildRows());
   PetscFunctionReturn(0);
@@ -498,6 +501,7 @@ PetscErrorCode OutputWriter::Publish(const std::string &summary_json) {
     out.close();
     if (!out) error = "cannot write '" + path + "'";
     else error = PublishOutputDirectory(opts_.dir);
+    if (error.empty()) RemoveOnFailure("");
   }
   PetscCall(RaiseFromRoot(mesh_->Comm(), error));
   PetscFunctionReturn(0);

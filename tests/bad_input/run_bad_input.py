@@ -6,8 +6,8 @@ A case passes when the run
   - prints exactly one line starting with "signorini: error:", on stderr, holding every expected substring (the
     offending input and what was expected),
   - prints no PETSc error message or stack trace and leaves no process behind,
-  - leaves no complete-looking output: no summary.json under its -output_dir, and where the case starts from an
-    earlier good run in that directory, every file of that run byte for byte and with its modification time.
+  - leaves no half-written output: no summary.json and no incomplete/ under its -output_dir, and where the case starts
+    from an earlier good run in that directory, every file of that run byte for byte and with its modification time.
 The signal cases interrupt a long run instead, once it reports the first active-set iteration of its third load step
 (the first two steps are written to DIR/incomplete by then), and expect a non-zero exit within a few seconds and no
 summary.json.
@@ -411,6 +411,36 @@ CASES = {
                                  "{here}/options/names_options_file.yml"],
                                 ["names_options_file.yml, line 2: options_file in a YAML file is not read",
                                  "expected each options file on the command line"], {"no_output_dir": True}),
+    "yaml_option_twice_documents": (["-options_file", "{here}/options/twice_documents.yml"],
+                                    ["twice_documents.yml, line 4: option -material_E is set again (first on line 2)",
+                                     "in all its documents"], {"no_output_dir": True}),
+    # Options that nothing reads (misspelt, or not for this run): refused after the set-up, before the output
+    # directory is made, or, for the solver's options that the solve reads as it goes, after the solve and before the
+    # output is published.
+    "unused_option": (["-materal_E", "5"], ["option -materal_E 5 is set but never read", "expected"],
+                      {"no_output_dir": True}),
+    "unused_options_two": (["-material_nuu", "0.3", "-contact_max_itt", "5"],
+                           ["options -contact_max_itt 5, -material_nuu 0.3 are set but never read"],
+                           {"no_output_dir": True}),
+    "unused_option_yaml_key": (["-options_file", "{here}/options/unknown_key.yml"],
+                               ["option -materal_E 5 is set but never read"], {"no_output_dir": True}),
+    "unused_option_yaml_nested_key": (["-options_file", "{here}/options/unknown_nested_key.yml"],
+                                      ["option -material_EE 5 is set but never read"], {"no_output_dir": True}),
+    "unused_solver_option": (["-contact_mat_mumps_icntl_99", "1"],
+                             ["option -contact_mat_mumps_icntl_99 1 is set but never read"], {"previous": HERTZ}),
+    "unused_solver_option_of_other_solver": (["-contact_pc_gamg_threshold", "0.01"],
+                                             ["option -contact_pc_gamg_threshold 0.01 is set but never read"],
+                                             {"previous": HERTZ}),
+    # The same option twice on the command line: PETSc keeps the last value (the second traction dropped the first).
+    "option_twice_command_line": (["-material_E", "300", "-material_E", "400"],
+                                  ["option -material_E is given twice on the command line (300, then 400)",
+                                   "expected each option once"], {"no_output_dir": True}),
+    "bc_traction_twice_command_line": (["-bc_traction", "top:0:-0.625", "-bc_traction", "top:0:-1"],
+                                       ["option -bc_traction is given twice", "(top:0:-0.625, then top:0:-1)"],
+                                       {"no_output_dir": True}),
+    "option_twice_through_prefix": (["-contact_max_it", "5", "-prefix_push", "contact_", "-max_it", "6",
+                                     "-prefix_pop"], ["option -contact_max_it is given twice", "(5, then 6)"],
+                                    {"no_output_dir": True}),
     # A plain options file naming one that does not exist: every rank would report it.
     "options_file_nested_missing": (["-options_file", "{here}/options/nested_missing.txt"],
                                     ["-options_file does_not_exist_nested.txt: no such file"], {}),
@@ -422,8 +452,14 @@ CASES = {
                               ["unknown option -option_file", "expected -options_file FILE"], {}),
     "options_file_bad_syntax": (["-options_file", "{here}/options/bad_options.txt"],
                                 ["-options_file", "bad_options.txt line 3", "expected"], {}),
-    # Failures of the solve, after the output directory was opened.
+    # Failures of the solve, after the output directory was opened: its incomplete/ goes too.
     "singular_system": (LOOSE_BEAM, ["singular", "not held", "add Dirichlet"], {"previous": BEAM}),
+    # An input refused at the first factorisation.
+    "mumps_control_set_by_solver": (["-contact_mat_mumps_icntl_18", "0"],
+                                    ["-contact_mat_mumps_icntl_18 cannot be set", "-contact_reuse_factorization"],
+                                    {"previous": HERTZ}),
+    "mumps_control_set_by_solver_new_dir": (["-contact_mat_mumps_icntl_18", "0"],
+                                            ["-contact_mat_mumps_icntl_18 cannot be set"], {}),
     # Supports that hold contact candidates inside the obstacle: no solve can lift them, and with no pair for a node
     # whose normal motion is prescribed the penetration went unchecked (a converged state 0.01 inside the floor).
     "dirichlet_into_obstacle": (["-options_file", "{root}/options/block_on_floor.yml", "-bc_dirichlet",
@@ -649,6 +685,8 @@ def check_case(name, exe, mpiexec, np_, work, env, verbose):
         problems.append(f"{os.path.relpath(out_dir, work)} was created by a run that failed in its set-up")
     if "signal" in opts and not os.path.isdir(os.path.join(out_dir, "incomplete")):
         problems.append("no incomplete/ in the output directory: the run was not interrupted while writing")
+    if "signal" not in opts and os.path.exists(os.path.join(out_dir, "incomplete")):
+        problems.append("the failed run left its incomplete/ behind (half-written output)")
     if before is None:
         for path in summaries(out_dir):
             problems.append(f"{os.path.relpath(path, work)} exists after the failed run")

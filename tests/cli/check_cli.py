@@ -55,11 +55,30 @@ if TEST == "help":
     check(rc == 0 and "-contact_fieldsplit_u_pc_gamg_threshold" in out,
           "-help with a fieldsplit preset lists the options of its blocks")
 elif TEST == "misspelled":
-    rc, out = run(["-material_nuu", "0.3"])
-    check(rc == 0, "a misspelled option does not stop the run")
-    check("option -material_nuu 0.3 was set but not used" in out, "the misspelled option is reported")
+    with tempfile.TemporaryDirectory() as work:
+        out_dir = os.path.join(work, "out")
+        rc, out = run(["-material_nuu", "0.3", "-output_dir", out_dir])
+        errors = [l for l in out.splitlines() if l.startswith("signorini: error:")]
+        check(rc != 0 and len(errors) == 1 and "option -material_nuu 0.3 is set but never read" in errors[0],
+              "a misspelled option is an error naming it: " + out[-300:])
+        check("unknowns:" not in out and not os.path.exists(out_dir),
+              "it stops the run after the set-up, before the output directory is made")
+        # A solver option is read at the first factorisation: one that nothing reads is refused after the solve,
+        # before the output is published.
+        rc, out = run(["-contact_mat_mumps_icntl_99", "1", "-output_dir", out_dir])
+        errors = [l for l in out.splitlines() if l.startswith("signorini: error:")]
+        check(rc != 0 and len(errors) == 1 and "option -contact_mat_mumps_icntl_99 1 is set but never read" in errors[0]
+              and "CONVERGED" in out, "an unread solver option is an error after the solve: " + out[-300:])
+        check(not os.path.exists(os.path.join(out_dir, "summary.json"))
+              and not os.path.exists(os.path.join(out_dir, "incomplete")), "and nothing is published or left behind")
     rc, out = run(["-material_nuu", "0.3", "-options_left", "0"])
-    check("was set but not used" not in out, "-options_left 0 silences the report")
+    check(rc == 0 and "-material_nuu" not in out, "-options_left 0 lets an unread option pass: " + out[-300:])
+    # PETSc's generic options are not refused, whether PETSc reads them at the start, during the solve or at the end.
+    generic = ["-log_view", "ascii:" + os.devnull, "-malloc_debug", "-on_error_abort", "-options_view", "-citations",
+               "-info", os.devnull, "-options_left", "-malloc_dump", "-memory_view", "-get_total_flops",
+               "-options_monitor", "-vec_view", "::ascii_info", "-mat_view", "::ascii_info"]
+    rc, out = run(generic, np=2)
+    check(rc == 0 and "signorini: error" not in out, "PETSc's generic options are not refused: " + out[-300:])
 elif TEST == "default_case":
     rc1, out1 = run([])
     rc2, out2 = run(["-options_file", "options/hertz.yml"])

@@ -14,6 +14,12 @@ namespace signorini {
 /// The options files of the run ("a.yml, b.txt", OptionsFileProblem), named by the handler's message when
 /// PetscInitialize cannot read one of them.
 void SetOptionsFiles(const std::string &files);
+/// Names the directory that this rank made for the run's output (DIR/incomplete; "" once the output is published, and
+/// on the ranks that made none), which a failure must not leave behind: main removes it when Run fails, the error
+/// handler before it aborts the job. Removes nothing beside it (an earlier good output in DIR stays as it is).
+void RemoveOnFailure(const std::string &dir);
+/// Removes the directory that RemoveOnFailure named, if any, and forgets it. Local (no communication).
+void RemoveFailedOutput();
 
 /// Collective check of a condition that may hold on some ranks only: if any rank has ok == false, every rank raises
 /// PETSC_ERR_USER_INPUT with the message of the lowest failing rank. Call on all ranks of comm together.
@@ -21,5 +27,8 @@ void SetOptionsFiles(const std::string &files);
 
 /// Broadcasts a status/message pair from rank 0 and raises the error on all ranks when it is not empty.
 [[nodiscard]] PetscErrorCode RaiseFromRoot(MPI_Comm comm, const std::string &message_on_root);
+
+/// Gives every rank of comm the text of rank root. Collective.
+[[nodiscard]] PetscErrorCode Broadcast(MPI_Comm comm, PetscMPIInt root, std::string &text);
 
 } // namespace signorini

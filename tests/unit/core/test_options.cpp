@@ -5,6 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
 namespace signorini {
 namespace {
 
@@ -132,6 +137,55 @@ TEST(OptionsRealList, EmptyListsEmptyItemsAndBadNumbersAreErrors) {
     const std::string message = MessageOf("-test_list", c.value, [&] { return ReadList(values, &set); });
     EXPECT_NE(message.find(c.expected), std::string::npos) << message;
   }
+}
+
+/// CheckCommandLine on the words of a command line; returns the error message ("" when it passed).
+std::string CommandLineMessage(std::vector<std::string> words) {
+  words.insert(words.begin(), "signorini");
+  std::vector<char *> argv;
+  for (std::string &w : words) argv.push_back(w.data());
+  ErrorCapture capture;
+  const PetscErrorCode ierr = CheckCommandLine((int)argv.size(), argv.data());
+  EXPECT_EQ(ierr != 0, !capture.Message().empty()) << capture.Message();
+  return capture.Message();
+}
+
+TEST(CheckCommandLine, AnOptionGivenTwiceIsAnErrorNamingItAndBothValues) {
+  EXPECT_EQ(CommandLineMessage({"-material_E", "300", "-material_nu", "0.3", "-contact_monitor"}), "");
+  EXPECT_EQ(CommandLineMessage({"-options_file", "a.yml", "-options_file", "b.yml", "-material_E", "3"}), "");
+  const struct {
+    std::vector<std::string> words;
+    const char *expected;
+  } cases[] = {{{"-material_E", "300", "-material_E", "400"}, "option -material_E is given twice on the command line "
+                                                              "(300, then 400)"},
+               {{"-bc_traction", "top:0:-0.625", "-load_steps", "2", "-bc_traction", "top:0:-1"},
+                "option -bc_traction is given twice on the command line (top:0:-0.625, then top:0:-1)"},
+               {{"-contact_monitor", "-Contact_Monitor"}, "option -Contact_Monitor is given twice"},
+               {{"-contact_max_it", "5", "-prefix_push", "contact_", "-max_it", "6", "-prefix_pop"},
+                "option -contact_max_it is given twice on the command line (5, then 6)"}};
+  for (const auto &c : cases) {
+    const std::string message = CommandLineMessage(c.words);
+    EXPECT_NE(message.find(c.expected), std::string::npos) << message;
+  }
+}
+
+TEST(OptionsFileProblem, AnOptionSetInTwoYamlDocumentsIsSetTwice) {
+  const std::string path = ::testing::TempDir() + "/signorini_two_documents.yml";
+  const auto problem_of = [&](const char *text) {
+    std::ofstream(path) << text;
+    std::string files;
+    std::vector<std::string> words = {"signorini", "-options_file", path};
+    std::vector<char *> argv;
+    for (std::string &w : words) argv.push_back(w.data());
+    return OptionsFileProblem((int)argv.size(), argv.data(), files);
+  };
+  EXPECT_EQ(problem_of("material_E: 1\n---\nmaterial_nu: 0.3\n"), "");
+  std::string problem = problem_of("material_E: 1\n---\nmaterial:\n  E: 5\n");
+  EXPECT_NE(problem.find("line 4: option -material_E is set again (first on line 1)"), std::string::npos) << problem;
+  // A merge in one document overrides nothing of the next.
+  problem = problem_of("base: &b {material_E: 1}\ncase:\n  <<: *b\n---\ncase_material_E: 2\n");
+  EXPECT_NE(problem.find("option -case_material_E is set again"), std::string::npos) << problem;
+  std::remove(path.c_str());
 }
 
 } // namespace
