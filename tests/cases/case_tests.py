@@ -1719,6 +1719,41 @@ def singular_narrow_radius(runner):
                        "searching the pairs again within" in out)
 
 
+@test("held_beyond_radius")
+def held_beyond_radius(runner):
+    """Blocks held by contact alone whose holding facet starts beyond the default search radius (an independent
+    rigid-mode check of the surveys' refusals found them held): the pairs within the radius leave them free, so their
+    first system is singular. Seed 777 case 255 and seed 4242 case 137 (an inclined wall 0.3 and 0.085 beside the
+    block on a floor) ended with MUMPS's null pivots and "the body is not held"; seed 4242 case 261 (a block on a
+    disc that the inclined wall stops from rolling) found no null pivot but a garbage solve (relative residual 1.2)
+    and ended with "the saddle-point solve failed". Each step is now repeated with the pairs within the body's
+    diagonal and converges to the state of a radius that pairs the wall from the start (1e-8); a block on the disc
+    without the wall, which nothing stops from rolling, still ends not held."""
+    cases = [(["-mesh_file", "meshes/block.msh", "-material_E", "2131.45", "-material_nu", "0.229", "-contact_groups",
+               "bottom,left,right", "-bc_traction", "top:0.0878265:-0.697808", "-obstacle_segments",
+               "-0.5,-0.0143173,2.5,-0.0143173,2.29819,-0.0143173,3.29819,1.24189"], "seed 777 case 255", "1"),
+             (["-mesh_file", "meshes/notch_block.msh", "-material_E", "265.851", "-material_nu", "0.437",
+               "-contact_groups", "bottom,left,right", "-bc_traction", "top:0.02625:-0.638055", "-obstacle_segments",
+               "-0.5,-0.00992265,1.5,-0.00992265,1.08535,-0.00992265,2.08535,0.639784"], "seed 4242 case 137", "0.5"),
+             (["-mesh_file", "meshes/notch_block.msh", "-material_E", "587.463", "-material_nu", "0.299",
+               "-contact_groups", "bottom,left,right", "-bc_traction", "top:0.460301:-4.24255", "-obstacle_segments",
+               "1.0876,-0.0278283,2.0876,0.937736", "-obstacle_discs", "0.40798,-1.02783,1"], "seed 4242 case 261",
+              "1.5")]
+    for args, what, radius in cases:
+        r = runner.run(args, what)
+        runner.expect_true("%s: the singular step was repeated within the diagonal" % what,
+                           "failed (DIVERGED_SINGULAR): searching the pairs again within" in r.output and
+                           r.get("iterations.search_widenings") >= 1)
+        expect_same_state(runner, runner.run(args + ["-contact_search_radius", radius], "%s, radius %s" %
+                                             (what, radius)), r, keys=("contact.active_pairs", "contact.active_nodes"),
+                          tol=1e-8)
+    rolling = cases[2][0][:-4] + ["-obstacle_discs", "0.40798,-1.02783,1"]
+    status, out, _ = runner.run_any(rolling, "block rolling off a disc", timeout=60)
+    errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
+    runner.expect_true("rolling off the disc: one error line, not held (exit %d): %s" % (status, errors),
+                       status != 0 and len(errors) == 1 and "not held" in errors[0])
+
+
 @test("svk_notch_cycle")
 def svk_notch_cycle(runner):
     """svk block in the notch: with the lagged searches (the default) its active set went round a loop of 11 sets
