@@ -1506,8 +1506,10 @@ def not_held_in_any_units(runner):
             "bottom,left,right", "-bc_traction", "top:2.20444e-06:-1.10633e-05", "-obstacle_segments",
             "-0.5,-0.00417123,2.5,-0.00417123,0,2,0,-0.5,1.74823,-0.00417123,2.74823,1.09528"]
     # The same active set gives the same linear system, solved by two factorisations: 1e-8 of the largest value; the
-    # wedged block's multipliers 1e-6 (they differ by 1e-7 between the two, on 1 and on 2 ranks: the wall's small
-    # angle to the floor amplifies the round-off of the force balance into the normal forces).
+    # wedged block's multipliers 1e-6 (they differ by 1e-7 between the two, on 1 and on 2 ranks): the block slides
+    # 0.27 rigidly into its wedge while its elastic deformation, which alone sets the multipliers, is of order load / E
+    # = 7e-8, so the round-off of the travel (1e-16 of 0.27) is about 1e-9 of the deformation, amplified by the
+    # condition of the stiffness.
     for args, what, tol in ((disc, "block on a disc, E x 1e-6", 1e-8),
                             (wall, "block between floor and wall, load x 1e-4", 1e-6)):
         r = runner.run(args, what)
