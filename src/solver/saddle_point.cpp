@@ -529,6 +529,11 @@ PetscErrorCode SaddlePointSystem::Factor() {
     // as a thin plate): the KSP's MUMPS factorises the matrix, which stays in the augmented form, at every change.
     // PETSc's interface takes no given pivot order, so an ordering the user asked for is said not to apply.
     reuse_ = false;
+    PetscCheck(mumps_controls_.Icntl(7, 7) != 1, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_USER_INPUT,
+               "-contact_mat_mumps_icntl_7 1 (the given nested dissection) does not apply: the kept factorisation "
+               "declined its dense Schur complement on the %" PetscInt_FMT " candidates, and PETSc's MUMPS, which "
+               "refactorises instead, takes no given ordering; expected -contact_mat_mumps_icntl_7 0, 2, 4, 6 or 7",
+               dofs_->GlobalLambda());
     if (!ordering_given_.empty())
       PetscCall(PetscPrintf(PetscObjectComm((PetscObject)A_.get()),
                             "Note: %s does not apply: the kept factorisation declined its dense Schur complement on "

@@ -363,6 +363,16 @@ CASES = {
     "mumps_icntl_7_given_refactorising": (["-contact_reuse_factorization", "false", "-contact_mat_mumps_icntl_7", "1"],
                                           ["-contact_mat_mumps_icntl_7 1", "kept factorisation only",
                                            "expected 0, 2, 4, 6 or 7"], {}),
+    # The kept factorisation declines its dense Schur complement (1050 candidates on a small cube, on 1 and on 2 ranks;
+    # 630 were declined on 1 rank only): PETSc's MUMPS then refactorises and takes no given pivot order.
+    "mumps_icntl_7_given_schur_declined": (["-mesh_file", "{root}/meshes/cube.msh", "-material_E", "1000",
+                                            "-bc_dirichlet", "left:x,front:y", "-bc_pressure", "top:2",
+                                            "-contact_groups", "bottom,top,left,front", "-contact_search_radius", "10",
+                                            "-obstacle_planes", "0,0,0,0,0,1,0,0,-1,0,0,1,0,0,-2,0,0,1,0,0,-3,0,0,1,"
+                                            "0,0,-4,0,0,1,0,0,-5,0,0,1,0,0,-6,0,0,1,0,0,-7,0,0,1,0,0,-8,0,0,1,0,0,-9,0,0,1",
+                                            "-contact_mat_mumps_icntl_7", "1"],
+                                           ["-contact_mat_mumps_icntl_7 1", "declined its dense Schur complement",
+                                            "expected -contact_mat_mumps_icntl_7 0, 2, 4, 6 or 7"], {}),
     # A null-pivot threshold that calls half the pivots null on a held body: the report names it as a possible cause.
     "mumps_cntl_3_pivots_null": (["-options_file", "{root}/options/block_in_notch.yml", "-contact_mat_mumps_cntl_3",
                                   "0.5"],
