@@ -271,7 +271,9 @@ PetscErrorCode CheckCommandLine(int argc, char **argv) {
   static const char *const WITH_OPERAND[] = {"-options_file", "-options_file_yaml", "-options_string_yaml",
                                              "-prefix_push"};
   std::map<std::string, std::string> given; // option (lower case, as PETSc compares names) -> its first value
+  std::map<std::string, std::pair<int, std::string>> where; // option -> its position and spelling on the command line
   std::vector<std::string> prefixes;        // -prefix_push / -prefix_pop
+  int last_file = 0;                        // the position of the last -options_file
   for (int i = 1; i < argc; ++i) {
     PetscBool key;
     PetscCall(PetscOptionsValidKey(argv[i], &key));
@@ -290,6 +292,7 @@ PetscErrorCode CheckCommandLine(int argc, char **argv) {
     const bool with_operand = std::find_if(std::begin(WITH_OPERAND), std::end(WITH_OPERAND),
                                            [&](const char *k) { return arg == k; }) != std::end(WITH_OPERAND);
     if (arg == "-prefix_push" && i + 1 < argc) prefixes.push_back(argv[i + 1]);
+    if (arg == "-options_file" || arg == "-options_file_yaml") last_file = i;
     if (arg == "-prefix_pop" && !prefixes.empty()) prefixes.pop_back();
     std::string value;
     if (with_operand) {
@@ -311,6 +314,37 @@ PetscErrorCode CheckCommandLine(int argc, char **argv) {
                "-options_file or PETSC_OPTIONS)",
                ("-" + Join(prefixes, "") + name).c_str(), first->second.empty() ? "no value" : first->second.c_str(),
                value.empty() ? "no value" : value.c_str());
+    where[option] = {i, "-" + Join(prefixes, "") + name};
+  }
+  // PETSc reads each -options_file where it stands: a file after an option of the command line that sets it again
+  // replaces its value without a word (-bc_traction top:0:-1.25 -options_file options/hertz.yml ran the file's load).
+  // The options' final values, read without marking them used (PetscOptionsGetAll), tell.
+  if (last_file > 0) {
+    char *all;
+    PetscCall(PetscOptionsGetAll(nullptr, &all));
+    std::map<std::string, std::string> final_values;
+    std::istringstream words(all);
+    PetscCall(PetscFree(all));
+    std::string word, current;
+    while (words >> word) {
+      PetscBool key;
+      PetscCall(PetscOptionsValidKey(word.c_str(), &key));
+      if (key) {
+        current = word;
+        std::transform(current.begin(), current.end(), current.begin(), [](unsigned char c) { return std::tolower(c); });
+        final_values[current] = "";
+      } else if (!current.empty()) {
+        final_values[current] = word;
+      }
+    }
+    for (const auto &[option, value] : given) {
+      if (where[option].first > last_file) continue;
+      const auto it = final_values.find(option);
+      PetscCheck(it == final_values.end() || it->second == value, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+                 "option %s %s on the command line is replaced by %s from an -options_file given after it; expected "
+                 "the option after the -options_file whose value it is to override", where[option].second.c_str(),
+                 value.empty() ? "(no value)" : value.c_str(), it->second.empty() ? "no value" : it->second.c_str());
+    }
   }
   PetscFunctionReturn(0);
 }

@@ -523,7 +523,8 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   widen_to_ = std::max(radius, contact_.search_radius);
   widen_node_ = penetrates ? unpaired.node : -1;
   widen_depth_ = unpaired.depth;
-  if (!penetrates && unheld) widened_unheld_ = true, first_unheld_ = stats_.reason;
+  // A repeat for a free or singular body is made once: the pairs within the diagonal that still leave it free say so.
+  if (!penetrates && (unheld || singular)) widened_unheld_ = true, first_unheld_ = stats_.reason;
   PetscFunctionReturn(0);
 }
 
@@ -1182,13 +1183,13 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     const std::string &why = stats_.reason;
     // A singular system is no matter of the increment: never cut.
     const bool singular = why == "DIVERGED_SINGULAR";
-    char within[128] = "no obstacle";
+    char within[128] = "the supports (there is no obstacle)";
     if (!obstacle_.facets.empty())
-      std::snprintf(within, sizeof(within), "the candidate pairs within -contact_search_radius %g",
+      std::snprintf(within, sizeof(within), "the supports and the candidate pairs within -contact_search_radius %g",
                     contact_.search_radius);
     const std::string what =
         singular
-            ? system_->SingularReport(std::string("the body is not held by the supports and ") + within +
+            ? system_->SingularReport(std::string("the body is not held by ") + within +
                                       "; add Dirichlet conditions (e.g. on a symmetry line) or candidate contact "
                                       "nodes so that every rigid-body motion is removed")
         : why == "DIVERGED_CYCLING"

@@ -933,13 +933,15 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
   }
   // A direct solve of a matrix singular to round-off can find no null pivot and return garbage (a block that rolls on
   // a disc, whose springs on the pairs' normals do not hold the roll, left a relative residual of 1.2): that is a
-  // singular system too (the caller may repeat the step with wider pairs), not a solver failure.
+  // singular system too (the caller may repeat the step with wider pairs), not a solver failure. A residual between
+  // the accepted one and SINGULAR_RESIDUAL is an ill-conditioned but regular matrix (-material_nu 0.4999999999 left
+  // 1e-4): CheckAndConvert reports it with its advice.
   PetscBool preonly;
   PetscCall(PetscObjectTypeCompare((PetscObject)ksp_.get(), KSPPREONLY, &preonly));
   singular_residual_ = 0;
   if (reuse_ || (mumps_factor_ && preonly)) {
     if (known_residual[0] < 0) PetscCall(TrueResidual(known_residual[0], known_residual[1]));
-    if (!(known_residual[0] <= check_tol * known_residual[1] + 1e-300)) {
+    if (!(known_residual[0] <= std::max(check_tol, SINGULAR_RESIDUAL) * known_residual[1] + 1e-300)) {
       singular_residual_ = std::isfinite(known_residual[0]) ? known_residual[0] / known_residual[1] : INFINITY;
       singular = true;
       PetscFunctionReturn(0);

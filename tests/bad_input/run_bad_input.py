@@ -442,6 +442,9 @@ CASES = {
                                              ["option -contact_pc_gamg_threshold 0.01 is set but never read"],
                                              {"previous": HERTZ}),
     # The same option twice on the command line: PETSc keeps the last value (the second traction dropped the first).
+    "option_before_options_file": (["-bc_traction", "top:0:-1.25", "-options_file", "{root}/options/hertz.yml"],
+                                   ["option -bc_traction top:0:-1.25 on the command line is replaced by top:0:-0.625",
+                                    "expected the option after the -options_file"], {"no_output_dir": True}),
     "option_twice_command_line": (["-material_E", "300", "-material_E", "400"],
                                   ["option -material_E is given twice on the command line (300, then 400)",
                                    "expected each option once"], {"no_output_dir": True}),

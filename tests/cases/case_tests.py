@@ -167,6 +167,11 @@ def hertz_thickness(runner):
     for key in ("hertz.fraction", "hertz.P_model", "hertz.a", "hertz.a_computed", "hertz.p0", "hertz.p0_computed"):
         runner.expect_close(key, thick.get(key), ref.get(key), 1e-9, 0)
     runner.expect_close("hertz.P_model is P", ref.get("hertz.P_model"), 10, 1e-3, 0)
+    # The default case's own comparison far from Hertz's range (E = 5: a = 4.3 against R = 8) is not made, and not
+    # an error either: the user gave no -report_hertz.
+    soft = runner.run(["-material_E", "5"], "hertz, E = 5")
+    runner.expect_true("E = 5: no Hertz comparison, a note instead",
+                       "hertz" not in soft.summary and "not compared" in soft.output)
 
 
 @test("block_on_floor")

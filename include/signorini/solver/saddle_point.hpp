@@ -229,6 +229,8 @@ private:
   /// restarts of a Krylov solve that stopped above it on its preconditioned residual (each must divide the true
   /// residual by 10).
   static constexpr double ACCEPTED_RESIDUAL = 1e-6;
+  /// A direct solve that leaves a relative residual above this solved nothing: its matrix is singular to round-off.
+  static constexpr double SINGULAR_RESIDUAL = 1e-2;
   /// The mean contraction of the residual per FGMRES iteration on the kept factorisation above which the next solve
   /// refactors (the factored tangent has drifted from the current one). 2D Hertz, svk, 195k dofs, 3 load steps: the
   /// factorisation of the undeformed tangent contracts by 0.003 to 0.08 per iteration throughout, so none is made
