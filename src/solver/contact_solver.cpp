@@ -1165,18 +1165,19 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     }
     // A body found free, then repeated with the facets of a wider radius, stays free when the repeat fails otherwise
     // (it cycles or runs out of iterations): the first finding is the clearer report. Not when the repeat's
-    // deformation became non-invertible: the wider pairs held it (an svk block on a disc beside an inclined wall,
-    // found free with the pairs of the default radius and held by the wall's: seed 777 case 136), so that is the
-    // report, with the earlier finding as context.
+    // deformation became non-invertible before any verdict: the wider pairs may hold the body (an svk block on a disc
+    // beside an inclined wall, found free with the pairs of the default radius, is held by the wall's: seed 777 case
+    // 136) or not (seed 777 case 56), so the report is the deformation, with both facts.
     const bool fatal = !(large && stats_.cuts < opts_.max_cuts);
     const bool deformed = stats_.reason == "DIVERGED_NONINVERTIBLE_DEFORMATION";
     std::string context;
     if (first_unheld_ == "DIVERGED_NOT_HELD" && stats_.reason != first_unheld_ && fatal) {
       if (!deformed) stats_.reason = first_unheld_;
       else {
-        char text[160];
-        std::snprintf(text, sizeof(text), " (the body was found not held with the pairs of a narrower radius, but "
-                      "not with those within %g)", contact_.search_radius);
+        char text[200];
+        std::snprintf(text, sizeof(text), " (the body was found not held with the pairs of a narrower radius; "
+                      "repeated with those within %g, it deformed so before it could be found held or not)",
+                      contact_.search_radius);
         context = text;
       }
     }
