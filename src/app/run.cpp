@@ -264,7 +264,6 @@ PetscErrorCode Run() {
   PetscCall(CheckLoadGroups(mesh, bc));
   PetscCall(CheckObstacleDimension(comm, obstacle, mesh.Dim()));
   PetscCall(LoadObstacleMeshes(comm, mesh.Dim(), obstacle));
-  PetscCall(CheckContactOptionsApply(comm, obstacle));
 
   // The body's bounding box: its diagonal L is the length scale of the problem's checks and tolerances.
   Box body;
@@ -273,6 +272,7 @@ PetscErrorCode Run() {
                              std::pow(body.hi[2] - body.lo[2], 2));
   PetscCall(CheckLoadScale(comm, bc, L, material.E, material.thickness));
   PetscCall(ReadContactOptions(comm, L, material.E * material.thickness, contact));
+  PetscCall(CheckContactInputs(mesh, obstacle, contact));
 
   t = MPI_Wtime();
   ContactSolver solver(mesh, material, bc, obstacle, contact, solver_opts);

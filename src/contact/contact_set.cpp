@@ -10,7 +10,8 @@
 
 namespace signorini {
 
-PetscErrorCode CheckContactOptionsApply(MPI_Comm comm, const Obstacle &obstacle) {
+PetscErrorCode CheckContactInputs(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts) {
+  MPI_Comm comm = mesh.Comm();
   // -contact_monitor and -contact_converged_reason still print the (single) iteration and its reason; the solver's
   // own -contact_ksp_, -contact_pc_ and -contact_mat_ options solve the elastic problem.
   static const char *const contact_only[] = {
@@ -19,13 +20,28 @@ PetscErrorCode CheckContactOptionsApply(MPI_Comm comm, const Obstacle &obstacle)
       "-contact_max_it", "-contact_reuse_factorization", "-contact_reuse_max_it", "-contact_nested_dissection",
       "-contact_nested_dissection_parallel"};
   PetscFunctionBeginUser;
-  if (!obstacle.facets.empty()) PetscFunctionReturn(0);
   for (const char *name : contact_only) {
     PetscBool set;
     PetscCall(PetscOptionsHasName(nullptr, nullptr, name, &set));
-    PetscCheck(!set, comm, PETSC_ERR_USER_INPUT,
+    PetscCheck(!set || !obstacle.facets.empty(), comm, PETSC_ERR_USER_INPUT,
                "%s is given, but the case has no obstacle (no -obstacle_* option), so there is no contact for it to "
                "act on; expected an obstacle, or no contact options", name);
+  }
+  // A candidate is a node of the body's boundary: a group of the body's dimension (or one with interior nodes)
+  // would make interior nodes candidates.
+  std::vector<PetscInt> vertices;
+  std::vector<char> boundary(mesh.NumLocalVertices(), 0);
+  PetscCall(mesh.BoundaryVertices(vertices));
+  for (PetscInt v : vertices) boundary[v] = 1;
+  for (const auto &g : opts.groups) {
+    PetscCall(mesh.GroupVertices(g, vertices, "-contact_groups " + g));
+    PetscInt interior = 0;
+    for (PetscInt v : vertices) interior += mesh.Owned(v) && !boundary[v];
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &interior, 1, MPIU_INT, MPI_SUM, comm));
+    PetscCheck(interior == 0, comm, PETSC_ERR_USER_INPUT,
+               "-contact_groups %s: physical group '%s' has %" PetscInt_FMT " node(s) inside the body, off its "
+               "boundary; expected a group on the boundary (curves in 2D, surfaces in 3D, or points on them)",
+               g.c_str(), g.c_str(), interior);
   }
   PetscFunctionReturn(0);
 }
@@ -178,23 +194,9 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
     PetscCall(mesh.BoundaryVertices(vertices));
     for (PetscInt v : vertices) candidate[v] = 1;
   } else {
-    // A candidate is a node of the body's boundary: a group of the body's dimension (or one with interior nodes)
-    // would make interior nodes candidates.
-    std::vector<char> boundary(nv, 0);
-    PetscCall(mesh.BoundaryVertices(vertices));
-    for (PetscInt v : vertices) boundary[v] = 1;
     for (const auto &g : opts.groups) {
       PetscCall(mesh.GroupVertices(g, vertices, "-contact_groups " + g));
-      PetscInt interior = 0;
-      for (PetscInt v : vertices) {
-        candidate[v] = 1;
-        interior += mesh.Owned(v) && !boundary[v];
-      }
-      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &interior, 1, MPIU_INT, MPI_SUM, mesh.Comm()));
-      PetscCheck(interior == 0, mesh.Comm(), PETSC_ERR_USER_INPUT,
-                 "-contact_groups %s: physical group '%s' has %" PetscInt_FMT " node(s) inside the body, off its "
-                 "boundary; expected a group on the boundary (curves in 2D, surfaces in 3D, or points on them)",
-                 g.c_str(), g.c_str(), interior);
+      for (PetscInt v : vertices) candidate[v] = 1;
     }
   }
   // Seed section 4.2.1: nodes with every component fixed cannot move and are no candidates.

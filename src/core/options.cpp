@@ -245,6 +245,15 @@ PetscErrorCode CheckUnusedOptions(MPI_Comm comm, UnusedOptions when) {
 
 namespace {
 
+/// s in lower case (PETSc compares option names so).
+std::string LowerCase(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+/// An option's value for a message.
+const char *ValueText(const std::string &value) { return value.empty() ? "no value" : value.c_str(); }
+
 /// The edit distance between a and b (insertions, deletions, substitutions).
 std::size_t EditDistance(const std::string &a, const std::string &b) {
   std::vector<std::size_t> row(b.size() + 1);
@@ -270,10 +279,13 @@ PetscErrorCode CheckCommandLine(int argc, char **argv) {
   // -prefix_pop none; any other key takes the next argument when that is not a key.
   static const char *const WITH_OPERAND[] = {"-options_file", "-options_file_yaml", "-options_string_yaml",
                                              "-prefix_push"};
-  std::map<std::string, std::string> given; // option (lower case, as PETSc compares names) -> its first value
-  std::map<std::string, std::pair<int, std::string>> where; // option -> its position and spelling on the command line
-  std::vector<std::string> prefixes;        // -prefix_push / -prefix_pop
-  int last_file = 0;                        // the position of the last -options_file
+  struct Given {
+    std::string spelling, value; // as on the command line
+    int position;
+  };
+  std::map<std::string, Given> given; // option (lower case, as PETSc compares names) -> where it is given
+  std::vector<std::string> prefixes;  // -prefix_push / -prefix_pop
+  int last_file = 0;                  // the position of the last -options_file
   for (int i = 1; i < argc; ++i) {
     PetscBool key;
     PetscCall(PetscOptionsValidKey(argv[i], &key));
@@ -303,18 +315,14 @@ PetscErrorCode CheckCommandLine(int argc, char **argv) {
       if (!next_key) value = argv[++i];
     }
     // The same option twice: PETSc keeps the last value without a word (-bc_traction twice drops the first load).
-    // Options files may be layered; an option of the command line overrides the same option of a file.
     if (with_operand || arg == "-prefix_pop") continue;
-    std::string option = "-" + Join(prefixes, "") + name;
-    std::transform(option.begin(), option.end(), option.begin(), [](unsigned char c) { return std::tolower(c); });
-    const auto [first, fresh] = given.emplace(option, value);
+    const std::string spelling = "-" + Join(prefixes, "") + name;
+    const auto [first, fresh] = given.emplace(LowerCase(spelling), Given{spelling, value, i});
     PetscCheck(fresh, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
                "option %s is given twice on the command line (%s, then %s), and only one value would be used; "
                "expected each option once (a value on the command line overrides the same option's in an "
-               "-options_file or PETSC_OPTIONS)",
-               ("-" + Join(prefixes, "") + name).c_str(), first->second.empty() ? "no value" : first->second.c_str(),
-               value.empty() ? "no value" : value.c_str());
-    where[option] = {i, "-" + Join(prefixes, "") + name};
+               "-options_file before it or in PETSC_OPTIONS)",
+               spelling.c_str(), ValueText(first->second.value), ValueText(value));
   }
   // PETSc reads each -options_file where it stands: a file after an option of the command line that sets it again
   // replaces its value without a word (-bc_traction top:0:-1.25 -options_file options/hertz.yml ran the file's load).
@@ -330,20 +338,19 @@ PetscErrorCode CheckCommandLine(int argc, char **argv) {
       PetscBool key;
       PetscCall(PetscOptionsValidKey(word.c_str(), &key));
       if (key) {
-        current = word;
-        std::transform(current.begin(), current.end(), current.begin(), [](unsigned char c) { return std::tolower(c); });
+        current = LowerCase(word);
         final_values[current] = "";
       } else if (!current.empty()) {
         final_values[current] = word;
       }
     }
-    for (const auto &[option, value] : given) {
-      if (where[option].first > last_file) continue;
+    for (const auto &[option, g] : given) {
       const auto it = final_values.find(option);
-      PetscCheck(it == final_values.end() || it->second == value, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+      PetscCheck(g.position > last_file || it == final_values.end() || it->second == g.value, PETSC_COMM_WORLD,
+                 PETSC_ERR_USER_INPUT,
                  "option %s %s on the command line is replaced by %s from an -options_file given after it; expected "
-                 "the option after the -options_file whose value it is to override", where[option].second.c_str(),
-                 value.empty() ? "(no value)" : value.c_str(), it->second.empty() ? "no value" : it->second.c_str());
+                 "the option after the -options_file whose value it is to override", g.spelling.c_str(),
+                 ValueText(g.value), ValueText(it->second));
     }
   }
   PetscFunctionReturn(0);

@@ -89,7 +89,8 @@ PetscErrorCode OutputWriter::Open(const Mesh &mesh, const OutputOptions &opts) {
   std::string error;
   if (rank == 0) {
     error = PrepareOutputDirectory(opts_.dir);
-    RemoveOnFailure(Staging()); // from here on, a failed run removes what it wrote (main, the error handler)
+    // From here on, a failed run removes what it wrote (main, the error handler).
+    if (error.empty()) RemoveOnFailure(Staging());
   }
   PetscCall(RaiseFromRoot(mesh.Comm(), error));
   PetscCall(BuildRows());

@@ -248,7 +248,8 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   if (dofs_->GlobalLambda() == 0) PetscCall(MatSetNearNullSpace(A_, near_null_));
   PetscBool preonly;
   PetscCall(PetscObjectTypeCompare((PetscObject)ksp_.get(), KSPPREONLY, &preonly));
-  if (!preonly) PetscCall(KSPConvergedDefaultSetUIRNorm(ksp_)); // relative to the start's residual (InitialGuess)
+  preonly_ = preonly;
+  if (!preonly_) PetscCall(KSPConvergedDefaultSetUIRNorm(ksp_)); // relative to the start's residual (InitialGuess)
   PetscBool fieldsplit;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
   if (fieldsplit) {
@@ -827,10 +828,8 @@ PetscErrorCode SaddlePointSystem::ContactLcp(const std::vector<double> &gap, con
 }
 
 PetscErrorCode SaddlePointSystem::InitialGuess() {
-  PetscBool preonly;
   PetscFunctionBeginUser;
-  PetscCall(PetscObjectTypeCompare((PetscObject)ksp_.get(), KSPPREONLY, &preonly));
-  if (reuse_ || preonly) {
+  if (reuse_ || preonly_) {
     PetscCall(VecZeroEntries(x_));
     PetscFunctionReturn(0);
   }
@@ -904,10 +903,8 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
     // A Krylov method stops on its own (preconditioned) residual, which can sit orders of magnitude below the true
     // one (CG with GAMG on 2 ranks: 1e-10 against 3e-6). The solve restarts from where it stopped while that helps;
     // the true residual is what CheckAndConvert accepts or refuses.
-    PetscBool preonly;
-    PetscCall(PetscObjectTypeCompare((PetscObject)ksp_.get(), KSPPREONLY, &preonly));
     double last = INFINITY;
-    for (int restart = 0; !preonly && reason > 0 && restart < MAX_KRYLOV_RESTARTS; ++restart) {
+    for (int restart = 0; !preonly_ && reason > 0 && restart < MAX_KRYLOV_RESTARTS; ++restart) {
       PetscReal rnorm, bnorm;
       PetscCall(TrueResidual(rnorm, bnorm));
       if (!(rnorm > ACCEPTED_RESIDUAL * bnorm) || !(rnorm < 0.1 * last)) {
@@ -936,10 +933,8 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
   // singular system too (the caller may repeat the step with wider pairs), not a solver failure. A residual between
   // the accepted one and SINGULAR_RESIDUAL is an ill-conditioned but regular matrix (-material_nu 0.4999999999 left
   // 1e-4): CheckAndConvert reports it with its advice.
-  PetscBool preonly;
-  PetscCall(PetscObjectTypeCompare((PetscObject)ksp_.get(), KSPPREONLY, &preonly));
   singular_residual_ = 0;
-  if (reuse_ || (mumps_factor_ && preonly)) {
+  if (reuse_ || (mumps_factor_ && preonly_)) {
     if (known_residual[0] < 0) PetscCall(TrueResidual(known_residual[0], known_residual[1]));
     if (!(known_residual[0] <= std::max(check_tol, SINGULAR_RESIDUAL) * known_residual[1] + 1e-300)) {
       singular_residual_ = std::isfinite(known_residual[0]) ? known_residual[0] / known_residual[1] : INFINITY;

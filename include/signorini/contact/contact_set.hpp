@@ -38,9 +38,11 @@ struct ContactOptions {
 /// (length scale L, stiffness scale k), and the ranges of the tolerances are relative to them (README). Collective.
 [[nodiscard]] PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOptions &opts);
 
-/// A case without an obstacle has no contact: an option that acts only on contact (the pairs, the active-set rule,
-/// the kept factorisation of the contact solve) would be ignored, so giving one is an error. Collective.
-[[nodiscard]] PetscErrorCode CheckContactOptionsApply(MPI_Comm comm, const Obstacle &obstacle);
+/// The contact inputs that the option readers cannot judge alone, each an error naming the option: in a case without
+/// an obstacle, an option that acts only on contact (the pairs, the active-set rule, the kept factorisation of the
+/// contact solve), which would be ignored; a -contact_groups group with nodes inside the body, which would make them
+/// candidates. Collective.
+[[nodiscard]] PetscErrorCode CheckContactInputs(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts);
 
 /// One candidate pair, stored on the rank that owns its node.
 struct ContactPair {

@@ -71,15 +71,17 @@ enum class UnusedOptions { AFTER_SETUP, AFTER_SOLVE };
 /// Checks the command line as PETSc reads it (-name value, -name, -options_file FILE, ...): an argument that is
 /// neither an option nor an option's value (PETSc would skip it silently, e.g. a case file given without
 /// -options_file), a misspelling of -options_file (PETSc would take it for an unused option and run the default
-/// case), or an option given twice (PETSc would keep the last value; -options_file may be given several times, and an
-/// option of the command line still overrides the same option of a file) is an error that names it and says what
-/// was expected. Collective (every rank has the same arguments).
+/// case), an option given twice (PETSc would keep the last value; -options_file may be given several times), or an
+/// option that an -options_file after it sets again (PETSc would take the file's value; an option of the command
+/// line overrides one of a file before it or of PETSC_OPTIONS) is an error that names it and says what was expected.
+/// Collective (every rank has the same arguments).
 [[nodiscard]] PetscErrorCode CheckCommandLine(int argc, char **argv);
 
 /// The first options file that cannot be read, or a YAML one that sets an option twice (in one document or in two) or
 /// names an options_file (PETSc would take either silently), as a message naming it and saying what was expected;
 /// empty when there is none. The files are those of -options_file FILE and -options_file_yaml FILE on the command
-/// line and in PETSC_OPTIONS, and those that a plain options file names in turn. files: the ones it saw, for SetOptionsFiles.
+/// line and in PETSC_OPTIONS, and those that a plain options file names in turn. files: the ones it saw, for
+/// SetOptionsFiles.
 /// Needs no PETSc (it runs before PetscInitialize).
 std::string OptionsFileProblem(int argc, char **argv, std::string &files);
 

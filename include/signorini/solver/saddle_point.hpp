@@ -259,6 +259,7 @@ private:
   PetscInt reuse_max_it_ = 0;          ///< -contact_reuse_max_it
   bool refactor_next_ = false;         ///< the last FGMRES solve on the kept factorisation needed many iterations
   bool pc_current_ = false; ///< iterative solver: A is the matrix of the last preconditioner set-up (a correction)
+  bool preonly_ = false;            ///< the KSP is KSPPREONLY (a direct solve; set once, in SetupKsp)
   bool ksp_set_up_ = false;         ///< iterative solver: the KSP has been set up (a fieldsplit's sub-KSPs exist)
   bool u_pc_valid_ = false;         ///< K is the one the displacement block's preconditioner was set up with
   std::vector<double> u_pc_weight_; ///< the augmentation weights at that set-up
