@@ -61,7 +61,8 @@ Projection Triangle::Project(const double *x, double alpha_tol, double length) c
   p.gap = Dot(n_, w);
   p.alpha = std::min({b[0], b[1], b[2]});
   p.inside = true;
-  for (int k = 0; k < 3; ++k) p.inside = p.inside && b[k] >= -alpha_tol * std::min(1.0, EDGE_TOL_LENGTH * length / height_[k]);
+  for (int k = 0; k < 3; ++k)
+    p.inside = p.inside && b[k] >= -alpha_tol * std::min(1.0, EDGE_TOL_LENGTH * length / height_[k]);
   return p;
 }
 

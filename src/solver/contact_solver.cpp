@@ -1216,7 +1216,8 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
                 : "the active-set loop reached its iteration limit (-contact_max_it)";
     PetscCheck(large && stats_.cuts < opts_.max_cuts && why != "DIVERGED_NOT_HELD" && !singular, comm,
                PETSC_ERR_NOT_CONVERGED, "the contact solve did not converge at load factor %g: %s: %s%s", t_try,
-               why.c_str(), what.c_str(), large && !singular ? "; no more load-step cuts allowed (-load_max_cuts)" : "");
+               why.c_str(), what.c_str(),
+               large && !singular ? "; no more load-step cuts allowed (-load_max_cuts)" : "");
     stats_.cuts++;
     dt *= 0.5;
     PetscCall(PetscPrintf(comm, "Load step at factor %g failed (%s); cutting the increment to %g\n", t_try,

@@ -59,7 +59,9 @@ PetscErrorCode ReadMumpsControls(MPI_Comm comm, MumpsControls &controls) {
   PetscFunctionBeginUser;
   controls = MumpsControls{};
   // Under the solver's prefix, as PETSc's interface reads them (MUMPS 5.5 has 60 ICNTL and 15 CNTL entries).
-  const auto name = [](const char *array, int k) { return "-mat_mumps_" + std::string(array) + "_" + std::to_string(k); };
+  const auto name = [](const char *array, int k) {
+    return "-mat_mumps_" + std::string(array) + "_" + std::to_string(k);
+  };
   for (int k = 1; k <= 60; ++k) {
     PetscInt v;
     PetscBool set;

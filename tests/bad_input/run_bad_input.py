@@ -369,7 +369,8 @@ CASES = {
                                             "-bc_dirichlet", "left:x,front:y", "-bc_pressure", "top:2",
                                             "-contact_groups", "bottom,top,left,front", "-contact_search_radius", "10",
                                             "-obstacle_planes", "0,0,0,0,0,1,0,0,-1,0,0,1,0,0,-2,0,0,1,0,0,-3,0,0,1,"
-                                            "0,0,-4,0,0,1,0,0,-5,0,0,1,0,0,-6,0,0,1,0,0,-7,0,0,1,0,0,-8,0,0,1,0,0,-9,0,0,1",
+                                            "0,0,-4,0,0,1,0,0,-5,0,0,1,0,0,-6,0,0,1,0,0,-7,0,0,1,0,0,-8,0,0,1,"
+                                            "0,0,-9,0,0,1",
                                             "-contact_mat_mumps_icntl_7", "1"],
                                            ["-contact_mat_mumps_icntl_7 1", "declined its dense Schur complement",
                                             "expected -contact_mat_mumps_icntl_7 0, 2, 4, 6 or 7"], {}),

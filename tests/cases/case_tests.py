@@ -1495,15 +1495,15 @@ def cycling_set_pivoted(runner):
 
 @test("not_held_in_any_units")
 def not_held_in_any_units(runner):
-    """The complementarity problem's answers do not depend on the units. Random case 8 of seed 777 (the 2 x 1 block
-    on a disc beside a wall, held by contact alone) with E and the load times 1e-6: Lemke's method, whose row scale
-    and tolerances were absolute, found one or two active pairs where the problem has three, which left 0.42 and 0.32
-    of the load along rigid motions, and the run ended with DIVERGED_NOT_HELD. A block held between a floor and an inclined wall under
-    a load 1e-4 of the survey's: the regularisation's spring carries eps r times the rigid travel, 0.0039 of that
-    load (a fraction proportional to E / load), above the verdict's 1e-3, and it ended with DIVERGED_NOT_HELD. Both now
-    converge to the state of -contact_reuse_factorization false (which has no complementarity problem). A free body
-    in small units (free_along_floor's block pushed away from its wall, load times 1e-4) is still found not held,
-    with the fraction of the load that nothing balances of the unscaled case (0.18)."""
+    """The complementarity problem's answers do not depend on the units. Random case 8 of seed 777 (the 2 x 1 block on a
+    disc beside a wall, held by contact alone) with E and the load times 1e-6: Lemke's method, whose row scale and
+    tolerances were absolute, found one or two active pairs where the problem has three, which left 0.42 and 0.32 of the
+    load along rigid motions, and the run ended with DIVERGED_NOT_HELD. A block held between a floor and an inclined
+    wall under a load 1e-4 of the survey's: the regularisation's spring carries eps r times the rigid travel, 0.0039 of
+    that load (a fraction proportional to E / load), above the verdict's 1e-3, and it ended with DIVERGED_NOT_HELD. Both
+    now converge to the state of -contact_reuse_factorization false (which has no complementarity problem). A free body
+    in small units (free_along_floor's block pushed away from its wall, load times 1e-4) is still found not held, with
+    the fraction of the load that nothing balances of the unscaled case (0.18)."""
     disc = ["-mesh_file", "meshes/block.msh", "-material_E", "0.000941803", "-material_nu", "0.167", "-contact_groups",
             "bottom,left,right", "-bc_traction", "top:-9.99894e-08:-5.09574e-07", "-obstacle_segments", "0,2,0,-0.5",
             "-obstacle_discs", "1.36854,-0.995587,1"]
@@ -1774,7 +1774,8 @@ def held_beyond_radius(runner):
     else:
         runner.expect_true("svk block held by the wall's pairs: not reported as not held (exit %d): %s" %
                            (status, errors), len(errors) == 1 and "DIVERGED_NOT_HELD" not in errors[0] and
-                           "found not held with the pairs of a narrower radius; repeated with those within" in errors[0])
+                           "found not held with the pairs of a narrower radius; repeated with those within"
+                           in errors[0])
 
 
 @test("svk_notch_cycle")

@@ -1,9 +1,9 @@
 #!/usr/bin/python3
-"""scripts/plot.py on the output of a small run (the Hertz case, whose summary has a Hertz block, so that the
-analytical curve is drawn, in two load steps): it exits 0 and writes deformed.png, contact_pressure.png and active_set.png, each a valid
-PNG (signature, non-empty, an image matplotlib reads back, at least 200 pixels each way). It refuses, with one line
-naming the reason, no traceback, exit status 1 and no picture written: a 3D output (cube_on_plane; the message says it
-draws 2D results and names ParaView and the output's solution.xdmf), a directory that does not exist, and one that is
+"""scripts/plot.py on the output of a small run (the Hertz case, whose summary has a Hertz block, so that the analytical
+curve is drawn, in two load steps): it exits 0 and writes deformed.png, contact_pressure.png and active_set.png, each a
+valid PNG (signature, non-empty, an image matplotlib reads back, at least 200 pixels each way). It refuses, with one
+line naming the reason, no traceback, exit status 1 and no picture written: a 3D output (cube_on_plane; the message says
+it draws 2D results and names ParaView and the output's solution.xdmf), a directory that does not exist, and one that is
 not an output."""
 import argparse
 import os

@@ -195,7 +195,8 @@ private:
   /// SET, it has a solution, whose active set is now st.next, and the step goes on from it, its earlier sets
   /// forgotten (its solves and the certificate decide, as for any set); UNHELD, the solution leaves more than
   /// LCP_UNHELD of the load along rigid motions unbalanced, to the regularisation's spring however weak it is: no
-  /// contact forces on these pairs hold the body (DIVERGED_NOT_HELD); NONE, no solution or no such problem. why: for -info. Collective.
+  /// contact forces on these pairs hold the body (DIVERGED_NOT_HELD); NONE, no solution or no such problem. why: for
+  /// -info. Collective.
   enum class Pivot { NONE, SET, UNHELD };
   [[nodiscard]] PetscErrorCode PivotedActiveSet(StepState &st, PetscInt it, const char *why, Pivot &pivot);
   /// See PivotedActiveSet and SaddlePointSystem::ContactLcp: the unbalanced fraction does not depend on the spring's

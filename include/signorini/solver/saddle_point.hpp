@@ -141,13 +141,14 @@ public:
 
   /// Reuse mode: the active-set iterations of a load step (svk: of a Newton iteration's search, with the factored
   /// tangent) in the multiplier space. Condense takes the current right-hand side (its displacement rows b_u stay
-  /// those of every SolveCondensed until the next Condense), factoring first if needed. SolveCondensed solves for the current constraints (SetConstraints,
-  /// without stabilisation) with the multiplier rows bm (owned rows) in the multiplier space alone (the dense Schur
-  /// complement on rank 0; no pass over the factors); it returns per owned multiplier row the contact multiplier (0
-  /// on inactive rows) and B_p du, the normal displacement of the solution's increment (the gap change), and the
-  /// residual of the reduced system. Expand then gives the whole solution of the last SolveCondensed in Solution(),
-  /// as Solve() does (one backward substitution), with residual ||b - A x|| for the right-hand side [b_u; bm] that
-  /// the caller has written into Rhs(). Condense's singular: as Solve's (nothing condensed). Collective.
+  /// those of every SolveCondensed until the next Condense), factoring first if needed. SolveCondensed solves for the
+  /// current constraints (SetConstraints, without stabilisation) with the multiplier rows bm (owned rows) in the
+  /// multiplier space alone (the dense Schur complement on rank 0; no pass over the factors); it returns per owned
+  /// multiplier row the contact multiplier (0 on inactive rows) and B_p du, the normal displacement of the solution's
+  /// increment (the gap change), and the residual of the reduced system. Expand then gives the whole solution of the
+  /// last SolveCondensed in Solution(), as Solve() does (one backward substitution), with residual ||b - A x|| for the
+  /// right-hand side [b_u; bm] that the caller has written into Rhs(). Condense's singular: as Solve's (nothing
+  /// condensed). Collective.
   [[nodiscard]] PetscErrorCode Condense(bool &singular);
   [[nodiscard]] PetscErrorCode SolveCondensed(const std::vector<double> &bm, std::vector<double> &lambda,
                                               std::vector<double> &shift, double &residual);
