@@ -476,7 +476,14 @@ RANK_CASES = {"hertz": [], "beam_on_floor": ["-options_file", "options/beam_on_f
               "cube_mixed_conforming": ["-options_file", "options/cube_on_plane.yml", "-mesh_file",
                                         "meshes/cube_mixed_conforming.msh"],
               "cube_mixed_conforming_svk": ["-options_file", "options/cube_on_plane.yml", "-mesh_file",
-                                            "meshes/cube_mixed_conforming.msh", "-material_model", "svk"]}
+                                            "meshes/cube_mixed_conforming.msh", "-material_model", "svk"],
+              # Random case 163 of seed 4242 (svk block held by contact alone on a floor and an inclined wall): a
+              # full Newton step squeezes a cell to a det F of round-off size, whose sign then decided the path; with
+              # 0 as the limit 1 rank took 19 iterations in 1 load step and 2 ranks 83 in 4 (MIN_DET_F).
+              "svk_degenerate_cell": ["-mesh_file", "meshes/block.msh", "-material_E", "3836.49", "-material_nu",
+                                      "0.410", "-contact_groups", "bottom,left,right", "-material_model", "svk",
+                                      "-bc_traction", "top:1.12515:-5.9179", "-obstacle_segments",
+                                      "-0.5,-0.0031266,2.5,-0.0031266,1.73622,-0.0031266,2.73622,1.25979"]}
 
 
 def accepted_step_iterations(result):
