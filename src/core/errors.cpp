@@ -22,6 +22,11 @@ std::string &FailedOutput() {
   return dir;
 }
 
+int &MadeParents() {
+  static int made = 0;
+  return made;
+}
+
 /// Rewrites PETSc's "Input string abc has no numeric value" (and its integer and logical variants) to name the option
 /// holding the bad value, found by that value in the options database, and to say what was expected.
 std::string DescribeBadOptionValue(const std::string &mess) {
@@ -112,12 +117,19 @@ PetscErrorCode Handler(MPI_Comm comm, int line, const char *func, const char *fi
 
 void SetOptionsFiles(const std::string &files) { OptionsFiles() = files; }
 
-void RemoveOnFailure(const std::string &dir) { FailedOutput() = dir; }
+void RemoveOnFailure(const std::string &dir, int made) {
+  FailedOutput() = dir;
+  MadeParents() = made;
+}
 
 void RemoveFailedOutput() {
   std::error_code ignored;
   if (!FailedOutput().empty()) std::filesystem::remove_all(FailedOutput(), ignored);
+  // Then the parents the run made, from the innermost, while they are empty (remove refuses any other).
+  std::filesystem::path p = std::filesystem::absolute(FailedOutput(), ignored).lexically_normal().parent_path();
+  for (int i = 0; i < MadeParents() && std::filesystem::remove(p, ignored); ++i) p = p.parent_path();
   FailedOutput().clear();
+  MadeParents() = 0;
 }
 
 PetscErrorCode InstallErrorHandler() {

@@ -51,9 +51,16 @@ PetscErrorCode ListAndRead(PetscOptionItems *PetscOptionsObject, const char *nam
 
 } // namespace
 
+RealRange RealRange::Whole(double lo, double hi) {
+  RealRange range{lo, hi};
+  range.whole = true;
+  return range;
+}
+
 bool RealRange::Contains(double value) const {
   const double a = lo * scale, b = hi * scale;
-  return (lo_open ? value > a : value >= a) && (hi_open ? value < b : value <= b);
+  return (lo_open ? value > a : value >= a) && (hi_open ? value < b : value <= b) &&
+         (!whole || value == std::floor(value));
 }
 
 std::string RealRange::Relative() const {
@@ -75,17 +82,29 @@ PetscErrorCode OptionsReal(PetscOptionItems *PetscOptionsObject, const char *nam
   // A relative range lists its default in the range's unit ("0.1 x body diagonal"), not as a bare number.
   const std::string default_text =
       range.unit && range.scale != 0 ? FormatNumber(value / range.scale) + " x " + range.unit : FormatNumber(value);
-  PetscCall(ListAndRead(PetscOptionsObject, name, std::string(help) + "; range " + range.Relative(), default_text,
-                        raw, found));
+  PetscCall(ListAndRead(PetscOptionsObject, name,
+                        std::string(help) + "; range " + range.Relative() + (range.whole ? ", whole numbers" : ""),
+                        default_text, raw, found));
   if (set) *set = found;
   if (!found) PetscFunctionReturn(0);
-  PetscCheck(!raw.empty(), comm, PETSC_ERR_USER_INPUT, "%s is given without a value; expected a number in %s", name,
-             range.Absolute().c_str());
+  PetscCall(CheckRealValue(comm, name, raw, range, value));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckRealValue(MPI_Comm comm, const std::string &name, const std::string &raw, const RealRange &range,
+                              double &value) {
+  const char *kind = range.whole ? "a whole number" : "a number";
+  // " in [0, 1]"; nothing for a range without bounds (any finite number).
+  const std::string in = std::isinf(range.lo) && std::isinf(range.hi) ? "" : " in " + range.Absolute();
+  PetscFunctionBeginUser;
+  PetscCheck(!raw.empty(), comm, PETSC_ERR_USER_INPUT, "%s is given without a value; expected %s%s", name.c_str(),
+             kind, in.c_str());
   const auto parsed = ParseFinite(raw);
-  PetscCheck(parsed, comm, PETSC_ERR_USER_INPUT, "%s %s is invalid; expected %s in %s", name, raw.c_str(),
-             REAL_GRAMMAR, range.Absolute().c_str());
-  PetscCheck(range.Contains(*parsed), comm, PETSC_ERR_USER_INPUT, "%s %s is out of range; expected a number in %s",
-             name, raw.c_str(), range.Absolute().c_str());
+  PetscCheck(parsed, comm, PETSC_ERR_USER_INPUT, "%s %s is invalid; expected %s%s", name.c_str(), raw.c_str(),
+             range.whole ? "a whole number" : REAL_GRAMMAR, in.c_str());
+  PetscCheck(range.Contains(*parsed), comm, PETSC_ERR_USER_INPUT, "%s %s is %s; expected %s%s", name.c_str(),
+             raw.c_str(), range.whole && *parsed != std::floor(*parsed) ? "not a whole number" : "out of range", kind,
+             in.c_str());
   value = *parsed;
   PetscFunctionReturn(0);
 }
@@ -204,6 +223,8 @@ bool NamesObject(const std::string &name, const std::string &prefix, const char 
 
 } // namespace
 
+bool IsSolverOption(const std::string &name) { return NamesObject(name, SOLVER_PREFIX, SOLVER_OBJECTS); }
+
 PetscErrorCode CheckUnusedOptions(MPI_Comm comm, UnusedOptions when) {
   PetscBool refuse = PETSC_TRUE;
   PetscInt n;
@@ -217,7 +238,7 @@ PetscErrorCode CheckUnusedOptions(MPI_Comm comm, UnusedOptions when) {
     if (std::find(std::begin(GENERIC_READ_LATE), std::end(GENERIC_READ_LATE), name) != std::end(GENERIC_READ_LATE))
       continue;
     if (when == UnusedOptions::AFTER_SETUP &&
-        (NamesObject(name, SOLVER_PREFIX, SOLVER_OBJECTS) || NamesObject(name, "", UNPREFIXED_OBJECTS)))
+        (IsSolverOption(name) || NamesObject(name, "", UNPREFIXED_OBJECTS)))
       continue;
     mine.insert("-" + name + (values[i] ? std::string(" ") + values[i] : ""));
   }

@@ -88,9 +88,10 @@ PetscErrorCode OutputWriter::Open(const Mesh &mesh, const OutputOptions &opts) {
   PetscCallMPI(MPI_Comm_rank(mesh.Comm(), &rank));
   std::string error;
   if (rank == 0) {
-    error = PrepareOutputDirectory(opts_.dir);
-    // From here on, a failed run removes what it wrote (main, the error handler).
-    if (error.empty()) RemoveOnFailure(Staging());
+    int made;
+    error = PrepareOutputDirectory(opts_.dir, made);
+    // From here on, a failed run removes what it wrote (main, the error handler), and the directories it made.
+    if (error.empty()) RemoveOnFailure(Staging(), made);
   }
   PetscCall(RaiseFromRoot(mesh.Comm(), error));
   PetscCall(BuildRows());

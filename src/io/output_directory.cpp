@@ -55,9 +55,15 @@ std::string OutputDirectoryProblem(const std::string &dir_name) {
   return "";
 }
 
-std::string PrepareOutputDirectory(const std::string &dir_name) {
+std::string PrepareOutputDirectory(const std::string &dir_name, int &made) {
   const fs::path dir(dir_name);
   std::error_code ec;
+  // DIR and the parents of it that do not exist yet: the directories this run makes.
+  made = 0;
+  fs::path p = fs::absolute(dir, ec).lexically_normal();
+  if (p.filename().empty()) p = p.parent_path(); // "DIR/"
+  std::error_code missing; // symlink_status reports a missing path through it too
+  for (; !ec && p.has_relative_path() && !fs::exists(fs::symlink_status(p, missing)); p = p.parent_path()) ++made;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir))
     return "-output_dir '" + dir_name + "' cannot be created (" + ec.message() + "); expected a writable directory";

@@ -219,7 +219,7 @@ PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, M
                         {MESH_SIZE_FACTOR_MIN, MESH_SIZE_FACTOR_MAX}, opts.size_factor, &size_factor_set));
   opts.max_cells = DefaultMaxCells();
   PetscCall(OptionsReal(PetscOptionsObject, "-mesh_max_cells", "Refuse a .geo whose mesh is estimated to have more "
-                        "cells (default: physical memory / 3.2 kB per cell)", {1, 1e12}, opts.max_cells,
+                        "cells (default: physical memory / 3.2 kB per cell)", RealRange::Whole(1, 1e12), opts.max_cells,
                         &max_cells_set));
   PetscCall(OptionsString(PetscOptionsObject, "-mesh_partitioner", "Partitioner: metis, ptscotch or simple",
                           "metis, ptscotch or simple", opts.partitioner));

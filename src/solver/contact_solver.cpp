@@ -4,6 +4,7 @@
 #include "signorini/core/progress.hpp"
 
 #include "signorini/core/options.hpp"
+#include "signorini/solver/solver_options.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -78,6 +79,8 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptio
                "(-contact_reuse_factorization with a MUMPS LU or Cholesky solver)",
                opts.lagged_search ? "true" : "false");
   }
+  // The saddle-point solver's PETSc options, before its KSP reads them (and before the mesh is read).
+  PetscCall(CheckSolverOptionValues(comm));
   PetscFunctionReturn(0);
 }
 

@@ -81,6 +81,7 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
                                     "default): METIS's nested dissection of the node graph, or cuts across coordinate "
                                     "axes; auto: METIS in 3D and from " + std::to_string(METIS_MIN_ROWS_2D) +
                                     " rows in 2D, coordinate cuts below";
+  PetscCall(OptionsRequireValue(PetscOptionsObject, "-contact_nested_dissection", "auto, metis or coordinates"));
   PetscCall(PetscOptionsEList("-contact_nested_dissection", ordering_help.c_str(), "", GRAPH_ORDERING_NAMES, 3,
                               GRAPH_ORDERING_NAMES[ordering], &ordering, &opts.ordering_set));
   opts.ordering.graph = (GraphOrdering)ordering;

@@ -6,8 +6,9 @@ A case passes when the run
   - prints exactly one line starting with "signorini: error:", on stderr, holding every expected substring (the
     offending input and what was expected),
   - prints no PETSc error message or stack trace and leaves no process behind,
-  - leaves no half-written output: no summary.json and no incomplete/ under its -output_dir, and where the case starts
-    from an earlier good run in that directory, every file of that run byte for byte and with its modification time.
+  - leaves no half-written output: nothing in its work directory that was not there before the run (no -output_dir,
+    nor a parent of it that the run made), and where the case starts from an earlier good run in that directory,
+    every file of that run byte for byte and with its modification time.
 The signal cases interrupt a long run instead, once it reports the first active-set iteration of its third load step
 (the first two steps are written to DIR/incomplete by then), and expect a non-zero exit within a few seconds and no
 summary.json.
@@ -53,6 +54,7 @@ def mesh(name):
 
 # name: (arguments, expected substrings of the error line, options). Options: previous = arguments of a good run
 # made first into the same -output_dir, which the bad run must leave untouched; signal = interrupt the run with it.
+# {work} is the case's work directory, which the bad run must leave as it found it.
 CASES = {
     # Mesh files.
     "mesh_missing": (mesh("does_not_exist.msh"), ["does_not_exist.msh", "cannot open", "expected"], {}),
@@ -91,6 +93,10 @@ CASES = {
                                                                 "expected a coarser mesh"], {}),
     "mesh_geo_over_max_cells": (["-options_file", "{root}/options/hertz.yml", "-mesh_file", "{root}/meshes/hertz.geo",
                                  "-mesh_max_cells", "1000"], ["hertz.geo", "more than -mesh_max_cells 1e+03"], {}),
+    "mesh_max_cells_fraction": (["-options_file", "{root}/options/hertz.yml", "-mesh_file", "{root}/meshes/hertz.geo",
+                                 "-mesh_max_cells", "100000.5"],
+                                ["-mesh_max_cells 100000.5 is not a whole number",
+                                 "expected a whole number in [1, 1e+12]"], {}),
     "mesh_max_cells_zero": (["-mesh_max_cells", "0"], ["-mesh_max_cells 0", "[1, 1e+12]"], {}),
     "mesh_size_factor_zero": (["-mesh_size_factor", "0"], ["-mesh_size_factor 0", "[0.001, 1000]"], {}),
     "mesh_partitioner_bogus": (["-mesh_partitioner", "bogus"], ["-mesh_partitioner", "'bogus'", "expected metis"], {}),
@@ -242,7 +248,7 @@ CASES = {
     "bc_dirichlet_two_values": (["-bc_dirichlet", "top_centre:x=0.01,contact_point:x,top_centre:x=0.02"],
                                 ["-bc_dirichlet prescribes two values to component x of node 1 (in file order)",
                                  "0.01 by item 'top_centre:x=0.01'", "0.02 by item 'top_centre:x=0.02'",
-                                 "expected one value per node component"], {"no_output_dir": True}),
+                                 "expected one value per node component"], {}),
     "bc_dirichlet_corner_two_values": (["-options_file", "{root}/options/block_on_floor.yml", "-bc_dirichlet",
                                         "left:x,bottom:x=0.001"],
                                        ["component x of node 1 (in file order)", "0 by item 'left:x'",
@@ -253,7 +259,7 @@ CASES = {
                                              ["component x of node 2 (in file order)", "0 by item 'a:xy=0'",
                                               "0.001 by item 'b:x=0.001'"], {}),
     "contact_unknown_group": (["-contact_groups", "bottom"], ["-contact_groups bottom: physical group 'bottom'",
-                                                              "not in the mesh"], {"no_output_dir": True}),
+                                                              "not in the mesh"], {}),
     "contact_option_without_obstacle": (["-options_file", "{root}/options/lame_cylinder.yml", "-contact_gap_tol",
                                          "1e-3"], ["-contact_gap_tol is given", "no obstacle"], {}),
     "contact_group_interior": (["-contact_groups", "body"], ["-contact_groups body", "node(s) inside the body",
@@ -284,7 +290,31 @@ CASES = {
                                        {}),
     "contact_monitor_not_a_bool": (["-contact_monitor", "maybe"], ["-contact_monitor maybe", "expected true or false"],
                                    {}),
-    "contact_ksp_type_unknown": (["-contact_ksp_type", "bogus"], ["KSP type bogus", "expected one of"], {}),
+    "contact_ksp_type_unknown": (["-contact_ksp_type", "bogus"],
+                                 ["-contact_ksp_type bogus is not a KSP type", "expected a KSP type, one of", "gmres"],
+                                 {}),
+    # The solver's PETSc options, checked before any solve (PETSc took some without a word, or refused them only at
+    # the solve without naming them).
+    "contact_ksp_type_empty": (["-contact_ksp_type"], ["-contact_ksp_type is given without a value",
+                                                       "expected a KSP type, one of", "gmres"], {}),
+    "contact_pc_type_empty": (["-contact_pc_type"], ["-contact_pc_type is given without a value",
+                                                     "expected a PC type, one of", "cholesky"], {}),
+    "contact_sub_pc_type_empty": (["-options_file", "{root}/options/solver/fieldsplit_gamg.yml",
+                                   "-contact_fieldsplit_u_pc_type"],
+                                  ["-contact_fieldsplit_u_pc_type is given without a value", "expected a PC type"], {}),
+    "contact_ksp_rtol_negative": (["-contact_ksp_rtol", "-1"], ["-contact_ksp_rtol -1 is out of range",
+                                                                "expected a number in [0, 1)"], {}),
+    "contact_ksp_rtol_one_iterative": (["-options_file", "{root}/options/solver/fieldsplit_gamg.yml",
+                                        "-contact_ksp_rtol", "1"], ["-contact_ksp_rtol 1 is out of range", "[0, 1)"],
+                                       {}),
+    "contact_ksp_atol_negative": (["-options_file", "{root}/options/solver/fieldsplit_gamg.yml", "-contact_ksp_atol",
+                                   "-1"], ["-contact_ksp_atol -1 is out of range", "expected a number in [0, inf]"],
+                                  {}),
+    "contact_ksp_max_it_zero": (["-options_file", "{root}/options/solver/fieldsplit_gamg.yml", "-contact_ksp_max_it",
+                                 "0"], ["-contact_ksp_max_it 0 is out of range", "expected an integer >= 1"], {}),
+    # A Krylov tolerance that the default direct solver does not read: refused after the solve, before any output.
+    "unused_solver_option_new_dir": (["-contact_ksp_rtol", "1e-8", "-output_dir", "{work}/new/out"],
+                                     ["option -contact_ksp_rtol 1e-8 is set but never read"], {}),
     "load_steps_zero": (["-load_steps", "0"], ["-load_steps 0", "expected an integer in [1, 10000]"], {}),
     "load_steps_overflow": (["-load_steps", "99999999999999999999"],
                             ["-load_steps 99999999999999999999", "expected an integer in [1, 10000]"], {}),
@@ -353,9 +383,30 @@ CASES = {
                                         {}),
     # MUMPS's controls: MUMPS took a NaN threshold and an unknown ordering without a word.
     "mumps_cntl_nan": (["-contact_mat_mumps_cntl_3", "nan"],
-                       ["-contact_mat_mumps_cntl_3 nan", "expected a finite number"], {}),
+                       ["-contact_mat_mumps_cntl_3 nan", "expected a finite real number"], {}),
     "mumps_cntl_nan_refactorising": (["-contact_reuse_factorization", "false", "-contact_mat_mumps_cntl_1", "nan"],
-                                     ["-contact_mat_mumps_cntl_1 nan", "expected a finite number"], {}),
+                                     ["-contact_mat_mumps_cntl_1 nan", "expected a finite real number"], {}),
+    "mumps_cntl_1_negative": (["-contact_mat_mumps_cntl_1", "-5"],
+                              ["-contact_mat_mumps_cntl_1 -5 is out of range", "expected a number in [0, 1]"], {}),
+    "mumps_cntl_7_negative": (["-contact_mat_mumps_cntl_7", "-1"],
+                              ["-contact_mat_mumps_cntl_7 -1 is out of range", "expected a number in [0, inf]"], {}),
+    "mumps_cntl_not_passed_on": (["-contact_mat_mumps_cntl_15", "3"],
+                                 ["-contact_mat_mumps_cntl_15", "CNTL(15) is not among the MUMPS controls",
+                                  "expected one of CNTL 1, 2, 3, 4, 5, 7"], {}),
+    "mumps_icntl_14_negative": (["-contact_mat_mumps_icntl_14", "-5"],
+                                ["-contact_mat_mumps_icntl_14 -5 is out of range for MUMPS's ICNTL(14)",
+                                 "expected an integer >= 0"], {}),
+    "mumps_icntl_8_undefined": (["-contact_mat_mumps_icntl_8", "5"],
+                                ["-contact_mat_mumps_icntl_8 5 is out of range for MUMPS's ICNTL(8)",
+                                 "expected one of -2, 0, 1, 3, 4, 7, 8, 77"], {}),
+    "mumps_icntl_empty": (["-contact_mat_mumps_icntl_14"],
+                          ["-contact_mat_mumps_icntl_14 is given without a value", "expected an integer >= 0"], {}),
+    # PETSc's MUMPS interface reads no ICNTL(5): it ran with the value ignored.
+    "mumps_icntl_not_passed_on": (["-contact_reuse_factorization", "false", "-contact_mat_mumps_icntl_5", "1"],
+                                  ["-contact_mat_mumps_icntl_5", "ICNTL(5) is not among the MUMPS controls",
+                                   "PETSc's MUMPS interface would ignore it", "expected one of ICNTL 1, 2"], {}),
+    "nested_dissection_empty": (["-contact_nested_dissection"], ["-contact_nested_dissection is given without a value",
+                                                                 "expected auto, metis or coordinates"], {}),
     "mumps_icntl_7_out_of_range": (["-contact_mat_mumps_icntl_7", "99"],
                                    ["-contact_mat_mumps_icntl_7 99", "expected a MUMPS ordering", "7 (automatic)"], {}),
     "mumps_icntl_7_not_built": (["-contact_mat_mumps_icntl_7", "5"],
@@ -411,32 +462,32 @@ CASES = {
     # the key that overrides it (it keeps the merged value), an options_file key (it reads no file).
     "yaml_option_twice": (["-options_file", "{here}/options/twice.yml"],
                           ["twice.yml, line 3: option -material_E is set again (first on line 2)",
-                           "expected each option once per file"], {"no_output_dir": True}),
+                           "expected each option once per file"], {}),
     "yaml_option_twice_nested": (["-options_file", "{here}/options/twice_nested.yml"],
                                  ["twice_nested.yml, line 4: option -contact_max_it is set again (first on line 3)"],
-                                 {"no_output_dir": True}),
+                                 {}),
     "yaml_merge_after_key": (["-options_file_yaml", "{here}/options/merge_after_key.yml"],
                              ["merge_after_key.yml, line 4: option -material_E is set again by a later merge",
-                              "expected the merge before the keys"], {"no_output_dir": True}),
+                              "expected the merge before the keys"], {}),
     "yaml_names_options_file": (["-options_file", "{root}/options/beam_on_floor.yml", "-options_file",
                                  "{here}/options/names_options_file.yml"],
                                 ["names_options_file.yml, line 2: options_file in a YAML file is not read",
-                                 "expected each options file on the command line"], {"no_output_dir": True}),
+                                 "expected each options file on the command line"], {}),
     "yaml_option_twice_documents": (["-options_file", "{here}/options/twice_documents.yml"],
                                     ["twice_documents.yml, line 4: option -material_E is set again (first on line 2)",
-                                     "in all its documents"], {"no_output_dir": True}),
+                                     "in all its documents"], {}),
     # Options that nothing reads (misspelt, or not for this run): refused after the set-up, before the output
     # directory is made, or, for the solver's options that the solve reads as it goes, after the solve and before the
     # output is published.
     "unused_option": (["-materal_E", "5"], ["option -materal_E 5 is set but never read", "expected"],
-                      {"no_output_dir": True}),
+                      {}),
     "unused_options_two": (["-material_nuu", "0.3", "-contact_max_itt", "5"],
                            ["options -contact_max_itt 5, -material_nuu 0.3 are set but never read"],
-                           {"no_output_dir": True}),
+                           {}),
     "unused_option_yaml_key": (["-options_file", "{here}/options/unknown_key.yml"],
-                               ["option -materal_E 5 is set but never read"], {"no_output_dir": True}),
+                               ["option -materal_E 5 is set but never read"], {}),
     "unused_option_yaml_nested_key": (["-options_file", "{here}/options/unknown_nested_key.yml"],
-                                      ["option -material_EE 5 is set but never read"], {"no_output_dir": True}),
+                                      ["option -material_EE 5 is set but never read"], {}),
     "unused_solver_option": (["-contact_mat_mumps_icntl_99", "1"],
                              ["option -contact_mat_mumps_icntl_99 1 is set but never read"], {"previous": HERTZ}),
     "unused_solver_option_of_other_solver": (["-contact_pc_gamg_threshold", "0.01"],
@@ -445,16 +496,16 @@ CASES = {
     # The same option twice on the command line: PETSc keeps the last value (the second traction dropped the first).
     "option_before_options_file": (["-bc_traction", "top:0:-1.25", "-options_file", "{root}/options/hertz.yml"],
                                    ["option -bc_traction top:0:-1.25 on the command line is replaced by top:0:-0.625",
-                                    "expected the option after the -options_file"], {"no_output_dir": True}),
+                                    "expected the option after the -options_file"], {}),
     "option_twice_command_line": (["-material_E", "300", "-material_E", "400"],
                                   ["option -material_E is given twice on the command line (300, then 400)",
-                                   "expected each option once"], {"no_output_dir": True}),
+                                   "expected each option once"], {}),
     "bc_traction_twice_command_line": (["-bc_traction", "top:0:-0.625", "-bc_traction", "top:0:-1"],
                                        ["option -bc_traction is given twice", "(top:0:-0.625, then top:0:-1)"],
-                                       {"no_output_dir": True}),
+                                       {}),
     "option_twice_through_prefix": (["-contact_max_it", "5", "-prefix_push", "contact_", "-max_it", "6",
                                      "-prefix_pop"], ["option -contact_max_it is given twice", "(5, then 6)"],
-                                    {"no_output_dir": True}),
+                                    {}),
     # A plain options file naming one that does not exist: every rank would report it.
     "options_file_nested_missing": (["-options_file", "{here}/options/nested_missing.txt"],
                                     ["-options_file does_not_exist_nested.txt: no such file"], {}),
@@ -469,11 +520,12 @@ CASES = {
     # Failures of the solve, after the output directory was opened: its incomplete/ goes too.
     "singular_system": (LOOSE_BEAM, ["singular", "not held", "add Dirichlet"], {"previous": BEAM}),
     # An input refused at the first factorisation.
-    "mumps_control_set_by_solver": (["-contact_mat_mumps_icntl_18", "0"],
-                                    ["-contact_mat_mumps_icntl_18 cannot be set", "-contact_reuse_factorization"],
+    "mumps_control_set_by_solver": (["-contact_mat_mumps_icntl_26", "0"],
+                                    ["-contact_mat_mumps_icntl_26 cannot be set", "-contact_reuse_factorization"],
                                     {"previous": HERTZ}),
-    "mumps_control_set_by_solver_new_dir": (["-contact_mat_mumps_icntl_18", "0"],
-                                            ["-contact_mat_mumps_icntl_18 cannot be set"], {}),
+    "mumps_control_set_by_solver_new_dir": (["-contact_mat_mumps_icntl_26", "0", "-output_dir",
+                                             "{work}/new/deeper/out"], ["-contact_mat_mumps_icntl_26 cannot be set"],
+                                            {}),
     # Supports that hold contact candidates inside the obstacle: no solve can lift them, and with no pair for a node
     # whose normal motion is prescribed the penetration went unchecked (a converged state 0.01 inside the floor).
     "dirichlet_into_obstacle": (["-options_file", "{root}/options/block_on_floor.yml", "-bc_dirichlet",
@@ -511,6 +563,9 @@ CASES = {
                                          ["-obstacle_rectangles item 1", "along the normal", "in the plane"], {}),
     "rectangle_on_2d_mesh": (["-obstacle_rectangles", "0,0,0,0,0,1,1,0,0,1,1"], ["-obstacle_rectangles", "3D"], {}),
     "active_set_max_it": (["-contact_max_it", "1"], ["did not converge", "-contact_max_it"], {"previous": HERTZ}),
+    # A failure after the output directory was made: the directories the run made go again, parents included.
+    "output_dirs_made_removed": (["-contact_max_it", "1", "-output_dir", "{work}/new/deeper/out"],
+                                 ["did not converge", "-contact_max_it"], {}),
     # A pressure no single svk load step carries (at 50 the multiplier-space search converges in one step).
     "newton_diverges": (BEAM + ["-material_model", "svk", "-newton_max_it", "1", "-load_max_cuts", "0",
                                 "-bc_pressure", "top:200"], ["did not converge", "-load_max_cuts"], {"previous": BEAM}),
@@ -657,7 +712,8 @@ def check_case(name, exe, mpiexec, np_, work, env, verbose):
     a_file = os.path.join(work, "a_file")
     with open(a_file, "w") as f:
         f.write("a regular file, not a directory\n")
-    paths = {"root": ROOT, "here": HERE, "meshes": os.path.join(HERE, "meshes"), "out": out_dir, "file": a_file}
+    paths = {"root": ROOT, "here": HERE, "meshes": os.path.join(HERE, "meshes"), "out": out_dir, "file": a_file,
+             "work": work}
     launch = [mpiexec, "-n", str(np_)] + (deny_open(out_dir, opts["deny_open"]) if "deny_open" in opts else []) + [exe]
 
     before = None
@@ -694,9 +750,11 @@ def check_case(name, exe, mpiexec, np_, work, env, verbose):
             for want in expected:
                 if want not in line:
                     problems.append(f"the error line lacks '{want}'")
-    # Errors of the inputs that the set-up reads come before the output directory is opened: nothing is created.
-    if opts.get("no_output_dir") and os.path.exists(out_dir):
-        problems.append(f"{os.path.relpath(out_dir, work)} was created by a run that failed in its set-up")
+    # A failed run removes the directories it made (an -output_dir that did not exist, and its parents), and makes
+    # none when it fails in its set-up. An interrupted run leaves its output directory.
+    kept = {"a_file"} | ({"out"} if before is not None or "signal" in opts else set())
+    for name in sorted(set(os.listdir(work)) - kept):
+        problems.append(f"{name} is left in the work directory by the failed run")
     if "signal" in opts and not os.path.isdir(os.path.join(out_dir, "incomplete")):
         problems.append("no incomplete/ in the output directory: the run was not interrupted while writing")
     if "signal" not in opts and os.path.exists(os.path.join(out_dir, "incomplete")):

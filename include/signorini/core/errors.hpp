@@ -17,8 +17,9 @@ void SetOptionsFiles(const std::string &files);
 /// Names the directory that this rank made for the run's output (DIR/incomplete; "" once the output is published, and
 /// on the ranks that made none), which a failure must not leave behind: main removes it when Run fails, the error
 /// handler before it aborts the job. Removes nothing beside it (an earlier good output in DIR stays as it is).
-void RemoveOnFailure(const std::string &dir);
-/// Removes the directory that RemoveOnFailure named, if any, and forgets it. Local (no communication).
+/// made: how many of dir's parents the run made (DIR and those above it), removed too, each when it is left empty.
+void RemoveOnFailure(const std::string &dir, int made = 0);
+/// Removes the directories that RemoveOnFailure named, if any, and forgets them. Local (no communication).
 void RemoveFailedOutput();
 
 /// Collective check of a condition that may hold on some ranks only: if any rank has ok == false, every rank raises

@@ -12,13 +12,17 @@
 namespace signorini {
 
 /// The valid values of a real option: lo..hi (either end open or closed), in units of scale, which unit names
-/// ("body diagonal", "E x thickness"; none for an absolute range).
+/// ("body diagonal", "E x thickness"; none for an absolute range); whole: whole numbers only (a count too large for
+/// an integer option, such as -mesh_max_cells).
 struct RealRange {
   double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
   bool lo_open = false, hi_open = false;
   double scale = 1;
   const char *unit = nullptr;
+  bool whole = false;
 
+  /// The whole numbers in [lo, hi].
+  static RealRange Whole(double lo, double hi);
   bool Contains(double value) const;
   /// "[0, 0.001] x body diagonal", for -help and the README.
   std::string Relative() const;
@@ -31,6 +35,12 @@ struct RealRange {
 /// and the range.
 [[nodiscard]] PetscErrorCode OptionsReal(PetscOptionItems *PetscOptionsObject, const char *name, const char *help,
                                          const RealRange &range, double &value, PetscBool *set = nullptr);
+
+/// Checks the text raw of the real option name (as given; empty when it is given without a value) as OptionsReal
+/// does, with its messages, and returns it in value. For options that PETSc reads itself (the solver's). Raises on
+/// comm: call on all its ranks together, with the same text.
+[[nodiscard]] PetscErrorCode CheckRealValue(MPI_Comm comm, const std::string &name, const std::string &raw,
+                                            const RealRange &range, double &value);
 
 /// Reads the integer option name into value: whole decimal integers only, exactly, in [lo, hi].
 [[nodiscard]] PetscErrorCode OptionsInt(PetscOptionItems *PetscOptionsObject, const char *name, const char *help,
@@ -54,6 +64,11 @@ struct RealRange {
 /// Refuses the option name when it is given without a value (for choices read by PETSc, such as PetscOptionsEList).
 [[nodiscard]] PetscErrorCode OptionsRequireValue(PetscOptionItems *PetscOptionsObject, const char *name,
                                                  const char *expected);
+
+/// Whether the option name (without its '-', in lower case) is one of the saddle-point solver's, which PETSc reads
+/// while the solve runs: -contact_ followed by the KSP's, the PC's, the factor matrix's (-contact_mat_mumps_*) or a
+/// sub-solver's prefix (fieldsplit_, sub_, mg_, ...).
+bool IsSolverOption(const std::string &name);
 
 /// When CheckUnusedOptions runs: after the set-up (every component but the solve has read its options), or after the
 /// solve (before the output is published).

@@ -22,9 +22,11 @@ std::string StagingDirectory(const std::string &dir);
 /// word). Lets the options report a bad -output_dir before the mesh is read.
 std::string OutputDirectoryProblem(const std::string &dir);
 
-/// Removes what an interrupted run or switch left beside the published run (stale run_* directories, a temporary
-/// link), and recreates an empty DIR/incomplete/. Returns an empty string on success, else the reason.
-std::string PrepareOutputDirectory(const std::string &dir);
+/// Makes DIR (and the parents it lacks), removes what an interrupted run or switch left beside the published run
+/// (stale run_* directories, a temporary link), and recreates an empty DIR/incomplete/. Returns an empty string on
+/// success, else the reason. made: how many directories it made, DIR and its parents (0 when DIR existed), which a
+/// failed run removes again when they are left empty (RemoveOnFailure).
+std::string PrepareOutputDirectory(const std::string &dir, int &made);
 
 /// Publishes DIR/incomplete/ (complete, summary.json included) as the current run of DIR: renames it to a fresh
 /// DIR/run_<id>/, points DIR/current at it with one rename of a new link over the old one, then removes the earlier

@@ -37,7 +37,7 @@ struct SolverOptions {
 /// Reads the -load_ and -newton_ options. The ones that only the nonlinear material's Newton loop uses
 /// (-load_max_cuts, -newton_max_it, -newton_linesearch, -newton_lagged_search) are an error when given with another
 /// model, so that none is ignored silently (-newton_rtol and -newton_atol bound the equilibrium residual of every
-/// model).
+/// model). Then checks the values of the saddle-point solver's PETSc options (CheckSolverOptionValues).
 [[nodiscard]] PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptions &opts);
 
 /// One line of the monitor.
