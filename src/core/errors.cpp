@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <sstream>
 #include <vector>
 
@@ -113,6 +114,45 @@ PetscErrorCode Handler(MPI_Comm comm, int line, const char *func, const char *fi
   return n;
 }
 
+/// The first error raised while Record is the error handler (RunOnRoot).
+struct RecordedError {
+  int code = 0, line = 0;
+  std::string func, file, message;
+};
+
+/// Keeps the first error in ctx (a RecordedError) instead of printing it or aborting the job.
+PetscErrorCode Record(MPI_Comm, int line, const char *func, const char *file, PetscErrorCode n, PetscErrorType p,
+                      const char *mess, void *ctx) {
+  auto &error = *static_cast<RecordedError *>(ctx);
+  if (p == PETSC_ERROR_INITIAL && error.code == 0)
+    error = {(int)n, line, func ? func : "", file ? file : "", mess ? mess : ""};
+  return n;
+}
+
+/// Calls work, a C++ exception it throws turned into a PETSc error.
+PetscErrorCode CallWork(const std::function<PetscErrorCode()> &work) {
+  PetscErrorCode code = 0;
+  PetscFunctionBeginUser;
+  PetscCallCXX(code = work());
+  PetscCall(code);
+  PetscFunctionReturn(0);
+}
+
+/// Runs work with Record as the error handler; an error code returned without an error raised gets PETSc's text for
+/// it. Local (no communication).
+PetscErrorCode RecordWork(const std::function<PetscErrorCode()> &work, RecordedError &error) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscPushErrorHandler(Record, &error));
+  const PetscErrorCode code = CallWork(work); // recorded, not raised: Record has to go first
+  PetscCall(PetscPopErrorHandler());
+  if (code != 0 && error.code == 0) {
+    const char *text = nullptr;
+    PetscCall(PetscErrorMessage(code, &text, nullptr));
+    error = {(int)code, __LINE__, PETSC_FUNCTION_NAME, __FILE__, text ? text : "unknown error"};
+  }
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 void SetOptionsFiles(const std::string &files) { OptionsFiles() = files; }
@@ -152,11 +192,28 @@ PetscErrorCode CheckCollective(MPI_Comm comm, bool ok, const std::string &messag
 }
 
 PetscErrorCode RaiseFromRoot(MPI_Comm comm, const std::string &message_on_root) {
-  std::string text = message_on_root;
   PetscFunctionBeginUser;
-  PetscCall(Broadcast(comm, 0, text));
-  PetscCheck(text.empty(), comm, PETSC_ERR_USER_INPUT, "%s", text.c_str());
+  PetscCall(RunOnRoot(comm, [&]() -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCheck(message_on_root.empty(), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "%s", message_on_root.c_str());
+    PetscFunctionReturn(0);
+  }));
   PetscFunctionReturn(0);
+}
+
+PetscErrorCode RunOnRoot(MPI_Comm comm, const std::function<PetscErrorCode()> &work) {
+  PetscMPIInt rank;
+  RecordedError error;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) PetscCall(RecordWork(work, error));
+  int head[2] = {error.code, error.line};
+  PetscCallMPI(MPI_Bcast(head, 2, MPI_INT, 0, comm));
+  if (head[0] == 0) PetscFunctionReturn(0);
+  for (std::string *text : {&error.func, &error.file, &error.message}) PetscCall(Broadcast(comm, 0, *text));
+  // The error as work raised it, now on every rank of comm (the handler prints it once).
+  return PetscError(comm, head[1], error.func.c_str(), error.file.c_str(), (PetscErrorCode)head[0],
+                    PETSC_ERROR_INITIAL, "%s", error.message.c_str());
 }
 
 PetscErrorCode Broadcast(MPI_Comm comm, PetscMPIInt root, std::string &text) {

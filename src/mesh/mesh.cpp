@@ -291,9 +291,7 @@ PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
 }
 
 PetscErrorCode Mesh::BuildSerialDM(const std::string &file, DM *out) {
-  PetscMPIInt rank;
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   const PetscInt nc = serial_.NumCells(), nv = serial_.NumNodes();
   // Cells and vertices only: nothing uses the edges (and faces) of an interpolated DMPlex, whose construction took
   // 5 s of the mesh stage at 1M dofs. The faces the program needs (the boundary and the groups of dimension dim-1)
@@ -322,38 +320,14 @@ PetscErrorCode Mesh::BuildSerialDM(const std::string &file, DM *out) {
   PetscCall(DMPlexStratify(dm));
   PetscCall(DMPlexComputeCellTypes(dm));
   PetscCall(DMPlexBuildCoordinatesFromCellList(dm, dim_, serial_.coords.data()));
-  const PetscInt cstart = 0, vstart = nc;
+  vstart_ = nc;
+  cstart_ = 0;
 
   // Faces: the boundary, the groups of dimension dim-1 (each element matched to a cell face), folded cells.
-  std::string error;
   std::vector<std::vector<PetscInt>> label_points(group_names_.size() + 1);
   cell_face_offsets_.assign(1, 0);
   cell_face_codes_.clear();
-  if (rank == 0) {
-    std::vector<std::pair<int, PetscInt>> tags; // (cell, code)
-    PetscCall(FaceTable(tags, error));
-    std::sort(tags.begin(), tags.end());
-    tags.erase(std::unique(tags.begin(), tags.end()), tags.end());
-    cell_face_offsets_.assign(nc + 1, 0);
-    for (const auto &t : tags) cell_face_offsets_[t.first + 1]++;
-    for (PetscInt c = 0; c < nc; ++c) cell_face_offsets_[c + 1] += cell_face_offsets_[c];
-    for (const auto &t : tags) cell_face_codes_.push_back(t.second);
-    // Vertex labels: the nodes of each group (the groups of cells are found through their cells, LabelVertices),
-    // and the vertices of the boundary faces.
-    const PetscInt nlabels = (PetscInt)group_names_.size() + 1;
-    for (std::size_t g = 0; g < serial_.groups.size(); ++g) {
-      for (int v : serial_.groups[g].nodes) label_points[g].push_back(vstart + v);
-      for (int c : serial_.groups[g].cells) label_points[g].push_back(cstart + c);
-    }
-    for (const auto &t : tags)
-      if (t.second % nlabels == nlabels - 1) {
-        const CellFaceTable &cf = CellFaces(dim_, serial_.CellSize(t.first));
-        const int lf = (int)(t.second / nlabels);
-        for (int k = 0; k < cf.size[lf]; ++k)
-          label_points.back().push_back(vstart + serial_.cell_nodes[serial_.cell_offsets[t.first] + cf.v[lf][k]]);
-      }
-  }
-  PetscCall(RaiseFromRoot(comm_, error.empty() ? "" : "mesh '" + file + "': " + error));
+  PetscCall(RunOnRoot(comm_, [&] { return SerialFaces(file, label_points); }));
   for (std::size_t g = 0; g < label_points.size(); ++g) {
     const std::string name = g < group_names_.size() ? LABEL_PREFIX + group_names_[g] : std::string(BOUNDARY_LABEL);
     PetscCall(DMCreateLabel(dm, name.c_str()));
@@ -375,14 +349,41 @@ PetscErrorCode Mesh::BuildSerialDM(const std::string &file, DM *out) {
   for (PetscInt c = 0; c < nc; ++c) cell_orig_[c] = c;
   cell_offsets_.assign(serial_.cell_offsets.begin(), serial_.cell_offsets.end());
   cell_vertices_.assign(serial_.cell_nodes.begin(), serial_.cell_nodes.end());
-  vstart_ = vstart;
-  cstart_ = cstart;
   PetscInt ng[2] = {nv, nc};
   PetscCallMPI(MPI_Bcast(ng, 2, MPIU_INT, 0, comm_));
   num_global_nodes_ = ng[0];
   num_global_cells_ = ng[1];
   *out = dm.get();
   PetscCall(PetscObjectReference((PetscObject)*out));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::SerialFaces(const std::string &file, std::vector<std::vector<PetscInt>> &label_points) {
+  const PetscInt nc = serial_.NumCells(), nlabels = (PetscInt)group_names_.size() + 1;
+  std::vector<std::pair<int, PetscInt>> tags; // (cell, code)
+  std::string error;
+  PetscFunctionBeginUser;
+  PetscCall(FaceTable(tags, error));
+  PetscCheck(error.empty(), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "mesh '%s': %s", file.c_str(), error.c_str());
+  std::sort(tags.begin(), tags.end());
+  tags.erase(std::unique(tags.begin(), tags.end()), tags.end());
+  cell_face_offsets_.assign(nc + 1, 0);
+  for (const auto &t : tags) cell_face_offsets_[t.first + 1]++;
+  for (PetscInt c = 0; c < nc; ++c) cell_face_offsets_[c + 1] += cell_face_offsets_[c];
+  for (const auto &t : tags) cell_face_codes_.push_back(t.second);
+  // Vertex labels: the nodes of each group (the groups of cells are found through their cells, LabelVertices), and
+  // the vertices of the boundary faces.
+  for (std::size_t g = 0; g < serial_.groups.size(); ++g) {
+    for (int v : serial_.groups[g].nodes) label_points[g].push_back(vstart_ + v);
+    for (int c : serial_.groups[g].cells) label_points[g].push_back(cstart_ + c);
+  }
+  for (const auto &t : tags)
+    if (t.second % nlabels == nlabels - 1) {
+      const CellFaceTable &cf = CellFaces(dim_, serial_.CellSize(t.first));
+      const int lf = (int)(t.second / nlabels);
+      for (int k = 0; k < cf.size[lf]; ++k)
+        label_points.back().push_back(vstart_ + serial_.cell_nodes[serial_.cell_offsets[t.first] + cf.v[lf][k]]);
+    }
   PetscFunctionReturn(0);
 }
 
@@ -446,10 +447,9 @@ PetscErrorCode Mesh::FaceTable(std::vector<std::pair<int, PetscInt>> &tags, std:
 }
 
 PetscErrorCode Mesh::Partition(DM dm, const std::string &partitioner) {
-  PetscMPIInt rank, size;
+  PetscMPIInt size;
   PetscPartitioner part;
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   PetscCallMPI(MPI_Comm_size(comm_, &size));
   PetscCall(DMPlexGetPartitioner(dm, &part));
   if (partitioner == "ptscotch") {
@@ -463,29 +463,33 @@ PetscErrorCode Mesh::Partition(DM dm, const std::string &partitioner) {
   // METIS on the dual graph of the serial mesh (cells sharing an edge), handed to DMPlex as a shell partition.
   PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSHELL));
   std::vector<PetscInt> sizes(size, 0), points;
-  if (rank == 0) {
-    // Cells are neighbours when they share a face: 2 nodes in 2D, 3 for a tetrahedron, 4 for a hexahedron (3 when
-    // tetrahedra or pyramids are present, so that a mixed mesh connects through its triangular faces).
-    bool triangles = false;
-    for (int c = 0; c < serial_.NumCells(); ++c) triangles = triangles || serial_.CellSize(c) < 8;
-    idx_t ne = serial_.NumCells(), nn = serial_.NumNodes(), nparts = size, objval = 0;
-    idx_t ncommon = dim_ == 2 ? 2 : triangles ? 3 : 4;
-    std::vector<idx_t> eptr(serial_.cell_offsets.begin(), serial_.cell_offsets.end());
-    std::vector<idx_t> eind(serial_.cell_nodes.begin(), serial_.cell_nodes.end());
-    std::vector<idx_t> epart(ne), npart(nn);
-    idx_t options[METIS_NOPTIONS];
-    METIS_SetDefaultOptions(options);
-    options[METIS_OPTION_SEED] = 7;
-    const int status = METIS_PartMeshDual(&ne, &nn, eptr.data(), eind.data(), nullptr, nullptr, &ncommon, &nparts,
-                                          nullptr, options, &objval, epart.data(), npart.data());
-    PetscCheck(status == METIS_OK, PETSC_COMM_SELF, PETSC_ERR_LIB, "METIS_PartMeshDual failed (%d)", status);
-    for (idx_t c = 0; c < ne; ++c) sizes[epart[c]]++;
-    std::vector<PetscInt> start(size + 1, 0);
-    for (int p = 0; p < size; ++p) start[p + 1] = start[p] + sizes[p];
-    points.resize(ne);
-    for (idx_t c = 0; c < ne; ++c) points[start[epart[c]]++] = c;
-  }
+  PetscCall(RunOnRoot(comm_, [&] { return MetisPartition(sizes, points); }));
   PetscCall(PetscPartitionerShellSetPartition(part, size, sizes.data(), points.data()));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::MetisPartition(std::vector<PetscInt> &sizes, std::vector<PetscInt> &points) const {
+  PetscFunctionBeginUser;
+  // Cells are neighbours when they share a face: 2 nodes in 2D, 3 for a tetrahedron, 4 for a hexahedron (3 when
+  // tetrahedra or pyramids are present, so that a mixed mesh connects through its triangular faces).
+  bool triangles = false;
+  for (int c = 0; c < serial_.NumCells(); ++c) triangles = triangles || serial_.CellSize(c) < 8;
+  idx_t ne = serial_.NumCells(), nn = serial_.NumNodes(), nparts = (idx_t)sizes.size(), objval = 0;
+  idx_t ncommon = dim_ == 2 ? 2 : triangles ? 3 : 4;
+  std::vector<idx_t> eptr(serial_.cell_offsets.begin(), serial_.cell_offsets.end());
+  std::vector<idx_t> eind(serial_.cell_nodes.begin(), serial_.cell_nodes.end());
+  std::vector<idx_t> epart(ne), npart(nn);
+  idx_t options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(options);
+  options[METIS_OPTION_SEED] = 7;
+  const int status = METIS_PartMeshDual(&ne, &nn, eptr.data(), eind.data(), nullptr, nullptr, &ncommon, &nparts,
+                                        nullptr, options, &objval, epart.data(), npart.data());
+  PetscCheck(status == METIS_OK, PETSC_COMM_SELF, PETSC_ERR_LIB, "METIS_PartMeshDual failed (%d)", status);
+  for (idx_t c = 0; c < ne; ++c) sizes[epart[c]]++;
+  std::vector<PetscInt> start(nparts + 1, 0);
+  for (idx_t p = 0; p < nparts; ++p) start[p + 1] = start[p] + sizes[p];
+  points.resize(ne);
+  for (idx_t c = 0; c < ne; ++c) points[start[epart[c]]++] = c;
   PetscFunctionReturn(0);
 }
 

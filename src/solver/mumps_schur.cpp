@@ -1,6 +1,7 @@
 // MUMPS with a Schur complement on the multipliers: one factorisation, then solves with a changing diagonal D.
 #include "signorini/solver/mumps_schur.hpp"
 
+#include "signorini/core/errors.hpp"
 #include "signorini/solver/nested_dissection.hpp"
 #include "signorini/solver/parallel_dissection.hpp"
 
@@ -192,27 +193,10 @@ std::vector<idx_t> NodeEdges(PetscMPIInt rank, const NodeNumbering &nodes, Petsc
 /// The node graph of the edges of every rank (NodeEdges) on rank 0. Collective.
 PetscErrorCode GatherNodeGraph(MPI_Comm comm, PetscMPIInt rank, PetscInt num_nodes, std::vector<idx_t> &edges,
                                Graph &g) {
-  const MPI_Datatype IDX_T_MPI = sizeof(idx_t) == 8 ? MPI_INT64_T : MPI_INT32_T;
-  PetscMPIInt size;
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscMPIInt count = 0;
-  PetscCall(PetscMPIIntCast((PetscInt)edges.size(), &count));
-  std::vector<PetscMPIInt> counts(size), displs(size, 0);
-  PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
   std::vector<idx_t> all;
-  if (rank == 0) {
-    std::size_t total = counts[0];
-    for (PetscMPIInt r = 1; r < size; ++r) {
-      PetscCheck((std::size_t)displs[r - 1] + counts[r - 1] <= (std::size_t)INT32_MAX, PETSC_COMM_SELF,
-                 PETSC_ERR_SUP, "the matrix graph is too large for the nested-dissection ordering on one rank; choose "
-                 "one of MUMPS's orderings with -contact_mat_mumps_icntl_7");
-      displs[r] = displs[r - 1] + counts[r - 1], total += counts[r];
-    }
-    all.resize(total);
-  }
-  PetscCallMPI(MPI_Gatherv(edges.data(), count, IDX_T_MPI, all.data(), counts.data(), displs.data(), IDX_T_MPI, 0,
-                           comm));
+  std::vector<PetscMPIInt> displs;
+  PetscFunctionBeginUser;
+  PetscCall(GatherOnRoot(comm, edges, all, displs));
   edges.clear();
   edges.shrink_to_fit();
   if (rank == 0) g = BuildGraph((idx_t)num_nodes, all);
@@ -479,35 +463,37 @@ PetscErrorCode MumpsSchur::FactorNumeric(const std::vector<PetscScalar> &d0) {
 }
 
 PetscErrorCode MumpsSchur::FactorSchur(const std::vector<PetscScalar> &d) {
-  const PetscInt m = (PetscInt)d0_.size();
-  int info = 0;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(EV_SCHUR, 0, 0, 0, 0));
-  if (rank_ == 0 && m > 0 && !(s_factored_ && d == d_factored_)) {
-    s_ = s0_;
-    for (PetscInt i = 0; i < m; ++i) s_[i + i * m] += d[i] - d0_[i];
-    PetscBLASInt n, lwork = -1, binfo;
-    PetscCall(PetscBLASIntCast(m, &n));
-    ipiv_.resize(m);
-    double query;
-    if (symmetric_) {
-      LAPACKsytrf_("L", &n, s_.data(), &n, ipiv_.data(), &query, &lwork, &binfo);
-      lwork = std::max<PetscBLASInt>(1, (PetscBLASInt)query);
-      work_.resize(lwork);
-      LAPACKsytrf_("L", &n, s_.data(), &n, ipiv_.data(), work_.data(), &lwork, &binfo);
-    } else {
-      LAPACKgetrf_(&n, &n, s_.data(), &n, ipiv_.data(), &binfo);
-    }
-    info = (int)binfo;
-    d_factored_ = d;
-  }
-  PetscCallMPI(MPI_Bcast(&info, 1, MPI_INT, 0, comm_));
+  PetscCall(RunOnRoot(comm_, [&] { return FactorSchurOnRoot(d); }));
   PetscCall(PetscLogEventEnd(EV_SCHUR, 0, 0, 0, 0));
-  PetscCheck(info == 0, comm_, PETSC_ERR_NOT_CONVERGED,
+  s_factored_ = true;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::FactorSchurOnRoot(const std::vector<PetscScalar> &d) {
+  const PetscInt m = (PetscInt)d0_.size();
+  PetscBLASInt n, lwork = -1, info;
+  PetscFunctionBeginUser;
+  if (m == 0 || (s_factored_ && d == d_factored_)) PetscFunctionReturn(0);
+  s_ = s0_;
+  for (PetscInt i = 0; i < m; ++i) s_[i + i * m] += d[i] - d0_[i];
+  PetscCall(PetscBLASIntCast(m, &n));
+  ipiv_.resize(m);
+  double query;
+  if (symmetric_) {
+    LAPACKsytrf_("L", &n, s_.data(), &n, ipiv_.data(), &query, &lwork, &info);
+    lwork = std::max<PetscBLASInt>(1, (PetscBLASInt)query);
+    work_.resize(lwork);
+    LAPACKsytrf_("L", &n, s_.data(), &n, ipiv_.data(), work_.data(), &lwork, &info);
+  } else {
+    LAPACKgetrf_(&n, &n, s_.data(), &n, ipiv_.data(), &info);
+  }
+  d_factored_ = d;
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED,
              "the saddle-point system is singular (zero pivot %d in the Schur complement on the multipliers): the "
              "body is not held, or two active constraints coincide; add Dirichlet conditions or check that the "
              "obstacle touches it", (int)info);
-  s_factored_ = true;
   PetscFunctionReturn(0);
 }
 
@@ -515,6 +501,7 @@ PetscErrorCode MumpsSchur::DenseSolve(std::vector<PetscScalar> &y) const {
   const PetscInt m = (PetscInt)d0_.size();
   PetscBLASInt n, one = 1, info;
   PetscFunctionBeginUser;
+  if (m == 0) PetscFunctionReturn(0);
   PetscCall(PetscBLASIntCast(m, &n));
   std::vector<PetscBLASInt> ipiv(ipiv_);
   if (symmetric_) LAPACKsytrs_("L", &n, &one, s_.data(), &n, ipiv.data(), y.data(), &n, &info);
@@ -526,27 +513,33 @@ PetscErrorCode MumpsSchur::DenseSolve(std::vector<PetscScalar> &y) const {
 
 PetscErrorCode MumpsSchur::SolveReduced(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y,
                                         double &residual) {
-  const PetscInt m = (PetscInt)d0_.size();
   PetscFunctionBeginUser;
   PetscCheck(condensed_, comm_, PETSC_ERR_ORDER, "SolveReduced needs an earlier Condense");
   PetscCall(FactorSchur(d));
   PetscCall(PetscLogEventBegin(EV_REDUCED, 0, 0, 0, 0));
   residual = 0;
-  if (rank_ == 0 && m > 0) {
-    for (PetscInt i = 0; i < m; ++i) y[i] -= condensed_u_[i];
-    const std::vector<PetscScalar> rhs = y;
-    PetscCall(DenseSolve(y));
-    // ||rhs - S y||, S = S0 + (D - D0): the residual of the reduced system.
-    for (PetscInt i = 0; i < m; ++i) {
-      double r = rhs[i] - (d[i] - d0_[i]) * y[i];
-      for (PetscInt j = 0; j < m; ++j) r -= s0_[i + j * m] * y[j];
-      residual += r * r;
-    }
-    residual = std::sqrt(residual);
-    reduced_ = y;
-  }
+  PetscCall(RunOnRoot(comm_, [&] { return SolveReducedOnRoot(d, y, residual); }));
   PetscCallMPI(MPI_Bcast(&residual, 1, MPI_DOUBLE, 0, comm_));
   PetscCall(PetscLogEventEnd(EV_REDUCED, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::SolveReducedOnRoot(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y,
+                                              double &residual) {
+  const PetscInt m = (PetscInt)d0_.size();
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < m; ++i) y[i] -= condensed_u_[i];
+  const std::vector<PetscScalar> rhs = y;
+  PetscCall(DenseSolve(y));
+  // ||rhs - S y||, S = S0 + (D - D0): the residual of the reduced system.
+  residual = 0;
+  for (PetscInt i = 0; i < m; ++i) {
+    double r = rhs[i] - (d[i] - d0_[i]) * y[i];
+    for (PetscInt j = 0; j < m; ++j) r -= s0_[i + j * m] * y[j];
+    residual += r * r;
+  }
+  residual = std::sqrt(residual);
+  reduced_ = y;
   PetscFunctionReturn(0);
 }
 
@@ -615,15 +608,12 @@ PetscErrorCode MumpsSchur::Expand(Vec x) {
 }
 
 PetscErrorCode MumpsSchur::Solve(const std::vector<PetscScalar> &d, Vec b, Vec x) {
-  const PetscInt m = (PetscInt)d0_.size();
   PetscFunctionBeginUser;
   PetscCall(FactorSchur(d));
   PetscCall(Condense(b));
   // The reduced system with the reduced right-hand side of the condensation as it is, then the expansion.
-  if (rank_ == 0) {
-    reduced_ = redrhs_;
-    if (m > 0) PetscCall(DenseSolve(reduced_));
-  }
+  reduced_ = redrhs_;
+  PetscCall(RunOnRoot(comm_, [&] { return DenseSolve(reduced_); }));
   PetscCall(Expand(x));
   PetscFunctionReturn(0);
 }

@@ -1,6 +1,8 @@
 // Nested dissection of a distributed graph: the partition's interfaces as separators, each rank's part by METIS.
 #include "signorini/solver/parallel_dissection.hpp"
 
+#include "signorini/core/errors.hpp"
+
 #include <algorithm>
 #include <climits>
 
@@ -39,6 +41,32 @@ void Compose(int lo, int hi, int depth, const std::vector<std::vector<idx_t>> &i
 }
 
 } // namespace
+
+PetscErrorCode GatherOnRoot(MPI_Comm comm, const std::vector<idx_t> &list, std::vector<idx_t> &all,
+                            std::vector<PetscMPIInt> &displs) {
+  PetscMPIInt rank, size, count;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(PetscMPIIntCast((PetscInt)list.size(), &count));
+  std::vector<PetscMPIInt> counts(size);
+  PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
+  displs.assign(rank == 0 ? size + 1 : 0, 0);
+  PetscCall(RunOnRoot(comm, [&]() -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    for (PetscMPIInt r = 0; r < size; ++r) {
+      PetscCheck((std::size_t)displs[r] + counts[r] <= (std::size_t)INT_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP,
+                 "the matrix graph is too large for the nested-dissection ordering on one rank; choose one of "
+                 "MUMPS's orderings with -contact_mat_mumps_icntl_7");
+      displs[r + 1] = displs[r] + counts[r];
+    }
+    PetscFunctionReturn(0);
+  }));
+  all.resize(rank == 0 ? displs[size] : 0);
+  PetscCallMPI(
+      MPI_Gatherv(list.data(), count, IDX_T_MPI, all.data(), counts.data(), displs.data(), IDX_T_MPI, 0, comm));
+  PetscFunctionReturn(0);
+}
 
 Graph BuildGraph(idx_t n, const std::vector<idx_t> &edges) {
   Graph g;
@@ -123,22 +151,9 @@ PetscErrorCode PartitionNestedDissection(MPI_Comm comm, const std::vector<idx_t>
   // Both lists to rank 0, which composes the order.
   std::vector<std::vector<idx_t>> interior(rank == 0 ? size : 0), separators(rank == 0 ? size : 0);
   for (const auto &[list, all] : {std::pair{&mine, &interior}, std::pair{&separator, &separators}}) {
-    PetscMPIInt count;
-    PetscCall(PetscMPIIntCast((PetscInt)list->size(), &count));
-    std::vector<PetscMPIInt> counts(size), displs(size + 1, 0);
-    PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
     std::vector<idx_t> gathered;
-    if (rank == 0) {
-      for (PetscMPIInt r = 0; r < size; ++r) {
-        PetscCheck((std::size_t)displs[r] + counts[r] <= (std::size_t)INT_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP,
-                   "the graph is too large for the nested-dissection ordering; choose one of MUMPS's orderings "
-                   "with -contact_mat_mumps_icntl_7");
-        displs[r + 1] = displs[r] + counts[r];
-      }
-      gathered.resize(displs[size]);
-    }
-    PetscCallMPI(
-        MPI_Gatherv(list->data(), count, IDX_T_MPI, gathered.data(), counts.data(), displs.data(), IDX_T_MPI, 0, comm));
+    std::vector<PetscMPIInt> displs;
+    PetscCall(GatherOnRoot(comm, *list, gathered, displs));
     if (rank == 0)
       for (PetscMPIInt r = 0; r < size; ++r)
         (*all)[r].assign(gathered.begin() + displs[r], gathered.begin() + displs[r + 1]);

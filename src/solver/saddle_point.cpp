@@ -1,6 +1,7 @@
 // Pattern, constraint rows, KSP set-up and solve of the saddle-point system.
 #include "signorini/solver/saddle_point.hpp"
 
+#include "signorini/core/errors.hpp"
 #include "signorini/core/options.hpp"
 #include "signorini/core/progress.hpp"
 
@@ -732,97 +733,127 @@ namespace {
   PetscFunctionReturn(0);
 }
 
+/// ContactLcp's problem on rank 0: its data, H (h, then V of H = V diag(eta) V^T), c, the gaps g and the keys of the
+/// rows, r; its work, V^T c (proj), the rigid motions (rigid: the k with 1 - r eta_k <= LCP_RIGID_TOL), the rows in
+/// key order (perm); and its results.
+struct ReducedContact {
+  std::vector<double> h, condensed;
+  std::vector<PetscScalar> g, order;
+  double aug = 0;
+  std::vector<double> eta, proj;
+  std::vector<PetscInt> rigid, perm;
+  LcpStatus status = LcpStatus::SOLVED;
+  int pivots = 0;
+  double unbalanced = 0;
+  std::vector<PetscScalar> z; ///< 1 on the rows of the solution's active set, 0 elsewhere
+};
+
+/// H = V diag(eta) V^T (eta clamped at 0), V^T c, the rigid motions and the key order of ReducedContact.
+[[nodiscard]] PetscErrorCode Decompose(ReducedContact &p) {
+  const PetscInt m = (PetscInt)p.g.size();
+  PetscFunctionBeginUser;
+  p.eta.assign(m, 0.0);
+  if (m > 0) {
+    PetscBLASInt n, lwork = -1, info;
+    double query;
+    PetscCall(PetscBLASIntCast(m, &n));
+    LAPACKsyev_("V", "L", &n, p.h.data(), &n, p.eta.data(), &query, &lwork, &info);
+    lwork = std::max<PetscBLASInt>(1, (PetscBLASInt)query);
+    std::vector<double> work(lwork);
+    LAPACKsyev_("V", "L", &n, p.h.data(), &n, p.eta.data(), work.data(), &lwork, &info);
+    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB,
+               "LAPACK syev of the multipliers' reduced operator failed: info %d", (int)info);
+  }
+  p.proj.assign(m, 0.0);
+  p.rigid.clear();
+  for (PetscInt k = 0; k < m; ++k) {
+    p.eta[k] = std::max(p.eta[k], 0.0);
+    for (PetscInt i = 0; i < m; ++i) p.proj[k] -= p.h[i + k * m] * p.condensed[i]; // V^T c, c = -A21 A11^-1 b_u
+    if (1 - p.aug * p.eta[k] <= SaddlePointSystem::LCP_RIGID_TOL) p.rigid.push_back(k);
+  }
+  p.perm.resize(m);
+  for (PetscInt i = 0; i < m; ++i) p.perm[i] = i;
+  std::sort(p.perm.begin(), p.perm.end(), [&](PetscInt a, PetscInt b) { return p.order[a] < p.order[b]; });
+  PetscFunctionReturn(0);
+}
+
+/// The verdict on a solution z (in key order) that leaves rigid motions: p.unbalanced, or p.status INACCURATE when
+/// the second solve on its set fails.
+[[nodiscard]] PetscErrorCode RigidVerdict(ReducedContact &p, const std::vector<double> &z) {
+  const PetscInt m = (PetscInt)p.perm.size();
+  const double eps = SaddlePointSystem::LCP_REGULARISATION;
+  PetscFunctionBeginUser;
+  // The verdict, independent of the spring's stiffness eps. A rigid motion rho that only contact holds is a null
+  // vector v = B rho of P (H v = v / r): along it, V^T lambda is the work of the contact forces and r V^T c that of
+  // the load, their sum f(eps) the force that the spring carries instead of the obstacles, r eps times the rigid
+  // travel t(eps). On the solution's active set, f(eps) = f0 + eps f1 + O(eps^2): a body that the pairs hold travels
+  // a finite distance as eps -> 0 (f0 = 0, and f = r eps t grows with E / load and with refinement, 0.004 of the
+  // load for a block held between a floor and a wall), a free one as far as the spring lets it (f0, the part of the
+  // load that no contact forces on these pairs balance, 0.009 to 1 in the tests). f0 by Richardson extrapolation from
+  // a second solve on the same set with 100 eps; its size, and the load's, are norms of projections onto the rigid
+  // eigenspace, which do not depend on the basis LAPACK picks in it.
+  const double eps2 = 100 * eps;
+  std::vector<double> M2, q2, z2;
+  PetscCall(RegularisedLcp(p.h, p.eta, p.proj, p.g, p.perm, p.aug, eps2, M2, q2));
+  bool ok;
+  PetscCall(SolveOnSet(M2, q2, z, z2, ok));
+  if (!ok) {
+    p.status = LcpStatus::INACCURATE;
+    PetscFunctionReturn(0);
+  }
+  double f0 = 0, work = 0, load = 0;
+  for (PetscInt k : p.rigid) {
+    double w1 = 0, w2 = 0;
+    for (PetscInt a = 0; a < m; ++a) w1 += p.h[p.perm[a] + k * m] * z[a], w2 += p.h[p.perm[a] + k * m] * z2[a];
+    const double f1 = w1 + p.aug * p.proj[k], f2 = w2 + p.aug * p.proj[k];
+    const double fk = (eps2 * f1 - eps * f2) / (eps2 - eps);
+    f0 += fk * fk, work += w1 * w1, load += p.aug * p.proj[k] * p.aug * p.proj[k];
+  }
+  const double scale = std::sqrt(std::max(work, load));
+  p.unbalanced = scale > 0 ? std::sqrt(f0) / scale : 0.0;
+  PetscFunctionReturn(0);
+}
+
+/// Solves ContactLcp's problem p: Lemke's method on the regularised problem in key order, then the verdict on the
+/// rigid motions. Rank 0 (RunOnRoot).
+[[nodiscard]] PetscErrorCode SolveReducedContact(ReducedContact &p) {
+  const PetscInt m = (PetscInt)p.g.size();
+  std::vector<double> M, q, z, w;
+  PetscFunctionBeginUser;
+  PetscCall(Decompose(p));
+  PetscCall(RegularisedLcp(p.h, p.eta, p.proj, p.g, p.perm, p.aug, SaddlePointSystem::LCP_REGULARISATION, M, q));
+  p.status = SolveLcp((int)m, M, q, z, w, &p.pivots);
+  p.z.assign(m, 0.0);
+  for (PetscInt a = 0; a < m; ++a) p.z[p.perm[a]] = z[a] > 0 ? 1.0 : 0.0;
+  p.unbalanced = 0;
+  if (p.status == LcpStatus::SOLVED && !p.rigid.empty()) PetscCall(RigidVerdict(p, z));
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode SaddlePointSystem::ContactLcp(const std::vector<double> &gap, const std::vector<double> &key,
                                              std::vector<char> &active, LcpStatus &status, int &pivots,
                                              double &unbalanced) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
-  PetscMPIInt rank;
   PetscFunctionBeginUser;
   PetscCheck(reuse_ && factored_ && constant_k_ && mumps_schur_.Condensed(), comm, PETSC_ERR_ORDER,
              "the contact problem in the multipliers needs the kept factorisation of a constant K and a Condense");
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  std::vector<PetscScalar> g, order, z_root;
-  unbalanced = 0;
-  PetscCall(ToRoot(gap, g));
-  PetscCall(ToRoot(key, order));
-  int code[3] = {0, 0, 0}; // status, pivots, LAPACK's info (rank 0)
-  std::vector<double> h, condensed;
-  if (rank == 0) mumps_schur_.ReducedOperator(h, condensed);
-  const PetscInt m = (PetscInt)g.size();
-  // H = V diag(eta) V^T.
-  std::vector<double> eta(m);
-  if (rank == 0 && m > 0) {
-    PetscBLASInt n, lwork = -1, info;
-    double query;
-    PetscCall(PetscBLASIntCast(m, &n));
-    LAPACKsyev_("V", "L", &n, h.data(), &n, eta.data(), &query, &lwork, &info);
-    lwork = std::max<PetscBLASInt>(1, (PetscBLASInt)query);
-    std::vector<double> work(lwork);
-    LAPACKsyev_("V", "L", &n, h.data(), &n, eta.data(), work.data(), &lwork, &info);
-    code[2] = (int)info;
-  }
-  PetscCallMPI(MPI_Bcast(&code[2], 1, MPI_INT, 0, comm));
-  PetscCheck(code[2] == 0, comm, PETSC_ERR_LIB, "LAPACK syev of the multipliers' reduced operator failed: info %d",
-             code[2]);
-  if (rank == 0) {
-    std::vector<double> proj(m, 0.0);
-    std::vector<PetscInt> rigid;
-    for (PetscInt k = 0; k < m; ++k) {
-      eta[k] = std::max(eta[k], 0.0);
-      for (PetscInt i = 0; i < m; ++i) proj[k] -= h[i + k * m] * condensed[i]; // V^T c, c = -A21 A11^-1 b_u
-      if (1 - aug_ * eta[k] <= LCP_RIGID_TOL) rigid.push_back(k);
-    }
-    // The rows in key order.
-    std::vector<PetscInt> perm(m);
-    for (PetscInt i = 0; i < m; ++i) perm[i] = i;
-    std::sort(perm.begin(), perm.end(), [&](PetscInt a, PetscInt b) { return order[a] < order[b]; });
-    std::vector<double> M, q, z, w;
-    PetscCall(RegularisedLcp(h, eta, proj, g, perm, aug_, LCP_REGULARISATION, M, q));
-    status = SolveLcp((int)m, M, q, z, w, &pivots);
-    z_root.assign(m, 0.0);
-    for (PetscInt a = 0; a < m; ++a) z_root[perm[a]] = z[a] > 0 ? 1.0 : 0.0;
-    if (status == LcpStatus::SOLVED && !rigid.empty()) {
-      // The verdict, independent of the spring's stiffness eps. A rigid motion rho that only contact holds is a null
-      // vector v = B rho of P (H v = v / r): along it, V^T lambda is the work of the contact forces and r V^T c that
-      // of the load, their sum f(eps) the force that the spring carries instead of the obstacles, r eps times the
-      // rigid travel t(eps). On the solution's active set, f(eps) = f0 + eps f1 + O(eps^2): a body that the pairs
-      // hold travels a finite distance as eps -> 0 (f0 = 0, and f = r eps t grows with E / load and with refinement,
-      // 0.004 of the load for a block held between a floor and a wall), a free one as far as the spring lets it
-      // (f0, the part of the load that no contact forces on these pairs balance, 0.009 to 1 in the tests). f0 by
-      // Richardson extrapolation from a second solve on the same set with 100 eps; its size, and the load's, are
-      // norms of projections onto the rigid eigenspace, which do not depend on the basis LAPACK picks in it.
-      const double eps2 = 100 * LCP_REGULARISATION;
-      std::vector<double> M2, q2, z2;
-      PetscCall(RegularisedLcp(h, eta, proj, g, perm, aug_, eps2, M2, q2));
-      bool ok;
-      PetscCall(SolveOnSet(M2, q2, z, z2, ok));
-      if (ok) {
-        double f0 = 0, work = 0, load = 0;
-        for (PetscInt k : rigid) {
-          double w1 = 0, w2 = 0;
-          for (PetscInt a = 0; a < m; ++a) w1 += h[perm[a] + k * m] * z[a], w2 += h[perm[a] + k * m] * z2[a];
-          const double f1 = w1 + aug_ * proj[k], f2 = w2 + aug_ * proj[k];
-          const double fk = (eps2 * f1 - LCP_REGULARISATION * f2) / (eps2 - LCP_REGULARISATION);
-          f0 += fk * fk, work += w1 * w1, load += aug_ * proj[k] * aug_ * proj[k];
-        }
-        const double scale = std::sqrt(std::max(work, load));
-        unbalanced = scale > 0 ? std::sqrt(f0) / scale : 0.0;
-      } else {
-        status = LcpStatus::INACCURATE;
-      }
-    }
-    code[0] = (int)status;
-    code[1] = pivots;
-  }
+  // The problem on rank 0 (the other ranks' parts are empty).
+  ReducedContact lcp;
+  lcp.aug = aug_;
+  PetscCall(ToRoot(gap, lcp.g));
+  PetscCall(ToRoot(key, lcp.order));
+  mumps_schur_.ReducedOperator(lcp.h, lcp.condensed);
+  PetscCall(RunOnRoot(comm, [&] { return SolveReducedContact(lcp); }));
+  int code[2] = {(int)lcp.status, lcp.pivots};
   PetscCallMPI(MPI_Bcast(code, 2, MPI_INT, 0, comm));
-  PetscCallMPI(MPI_Bcast(&unbalanced, 1, MPI_DOUBLE, 0, comm));
+  PetscCallMPI(MPI_Bcast(&lcp.unbalanced, 1, MPI_DOUBLE, 0, comm));
   status = (LcpStatus)code[0];
   pivots = code[1];
-  if (rank != 0) z_root.assign(g.size(), 0.0);
+  unbalanced = lcp.unbalanced;
   std::vector<double> owned;
-  PetscCall(FromRoot(z_root, owned));
+  PetscCall(FromRoot(lcp.z, owned));
   active.assign(owned.size(), 0);
   for (std::size_t p = 0; p < owned.size(); ++p) active[p] = owned[p] > 0.5;
   PetscFunctionReturn(0);

@@ -3,12 +3,14 @@
 
 #include <petscsys.h>
 
+#include <functional>
 #include <string>
 
 namespace signorini {
 
 /// Installs the error handler that prints "signorini: error: <message>" once (rank 0 for collective errors) and
-/// aborts the MPI job for errors raised on a single rank, so that no rank waits forever. Call once on all ranks,
+/// aborts the MPI job for errors raised on a single rank, so that no rank waits forever (work that rank 0 does alone
+/// runs in RunOnRoot, which raises its errors on every rank instead). Call once on all ranks,
 /// before PetscInitialize so that errors in reading -options_file are reported the same way.
 [[nodiscard]] PetscErrorCode InstallErrorHandler();
 /// The options files of the run ("a.yml, b.txt", OptionsFileProblem), named by the handler's message when
@@ -28,6 +30,12 @@ void RemoveFailedOutput();
 
 /// Broadcasts a status/message pair from rank 0 and raises the error on all ranks when it is not empty.
 [[nodiscard]] PetscErrorCode RaiseFromRoot(MPI_Comm comm, const std::string &message_on_root);
+
+/// Runs work on rank 0 of comm alone (the other ranks do not call it) and raises the first PETSc error it raises,
+/// with its code, message and place, on every rank of comm: the error handler reports it once and every rank unwinds
+/// (an error of rank 0 alone would abort the job). Neither prints the error on rank 0 nor aborts while work runs; a C++
+/// exception from work is an error too. Call on all ranks of comm together; work must not communicate on comm.
+[[nodiscard]] PetscErrorCode RunOnRoot(MPI_Comm comm, const std::function<PetscErrorCode()> &work);
 
 /// Gives every rank of comm the text of rank root. Collective.
 [[nodiscard]] PetscErrorCode Broadcast(MPI_Comm comm, PetscMPIInt root, std::string &text);

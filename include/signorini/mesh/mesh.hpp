@@ -98,7 +98,14 @@ private:
   /// elements of each group of dimension dim-1, each matched to a face of a cell. error: the first group element
   /// that is no cell face, or the first pair of folded cells. Rank 0.
   [[nodiscard]] PetscErrorCode FaceTable(std::vector<std::pair<int, PetscInt>> &tags, std::string &error) const;
+  /// The faces each cell carries (cell_face_offsets_, cell_face_codes_ from FaceTable) and the points of each vertex
+  /// label (label_points: a group's, then the boundary's) of the serial mesh; raises FaceTable's error naming file.
+  /// Rank 0 (RunOnRoot).
+  [[nodiscard]] PetscErrorCode SerialFaces(const std::string &file, std::vector<std::vector<PetscInt>> &label_points);
   [[nodiscard]] PetscErrorCode Partition(DM dm, const std::string &partitioner);
+  /// METIS's partition of the serial mesh's dual graph into sizes.size() parts as PetscPartitionerShellSetPartition
+  /// takes it: sizes (zero on entry) the cells of each part, points the cells part by part. Rank 0 (RunOnRoot).
+  [[nodiscard]] PetscErrorCode MetisPartition(std::vector<PetscInt> &sizes, std::vector<PetscInt> &points) const;
   [[nodiscard]] PetscErrorCode Distribute(DMH &dm);
   [[nodiscard]] PetscErrorCode BuildLocalArrays();
   /// vertex_sf_ from the point SF of dm_. Collective.

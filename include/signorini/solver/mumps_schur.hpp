@@ -128,9 +128,16 @@ private:
   /// MUMPS's numerical factorisation of val_ and the Schur complement S0 (s0_) for the multiplier diagonal d0.
   /// Collective.
   [[nodiscard]] PetscErrorCode FactorNumeric(const std::vector<PetscScalar> &d0);
+  /// The dense factors of S = S0 + diag(d - d0) on rank 0 (FactorSchurOnRoot), unless they are those of d already.
+  /// Collective.
   [[nodiscard]] PetscErrorCode FactorSchur(const std::vector<PetscScalar> &d);
-  /// y = S^-1 y with the factored Schur complement (rank 0).
+  /// See FactorSchur; raises PETSC_ERR_NOT_CONVERGED for a singular S. Rank 0 (RunOnRoot).
+  [[nodiscard]] PetscErrorCode FactorSchurOnRoot(const std::vector<PetscScalar> &d);
+  /// y = S^-1 y with the factored Schur complement (nothing for no multipliers). Rank 0 (RunOnRoot).
   [[nodiscard]] PetscErrorCode DenseSolve(std::vector<PetscScalar> &y) const;
+  /// See SolveReduced: y, and the residual of the reduced system. Rank 0 (RunOnRoot).
+  [[nodiscard]] PetscErrorCode SolveReducedOnRoot(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y,
+                                                  double &residual);
   /// Nested dissection (METIS's, on all ranks or rank 0, or CoordinateNestedDissection of coords on rank 0, see
   /// Factor) of the graph of the nodes coupled by the entries in irn_/jcn_ (n rows; this rank's start at rstart, its
   /// first owned_u rows displacements, node_size per node), into perm_in_ on rank 0 (MUMPS's PERM_IN: each node's

@@ -16,6 +16,11 @@ struct Graph {
   idx_t Size() const { return (idx_t)xadj.size() - 1; }
 };
 
+/// The lists of every rank on rank 0 of comm, in rank order: rank r's is all[displs[r] .. displs[r + 1]) (all and
+/// displs are empty on the other ranks). Raises PETSC_ERR_SUP on every rank when they hold more entries than an int
+/// counts. Collective.
+[[nodiscard]] PetscErrorCode GatherOnRoot(MPI_Comm comm, const std::vector<idx_t> &list, std::vector<idx_t> &all,
+                                          std::vector<PetscMPIInt> &displs);
 /// The graph of n vertices with the edges (edges[2 k], edges[2 k + 1]), in either or both directions, repeated or not.
 Graph BuildGraph(idx_t n, const std::vector<idx_t> &edges);
 
