@@ -1,0 +1,168 @@
+// The saddle-point system's kept factorisation: MUMPS with the Schur complement on the multipliers (factor, refactor,
+// solves through the Schur complement, condensed solves in the multiplier space and their expansion).
+#include "signorini/solver/saddle_point.hpp"
+
+#include "signorini/core/progress.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace signorini {
+
+PetscErrorCode SaddlePointSystem::Factor() {
+  PetscFunctionBeginUser;
+  if (factored_) PetscFunctionReturn(0);
+  std::vector<PetscScalar> d;
+  PetscCall(MultiplierDiagonal(d));
+  ProgressBegin("analysis and factorisation (MUMPS with the Schur complement on the candidates)");
+  PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_, dofs_->OwnedU(), dofs_->Dim(), coords_, ordering_,
+                                mumps_controls_, !constant_k_, !reuse_forced_));
+  ProgressEnd();
+  if (mumps_schur_.Declined()) {
+    // The dense Schur complement would cost more than it saves (many candidates on a body that factors cheaply, such
+    // as a thin plate): the KSP's MUMPS factorises the matrix, which stays in the augmented form, at every change.
+    // PETSc's interface takes no given pivot order, so an ordering the user asked for is said not to apply.
+    reuse_ = false;
+    PetscCheck(mumps_controls_.Icntl(7, 7) != 1, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_USER_INPUT,
+               "-contact_mat_mumps_icntl_7 1 (the given nested dissection) does not apply: the kept factorisation "
+               "declined its dense Schur complement on the %" PetscInt_FMT " candidates, and PETSc's MUMPS, which "
+               "refactorises instead, takes no given ordering; expected -contact_mat_mumps_icntl_7 0, 2, 4, 6 or 7",
+               dofs_->GlobalLambda());
+    if (!ordering_given_.empty())
+      PetscCall(PetscPrintf(PetscObjectComm((PetscObject)A_.get()),
+                            "Note: %s does not apply: the kept factorisation declined its dense Schur complement on "
+                            "the %" PetscInt_FMT " candidates (it would cost more than a refactorisation per "
+                            "active-set change), and PETSc's MUMPS, which refactorises instead, orders by its own "
+                            "choice (-contact_mat_mumps_icntl_7); -contact_reuse_factorization keeps the Schur "
+                            "complement and the ordering\n", ordering_given_.c_str(), dofs_->GlobalLambda()));
+    PetscFunctionReturn(0);
+  }
+  null_pivots_ = mumps_schur_.NullPivots();
+  factored_ = null_pivots_ == 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::Refactor() {
+  std::vector<PetscScalar> d;
+  PetscFunctionBeginUser;
+  PetscCall(MultiplierDiagonal(d));
+  ProgressBegin("numerical refactorisation (MUMPS with the Schur complement on the candidates)");
+  PetscCall(mumps_schur_.Refactor(A_, d));
+  ProgressEnd();
+  null_pivots_ = mumps_schur_.NullPivots();
+  PetscFunctionReturn(0);
+}
+
+std::string SaddlePointSystem::SingularReport(const std::string &cause) const {
+  char found[128];
+  if (null_pivots_ == 0 && singular_residual_ > 0)
+    std::snprintf(found, sizeof(found), "MUMPS found no null pivot, but its solve left a relative residual of %g",
+                  singular_residual_);
+  else std::snprintf(found, sizeof(found), "MUMPS found %d null pivot(s)", (int)null_pivots_);
+  std::string report = std::string("the saddle-point system is singular (") + found + "): ";
+  const std::string controls = mumps_controls_.PivotControls();
+  if (!controls.empty())
+    report += "the MUMPS controls " + controls + " may count regular pivots as null (expected them unset), or ";
+  return report + cause;
+}
+
+PetscErrorCode SaddlePointSystem::ApplyKeptFactor(PC pc, Vec b, Vec x) {
+  SaddlePointSystem *sys;
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &sys));
+  PetscCall(sys->mumps_schur_.Solve(sys->kept_d_, b, x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::SolveWithKeptFactor(const std::vector<PetscScalar> &d, double rtol,
+                                                      PetscInt &iterations, double &check_tol) {
+  PetscFunctionBeginUser;
+  iterations = 0;
+  check_tol = ACCEPTED_RESIDUAL;
+  if (reuse_max_it_ > 0 && !refactor_next_) {
+    KSPConvergedReason reason;
+    PetscReal default_rtol, abstol, dtol;
+    PetscInt max_it;
+    PetscCall(KSPGetTolerances(ksp_, &default_rtol, &abstol, &dtol, &max_it));
+    PetscCall(KSPSetTolerances(ksp_kept_, rtol > 0 ? rtol : default_rtol, abstol, PETSC_DEFAULT, reuse_max_it_));
+    kept_d_ = d;
+    PetscCall(KSPSolve(ksp_kept_, b_, x_));
+    PetscCall(KSPGetConvergedReason(ksp_kept_, &reason));
+    PetscCall(KSPGetIterationNumber(ksp_kept_, &iterations));
+    // The mean contraction per iteration tells how far the factored tangent has drifted from the current one: worse
+    // than KEPT_CONTRACTION, the next solve refactors.
+    const PetscReal *history;
+    PetscInt n;
+    PetscCall(KSPGetResidualHistory(ksp_kept_, &history, &n));
+    const double rate = n > 1 && history[0] > 0 ? std::pow(history[n - 1] / history[0], 1.0 / (n - 1)) : 0.0;
+    refactor_next_ = rate > KEPT_CONTRACTION;
+    PetscCall(PetscInfo(nullptr,
+                        "FGMRES with the kept factorisation: %" PetscInt_FMT " iteration(s), contraction %g per "
+                        "iteration%s\n", iterations, rate, refactor_next_ ? ": the next solve refactors" : ""));
+    if (reason > 0) {
+      check_tol = std::max(check_tol, 2.0 * rtol); // an inexact step (rtol > 0) is as inexact as asked
+      PetscFunctionReturn(0);
+    }
+    PetscCall(PetscInfo(nullptr, "FGMRES with the kept factorisation: %s after %" PetscInt_FMT
+                        " iterations; refactoring\n", KSPConvergedReasons[reason], iterations));
+  }
+  // The tangent has drifted too far from the factored one (or -contact_reuse_max_it 0): factor the current one.
+  PetscCall(Refactor());
+  if (null_pivots_ > 0) PetscFunctionReturn(0); // singular: the caller reports it (Solve)
+  PetscCall(mumps_schur_.Solve(d, b_, x_));
+  refactor_next_ = false;
+  ++iterations;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::Condense(bool &singular) {
+  PetscFunctionBeginUser;
+  PetscCheck(reuse_ && !released_, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
+             "a condensation needs the kept factorisation");
+  PetscCall(Factor());
+  singular = null_pivots_ > 0;
+  // Declined: the caller solves in full (ExactFactorization() is false now).
+  if (!reuse_ || singular) PetscFunctionReturn(0);
+  PetscCall(mumps_schur_.Condense(b_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::SolveCondensed(const std::vector<double> &bm, std::vector<double> &lambda,
+                                                 std::vector<double> &shift, double &residual) {
+  const PetscInt nl = dofs_->OwnedLambda();
+  PetscFunctionBeginUser;
+  PetscCheck(reuse_ && factored_ && stab_ == 0, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
+             "a condensed solve needs the kept factorisation and no stabilisation");
+  std::vector<PetscScalar> d, y;
+  std::vector<double> x;
+  PetscCall(MultiplierDiagonal(d));
+  // b_m to rank 0, the dense solve there, x_m back.
+  PetscCall(ToRoot(bm, y));
+  PetscCall(mumps_schur_.SolveReduced(d, y, residual));
+  PetscCall(FromRoot(y, x));
+  // Row p: -B_p du + D_p x_p = b_p, so B_p du = D_p x_p - b_p; an active row's multiplier is x_p + r b_p.
+  lambda.assign(nl, 0.0);
+  shift.assign(nl, 0.0);
+  for (PetscInt p = 0; p < nl; ++p) {
+    const double dp = active_[p] ? 0.0 : InactiveDiagonal(0.0);
+    shift[p] = dp * x[p] - bm[p];
+    lambda[p] = active_[p] ? x[p] + aug_ * bm[p] : 0.0;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::Expand(double &residual) {
+  PetscFunctionBeginUser;
+  PetscCheck(reuse_ && factored_ && stab_ == 0, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
+             "an expansion needs the kept factorisation and no stabilisation");
+  PetscCall(mumps_schur_.Expand(x_));
+  // A changing K (svk): the factored matrix is an earlier tangent, so the residual against the current matrix
+  // measures the modified Newton step, not the solve; the factorisation's null-pivot check and the Newton iteration
+  // judge it (only a non-finite result is an error here).
+  PetscCall(CheckAndConvert(KSP_CONVERGED_ITS, 1, residual, constant_k_ ? ACCEPTED_RESIDUAL : INFINITY));
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini
