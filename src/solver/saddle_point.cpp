@@ -228,12 +228,70 @@ PetscErrorCode SaddlePointSystem::CreateKsp(MPI_Comm comm, bool &fieldsplit) {
   PetscFunctionReturn(0);
 }
 
+namespace {
+
+/// "-contact_nested_dissection <graph>" or "-contact_nested_dissection_parallel <true|false>" as opts has it, for
+/// messages.
+std::string OrderingOptionText(const SaddlePointOptions &opts, bool parallel) {
+  return parallel ? std::string("-contact_nested_dissection_parallel ") + (opts.ordering.parallel ? "true" : "false")
+                  : std::string("-contact_nested_dissection ") + GRAPH_ORDERING_NAMES[(int)opts.ordering.graph];
+}
+
+} // namespace
+
 PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bool constant_k) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   PC pc;
   PetscFunctionBeginUser;
   PetscCall(KSPSetOperators(ksp_, A_, A_));
   PetscCall(KSPGetPC(ksp_, &pc));
+  PetscCall(SetNearNullSpace(comm, coords));
+  PetscBool preonly;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ksp_.get(), KSPPREONLY, &preonly));
+  preonly_ = preonly;
+  if (!preonly_) PetscCall(KSPConvergedDefaultSetUIRNorm(ksp_)); // relative to the start's residual (InitialGuess)
+  PetscBool fieldsplit;
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
+  if (fieldsplit) {
+    PetscCall(PCFieldSplitSetIS(pc, "u", dofs_->IsU()));
+    PetscCall(PCFieldSplitSetIS(pc, "lambda", dofs_->IsLambda()));
+  }
+  PetscBool factor;
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, ""));
+  if (factor) PetscCall(SetupMumpsFactor(comm, pc));
+  SaddlePointOptions opts;
+  PetscCall(ReadSaddlePointOptions(comm, opts));
+  PetscCall(CheckReuseOptions(comm, opts, constant_k));
+  const bool possible = mumps_factor_ != nullptr;
+  reuse_ = possible && opts.reuse_factorization && dofs_->GlobalLambda() > 0;
+  // PETSc's MUMPS interface takes no given ordering (it would stop at the factorisation).
+  PetscCheck(!(possible && !reuse_ && mumps_controls_.Icntl(7, 7) == 1), comm, PETSC_ERR_USER_INPUT,
+             "-contact_mat_mumps_icntl_7 1 (the given nested dissection) applies to the kept factorisation only "
+             "(-contact_reuse_factorization with contact candidates); expected 0, 2, 4, 6 or 7, one of MUMPS's own "
+             "orderings");
+  ordering_given_.clear();
+  if (opts.ordering_set) ordering_given_ = OrderingOptionText(opts, false);
+  if (opts.parallel_set) ordering_given_ += (ordering_given_.empty() ? "" : " and ") + OrderingOptionText(opts, true);
+  reuse_forced_ = reuse_ && (opts.reuse_set || opts.reuse_max_it_set);
+  constant_k_ = constant_k;
+  reuse_max_it_ = opts.reuse_max_it;
+  // An iterative solver gets the augmented form too: its displacement block K + r B_C^T B_C is regular when the
+  // candidates hold the body, so that a Schur fieldsplit with AMG on that block works for a body held by contact.
+  augmented_ = reuse_ || (!factor && dofs_->GlobalLambda() > 0);
+  // Its inactive rows get a smaller weight (INACTIVE_WEIGHT); the kept factorisation needs a constant block.
+  if (augmented_ && !reuse_) aug_inactive_ = INACTIVE_WEIGHT * aug_;
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu_));
+  if (reuse_) {
+    coords_ = coords;
+    ordering_ = opts.ordering;
+    PetscCall(GatherSchurRows(comm));
+  }
+  if (reuse_ && !constant_k_ && reuse_max_it_ > 0) PetscCall(CreateKeptKsp(comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::SetNearNullSpace(MPI_Comm comm, const std::vector<double> &coords) {
+  PetscFunctionBeginUser;
   // Rigid-body modes of the displacement block, offered to fieldsplit's "u" solver as its near-null space.
   VecH xyz;
   const int dim = dofs_->Dim();
@@ -246,46 +304,41 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   PetscCall(MatNullSpaceCreateRigidBody(xyz, near_null_.out()));
   PetscCall(PetscObjectCompose((PetscObject)dofs_->IsU(), "nearnullspace", (PetscObject)near_null_.get()));
   if (dofs_->GlobalLambda() == 0) PetscCall(MatSetNearNullSpace(A_, near_null_));
-  PetscBool preonly;
-  PetscCall(PetscObjectTypeCompare((PetscObject)ksp_.get(), KSPPREONLY, &preonly));
-  preonly_ = preonly;
-  if (!preonly_) PetscCall(KSPConvergedDefaultSetUIRNorm(ksp_)); // relative to the start's residual (InitialGuess)
-  PetscBool fieldsplit;
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
-  if (fieldsplit) {
-    PetscCall(PCFieldSplitSetIS(pc, "u", dofs_->IsU()));
-    PetscCall(PCFieldSplitSetIS(pc, "lambda", dofs_->IsLambda()));
-  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::SetupMumpsFactor(MPI_Comm comm, PC pc) {
+  PetscFunctionBeginUser;
   // A direct MUMPS factorisation detects null pivots (ICNTL(24)): a body that nothing holds yet is then an error
   // instead of a solution with an arbitrary rigid motion.
-  PetscBool factor;
-  PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, ""));
-  if (factor) {
-    MatSolverType type;
-    PetscCall(PCFactorGetMatSolverType(pc, &type));
-    PetscBool mumps = PETSC_FALSE;
-    if (type) PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &mumps));
-    if (mumps) {
-      // The factor's options (-contact_mat_mumps_*) have the PC's prefix: PCSetUp would give it, but the factor is
-      // created here, and the options were read (CreateKsp) before the matrix existed.
-      const char *prefix;
-      PetscCall(PCGetOptionsPrefix(pc, &prefix));
-      PetscCall(MatSetOptionsPrefixFactor(A_, prefix));
-      PetscCall(PCFactorSetUpMatSolverType(pc));
-      PetscCall(PCFactorGetMatrix(pc, &mumps_factor_));
-      PetscCall(MatMumpsSetIcntl(mumps_factor_, 24, 1));
-      // A pivot below 1e-12 ||A|| is null: MUMPS's default (1e-5 eps ||A||) misses the rigid modes of 2D
-      // elasticity; -contact_mat_mumps_cntl_3 overrides.
-      PetscCall(MatMumpsSetCntl(mumps_factor_, 3, 1e-12));
-      // MUMPS_WORKSPACE_INCREASE % over the analysis' workspace estimate (MUMPS's default 20 %): LDL^T pivots
-      // differently from run to run in parallel, and a 3D hexahedral mesh then stopped about every other 2-rank run
-      // with INFOG(1) = -9 (workspace too small); -contact_mat_mumps_icntl_14 overrides.
-      PetscCall(MatMumpsSetIcntl(mumps_factor_, 14, MUMPS_WORKSPACE_INCREASE));
-      PetscCall(ReadMumpsControls(comm, mumps_controls_));
-    }
+  MatSolverType type;
+  PetscCall(PCFactorGetMatSolverType(pc, &type));
+  PetscBool mumps = PETSC_FALSE;
+  if (type) PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &mumps));
+  if (mumps) {
+    // The factor's options (-contact_mat_mumps_*) have the PC's prefix: PCSetUp would give it, but the factor is
+    // created here, and the options were read (CreateKsp) before the matrix existed.
+    const char *prefix;
+    PetscCall(PCGetOptionsPrefix(pc, &prefix));
+    PetscCall(MatSetOptionsPrefixFactor(A_, prefix));
+    PetscCall(PCFactorSetUpMatSolverType(pc));
+    PetscCall(PCFactorGetMatrix(pc, &mumps_factor_));
+    PetscCall(MatMumpsSetIcntl(mumps_factor_, 24, 1));
+    // A pivot below 1e-12 ||A|| is null: MUMPS's default (1e-5 eps ||A||) misses the rigid modes of 2D
+    // elasticity; -contact_mat_mumps_cntl_3 overrides.
+    PetscCall(MatMumpsSetCntl(mumps_factor_, 3, 1e-12));
+    // MUMPS_WORKSPACE_INCREASE % over the analysis' workspace estimate (MUMPS's default 20 %): LDL^T pivots
+    // differently from run to run in parallel, and a 3D hexahedral mesh then stopped about every other 2-rank run
+    // with INFOG(1) = -9 (workspace too small); -contact_mat_mumps_icntl_14 overrides.
+    PetscCall(MatMumpsSetIcntl(mumps_factor_, 14, MUMPS_WORKSPACE_INCREASE));
+    PetscCall(ReadMumpsControls(comm, mumps_controls_));
   }
-  SaddlePointOptions opts;
-  PetscCall(ReadSaddlePointOptions(comm, opts));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::CheckReuseOptions(MPI_Comm comm, const SaddlePointOptions &opts,
+                                                    bool constant_k) const {
+  PetscFunctionBeginUser;
   const bool possible = mumps_factor_ != nullptr;
   PetscCheck(!(opts.reuse_set && opts.reuse_factorization && !possible), comm, PETSC_ERR_USER_INPUT,
              "-contact_reuse_factorization needs a MUMPS LU or Cholesky solver (-contact_pc_type lu|cholesky "
@@ -297,10 +350,7 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   // The pivot order is computed only for the kept factorisation (MumpsSchur), and only when MUMPS is told to take it:
   // otherwise PETSc's MUMPS interface orders by ICNTL(7) alone and these options would be ignored.
   const PetscInt icntl7 = mumps_controls_.Icntl(7, 1);
-  const std::string ordering = std::string("-contact_nested_dissection ") +
-                               GRAPH_ORDERING_NAMES[(int)opts.ordering.graph],
-                    parallel = std::string("-contact_nested_dissection_parallel ") +
-                               (opts.ordering.parallel ? "true" : "false");
+  const std::string ordering = OrderingOptionText(opts, false), parallel = OrderingOptionText(opts, true);
   for (const auto &[set, given] : {std::make_pair(opts.ordering_set, &ordering),
                                    std::make_pair(opts.parallel_set, &parallel)}) {
     PetscCheck(!set || (possible && opts.reuse_factorization), comm, PETSC_ERR_USER_INPUT,
@@ -314,64 +364,50 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   PetscCheck(!(opts.parallel_set && opts.ordering_set && opts.ordering.graph == GraphOrdering::COORDINATES), comm,
              PETSC_ERR_USER_INPUT, "-contact_nested_dissection_parallel applies to METIS's ordering only, not to "
              "-contact_nested_dissection coordinates");
-  reuse_ = possible && opts.reuse_factorization && dofs_->GlobalLambda() > 0;
-  // PETSc's MUMPS interface takes no given ordering (it would stop at the factorisation).
-  PetscCheck(!(possible && !reuse_ && mumps_controls_.Icntl(7, 7) == 1), comm, PETSC_ERR_USER_INPUT,
-             "-contact_mat_mumps_icntl_7 1 (the given nested dissection) applies to the kept factorisation only "
-             "(-contact_reuse_factorization with contact candidates); expected 0, 2, 4, 6 or 7, one of MUMPS's own "
-             "orderings");
-  ordering_given_.clear();
-  if (opts.ordering_set) ordering_given_ = ordering;
-  if (opts.parallel_set) ordering_given_ += (ordering_given_.empty() ? "" : " and ") + parallel;
-  reuse_forced_ = reuse_ && (opts.reuse_set || opts.reuse_max_it_set);
-  constant_k_ = constant_k;
-  reuse_max_it_ = opts.reuse_max_it;
-  // An iterative solver gets the augmented form too: its displacement block K + r B_C^T B_C is regular when the
-  // candidates hold the body, so that a Schur fieldsplit with AMG on that block works for a body held by contact.
-  augmented_ = reuse_ || (!factor && dofs_->GlobalLambda() > 0);
-  // Its inactive rows get a smaller weight (INACTIVE_WEIGHT); the kept factorisation needs a constant block.
-  if (augmented_ && !reuse_) aug_inactive_ = INACTIVE_WEIGHT * aug_;
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu_));
-  if (reuse_) {
-    // The Schur complement on every multiplier row, centralised on rank 0 (what PETSc's MUMPS interface supports in
-    // parallel): rank 0 lists all of them, in global order.
-    PetscMPIInt size, rank;
-    PetscCallMPI(MPI_Comm_size(comm, &size));
-    PetscCallMPI(MPI_Comm_rank(comm, &rank));
-    std::vector<PetscInt> mine(dofs_->OwnedLambda()), all;
-    for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) mine[p] = dofs_->LambdaRow(p);
-    PetscMPIInt n = (PetscMPIInt)mine.size();
-    std::vector<PetscMPIInt> counts(size), displs(size, 0);
-    PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
-    if (rank == 0) {
-      for (PetscMPIInt r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
-      all.resize(dofs_->GlobalLambda());
-    }
-    PetscCallMPI(MPI_Gatherv(mine.data(), n, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT, 0, comm));
-    schur_rows_ = all;
-    coords_ = coords;
-    ordering_ = opts.ordering;
-    PetscCall(VecCreateMPI(comm, dofs_->OwnedLambda(), PETSC_DECIDE, diag_lambda_.out()));
-    PetscCall(VecScatterCreateToZero(diag_lambda_, &to_root_, diag_root_.out()));
-    active_.assign(dofs_->OwnedLambda(), 0);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::GatherSchurRows(MPI_Comm comm) {
+  PetscFunctionBeginUser;
+  // The Schur complement on every multiplier row, centralised on rank 0 (what PETSc's MUMPS interface supports in
+  // parallel): rank 0 lists all of them, in global order.
+  PetscMPIInt size, rank;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  std::vector<PetscInt> mine(dofs_->OwnedLambda()), all;
+  for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) mine[p] = dofs_->LambdaRow(p);
+  PetscMPIInt n = (PetscMPIInt)mine.size();
+  std::vector<PetscMPIInt> counts(size), displs(size, 0);
+  PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
+  if (rank == 0) {
+    for (PetscMPIInt r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+    all.resize(dofs_->GlobalLambda());
   }
-  if (reuse_ && !constant_k_ && reuse_max_it_ > 0) {
-    // FGMRES on the current matrix, right-preconditioned by the kept factorisation: the residual it tests is the true
-    // one (tolerances: SolveWithKeptFactor).
-    PC shell;
-    PetscCall(KSPCreate(comm, ksp_kept_.out()));
-    PetscCall(KSPSetType(ksp_kept_, KSPFGMRES)); // keeps the preconditioned directions: no apply to form the solution
-    PetscCall(KSPGMRESSetRestart(ksp_kept_, reuse_max_it_));
-    PetscCall(KSPSetPCSide(ksp_kept_, PC_RIGHT));
-    PetscCall(KSPSetResidualHistory(ksp_kept_, nullptr, reuse_max_it_ + 1, PETSC_TRUE));
-    PetscCall(KSPSetNormType(ksp_kept_, KSP_NORM_UNPRECONDITIONED));
-    PetscCall(KSPSetOperators(ksp_kept_, A_, A_));
-    PetscCall(KSPGetPC(ksp_kept_, &shell));
-    PetscCall(PCSetType(shell, PCSHELL));
-    PetscCall(PCShellSetContext(shell, this));
-    PetscCall(PCShellSetApply(shell, ApplyKeptFactor));
-    PetscCall(PCShellSetName(shell, "kept MUMPS factorisation of an earlier tangent"));
-  }
+  PetscCallMPI(MPI_Gatherv(mine.data(), n, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT, 0, comm));
+  schur_rows_ = all;
+  PetscCall(VecCreateMPI(comm, dofs_->OwnedLambda(), PETSC_DECIDE, diag_lambda_.out()));
+  PetscCall(VecScatterCreateToZero(diag_lambda_, &to_root_, diag_root_.out()));
+  active_.assign(dofs_->OwnedLambda(), 0);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::CreateKeptKsp(MPI_Comm comm) {
+  PetscFunctionBeginUser;
+  // FGMRES on the current matrix, right-preconditioned by the kept factorisation: the residual it tests is the true
+  // one (tolerances: SolveWithKeptFactor).
+  PC shell;
+  PetscCall(KSPCreate(comm, ksp_kept_.out()));
+  PetscCall(KSPSetType(ksp_kept_, KSPFGMRES)); // keeps the preconditioned directions: no apply to form the solution
+  PetscCall(KSPGMRESSetRestart(ksp_kept_, reuse_max_it_));
+  PetscCall(KSPSetPCSide(ksp_kept_, PC_RIGHT));
+  PetscCall(KSPSetResidualHistory(ksp_kept_, nullptr, reuse_max_it_ + 1, PETSC_TRUE));
+  PetscCall(KSPSetNormType(ksp_kept_, KSP_NORM_UNPRECONDITIONED));
+  PetscCall(KSPSetOperators(ksp_kept_, A_, A_));
+  PetscCall(KSPGetPC(ksp_kept_, &shell));
+  PetscCall(PCSetType(shell, PCSHELL));
+  PetscCall(PCShellSetContext(shell, this));
+  PetscCall(PCShellSetApply(shell, ApplyKeptFactor));
+  PetscCall(PCShellSetName(shell, "kept MUMPS factorisation of an earlier tangent"));
   PetscFunctionReturn(0);
 }
 

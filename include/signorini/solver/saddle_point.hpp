@@ -194,6 +194,17 @@ private:
   /// The KSP's operators and what depends on them (near-null space, fieldsplit index sets, MUMPS controls, the reuse
   /// mode). Collective.
   [[nodiscard]] PetscErrorCode SetupKsp(const std::vector<double> &coords, bool constant_k);
+  /// SetupKsp: the rigid-body modes at coords (owned displacement rows) as the displacement block's near-null space.
+  [[nodiscard]] PetscErrorCode SetNearNullSpace(MPI_Comm comm, const std::vector<double> &coords);
+  /// SetupKsp, a factorisation PC: with MUMPS, creates its factor and sets the controls it needs (null pivots,
+  /// workspace) before the user's (ReadMumpsControls). Collective.
+  [[nodiscard]] PetscErrorCode SetupMumpsFactor(MPI_Comm comm, PC pc);
+  /// SetupKsp: the reuse and ordering options (opts) against the solver and each other. Collective.
+  [[nodiscard]] PetscErrorCode CheckReuseOptions(MPI_Comm comm, const SaddlePointOptions &opts, bool constant_k) const;
+  /// Reuse mode: every multiplier row's global number on rank 0 (schur_rows_), the diagonal's vectors. Collective.
+  [[nodiscard]] PetscErrorCode GatherSchurRows(MPI_Comm comm);
+  /// svk with the kept factorisation: the FGMRES KSP that it preconditions (ksp_kept_). Collective.
+  [[nodiscard]] PetscErrorCode CreateKeptKsp(MPI_Comm comm);
   /// Reuse mode: the multiplier diagonal D of A (from the active flags) on rank 0, in the order of schur_rows_.
   /// Collective.
   [[nodiscard]] PetscErrorCode MultiplierDiagonal(std::vector<PetscScalar> &d);
