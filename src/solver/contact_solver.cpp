@@ -362,6 +362,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
   const bool large = material_.model == MaterialModel::SVK;
   StepState st{step, factor, first, large};
   PetscFunctionBeginUser;
+  st.exact_newton = exact_newton_;
   ok = false;
   // The increment of the prescribed displacements enters through the first solve of the step (its Dirichlet rows
   // and the coupling K_fd du_d of the free rows), not by moving the boundary nodes alone, which could invert the
@@ -1128,6 +1129,7 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
   std::vector<char> active_saved = active_set_.Flags();
   double t = 0, dt = 1.0 / opts_.load_steps;
   PetscInt step = 0;
+  bool exact_repeat = false; // svk: this attempt repeats a step found free after lagged searches (below)
   while (t < 1.0 - 1e-12) {
     const double t_try = std::min(1.0, t + dt);
     bool ok;
@@ -1136,6 +1138,7 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
       PetscCall(PetscPrintf(comm, "Contact solve %s: %s at load factor %g after %" PetscInt_FMT " solve(s)\n",
                             ok ? "converged" : "diverged", stats_.reason.c_str(), t_try, stats_.solves));
     if (ok) {
+      exact_repeat = false;
       t = t_try;
       ++step;
       stats_.steps = step;
@@ -1150,6 +1153,8 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
       PetscCall(step_done(step, t));
       continue;
     }
+    // The repeat with exact Newton steps (below) that fails otherwise leaves the finding it was to check: not held.
+    if (exact_repeat) stats_.reason = "DIVERGED_NOT_HELD", widen_to_ = 0;
     if (widen_to_ > 0) {
       // A candidate went into a facet it has no pair with: the step is repeated, from the last converged state, with
       // pairs found within a wider radius (linear material: and that pair; not a cut: the increment stays).
@@ -1170,6 +1175,24 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
       lambda_saved = lambda_;
       mult_saved = mult_;
       active_saved = active_set_.Flags();
+      continue;
+    }
+    // svk: a body found free at the end of the lagged searches' path may be held. Their stale tangent and the
+    // stabilised moves along the free rigid motion can carry the iterate to where its free motion does lead away from
+    // every obstacle: an svk block tipping on a disc towards a wall (seed 4242, case 270) was moved off the wall and
+    // past its balance on the disc, from where the load rolls it off, while exact Newton steps converge without a
+    // stabilised solve. Before that verdict, the step is repeated once, from the last converged state, with exact
+    // Newton steps (as after a set that came back), and so are the load steps after it; a repeat that fails
+    // otherwise ends the run with the first finding.
+    const bool lagged = opts_.lagged_search && system_->ReusesFactorization();
+    if (large && stats_.reason == "DIVERGED_NOT_HELD" && lagged && !exact_newton_) {
+      exact_newton_ = true;
+      exact_repeat = true;
+      PetscCall(PetscPrintf(comm, "Load step at factor %g failed (%s) after lagged Newton searches: repeating it with "
+                            "exact Newton steps\n", t_try, stats_.reason.c_str()));
+      PetscCall(SetOwnedDisplacement(u_saved));
+      k_assembled_ = false;
+      PetscCall(AdoptPairs(pairs_saved, lambda_saved, mult_saved, active_saved));
       continue;
     }
     // A body found free, then repeated with the facets of a wider radius, stays free when the repeat fails otherwise

@@ -1785,6 +1785,36 @@ def held_beyond_radius(runner):
                            in errors[0])
 
 
+@test("svk_free_after_lagged_search")
+def svk_free_after_lagged_search(runner):
+    """svk block on a disc, tipping towards a wall (seed 4242 case 270), held by contact alone: the lagged searches
+    and the stabilised moves along the free rigid motion carried it off the wall and past its balance on the disc,
+    from where the load rolls it off, and the run ended "the body is not held" (also with the pairs within the
+    diagonal). Such a step is now repeated with exact Newton steps, and converges: the top-left corner on the wall and
+    two nodes on the disc, outside the obstacles, and the same state (1e-8) with that corner held at its height,
+    where the support carries no load."""
+    args = ["-mesh_file", "meshes/notch_block.msh", "-material_E", "276.736", "-material_nu", "0.411",
+            "-contact_groups", "bottom,left,right", "-material_model", "svk", "-bc_traction",
+            "top:0.00286477:-0.0419029", "-obstacle_segments", "0,2,0,-0.5", "-obstacle_discs", "0.639252,-0.998728,1"]
+    r = runner.run(args, "svk block tipping on a disc")
+    runner.expect_true("repeated with exact Newton steps after the lagged searches found it free",
+                       "failed (DIVERGED_NOT_HELD) after lagged Newton searches: repeating it with exact Newton steps"
+                       in r.output)
+    runner.expect_equal("active pairs", r.get("contact.active_pairs"), 3)
+    nodes = r.nodes()
+    x = nodes["x"] + nodes["u_x"]
+    corner = (nodes["x"] == 0) & (nodes["y"] == 1)
+    runner.expect_true("the top-left corner on the wall", bool(nodes["active"][corner][0] == 1) and
+                       abs(float(x[corner][0])) <= r.get("certificate.gap_tol"))
+    depth = geometric_penetration(nodes, args)
+    runner.expect_true("outside the obstacles (%g)" % depth, depth <= r.get("certificate.gap_tol"))
+    held = runner.run(args + ["-bc_dirichlet", "anchor:y=%.17g" % float(nodes["u_y"][corner][0])],
+                      "svk block tipping on a disc, corner held at its height")
+    runner.expect_close("the support carries no load", held.get("contact.reaction_force"), [0, 0], 0,
+                        1e-8 * np.linalg.norm(held.get("contact.applied_force")))
+    expect_same_state(runner, r, held, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+
+
 @test("svk_notch_cycle")
 def svk_notch_cycle(runner):
     """svk block in the notch: with the lagged searches (the default) its active set went round a loop of 11 sets

@@ -245,6 +245,9 @@ private:
   std::set<std::array<PetscInt, 2>> extra_pairs_;
   double widen_depth_ = 0;
   bool widened_unheld_ = false; ///< a step that cycled or left the body free was repeated with a wider radius (once)
+  /// svk: a step found free along the lagged searches' path was repeated with exact Newton steps (once); every load
+  /// step from then on takes them (StepState::exact_newton from its start)
+  bool exact_newton_ = false;
   std::string first_unheld_;     ///< the reason of that step's failure
   std::string unheld_detail_;    ///< PivotedActiveSet's finding that the pairs cannot hold the body (this load step)
   /// Load steps repeated with a wider search radius in a run, at most (each at least doubles it).
