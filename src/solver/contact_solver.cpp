@@ -53,7 +53,7 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptio
   PetscCall(OptionsReal(PetscOptionsObject, "-newton_atol", "Absolute residual tolerance (force units)", atol,
                         opts.newton_atol));
   PetscCall(PetscOptionsBool("-newton_linesearch",
-                             "svk: line search on du.R(u + s du) (det F <= 0 always halves the step)", "",
+                             "svk: line search on du.R(u + s du) (det F <= 1e-10 always halves the step)", "",
                              opts.line_search, &opts.line_search, &line_search_set));
   PetscCall(PetscOptionsBool("-newton_lagged_search",
                              "svk with the kept factorisation (-contact_reuse_factorization): while the active set "
@@ -1065,7 +1065,7 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0, bool stabilised, double 
   for (std::size_t p = 0; p < pairs_.size(); ++p) mult_[p] = x[nu + p], new_lambda[p] = active[p] ? x[nu + p] : 0.0;
   PetscCall(VecRestoreArrayRead(system_->Solution(), &x));
   PetscCall(VecCopy(u_, du_));
-  // Step length: halved while det F <= 0 somewhere (always); with -newton_linesearch, the line search of Crisfield
+  // Step length: halved while det F <= MIN_DET_F somewhere (always); with -newton_linesearch, the line search of Crisfield
   // along du on g(s) = du . R(u + s du, lambda): g(0) = -du.K du < 0, a full step is kept unless it overshoots
   // (g(1) > 0.8 |g(0)|), then the secant step; at most 8 trials.
   const PetscScalar *dx;
@@ -1106,7 +1106,7 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0, bool stabilised, double 
     PetscCall(Residual(new_lambda, r, scale, dir.data(), &g));
     PetscCall(PetscInfo(nullptr, "line search: step %g g(s)/g(0) %g residual %g (before %g)\n", s, g / g0, r, r0));
     if (!std::isfinite(r)) {
-      // Safeguard, always on: det F <= 0 somewhere, halve the step.
+      // Safeguard, always on: det F <= MIN_DET_F somewhere, halve the step.
       s *= 0.5;
       continue;
     }
@@ -1229,7 +1229,7 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
             ? "the active set cycles (an earlier set came back, also with one pair switched per update); a body held "
               "only by contact at a point it can rock about (e.g. a block on a disc) cycles so: check that the "
               "supports and obstacles hold every rigid-body motion"
-        : why == "DIVERGED_NONINVERTIBLE_DEFORMATION" ? "the deformation became non-invertible (det F <= 0)" + context
+        : why == "DIVERGED_NONINVERTIBLE_DEFORMATION" ? "the deformation became non-invertible (det F <= 1e-10)" + context
         : why == "DIVERGED_NOT_HELD"
             ? (unheld_detail_.empty()
                    ? std::string("the body is not held: along a rigid-body motion that the supports and the active "

@@ -469,6 +469,7 @@ PetscErrorCode MumpsSchur::FactorSchurOnRoot(const std::vector<PetscScalar> &d) 
   PetscBLASInt n, lwork = -1, info;
   PetscFunctionBeginUser;
   if (m == 0 || (s_factored_ && d == d_factored_)) PetscFunctionReturn(0);
+  s_factored_ = false; // s_ is overwritten: until its factorisation succeeds, no factors exist (FactorSchur)
   s_ = s0_;
   for (PetscInt i = 0; i < m; ++i) s_[i + i * m] += d[i] - d0_[i];
   PetscCall(PetscBLASIntCast(m, &n));
@@ -482,11 +483,11 @@ PetscErrorCode MumpsSchur::FactorSchurOnRoot(const std::vector<PetscScalar> &d) 
   } else {
     LAPACKgetrf_(&n, &n, s_.data(), &n, ipiv_.data(), &info);
   }
-  d_factored_ = d;
   PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED,
              "the saddle-point system is singular (zero pivot %d in the Schur complement on the multipliers): the "
              "body is not held, or two active constraints coincide; add Dirichlet conditions or check that the "
              "obstacle touches it", (int)info);
+  d_factored_ = d;
   PetscFunctionReturn(0);
 }
 
