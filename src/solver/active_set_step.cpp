@@ -1,0 +1,416 @@
+// The contact solver per active-set iteration: the pairs and residual at the iterate (EvaluateIterate), the step's
+// control (certificate, stabilisation, stopping reasons), the complementarity problem as a last resort
+// (PivotedActiveSet) and the repeated steps with the pairs a failed one lacked (UnpairedAfterFailure, WidenSearch).
+#include "signorini/solver/contact_solver.hpp"
+
+#include "contact_solver_detail.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace signorini {
+
+using namespace detail;
+
+
+PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const char *why, Pivot &pivot) {
+  PetscFunctionBeginUser;
+  pivot = Pivot::NONE;
+  if (st.large || st.moving || !system_->ExactFactorization() || dofs_.GlobalLambda() > LCP_MAX_ROWS)
+    PetscFunctionReturn(0);
+  st.pivoted++;
+  // The problem from the current iterate: the gaps and F_int there (a condensed iterate is expanded first), the
+  // right-hand side f - F_int with no active row, condensed onto the multipliers: the base of the condensed solves
+  // that follow (the next solve's active set only changes the multiplier rows).
+  if (st.condensed) PetscCall(Materialise(st, it));
+  PetscCall(Residual(lambda_, st.rnorm, st.rscale));
+  st.next.assign(pairs_.size(), 0);
+  st.stabilised = false;
+  st.base = false;
+  PetscCall(AssembleSystem(st));
+  LcpStatus status = LcpStatus::PIVOT_LIMIT;
+  int pivots = 0;
+  double unbalanced = 0;
+  {
+    ScopedTimer t(stats_.time_solve);
+    PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
+    PetscCall(CondenseBase(st));
+    if (system_->ExactFactorization() && !st.singular) {
+      std::vector<double> gap(pairs_.size()), key(pairs_.size());
+      const double nf = (double)obstacle_.facets.size() + 1;
+      for (std::size_t p = 0; p < pairs_.size(); ++p) {
+        gap[p] = states_[p].gap;
+        key[p] = (double)keys_[p].original * nf + (double)keys_[p].facet;
+      }
+      PetscCall(system_->ContactLcp(gap, key, st.next, status, pivots, unbalanced));
+    }
+    PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
+  }
+  if (st.singular) PetscFunctionReturn(0);
+  PetscInt active = 0;
+  for (char a : st.next) active += a;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &active, 1, MPIU_INT, MPI_SUM, mesh_.Comm()));
+  PetscCall(PetscInfo(nullptr, "%s after %d iterations: the complementarity problem in the multipliers: %s after %d "
+                      "pivots, %" PetscInt_FMT " active, %g of the load along rigid motions unbalanced\n", why,
+                      (int)it, LcpStatusName(status), pivots, active, unbalanced));
+  stats_.pivoted_sets++;
+  if (status != LcpStatus::SOLVED) PetscFunctionReturn(0);
+  if (unbalanced > LCP_UNHELD) {
+    pivot = Pivot::UNHELD;
+    st.pivoted = 2; // the verdict stands for this step
+    char text[256];
+    std::snprintf(text, sizeof(text),
+                  "no contact forces on its %" PetscInt_FMT " candidate pairs balance the load (the complementarity "
+                  "problem leaves %.2g of it along rigid-body motions unbalanced)",
+                  dofs_.GlobalLambda(), unbalanced);
+    unheld_detail_ = text;
+    PetscFunctionReturn(0);
+  }
+  // The step goes on from that set with the usual rule, its earlier sets forgotten.
+  pivot = Pivot::SET;
+  active_set_.Restart();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
+  const bool large = material_.model == MaterialModel::SVK;
+  PetscFunctionBeginUser;
+  widen_to_ = 0;
+  if (stats_.reason == "DIVERGED_NONINVERTIBLE_DEFORMATION" || stats_.search_widenings >= MAX_WIDENINGS)
+    PetscFunctionReturn(0);
+  // The displacement of the step's last iterate (a condensed search keeps it at its base until it is expanded; a
+  // singular refactorisation left nothing to expand).
+  if (st.condensed && !st.singular) PetscCall(Materialise(st, it));
+  Penetration unpaired, prescribed;
+  std::vector<std::array<PetscInt, 2>> found;
+  double reach;
+  PetscCall(DeepestUnpaired(mesh_, obstacle_, contact_, candidate_, held_, dirichlet_.fixed, pairs_, st.u_eval.data(),
+                            unpaired, prescribed, &found, &reach));
+  // A set that cycles or leaves the body free may lack the facets that would hold it, beyond the radius: such a step
+  // is repeated once with a radius of at least the body's diagonal (a block pushed towards an inclined wall 0.1 away
+  // cycled with the default radius and converged with 0.3; a body that nothing holds then says so,
+  // DIVERGED_NOT_HELD, where it cycled before).
+  // svk cuts the load step first (a smaller increment is the usual cure of a cycle, and its pairs within the whole
+  // diagonal would be many: the svk punch cut once in 1.5 s, and took 14.6 s with such a radius).
+  const bool can_cut = large && stats_.cuts < opts_.max_cuts && stats_.reason != "DIVERGED_NOT_HELD";
+  const bool unheld = (stats_.reason == "DIVERGED_CYCLING" || stats_.reason == "DIVERGED_NOT_HELD") && !can_cut;
+  const bool penetrates = unpaired.depth > contact_.gap_tol;
+  // A singular system (null pivots) with pairs found within less than the body's diagonal: the facets that would
+  // hold the body may be beyond the radius (a block 0.05 above the floor of its notch, searched within 0.01, had
+  // pairs with its side wall alone). Only pairs within the whole diagonal that leave it singular say it is not held.
+  const bool singular = stats_.reason == "DIVERGED_SINGULAR" && contact_.search_radius < contact_.length &&
+                        !obstacle_.facets.empty();
+  if (!penetrates && !(unheld && !widened_unheld_) && !singular) PetscFunctionReturn(0);
+  // A node that went into the obstacle farther than the radius reaches, or started there deeper than it: the radius
+  // must cover the candidates' displacements, with room for the repeated step to move them on. The linear material
+  // also gets the pairs of the facets its nodes went into: a facet within the radius whose zone did not hold the
+  // node in the reference configuration has no pair, however wide the radius (a block pushed 0.3 sideways by its
+  // supports went 0.1 into a wall unseen while its corner was paired with the floor).
+  // (Without a penetration the displacement of a cycling or free iterate is no measure of the travel.)
+  const double radius =
+      std::min(penetrates ? std::max({2 * contact_.search_radius, 2 * reach, 2 * unpaired.depth})
+                          : std::max(2 * contact_.search_radius, contact_.length),
+               SEARCH_RADIUS_MAX * contact_.length);
+  bool more = !large && !found.empty();
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &more, 1, MPI_CXX_BOOL, MPI_LOR, mesh_.Comm()));
+  if (radius <= contact_.search_radius && !more) PetscFunctionReturn(0);
+  if (!large) extra_pairs_.insert(found.begin(), found.end());
+  widen_to_ = std::max(radius, contact_.search_radius);
+  widen_node_ = penetrates ? unpaired.node : -1;
+  widen_depth_ = unpaired.depth;
+  // A repeat for a free or singular body is made once: the pairs within the diagonal that still leave it free say so.
+  if (!penetrates && (unheld || singular)) widened_unheld_ = true, first_unheld_ = stats_.reason;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::WidenSearch(const std::vector<double> &lambda, const std::vector<double> &mult,
+                                          const std::vector<char> &active) {
+  const int dim = mesh_.Dim();
+  PetscFunctionBeginUser;
+  contact_.search_radius = widen_to_;
+  stats_.search_widenings++;
+  if (material_.model == MaterialModel::SVK) {
+    // svk searches its pairs again at the start of every load step (Repair), now with the wider radius.
+    PetscCall(AdoptPairs(pairs_, lambda, mult, active));
+    PetscFunctionReturn(0);
+  }
+  std::vector<ContactPair> pairs;
+  std::vector<char> candidate;
+  PetscCall(FindContactPairs(mesh_, obstacle_, contact_, dirichlet_.fixed, pairs, candidate));
+  DropOutOfZone(pairs);
+  // The facets the nodes went into count in their zone from now on (the gap g0 + n0 u of the reference
+  // configuration, exact for a flat facet).
+  const PairIndex found = IndexPairs(pairs);
+  for (const auto &[v, f] : extra_pairs_) {
+    if (found.count({v, f})) continue;
+    const double *X = mesh_.X(v);
+    const Projection pr = obstacle_.facets[f]->Project(X, contact_.alpha_tol, contact_.length);
+    ContactPair pair{v, f, {pr.normal[0], pr.normal[1], pr.normal[2]}, pr.gap, pr.inside, true, {0, 0, 0}};
+    for (int k = 0; k < dim; ++k) pair.x0[k] = X[k];
+    pairs.push_back(pair);
+  }
+  SortPairs(mesh_, pairs);
+  PetscCall(AdoptPairsFrom(std::move(pairs), IndexPairs(pairs_), lambda, mult, active));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
+  ScopedTimer t(stats_.time_assembly);
+  const int dim = mesh_.Dim();
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(EV_ASSEMBLY, 0, 0, 0, 0));
+  st.moving = false;
+  for (double d : st.delta) st.moving = st.moving || d != 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &st.moving, 1, MPI_CXX_BOOL, MPI_LOR, mesh_.Comm()));
+  // Gaps with the prescribed displacements in place (the constraint rows hold only the free components).
+  for (std::size_t i = 0; i < st.u_eval.size(); ++i) st.u_eval[i] = u_local_[i] + st.delta[i];
+  if (st.condensed) {
+    // The gaps after a condensed solve: the base's plus the normal displacement of the increment (the zone, the
+    // normals and the constraint rows of the linear material do not move).
+    for (std::size_t p = 0; p < pairs_.size(); ++p) states_[p].gap = st.g_base[p] + st.shift[p];
+    st.rnorm = st.solve_residual;
+    st.rscale = 0;
+    PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
+    PetscFunctionReturn(0);
+  }
+  if (st.large) {
+    // svk: pairs from the current configuration (new pairs mean a new pattern and a new analysis).
+    bool rebuilt;
+    PetscCall(Repair(st.u_eval, it == 0, rebuilt));
+    if (rebuilt) {
+      // A new layout: no base of a condensed search survives it.
+      st.base = false;
+      st.u_base.Reset();
+      st.next.assign(pairs_.size(), 0);
+      st.measured = false;
+      PetscCall(VecZeroEntries(fext_));
+      PetscCall(assembler_->AssembleLoads(bc_, st.factor, fext_));
+    }
+  }
+  EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, st.large, st.u_eval.data(), states_,
+                rows_, normals_);
+  if (st.large || it == 0 || st.stabilised) {
+    PetscCall(Residual(lambda_, st.rnorm, st.rscale));
+  } else {
+    // Linear material after a solve: K du was solved for exactly (to the solve's residual), so F_int = f + B^T x on
+    // the free rows (x: the solved multipliers), without a pass over the cells; the monitor shows the solve's
+    // residual. A state that may be the solution gets a full residual evaluation (StepControl).
+    PetscScalar *fi;
+    const PetscScalar *fe;
+    fint_at_.clear();
+    PetscCall(VecGetArray(fint_, &fi));
+    PetscCall(VecGetArrayRead(fext_, &fe));
+    for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) fi[i] = fe[i];
+    for (std::size_t p = 0; p < pairs_.size(); ++p)
+      for (int k = 0; k < dim; ++k) fi[dofs_.LocalOffset(pairs_[p].vertex, k)] += mult_[p] * normals_[p][k];
+    PetscCall(VecRestoreArrayRead(fext_, &fe));
+    PetscCall(VecRestoreArray(fint_, &fi));
+    st.rnorm = st.solve_residual;
+    st.rscale = 0;
+  }
+  PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &changes, Outcome &outcome) {
+  PetscFunctionBeginUser;
+  outcome = Outcome::SOLVE;
+  // Once the set has cycled (one switch per update), svk switches a pair only at an equilibrium of the current set:
+  // the multipliers and gaps that choose it are then those of the set's solution, not of a Newton iterate on its way
+  // there (svk's block in the notch toggled one pair between a tensile multiplier and a penetration while the
+  // residual stayed at 4e-4).
+  bool deferred = false; // svk: a switch put off until an equilibrium (below): not a state to judge the body by
+  if (st.large && changes > 0 && active_set_.OneAtATime() && !(st.rnorm <= EquilibriumTol(st.rscale))) {
+    st.next = active_set_.Flags();
+    changes = 0;
+    deferred = true;
+  }
+  // An active set that comes back would cycle. svk with lagged searches first drops them for the rest of the step
+  // (their stale tangent can lead the set round); then, as the linear material does at once, the updates switch one
+  // pair at a time (ActiveSet::SwitchOneAtATime). A set that comes back after that ends the step (DIVERGED_CYCLING).
+  const bool lagging = st.large && opts_.lagged_search && system_->ReusesFactorization() && !st.exact_newton;
+  if (it > 0 && changes > 0 && std::isfinite(st.rnorm) && (lagging || !active_set_.OneAtATime())) {
+    bool back;
+    PetscCall(active_set_.Seen(st.next, keys_, st.large ? 3 : 1, back, false));
+    if (back && lagging) {
+      st.exact_newton = true;
+      active_set_.Forget();
+      PetscCall(PetscInfo(nullptr, "the active set came back: exact Newton steps from now on in this load step\n"));
+    } else if (back) {
+      // The linear material solves its complementarity problem first (PivotedActiveSet, finite), the first time.
+      bool found = false;
+      if (!st.large && st.pivoted == 0) {
+        const std::vector<char> current = active_set_.Flags(), next = st.next;
+        Pivot pivot;
+        PetscCall(PivotedActiveSet(st, it, "the active set came back", pivot));
+        if (st.singular) {
+          outcome = Outcome::STOP;
+          PetscFunctionReturn(0);
+        }
+        if (pivot == Pivot::UNHELD) {
+          // No contact forces on these pairs hold the body (the step may then be repeated with wider pairs).
+          stats_.reason = "DIVERGED_NOT_HELD";
+          outcome = Outcome::STOP;
+          PetscFunctionReturn(0);
+        }
+        found = pivot == Pivot::SET;
+        PetscInt differ = 0;
+        for (std::size_t p = 0; p < current.size() && found; ++p) differ += current[p] != st.next[p];
+        PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &differ, 1, MPIU_INT, MPI_SUM, mesh_.Comm()));
+        // Its solution's set is the current one, which the rule would change: nothing new to go on from.
+        found = found && differ > 0;
+        if (found) changes = differ;
+        else st.next = next;
+      }
+      if (!found) {
+        PetscCall(active_set_.SwitchOneAtATime(states_, keys_, st.next, changes));
+        PetscCall(
+            PetscInfo(nullptr, "the active set came back: one switch per update from now on in this load step\n"));
+      }
+    }
+  }
+  if (changes > 0) st.candidate_rnorm = -1, st.stalled_corrections = 0; // a new active set: not a correction's
+  if (it > 0) {
+    PetscCall(RecordIteration(st.step, it, st.factor, st.next, changes, st.krylov, st.rnorm, st.last_solve_time));
+    // A state that may be the solution: certified, or the loop goes on (svk: Newton; linear: one more solve corrects
+    // an equilibrium residual left by an inexact solver) or stops with the violated condition.
+    if (changes == 0 && !st.moving && !st.stabilised) {
+      if (st.condensed) PetscCall(Materialise(st, it));
+      if (!st.large) PetscCall(Residual(lambda_, st.rnorm, st.rscale));
+      const double tol = EquilibriumTol(st.rscale);
+      PetscCall(PetscInfo(nullptr, "candidate state: equilibrium residual %g (tolerance %g)\n", st.rnorm, tol));
+      if (st.rnorm <= tol || !st.large) {
+        Certificate cert;
+        PetscCall(Certify(st.u_eval, st.rnorm, tol, cert));
+        if (cert.Satisfied()) {
+          certificate_ = cert;
+          stats_.reason = st.large ? "CONVERGED_ACTIVE_SET_AND_RESIDUAL" : "CONVERGED_ACTIVE_SET_UNCHANGED";
+          outcome = Outcome::CONVERGED;
+          PetscFunctionReturn(0);
+        }
+        if (cert.equilibrium <= cert.equilibrium_tol) {
+          stats_.reason = "DIVERGED_CERTIFICATE";
+          stats_.violation = cert.Violation();
+          outcome = Outcome::STOP;
+          PetscFunctionReturn(0);
+        }
+      }
+      // Linear material, the state certified but for its equilibrium residual (an iterative solver's): the next
+      // solve keeps the active set and only has to bring the residual below the tolerance. It starts from this
+      // state's multipliers, so its start's residual is about this one, and it may stop at a tenth of the tolerance
+      // instead of -contact_ksp_rtol relative to that start (the certificate checks the result again). 2D Hertz,
+      // fieldsplit_gamg, 1M dofs: 46 Krylov iterations of the correction solve before. A correction that did not
+      // reach the tolerance (its start's residual was not this one) is followed by a solve to the KSP's tolerance.
+      if (!st.large && st.rnorm > tol) {
+        // Corrections that no longer halve the residual cannot reach the tolerance: the solves are as accurate as
+        // the system's conditioning lets them be (e.g. a nearly incompressible material). A correction that started
+        // from another residual is followed by a solve to the KSP's tolerance (below), so the loop stops only when
+        // that one does not halve the residual either.
+        const bool halved = st.candidate_rnorm <= 0 || st.rnorm <= 0.5 * st.candidate_rnorm;
+        st.stalled_corrections = halved ? 0 : st.stalled_corrections + 1;
+        if (st.stalled_corrections >= 2) {
+          stats_.reason = "DIVERGED_EQUILIBRIUM_STALLED";
+          char text[256];
+          std::snprintf(text, sizeof(text), "%g after two correction solves, %g before them, tolerance %g", st.rnorm,
+                        st.candidate_rnorm, tol);
+          stats_.violation = text;
+          outcome = Outcome::STOP;
+          PetscFunctionReturn(0);
+        }
+        if (halved) st.candidate_rnorm = st.rnorm;
+        st.correction_rtol = st.corrected ? 0.0 : 0.1 * tol / st.rnorm;
+      }
+    }
+    if (st.stabilised && changes == 0 && !deferred && st.measured) {
+      // The springs let the body move along the rigid motions its active set leaves free, and no pair closed. Where
+      // the body goes is the free rigid part of the solve's displacement (RigidModes::FreeMotion), not the whole of
+      // it: the elastic deformation of the step moves nodes by amounts unrelated to that, and a pair it brought a
+      // little nearer used to stretch the step by a huge factor (a block pushed away from its only wall along a
+      // frictionless floor then cycled instead of being reported free). If that motion brings some pair to close on
+      // its facet, the body is moved along it past the point where the nearest such pair closes (once more the
+      // motion beyond it), so that the next update activates it; if none, the load moves the body away from every
+      // obstacle (a block on a disc held at two nodes rolls about the disc's centre, which closes no pair on it). A
+      // pair closes on its facet: linear material, in its zone (fixed); svk, where the node's path meets the facet's
+      // plane projects onto the facet (a node beside the foot of an inclined wall enters its zone as it slides
+      // towards it). A touching pair (gap 0) that the motion drives in closes at once.
+      const int dim = mesh_.Dim();
+      std::vector<double> du(u_local_.size());
+      for (std::size_t i = 0; i < du.size(); ++i) du[i] = u_local_[i] - st.u_before[i];
+      std::array<double, 6> motion;
+      PetscCall(rigid_.FreeMotion(keys_, normals_, active_set_.Flags(), du.data(), motion));
+      const double size = rigid_.Magnitude(motion);
+      double reach = INFINITY;
+      for (std::size_t p = 0; p < pairs_.size(); ++p) {
+        const double *X = mesh_.X(keys_[p].vertex);
+        const double closing = -rigid_.Along(X, normals_[p].data(), motion);
+        if (!(closing > CLOSING * size && states_[p].gap >= 0)) continue;
+        const double t = states_[p].gap / closing;
+        bool on_facet = states_[p].InZone();
+        if (st.large) {
+          double x[3] = {0, 0, 0};
+          rigid_.Motion(X, motion, x);
+          for (int k = 0; k < dim; ++k) x[k] = X[k] + u_local_[keys_[p].vertex * dim + k] + t * x[k];
+          on_facet = obstacle_.facets[pairs_[p].facet]->Project(x, contact_.alpha_tol, contact_.length).inside;
+        }
+        if (on_facet) reach = std::min(reach, t);
+      }
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &reach, 1, MPI_DOUBLE, MPI_MIN, mesh_.Comm()));
+      PetscCall(PetscInfo(nullptr, "stabilised state: free rigid motion of size %g, nearest pair closes at %g of it\n",
+                          size, reach));
+      if (!std::isfinite(reach) || reach > 1e12) {
+        stats_.reason = "DIVERGED_NOT_HELD";
+        outcome = Outcome::STOP;
+      } else {
+        // The next check, when the move closes no pair, is made without a solve in between: it must see the same
+        // solve's motion, so the move shifts the displacement it is measured from (u_before) as well.
+        const std::vector<double> before = u_local_;
+        PetscCall(MoveRigidly(motion, 1 + 2 * reach));
+        for (std::size_t i = 0; i < u_local_.size(); ++i) st.u_before[i] += u_local_[i] - before[i];
+        outcome = Outcome::EXTENDED;
+      }
+      PetscFunctionReturn(0);
+    }
+  }
+  // Linear material: every iteration is an active-set iteration. svk: every iteration is a Newton step, at most
+  // -newton_max_it of them, and at most -contact_max_it of them may change the active set.
+  if (changes > 0) ++st.set_changes;
+  const bool limit = st.large ? it >= opts_.newton_max_it || st.set_changes > contact_.max_it : it >= contact_.max_it;
+  bool cycling = false;
+  if (std::isfinite(st.rnorm) && !limit) PetscCall(active_set_.Seen(st.next, keys_, st.large ? 3 : 1, cycling));
+  if (!std::isfinite(st.rnorm)) stats_.reason = "DIVERGED_NONINVERTIBLE_DEFORMATION";
+  else if (limit) stats_.reason = "DIVERGED_MAX_IT";
+  else if (cycling && changes > 0 && it > 0) stats_.reason = "DIVERGED_CYCLING";
+  else PetscFunctionReturn(0);
+  outcome = Outcome::STOP;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::Certify(const std::vector<double> &u_eval, double rnorm, double tol, Certificate &cert) {
+  PetscFunctionBeginUser;
+  PetscCall(active_set_.Certify(states_, keys_, normals_, rnorm, tol, cert));
+  // The pairs cover the nodes that were within the search radius: a node that was not and went through the obstacle
+  // would otherwise pass unseen.
+  Penetration unpaired, prescribed;
+  PetscCall(DeepestUnpaired(mesh_, obstacle_, contact_, candidate_, held_, dirichlet_.fixed, pairs_, u_eval.data(),
+                            unpaired, prescribed));
+  cert.unpaired_penetration = unpaired.depth;
+  cert.unpaired_node = unpaired.node;
+  std::copy(unpaired.x, unpaired.x + 3, cert.unpaired_x);
+  cert.search_radius = contact_.search_radius;
+  // No solve can lift a node whose normal motion the supports prescribe: the input contradicts itself.
+  PetscCheck(prescribed.depth <= cert.gap_tol, mesh_.Comm(), PETSC_ERR_USER_INPUT,
+             "candidate node %" PetscInt_FMT " (at %g, %g, %g) is held by -bc_dirichlet inside the obstacle, by %g "
+             "(gap tolerance %g); expected prescribed displacements that keep the contact candidates out of the "
+             "obstacle",
+             prescribed.node, prescribed.x[0], prescribed.x[1], prescribed.x[2], prescribed.depth, cert.gap_tol);
+  PetscFunctionReturn(0);
+}
+
+double ContactSolver::EquilibriumTol(double scale) const {
+  // The absolute part may not exceed 1e-6 of the force scale: an absolute tolerance as large as a small load would
+  // otherwise accept any state.
+  return opts_.newton_rtol * scale + std::min(opts_.newton_atol, 1e-6 * scale);
+}
+
+} // namespace signorini

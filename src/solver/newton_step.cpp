@@ -1,0 +1,308 @@
+// The contact solver per Newton iteration (for the linear material, per solve): the residual, the assembly of the
+// saddle-point system, the solve (full or condensed in the multiplier space) and the update with its step length.
+#include "signorini/solver/contact_solver.hpp"
+
+#include "contact_solver_detail.hpp"
+#include "signorini/core/progress.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace signorini {
+
+using namespace detail;
+
+
+PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double &norm, double &scale,
+                                        const PetscScalar *direction, double *dot) {
+  const int dim = mesh_.Dim();
+  double min_J;
+  PetscFunctionBeginUser;
+  // F_int is assembled again only when the displacement changed since the last assembly (svk: the step length check
+  // of UpdateSolution evaluates the residual at the new iterate, which the next iteration starts from).
+  bool same = fint_at_ == u_local_;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_CXX_BOOL, MPI_LAND, mesh_.Comm()));
+  if (same) {
+    min_J = fint_min_J_;
+  } else {
+    PetscCall(VecZeroEntries(fint_));
+    PetscCall(assembler_->Assemble(u_local_.data(), nullptr, 0, fint_, &min_J));
+    fint_at_ = u_local_;
+    fint_min_J_ = min_J;
+  }
+  const PetscScalar *fi, *fe;
+  PetscCall(VecGetArrayRead(fint_, &fi));
+  PetscCall(VecGetArrayRead(fext_, &fe));
+  std::vector<double> r(dofs_.OwnedU(), 0.0);
+  for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) r[i] = fi[i] - fe[i];
+  double s[3] = {0, 0, 0};
+  for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) s[1] += fi[i] * fi[i] + fe[i] * fe[i];
+  PetscCall(VecRestoreArrayRead(fint_, &fi));
+  PetscCall(VecRestoreArrayRead(fext_, &fe));
+  // Contact forces B^T lambda (all rows of the pair's node are local: pairs live with their owned node).
+  for (std::size_t p = 0; p < pairs_.size(); ++p)
+    for (int k = 0; k < dim; ++k) r[dofs_.LocalOffset(pairs_[p].vertex, k)] -= lambda[p] * normals_[p][k];
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    if (mesh_.Owned(v))
+      for (int k = 0; k < dim; ++k)
+        if (!dirichlet_.fixed[v * dim + k]) {
+          const PetscInt i = dofs_.LocalOffset(v, k);
+          s[0] += r[i] * r[i];
+          if (direction) s[2] += direction[i] * r[i];
+        }
+  double gs[3];
+  PetscCallMPI(MPI_Allreduce(s, gs, 3, MPI_DOUBLE, MPI_SUM, mesh_.Comm()));
+  if (dot) *dot = gs[2];
+  norm = std::isfinite(min_J) && min_J > MIN_DET_F ? std::sqrt(gs[0]) : INFINITY;
+  scale = std::sqrt(gs[1]);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
+  ScopedTimer t(stats_.time_assembly);
+  const int dim = mesh_.Dim();
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(EV_ASSEMBLY, 0, 0, 0, 0));
+  // svk with the kept factorisation, while the active set changes (-newton_lagged_search): the tangent of the last
+  // assembly stays (a modified Newton step), solved to SEARCH_RTOL, as long as the residual contracts by
+  // LAGGED_CONTRACTION per step; the exact tangent once the active set settles.
+  // A lagged step is a condensed search (SolveAndUpdate): its later iterations (st.base) keep it.
+  if (!(st.large && st.base)) {
+    const bool contracting = st.lag_rnorm < 0 || st.rnorm <= LAGGED_CONTRACTION * st.lag_rnorm;
+    const bool lag = st.large && opts_.lagged_search && st.searching && !st.stabilised &&
+                     !st.exact_newton && !active_set_.OneAtATime() && system_->ReusesFactorization();
+    st.lagged = lag && contracting;
+    st.lag_rnorm = st.rnorm;
+    // A lagged step that did not contract: the factored tangent has drifted too far to precondition the current one.
+    if (lag && !contracting) system_->RefactorNext();
+  } else if (st.stabilised || st.exact_newton) {
+    st.lagged = false; // the search is left (Condensable): a full solve from the base with the current tangent
+  }
+  if ((st.large && !st.lagged) || !k_assembled_) {
+    ProgressBegin("stiffness assembly");
+    PetscCall(MatZeroEntries(system_->Stiffness()));
+    PetscCall(assembler_->Assemble(u_local_.data(), system_->Stiffness(), kscale_, nullptr, nullptr));
+    PetscCall(MatAssemblyBegin(system_->Stiffness(), MAT_FLUSH_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(system_->Stiffness(), MAT_FLUSH_ASSEMBLY));
+    if (system_->Augmented()) PetscCall(system_->AddAugmentation(rows_));
+    k_assembled_ = true;
+    ProgressEnd();
+  }
+  PetscCall(system_->SetConstraints(rows_, st.next, -1.0 / kscale_, st.stabilised ? STABILISATION * kscale_ : 0.0));
+  if (Condensable(st)) {
+    // The base's right-hand side with the new active set: its displacement rows stay, the gaps are the base's.
+    PetscScalar *b;
+    PetscCall(VecGetArray(system_->Rhs(), &b));
+    for (std::size_t p = 0; p < pairs_.size(); ++p) b[dofs_.OwnedU() + p] = st.next[p] ? st.g_base[p] : 0.0;
+    PetscCall(VecRestoreArray(system_->Rhs(), &b));
+    PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
+    PetscFunctionReturn(0);
+  }
+  if (st.stabilised) st.u_before = u_local_, st.measured = true;
+  // Right-hand side: f - F_int on free rows, 0 on Dirichlet rows, the current gap on active multiplier rows.
+  PetscScalar *b;
+  const PetscScalar *fi, *fe;
+  PetscCall(VecGetArray(system_->Rhs(), &b));
+  PetscCall(VecGetArrayRead(fint_, &fi));
+  PetscCall(VecGetArrayRead(fext_, &fe));
+  for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) b[i] = fe[i] - fi[i];
+  if (st.moving) {
+    if (!fdir_) PetscCall(VecDuplicate(u_, fdir_.out()));
+    PetscCall(VecZeroEntries(fdir_));
+    PetscCall(assembler_->AddStiffnessTimes(u_local_.data(), st.delta.data(), fdir_));
+    const PetscScalar *fd;
+    PetscCall(VecGetArrayRead(fdir_, &fd));
+    for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) b[i] -= fd[i];
+    PetscCall(VecRestoreArrayRead(fdir_, &fd));
+  }
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    if (mesh_.Owned(v))
+      for (int k = 0; k < dim; ++k)
+        if (dirichlet_.fixed[v * dim + k]) b[dofs_.LocalOffset(v, k)] = kscale_ * st.delta[v * dim + k];
+  for (std::size_t p = 0; p < pairs_.size(); ++p) b[dofs_.OwnedU() + p] = st.next[p] ? states_[p].gap : 0.0;
+  PetscCall(VecRestoreArrayRead(fint_, &fi));
+  PetscCall(VecRestoreArrayRead(fext_, &fe));
+  PetscCall(VecRestoreArray(system_->Rhs(), &b));
+  PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::NewtonForcing(const StepState &st, double &rtol) const {
+  PetscFunctionBeginUser;
+  // svk with the kept factorisation and the lagged search: an inexact Newton step. A linear residual of
+  // eta ||R||, eta = min(SEARCH_RTOL, ||R|| / scale), keeps Newton's quadratic convergence (Dembo, Eisenstat and
+  // Steihaug 1982). None needs to go below half the equilibrium tolerance: so close to the solution the quadratic
+  // term is far below it (2D Hertz, 195k dofs, svk: a quarter instead of a half took 4 more preconditioner
+  // applications). The KSP's tolerance is relative to the right-hand side, which carries the whole contact force (the
+  // solve is for the multipliers, not their increments).
+  // Once the active set has cycled (ActiveSet::SwitchOneAtATime), every step is exact: one pair switches per step,
+  // and the gaps and multipliers that choose it must be those of the current set's solution.
+  rtol = 0;
+  if (!(opts_.lagged_search && system_->ReusesFactorization()) || active_set_.OneAtATime() || !(st.rnorm > 0) ||
+      !(st.rscale > 0))
+    PetscFunctionReturn(0);
+  const double eta = std::min(SEARCH_RTOL, std::max(0.5 * EquilibriumTol(st.rscale) / st.rnorm, st.rnorm / st.rscale));
+  PetscReal bnorm;
+  PetscCall(VecNorm(system_->Rhs(), NORM_2, &bnorm));
+  if (bnorm > 0) rtol = std::min(SEARCH_RTOL, eta * st.rnorm / bnorm);
+  PetscFunctionReturn(0);
+}
+
+bool ContactSolver::Condensable(const StepState &st) const {
+  if (!st.base || st.stabilised || !system_->ReusesFactorization()) return false;
+  return st.large ? st.lagged : system_->ExactFactorization();
+}
+
+PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
+  PetscFunctionBeginUser;
+  bool condensed;
+  {
+    ScopedTimer t(stats_.time_solve);
+    const double t0 = MPI_Wtime();
+    PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
+    const bool search = st.large ? st.lagged && system_->ReusesFactorization() : system_->ExactFactorization();
+    // Linear material, kept factorisation, no stabilisation and no prescribed displacement still to apply: the
+    // right-hand side assembled now is the base of the solves after it, which run in the multiplier space (condensed)
+    // until Materialise.
+    if (!st.base && !st.stabilised && !st.moving && search) PetscCall(CondenseBase(st));
+    condensed = Condensable(st);
+    if (st.singular) {
+      // The condensation found null pivots: nothing to solve (LoadStep ends the step).
+    } else if (condensed) {
+      std::vector<double> bm(pairs_.size());
+      for (std::size_t p = 0; p < pairs_.size(); ++p) bm[p] = st.next[p] ? st.g_base[p] : 0.0;
+      PetscCall(system_->SolveCondensed(bm, lambda_, st.shift, st.solve_residual));
+      mult_ = lambda_;
+      st.krylov = 1;
+    } else {
+      // A full solve moves the displacement away from any base.
+      st.base = false;
+      double rtol = st.lagged ? SEARCH_RTOL : st.correction_rtol;
+      if (st.large && !st.lagged) PetscCall(NewtonForcing(st, rtol));
+      PetscCall(system_->Solve(st.krylov, st.solve_residual, st.singular, rtol));
+      st.corrected = st.correction_rtol > 0;
+      st.correction_rtol = 0;
+    }
+    PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
+    const double dt = MPI_Wtime() - t0;
+    PetscCallMPI(MPI_Allreduce(&dt, &st.last_solve_time, 1, MPI_DOUBLE, MPI_MAX, mesh_.Comm()));
+  }
+  if (st.singular) PetscFunctionReturn(0);
+  stats_.solves++;
+  stats_.active_set_iterations++;
+  stats_.krylov_iterations += st.krylov;
+  stats_.stabilised_solves += st.stabilised;
+  st.condensed = condensed;
+  if (condensed) PetscFunctionReturn(0);
+  double step_length;
+  PetscCall(UpdateSolution(st.rnorm, st.stabilised, step_length));
+  // What a shortened step left of the prescribed increment comes in the next solve; a full step lands exactly.
+  for (double &d : st.delta) d *= 1.0 - step_length;
+  if (step_length == 1.0) PetscCall(SetDirichlet(st.factor));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::CondenseBase(StepState &st) {
+  PetscFunctionBeginUser;
+  if (!st.u_base) PetscCall(VecDuplicate(u_, st.u_base.out()));
+  PetscCall(VecCopy(u_, st.u_base));
+  st.g_base.resize(pairs_.size());
+  for (std::size_t p = 0; p < pairs_.size(); ++p) st.g_base[p] = states_[p].gap;
+  PetscCall(system_->Condense(st.singular));
+  if (st.singular) PetscFunctionReturn(0);
+  st.base = true;
+  st.base_rnorm = st.rnorm;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::Materialise(StepState &st, PetscInt it) {
+  PetscFunctionBeginUser;
+  {
+    ScopedTimer t(stats_.time_solve);
+    PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
+    // The whole solution of the last condensed solve (the right-hand side is the base's with the gaps of the current
+    // active set, AssembleSystem of that solve; the constraints are the current ones): the displacement increment
+    // from the base.
+    PetscCall(system_->Expand(st.solve_residual));
+    st.krylov = 1;
+    PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
+  }
+  stats_.solves++;
+  PetscCall(VecCopy(st.u_base, u_));
+  double step_length;
+  PetscCall(UpdateSolution(st.base_rnorm, false, step_length));
+  st.condensed = false;
+  // The expansion used up the condensed right-hand side: a solve after it (svk: the next Newton step; linear: a
+  // correction of an equilibrium residual the certificate refused) condenses again or solves in full.
+  st.base = false;
+  PetscCall(EvaluateIterate(st, it));
+  for (std::size_t p = 0; p < pairs_.size(); ++p) states_[p].lambda = lambda_[p];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::UpdateSolution(double r0, bool stabilised, double &step) {
+  const bool large = material_.model == MaterialModel::SVK;
+  const PetscInt nu = dofs_.OwnedU();
+  std::vector<double> new_lambda(pairs_.size());
+  const std::vector<char> &active = active_set_.Flags();
+  PetscFunctionBeginUser;
+  const PetscScalar *x;
+  PetscCall(VecGetArrayRead(system_->Solution(), &x));
+  // The solved multipliers: contact forces on active rows, stabilisation springs on inactive ones.
+  for (std::size_t p = 0; p < pairs_.size(); ++p) mult_[p] = x[nu + p], new_lambda[p] = active[p] ? x[nu + p] : 0.0;
+  PetscCall(VecRestoreArrayRead(system_->Solution(), &x));
+  PetscCall(VecCopy(u_, du_));
+  // Step length: halved while det F <= MIN_DET_F somewhere (always); with -newton_linesearch, the line search of Crisfield
+  // along du on g(s) = du . R(u + s du, lambda): g(0) = -du.K du < 0, a full step is kept unless it overshoots
+  // (g(1) > 0.8 |g(0)|), then the secant step; at most 8 trials.
+  const PetscScalar *dx;
+  PetscCall(VecGetArrayRead(system_->Solution(), &dx));
+  std::vector<double> dir(dx, dx + nu);
+  PetscCall(VecRestoreArrayRead(system_->Solution(), &dx));
+  double g0 = 0;
+  if (large && opts_.line_search) {
+    double r, scale;
+    EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_local_.data(), states_, rows_,
+                  normals_);
+    PetscCall(Residual(new_lambda, r, scale, dir.data(), &g0));
+  }
+  double s = 1.0;
+  if (large && stabilised) {
+    // svk: a stabilised step moves the body along its free motions; it is cut to a quarter of the search radius,
+    // so that the pairs searched again at the new position still see the obstacle it approaches (StepControl then
+    // moves the body along its free rigid motion from there).
+    double m = 0;
+    for (PetscInt i = 0; i < nu; ++i) m = std::max(m, std::abs(dir[i]));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &m, 1, MPI_DOUBLE, MPI_MAX, mesh_.Comm()));
+    if (m > 0.25 * contact_.search_radius) s = 0.25 * contact_.search_radius / m;
+  }
+  for (int k = 0;; ++k) {
+    // u = u_old + s du on the displacement rows (du_ holds u_old while trying).
+    PetscScalar *u;
+    const PetscScalar *u_old;
+    PetscCall(VecGetArray(u_, &u));
+    PetscCall(VecGetArrayRead(du_, &u_old));
+    for (PetscInt i = 0; i < nu; ++i) u[i] = u_old[i] + s * dir[i];
+    PetscCall(VecRestoreArrayRead(du_, &u_old));
+    PetscCall(VecRestoreArray(u_, &u));
+    PetscCall(UpdateLocal());
+    if (!large || k == 8) break;
+    double r, scale, g;
+    EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_local_.data(), states_, rows_,
+                  normals_);
+    PetscCall(Residual(new_lambda, r, scale, dir.data(), &g));
+    PetscCall(PetscInfo(nullptr, "line search: step %g g(s)/g(0) %g residual %g (before %g)\n", s, g / g0, r, r0));
+    if (!std::isfinite(r)) {
+      // Safeguard, always on: det F <= MIN_DET_F somewhere, halve the step.
+      s *= 0.5;
+      continue;
+    }
+    if (!opts_.line_search || g0 >= 0 || g <= 0.8 * std::abs(g0)) break;
+    s = std::max(0.1 * s, s * g0 / (g0 - g));
+  }
+  lambda_ = new_lambda;
+  step = s;
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini
