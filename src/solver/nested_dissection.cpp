@@ -2,7 +2,7 @@
 #include "signorini/solver/nested_dissection.hpp"
 
 #include <algorithm>
-#include <numeric>
+#include <utility>
 
 namespace signorini {
 
@@ -18,18 +18,22 @@ public:
   Dissection(const std::vector<int64_t> &xadj, const std::vector<int64_t> &adjncy, const std::vector<double> &x,
              int dim)
       : xadj_(xadj), adjncy_(adjncy), dim_(dim), n_(x.size() / dim) {
+    // Sorted by (coordinate, node), the order of a stable sort by coordinate, with each key beside its node instead of
+    // fetched through the node number at every comparison.
+    std::vector<std::pair<double, int64_t>> keyed(n_);
     for (int a = 0; a < dim; ++a) {
+      for (std::size_t v = 0; v < n_; ++v)
+        keyed[v] = {x[v * dim + a], (int64_t)v};
+      std::sort(keyed.begin(), keyed.end());
       order_[a].resize(n_);
-      std::iota(order_[a].begin(), order_[a].end(), 0);
-      std::stable_sort(order_[a].begin(), order_[a].end(),
-                       [&](int64_t u, int64_t v) { return x[u * dim + a] < x[v * dim + a]; });
+      for (std::size_t i = 0; i < n_; ++i)
+        order_[a][i] = keyed[i].second;
     }
-    member_.assign(n_, 0);
-    rank_.assign(n_, 0);
+    state_.assign(n_, {0, {0, 0, 0}});
     side_.assign(n_, 0);
     buffer_.resize(n_);
-    right_.resize(n_ + 2);
-    left_.resize(n_ + 2);
+    for (int a = 0; a < dim; ++a)
+      right_[a].resize(n_ + 2), left_[a].resize(n_ + 2);
     result_.reserve(n_);
   }
 
@@ -46,36 +50,50 @@ private:
     bool separator_left = false;
   };
 
-  /// Ranks along axis a of the nodes of [lo, hi) (rank_), and the best cut across that axis into best.
-  void BestCut(std::size_t lo, std::size_t hi, int a, int64_t id, Cut &best) {
+  /// The best cut of the subgraph [lo, hi) (its nodes marked id) across any axis, the earlier axis at a tie.
+  Cut BestCut(std::size_t lo, std::size_t hi, int64_t id) {
     const std::size_t m = hi - lo;
-    const int64_t *nodes = order_[a].data() + lo;
-    for (std::size_t i = 0; i < m; ++i)
-      rank_[nodes[i]] = (int64_t)i;
-    // Node i (in axis order) is on the boundary of the second side for the cuts c in (min rank of its neighbours, i]
-    // and on the boundary of the first side for c in (i, max rank of its neighbours]: difference arrays give the
-    // sizes of both boundaries for every cut in one pass.
-    std::fill(right_.begin(), right_.begin() + m + 2, 0);
-    std::fill(left_.begin(), left_.begin() + m + 2, 0);
-    for (std::size_t i = 0; i < m; ++i) {
-      const int64_t v = nodes[i];
-      int64_t lowest = (int64_t)i, highest = (int64_t)i;
-      for (int64_t e = xadj_[v]; e < xadj_[v + 1]; ++e)
-        if (member_[adjncy_[e]] == id) {
-          lowest = std::min(lowest, rank_[adjncy_[e]]);
-          highest = std::max(highest, rank_[adjncy_[e]]);
-        }
-      if (lowest < (int64_t)i) ++right_[lowest + 1], --right_[i + 1];
-      if (highest > (int64_t)i) ++left_[i + 1], --left_[highest + 1];
+    for (int a = 0; a < dim_; ++a) {
+      const int64_t *nodes = order_[a].data() + lo;
+      for (std::size_t i = 0; i < m; ++i)
+        state_[nodes[i]].rank[a] = (int64_t)i;
+      std::fill(right_[a].begin(), right_[a].begin() + m + 2, 0);
+      std::fill(left_[a].begin(), left_[a].begin() + m + 2, 0);
     }
-    int64_t on_left = 0, on_right = 0;
-    for (std::size_t c = 1; c < m; ++c) {
-      on_left += left_[c], on_right += right_[c];
-      const double f = (double)c / (double)m;
-      if (f < MIN_SIDE || f > 1 - MIN_SIDE) continue;
-      const double cost = (double)std::min(on_left, on_right) / (f * (1 - f));
-      if (best.cost < 0 || cost < best.cost) best = {cost, a, c, on_left <= on_right};
+    // Node v of rank i along axis a is on the boundary of the second side for the cuts c in (min rank of its
+    // neighbours, i] and on the boundary of the first side for c in (i, max rank of its neighbours]: difference
+    // arrays give the sizes of both boundaries for every cut. One pass over the neighbours serves every axis (they
+    // are the ordering's main cost: scattered reads).
+    const int64_t *nodes = order_[0].data() + lo;
+    for (std::size_t k = 0; k < m; ++k) {
+      const int64_t v = nodes[k];
+      int64_t lowest[3], highest[3];
+      for (int a = 0; a < dim_; ++a)
+        lowest[a] = highest[a] = state_[v].rank[a];
+      for (int64_t e = xadj_[v]; e < xadj_[v + 1]; ++e) {
+        const NodeState &w = state_[adjncy_[e]];
+        if (w.subgraph != id) continue;
+        for (int a = 0; a < dim_; ++a)
+          lowest[a] = std::min(lowest[a], w.rank[a]), highest[a] = std::max(highest[a], w.rank[a]);
+      }
+      for (int a = 0; a < dim_; ++a) {
+        const int64_t i = state_[v].rank[a];
+        if (lowest[a] < i) ++right_[a][lowest[a] + 1], --right_[a][i + 1];
+        if (highest[a] > i) ++left_[a][i + 1], --left_[a][highest[a] + 1];
+      }
     }
+    Cut best;
+    for (int a = 0; a < dim_; ++a) {
+      int64_t on_left = 0, on_right = 0;
+      for (std::size_t c = 1; c < m; ++c) {
+        on_left += left_[a][c], on_right += right_[a][c];
+        const double f = (double)c / (double)m;
+        if (f < MIN_SIDE || f > 1 - MIN_SIDE) continue;
+        const double cost = (double)std::min(on_left, on_right) / (f * (1 - f));
+        if (best.cost < 0 || cost < best.cost) best = {cost, a, c, on_left <= on_right};
+      }
+    }
+    return best;
   }
 
   void Order(std::size_t lo, std::size_t hi) {
@@ -86,33 +104,29 @@ private:
     }
     const int64_t id = ++subgraphs_;
     for (std::size_t i = lo; i < hi; ++i)
-      member_[order_[0][i]] = id;
-    Cut cut;
-    for (int a = 0; a < dim_; ++a)
-      BestCut(lo, hi, a, id, cut);
+      state_[order_[0][i]].subgraph = id;
+    const Cut cut = BestCut(lo, hi, id);
     // Sides: 0 before the cut, 1 after it, 2 the separator (the boundary of the chosen side).
     const int64_t *nodes = order_[cut.axis].data() + lo;
-    for (std::size_t i = 0; i < m; ++i)
-      rank_[nodes[i]] = (int64_t)i;
+    std::size_t count[3] = {0, 0, 0};
     for (std::size_t i = 0; i < m; ++i) {
       const int64_t v = nodes[i];
       const bool first = i < cut.position;
       char side = first ? 0 : 1;
       if (first == cut.separator_left)
-        for (int64_t e = xadj_[v]; e < xadj_[v + 1] && side < 2; ++e)
-          if (member_[adjncy_[e]] == id && (rank_[adjncy_[e]] < (int64_t)cut.position) != first) side = 2;
+        for (int64_t e = xadj_[v]; e < xadj_[v + 1] && side < 2; ++e) {
+          const NodeState &w = state_[adjncy_[e]];
+          if (w.subgraph == id && (w.rank[cut.axis] < (int64_t)cut.position) != first) side = 2;
+        }
       side_[v] = side;
+      ++count[(int)side];
     }
-    std::size_t count[3] = {0, 0, 0};
+    // Each list split stably into the three sides in one pass.
     for (int a = 0; a < dim_; ++a) {
       int64_t *list = order_[a].data() + lo;
-      std::size_t k = 0;
-      for (char s = 0; s < 3; ++s) {
-        const std::size_t start = k;
-        for (std::size_t i = 0; i < m; ++i)
-          if (side_[list[i]] == s) buffer_[k++] = list[i];
-        count[(int)s] = k - start;
-      }
+      std::size_t next[3] = {0, count[0], count[0] + count[1]};
+      for (std::size_t i = 0; i < m; ++i)
+        buffer_[next[(int)side_[list[i]]]++] = list[i];
       std::copy(buffer_.begin(), buffer_.begin() + m, list);
     }
     Order(lo, lo + count[0]);
@@ -123,7 +137,13 @@ private:
   const std::vector<int64_t> &xadj_, &adjncy_;
   const int dim_;
   const std::size_t n_;
-  std::vector<int64_t> order_[3], member_, rank_, buffer_, right_, left_, result_;
+  /// A node's subgraph (the id of the last subgraph it was in) and its ranks along the axes in that subgraph, side by
+  /// side: the passes over the neighbours read them together.
+  struct NodeState {
+    int64_t subgraph, rank[3];
+  };
+  std::vector<NodeState> state_;
+  std::vector<int64_t> order_[3], buffer_, right_[3], left_[3], result_;
   std::vector<char> side_;
   int64_t subgraphs_ = 0;
 };
