@@ -498,11 +498,11 @@ PetscErrorCode Assembler::CellResults(const double *u_local,
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::StiffnessScale(double &scale) const {
+PetscErrorCode Assembler::StiffnessScale(double &scale, double *abs_row_sum) const {
   const int dim = mesh_.Dim();
   std::array<double, MAX_EDOF * MAX_EDOF> Ke;
   std::array<double, MAX_EDOF> fe, ue{};
-  double sum[2] = {0, 0}, gsum[2];
+  double sum[3] = {0, 0, 0}, gsum[3];
   PetscFunctionBeginUser;
   Material linear = material_;
   linear.model = MaterialModel::LINEAR;
@@ -514,9 +514,12 @@ PetscErrorCode Assembler::StiffnessScale(double &scale) const {
     ElementTangentAndForce(linear, g, ue.data(), Ke.data(), fe.data());
     for (PetscInt i = 0; i < nn * dim; ++i) sum[0] += Ke[i * nn * dim + i];
     sum[1] += nn * dim;
+    if (abs_row_sum)
+      for (PetscInt i = 0; i < nn * dim * nn * dim; ++i) sum[2] += std::abs(Ke[i]);
   }
-  PetscCallMPI(MPI_Allreduce(sum, gsum, 2, MPI_DOUBLE, MPI_SUM, mesh_.Comm()));
+  PetscCallMPI(MPI_Allreduce(sum, gsum, 3, MPI_DOUBLE, MPI_SUM, mesh_.Comm()));
   scale = gsum[1] > 0 ? gsum[0] / gsum[1] : 1.0;
+  if (abs_row_sum) *abs_row_sum = gsum[2] / std::max<double>(1.0, (double)mesh_.Dim() * mesh_.NumGlobalNodes());
   PetscFunctionReturn(0);
 }
 

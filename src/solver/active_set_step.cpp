@@ -24,7 +24,7 @@ PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const
   // right-hand side f - F_int with no active row, condensed onto the multipliers: the base of the condensed solves
   // that follow (the next solve's active set only changes the multiplier rows).
   if (st.condensed) PetscCall(Materialise(st, it));
-  PetscCall(Residual(lambda_, st.rnorm, st.rscale));
+  PetscCall(Residual(lambda_, st.rnorm, st.rscale, nullptr, nullptr, &st.rroundoff));
   st.next.assign(pairs_.size(), 0);
   st.stabilised = false;
   st.base = false;
@@ -170,7 +170,7 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
     // normals and the constraint rows of the linear material do not move).
     for (std::size_t p = 0; p < pairs_.size(); ++p) states_[p].gap = st.g_base[p] + st.shift[p];
     st.rnorm = st.solve_residual;
-    st.rscale = 0;
+    st.rscale = 0, st.rroundoff = 0;
     PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
     PetscFunctionReturn(0);
   }
@@ -191,7 +191,7 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
   EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, st.large, st.u_eval.data(), states_,
                 rows_, normals_);
   if (st.large || it == 0 || st.stabilised) {
-    PetscCall(Residual(lambda_, st.rnorm, st.rscale));
+    PetscCall(Residual(lambda_, st.rnorm, st.rscale, nullptr, nullptr, &st.rroundoff));
   } else {
     // Linear material after a solve: K du was solved for exactly (to the solve's residual), so F_int = f + B^T x on
     // the free rows (x: the solved multipliers), without a pass over the cells; the monitor shows the solve's
@@ -207,7 +207,7 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
     PetscCall(VecRestoreArrayRead(fext_, &fe));
     PetscCall(VecRestoreArray(fint_, &fi));
     st.rnorm = st.solve_residual;
-    st.rscale = 0;
+    st.rscale = 0, st.rroundoff = 0;
   }
   PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -221,7 +221,7 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
   // there (svk's block in the notch toggled one pair between a tensile multiplier and a penetration while the
   // residual stayed at 4e-4).
   bool deferred = false; // svk: a switch put off until an equilibrium (below): not a state to judge the body by
-  if (st.large && changes > 0 && active_set_.OneAtATime() && !(st.rnorm <= EquilibriumTol(st.rscale))) {
+  if (st.large && changes > 0 && active_set_.OneAtATime() && !(st.rnorm <= EquilibriumTol(st.rscale, st.rroundoff))) {
     st.next = active_set_.Flags();
     changes = 0;
     deferred = true;
@@ -277,9 +277,10 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
     // an equilibrium residual left by an inexact solver) or stops with the violated condition.
     if (changes == 0 && !st.moving && !st.stabilised) {
       if (st.condensed) PetscCall(Materialise(st, it));
-      if (!st.large) PetscCall(Residual(lambda_, st.rnorm, st.rscale));
-      const double tol = EquilibriumTol(st.rscale);
-      PetscCall(PetscInfo(nullptr, "candidate state: equilibrium residual %g (tolerance %g)\n", st.rnorm, tol));
+      if (!st.large) PetscCall(Residual(lambda_, st.rnorm, st.rscale, nullptr, nullptr, &st.rroundoff));
+      const double tol = EquilibriumTol(st.rscale, st.rroundoff);
+      PetscCall(PetscInfo(nullptr, "candidate state: equilibrium residual %g (tolerance %g, of which round-off %g)\n",
+                          st.rnorm, tol, st.rroundoff));
       if (st.rnorm <= tol || !st.large) {
         Certificate cert;
         PetscCall(Certify(st.u_eval, st.rnorm, tol, cert));
@@ -407,10 +408,10 @@ PetscErrorCode ContactSolver::Certify(const std::vector<double> &u_eval, double 
   PetscFunctionReturn(0);
 }
 
-double ContactSolver::EquilibriumTol(double scale) const {
+double ContactSolver::EquilibriumTol(double scale, double roundoff) const {
   // The absolute part may not exceed 1e-6 of the force scale: an absolute tolerance as large as a small load would
-  // otherwise accept any state.
-  return opts_.newton_rtol * scale + std::min(opts_.newton_atol, 1e-6 * scale);
+  // otherwise accept any state. The round-off part only counts where the forces themselves are of round-off size.
+  return opts_.newton_rtol * scale + std::min(opts_.newton_atol, 1e-6 * scale) + roundoff;
 }
 
 } // namespace signorini

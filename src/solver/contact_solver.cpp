@@ -34,7 +34,7 @@ PetscErrorCode ContactSolver::Setup() {
   PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size()));
   assembler_ = std::make_unique<Assembler>(mesh_, material_, dofs_, dirichlet_);
   PetscCall(assembler_->CheckCells());
-  PetscCall(assembler_->StiffnessScale(kscale_));
+  PetscCall(assembler_->StiffnessScale(kscale_, &krow_));
   u_local_.assign(mesh_.NumLocalVertices() * dim, 0.0);
   paired_at_ = u_local_;
   PetscCall(CreateSystem());

@@ -6,6 +6,7 @@
 #include "signorini/core/progress.hpp"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 
 namespace signorini {
@@ -14,7 +15,7 @@ using namespace detail;
 
 
 PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double &norm, double &scale,
-                                        const PetscScalar *direction, double *dot) {
+                                        const PetscScalar *direction, double *dot, double *roundoff) {
   const int dim = mesh_.Dim();
   double min_J;
   PetscFunctionBeginUser;
@@ -35,7 +36,7 @@ PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double
   PetscCall(VecGetArrayRead(fext_, &fe));
   std::vector<double> r(dofs_.OwnedU(), 0.0);
   for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) r[i] = fi[i] - fe[i];
-  double s[3] = {0, 0, 0};
+  double s[4] = {0, 0, 0, 0};
   for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) s[1] += fi[i] * fi[i] + fe[i] * fe[i];
   PetscCall(VecRestoreArrayRead(fint_, &fi));
   PetscCall(VecRestoreArrayRead(fext_, &fe));
@@ -50,9 +51,16 @@ PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double
           s[0] += r[i] * r[i];
           if (direction) s[2] += direction[i] * r[i];
         }
-  double gs[3];
-  PetscCallMPI(MPI_Allreduce(s, gs, 3, MPI_DOUBLE, MPI_SUM, mesh_.Comm()));
+  // ||u|| over the owned rows (prescribed values included) for the round-off of F_int (Residual's roundoff).
+  double s_u = 0;
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    if (mesh_.Owned(v))
+      for (int k = 0; k < dim; ++k) s_u += u_local_[v * dim + k] * u_local_[v * dim + k];
+  s[3] = s_u;
+  double gs[4];
+  PetscCallMPI(MPI_Allreduce(s, gs, 4, MPI_DOUBLE, MPI_SUM, mesh_.Comm()));
   if (dot) *dot = gs[2];
+  if (roundoff) *roundoff = ROUNDOFF_FACTOR * DBL_EPSILON * krow_ * std::sqrt(gs[3]);
   norm = std::isfinite(min_J) && min_J > MIN_DET_F ? std::sqrt(gs[0]) : INFINITY;
   scale = std::sqrt(gs[1]);
   PetscFunctionReturn(0);
@@ -141,7 +149,7 @@ PetscErrorCode ContactSolver::NewtonForcing(const StepState &st, double &rtol) c
   if (!(opts_.lagged_search && system_->ReusesFactorization()) || active_set_.OneAtATime() || !(st.rnorm > 0) ||
       !(st.rscale > 0))
     PetscFunctionReturn(0);
-  const double eta = std::min(SEARCH_RTOL, std::max(0.5 * EquilibriumTol(st.rscale) / st.rnorm, st.rnorm / st.rscale));
+  const double eta = std::min(SEARCH_RTOL, std::max(0.5 * EquilibriumTol(st.rscale, st.rroundoff) / st.rnorm, st.rnorm / st.rscale));
   PetscReal bnorm;
   PetscCall(VecNorm(system_->Rhs(), NORM_2, &bnorm));
   if (bnorm > 0) rtol = std::min(SEARCH_RTOL, eta * st.rnorm / bnorm);

@@ -1815,6 +1815,31 @@ def svk_free_after_lagged_search(runner):
     expect_same_state(runner, r, held, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
+@test("rigid_translation_steps")
+def rigid_translation_steps(runner):
+    """Prescribed displacements that only translate the body leave F_int of round-off size and no load: the equilibrium
+    tolerance relative to the forces was about 1e-21 against a residual of 1e-15, and such a step ended
+    DIVERGED_EQUILIBRIUM_STALLED (linear) or ran out of Newton iterations (svk), whatever -newton_rtol. The tolerance now
+    includes the residual's round-off (ContactSolver::ROUNDOFF_FACTOR): a translated ring (2D, linear and svk) and a
+    translated 3D body converge to the exact translation, and the punch approached in 5 displacement steps (its
+    first step only closes the gap) reaches the state of one step (1e-8)."""
+    for extra, what, dim in (([], "linear", 2), (["-material_model", "svk", "-load_steps", "3"], "svk", 2)):
+        r = runner.run(["-mesh_file", "meshes/lame.msh", "-bc_dirichlet", "symmetry_x:x=0.01,symmetry_y:y=-0.02"] + extra,
+                       "ring translated, " + what)
+        nodes = r.nodes()
+        runner.expect_close("%s: u_x" % what, nodes["u_x"], np.full(len(nodes), 0.01), 0, 1e-12)
+        runner.expect_close("%s: u_y" % what, nodes["u_y"], np.full(len(nodes), -0.02), 0, 1e-12)
+    r = runner.run(["-mesh_file", "meshes/hertz3d.msh", "-bc_dirichlet", "symmetry_x:x=1,symmetry_y:y=1,top:z=0.5",
+                    "-load_steps", "2"], "3D body translated in 2 steps")
+    nodes = r.nodes()
+    for k, v in (("u_x", 1), ("u_y", 1), ("u_z", 0.5)):
+        runner.expect_close("3D: " + k, nodes[k], np.full(len(nodes), float(v)), 0, 1e-12)
+    one = runner.run(["-options_file", "options/punch_on_plate.yml"], "punch, one step")
+    five = runner.run(["-options_file", "options/punch_on_plate.yml", "-load_steps", "5"], "punch, five steps")
+    runner.expect_equal("punch: five load steps", five.get("iterations.load_steps"), 5)
+    expect_same_state(runner, one, five, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+
+
 @test("svk_notch_cycle")
 def svk_notch_cycle(runner):
     """svk block in the notch: with the lagged searches (the default) its active set went round a loop of 11 sets

@@ -59,8 +59,10 @@ public:
   /// at 1M cells it would take 120 MB at the peak of the output).
   [[nodiscard]] PetscErrorCode CellResults(const double *u_local,
                                            const std::function<void(PetscInt, const CellStress &)> &use) const;
-  /// Mean diagonal entry of the element stiffness (a stiffness scale for Dirichlet rows). Collective.
-  [[nodiscard]] PetscErrorCode StiffnessScale(double &scale) const;
+  /// Mean diagonal entry of the element stiffness (a stiffness scale for Dirichlet rows) and, optionally, the mean
+  /// over the global rows of sum_j |K_ij| summed element by element (the scale of the round-off of K u: abs_row_sum ||u||
+  /// eps). Linear material at u = 0. Collective.
+  [[nodiscard]] PetscErrorCode StiffnessScale(double &scale, double *abs_row_sum = nullptr) const;
 
 private:
   /// Adds f_local (dim values per local vertex, ghosts included) to the displacement rows of f and assembles f.
