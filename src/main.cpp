@@ -3,6 +3,7 @@
 #include "signorini/core/errors.hpp"
 #include "signorini/core/options.hpp"
 
+#include <csignal>
 #include <cstdio>
 #include <string>
 
@@ -31,6 +32,9 @@ int main(int argc, char **argv) {
     if (!finalized) MPI_Finalize();
     return 1;
   }
+  // A closed pipe on stdout (`signorini ... | head -1` in a batch script) is no reason to lose the results: PETSc's
+  // handler would abort on SIGPIPE and leave no output; ignored, the writes to the pipe fail and the run goes on.
+  std::signal(SIGPIPE, SIG_IGN);
   PetscErrorCode ierr = signorini::CheckCommandLine(argc, argv);
   if (!ierr) ierr = signorini::Run();
   if (ierr) {
