@@ -197,8 +197,10 @@ PetscErrorCode PrintSummary(MPI_Comm comm, ContactSolver &solver, const ContactS
     PetscCall(PetscPrintf(comm, "  Hertz (R = %g, the default case's): not compared, Johnson's contact %s %g is not "
                           "small against R\n", h.R, dim == 2 ? "half-width" : "radius", h.a));
   else if (h.enabled) {
-    PetscCall(PetscPrintf(comm, "  Hertz (R = %g, P = %g): %s a = %.6g computed %.6g (%+.2f%%), peak pressure p0 = "
-                          "%.6g computed %.6g (%+.2f%%, fit of %" PetscInt_FMT " nodal pressures)\n", h.R, h.P,
+    // The label names the load compared (P_model), not -report_hertz's P: they differ when the default case's load
+    // was changed (-bc_traction), whose report compares with the load the model carries.
+    PetscCall(PetscPrintf(comm, "  Hertz (R = %.6g, P = %.6g): %s a = %.6g computed %.6g (%+.2f%%), peak pressure p0 = "
+                          "%.6g computed %.6g (%+.2f%%, fit of %" PetscInt_FMT " nodal pressures)\n", h.R, h.P_model,
                           dim == 2 ? "half-width" : "contact radius", h.a, h.a_h, 100 * (h.a_h - h.a) / h.a, h.p0,
                           h.p0_h, 100 * (h.p0_h - h.p0) / h.p0, h.fit_nodes));
     PetscCall(PetscPrintf(comm, "    Johnson's values for the load the model stands for, %.6g (it is %g of the body "
