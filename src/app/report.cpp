@@ -91,7 +91,7 @@ PetscErrorCode ComputeHertz(ContactSolver &solver, const Material &m, const Node
   // beyond HERTZ_LOAD_TOL the case is not the Hertz case of load P (another load, or no cylinder or sphere).
   constexpr double HERTZ_LOAD_TOL = 0.1;
   PetscCheck(!h.check_load || std::abs(h.P_model / h.P - 1) <= HERTZ_LOAD_TOL, comm, PETSC_ERR_USER_INPUT,
-             "-report_hertz %g,%g: the contact force%s is %g, which is not P, P/2 or P/4 within %d %%; expected the "
+             "-report_hertz %.6g,%.6g: the contact force%s is %.6g, which is not P, P/2 or P/4 within %d %%; expected the "
              "load P of a Hertz case (a cylinder in 2D or a sphere in 3D on a flat, or its half or quarter by symmetry "
              "planes)", h.R, h.P, dim == 2 ? " per unit thickness" : "", force, (int)std::lround(100 * HERTZ_LOAD_TOL));
   const double Estar = dim == 2 && m.plane_stress ? m.E : m.E / (1 - m.nu * m.nu);
@@ -110,7 +110,7 @@ PetscErrorCode ComputeHertz(ContactSolver &solver, const Material &m, const Node
     PetscFunctionReturn(0);
   }
   PetscCheck(h.a < HERTZ_MAX_A_OVER_R * h.R, comm, PETSC_ERR_USER_INPUT,
-             "-report_hertz %g,%g: Johnson's contact %s for this load is %g, not small against R = %g; Hertz's theory "
+             "-report_hertz %.6g,%.6g: Johnson's contact %s for this load is %.6g, not small against R = %.6g; Hertz's theory "
              "holds for a << R (expected the radius R of the cylinder or sphere in contact)", h.R, h.P,
              dim == 2 ? "half-width" : "radius", h.a, h.R);
   // Peak pressure: the nodal pressure lambda / w scatters by a few per cent from node to node on an unstructured
@@ -161,10 +161,10 @@ PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m
   for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) owned += mesh.Owned(v) && solver.Candidates()[v];
   PetscCallMPI(MPI_Allreduce(&owned, &candidates, 1, MPIU_INT, MPI_SUM, comm));
   if (mesh.Dim() == 2)
-    PetscCall(PetscPrintf(comm, "signorini: 2D %s, plane %s, E = %g, nu = %g, thickness = %g\n", m.ModelName(),
+    PetscCall(PetscPrintf(comm, "signorini: 2D %s, plane %s, E = %.6g, nu = %.6g, thickness = %.6g\n", m.ModelName(),
                           m.plane_stress ? "stress" : "strain", m.E, m.nu, m.thickness));
   else
-    PetscCall(PetscPrintf(comm, "signorini: 3D %s, E = %g, nu = %g\n", m.ModelName(), m.E, m.nu));
+    PetscCall(PetscPrintf(comm, "signorini: 3D %s, E = %.6g, nu = %.6g\n", m.ModelName(), m.E, m.nu));
   PetscCall(PetscPrintf(comm, "  mesh %s: %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells, %d rank(s)\n",
                         info.mesh_file.c_str(), mesh.NumGlobalNodes(), mesh.NumGlobalCells(), info.ranks));
   PetscCall(PetscPrintf(comm, "  unknowns: %" PetscInt_FMT " displacements, %" PetscInt_FMT " multipliers (%"
@@ -192,9 +192,9 @@ PetscErrorCode PrintSummary(MPI_Comm comm, ContactSolver &solver, const ContactS
                         "%.3e, max |u| %.6g\n", dim == 2 ? "length" : "area", s.contact_length, s.max_pressure,
                         s.max_penetration, s.complementarity, s.max_displacement));
   if (h.enabled && s.active_nodes == 0)
-    PetscCall(PetscPrintf(comm, "  Hertz (R = %g, P = %g): no contact, nothing to compare\n", h.R, h.P));
+    PetscCall(PetscPrintf(comm, "  Hertz (R = %.6g, P = %.6g): no contact, nothing to compare\n", h.R, h.P));
   else if (h.enabled && h.out_of_range)
-    PetscCall(PetscPrintf(comm, "  Hertz (R = %g, the default case's): not compared, Johnson's contact %s %g is not "
+    PetscCall(PetscPrintf(comm, "  Hertz (R = %.6g, the default case's): not compared, Johnson's contact %s %.6g is not "
                           "small against R\n", h.R, dim == 2 ? "half-width" : "radius", h.a));
   else if (h.enabled) {
     // The label names the load compared (P_model), not -report_hertz's P: they differ when the default case's load
@@ -203,7 +203,7 @@ PetscErrorCode PrintSummary(MPI_Comm comm, ContactSolver &solver, const ContactS
                           "%.6g computed %.6g (%+.2f%%, fit of %" PetscInt_FMT " nodal pressures)\n", h.R, h.P_model,
                           dim == 2 ? "half-width" : "contact radius", h.a, h.a_h, 100 * (h.a_h - h.a) / h.a, h.p0,
                           h.p0_h, 100 * (h.p0_h - h.p0) / h.p0, h.fit_nodes));
-    PetscCall(PetscPrintf(comm, "    Johnson's values for the load the model stands for, %.6g (it is %g of the body "
+    PetscCall(PetscPrintf(comm, "    Johnson's values for the load the model stands for, %.6g (it is %.6g of the body "
                           "and carries %.6g)\n", h.P_model, h.fraction, h.fraction * h.P_model));
   }
   PetscFunctionReturn(0);

@@ -55,24 +55,24 @@ bool Certificate::Satisfied() const { return Violation().empty(); }
 std::string Certificate::Violation() const {
   char text[512] = "";
   if (!(max_penetration <= gap_tol))
-    std::snprintf(text, sizeof(text), "a node penetrates the obstacle by %g (-contact_gap_tol %g)", max_penetration,
+    std::snprintf(text, sizeof(text), "a node penetrates the obstacle by %.6g (-contact_gap_tol %.6g)", max_penetration,
                   gap_tol);
   else if (!(unpaired_penetration <= gap_tol))
     std::snprintf(text, sizeof(text),
-                  "node %" PetscInt_FMT " (at %g, %g, %g) penetrates the obstacle by %g on a facet it has no contact "
-                  "pair with: the facet was farther than -contact_search_radius %g from the node when the pairs were "
+                  "node %" PetscInt_FMT " (at %.6g, %.6g, %.6g) penetrates the obstacle by %.6g on a facet it has no contact "
+                  "pair with: the facet was farther than -contact_search_radius %.6g from the node when the pairs were "
                   "found, or (linear material) its zone did not hold the node there", unpaired_node, unpaired_x[0],
                   unpaired_x[1], unpaired_x[2], unpaired_penetration, search_radius);
   else if (!(min_active_lambda >= -lambda_tol))
-    std::snprintf(text, sizeof(text), "an active pair carries a tensile multiplier %g (tolerance %g)",
+    std::snprintf(text, sizeof(text), "an active pair carries a tensile multiplier %.6g (tolerance %.6g)",
                   min_active_lambda, lambda_tol);
   else if (!(max_inactive_lambda <= lambda_tol))
-    std::snprintf(text, sizeof(text), "an inactive pair carries a multiplier %g", max_inactive_lambda);
+    std::snprintf(text, sizeof(text), "an inactive pair carries a multiplier %.6g", max_inactive_lambda);
   else if (!(complementarity <= complementarity_tol))
-    std::snprintf(text, sizeof(text), "complementarity max |lambda g| = %g exceeds %g", complementarity,
+    std::snprintf(text, sizeof(text), "complementarity max |lambda g| = %.6g exceeds %.6g", complementarity,
                   complementarity_tol);
   else if (!(equilibrium <= equilibrium_tol))
-    std::snprintf(text, sizeof(text), "the equilibrium residual %g exceeds %g (-newton_rtol, -newton_atol)",
+    std::snprintf(text, sizeof(text), "the equilibrium residual %.6g exceeds %.6g (-newton_rtol, -newton_atol)",
                   equilibrium, equilibrium_tol);
   else if (changes != 0)
     std::snprintf(text, sizeof(text), "the active-set rule would still switch %" PetscInt_FMT " pair(s)", changes);
@@ -124,7 +124,7 @@ PetscErrorCode ActiveSet::Next(const std::vector<PairState> &states, PetscInt it
       if (next[p] && !active_[p] && start_gap_[p] > limit) next[p] = 0, ++held;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &held, 1, MPIU_INT, MPI_SUM, comm_));
     PetscCall(PetscInfo(nullptr, "first update: %" PetscInt_FMT " penetrating pair(s) held back (gap at the start of "
-                        "the step above %g)\n", held, limit));
+                        "the step above %.6g)\n", held, limit));
   }
   if (single_) PetscCall(KeepOneSwitch(current, keys, next));
   PetscInt mine = 0;
@@ -154,8 +154,8 @@ PetscErrorCode ActiveSet::KeepOneSwitch(const std::vector<PairState> &states, co
     if (next[p] == active_[p]) continue;
     if (keys[p].original != key[0] || keys[p].facet != key[1]) next[p] = active_[p];
     else
-      PetscCall(PetscInfo(nullptr, "one switch: node %" PetscInt_FMT " facet %" PetscInt_FMT " %s (lambda %g, gap "
-                          "%g)\n", keys[p].original, keys[p].facet, next[p] ? "activated" : "released",
+      PetscCall(PetscInfo(nullptr, "one switch: node %" PetscInt_FMT " facet %" PetscInt_FMT " %s (lambda %.6g, gap "
+                          "%.6g)\n", keys[p].original, keys[p].facet, next[p] ? "activated" : "released",
                           states[p].lambda, states[p].gap));
   }
   PetscFunctionReturn(0);

@@ -92,7 +92,7 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
                              opts.converged_reason, &opts.converged_reason, nullptr));
   PetscOptionsEnd();
   PetscCheck(opts.activation_gap_factor == 0 || opts.activation_gap_factor >= 1, comm, PETSC_ERR_USER_INPUT,
-             "-contact_activation_gap_factor %g is out of range; expected 0 (off) or a number in [1, 1e+06]",
+             "-contact_activation_gap_factor %.6g is out of range; expected 0 (off) or a number in [1, 1e+06]",
              opts.activation_gap_factor);
   PetscFunctionReturn(0);
 }

@@ -73,7 +73,7 @@ std::optional<long long> ParseInteger(const std::string &text) {
 
 std::string FormatNumber(double value) {
   char text[32];
-  std::snprintf(text, sizeof(text), "%g", value);
+  std::snprintf(text, sizeof(text), "%.6g", value);
   return text;
 }
 

@@ -52,7 +52,7 @@ PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const
   for (char a : st.next) active += a;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &active, 1, MPIU_INT, MPI_SUM, mesh_.Comm()));
   PetscCall(PetscInfo(nullptr, "%s after %d iterations: the complementarity problem in the multipliers: %s after %d "
-                      "pivots, %" PetscInt_FMT " active, %g of the load along rigid motions unbalanced\n", why,
+                      "pivots, %" PetscInt_FMT " active, %.6g of the load along rigid motions unbalanced\n", why,
                       (int)it, LcpStatusName(status), pivots, active, unbalanced));
   stats_.pivoted_sets++;
   if (status != LcpStatus::SOLVED) PetscFunctionReturn(0);
@@ -279,7 +279,7 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
       if (st.condensed) PetscCall(Materialise(st, it));
       if (!st.large) PetscCall(Residual(lambda_, st.rnorm, st.rscale, nullptr, nullptr, &st.rroundoff));
       const double tol = EquilibriumTol(st.rscale, st.rroundoff);
-      PetscCall(PetscInfo(nullptr, "candidate state: equilibrium residual %g (tolerance %g, of which round-off %g)\n",
+      PetscCall(PetscInfo(nullptr, "candidate state: equilibrium residual %.6g (tolerance %.6g, of which round-off %.6g)\n",
                           st.rnorm, tol, st.rroundoff));
       if (st.rnorm <= tol || !st.large) {
         Certificate cert;
@@ -313,7 +313,7 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
         if (st.stalled_corrections >= 2) {
           stats_.reason = "DIVERGED_EQUILIBRIUM_STALLED";
           char text[256];
-          std::snprintf(text, sizeof(text), "%g after two correction solves, %g before them, tolerance %g", st.rnorm,
+          std::snprintf(text, sizeof(text), "%.6g after two correction solves, %.6g before them, tolerance %.6g", st.rnorm,
                         st.candidate_rnorm, tol);
           stats_.violation = text;
           outcome = Outcome::STOP;
@@ -357,7 +357,7 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
         if (on_facet) reach = std::min(reach, t);
       }
       PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &reach, 1, MPI_DOUBLE, MPI_MIN, mesh_.Comm()));
-      PetscCall(PetscInfo(nullptr, "stabilised state: free rigid motion of size %g, nearest pair closes at %g of it\n",
+      PetscCall(PetscInfo(nullptr, "stabilised state: free rigid motion of size %.6g, nearest pair closes at %.6g of it\n",
                           size, reach));
       if (!std::isfinite(reach) || reach > 1e12) {
         stats_.reason = "DIVERGED_NOT_HELD";
@@ -401,8 +401,8 @@ PetscErrorCode ContactSolver::Certify(const std::vector<double> &u_eval, double 
   cert.search_radius = contact_.search_radius;
   // No solve can lift a node whose normal motion the supports prescribe: the input contradicts itself.
   PetscCheck(prescribed.depth <= cert.gap_tol, mesh_.Comm(), PETSC_ERR_USER_INPUT,
-             "candidate node %" PetscInt_FMT " (at %g, %g, %g) is held by -bc_dirichlet inside the obstacle, by %g "
-             "(gap tolerance %g); expected prescribed displacements that keep the contact candidates out of the "
+             "candidate node %" PetscInt_FMT " (at %.6g, %.6g, %.6g) is held by -bc_dirichlet inside the obstacle, by %.6g "
+             "(gap tolerance %.6g); expected prescribed displacements that keep the contact candidates out of the "
              "obstacle",
              prescribed.node, prescribed.x[0], prescribed.x[1], prescribed.x[2], prescribed.depth, cert.gap_tol);
   PetscFunctionReturn(0);

@@ -356,7 +356,7 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     bool ok;
     PetscCall(LoadStep(step + 1, t_try, step == 0, ok));
     if (contact_.converged_reason)
-      PetscCall(PetscPrintf(comm, "Contact solve %s: %s at load factor %g after %" PetscInt_FMT " solve(s)\n",
+      PetscCall(PetscPrintf(comm, "Contact solve %s: %s at load factor %.6g after %" PetscInt_FMT " solve(s)\n",
                             ok ? "converged" : "diverged", stats_.reason.c_str(), t_try, stats_.solves));
     if (ok) {
       exact_repeat = false;
@@ -380,12 +380,12 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
       // A candidate went into a facet it has no pair with: the step is repeated, from the last converged state, with
       // pairs found within a wider radius (linear material: and that pair; not a cut: the increment stays).
       if (widen_node_ >= 0)
-        PetscCall(PetscPrintf(comm, "Load step at factor %g failed (%s) with node %" PetscInt_FMT " %g inside the "
-                              "obstacle, on a facet it has no contact pair with: searching the pairs again within %g "
-                              "(was %g)\n", t_try, stats_.reason.c_str(), widen_node_, widen_depth_, widen_to_,
+        PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s) with node %" PetscInt_FMT " %.6g inside the "
+                              "obstacle, on a facet it has no contact pair with: searching the pairs again within %.6g "
+                              "(was %.6g)\n", t_try, stats_.reason.c_str(), widen_node_, widen_depth_, widen_to_,
                               contact_.search_radius));
       else
-        PetscCall(PetscPrintf(comm, "Load step at factor %g failed (%s): searching the pairs again within %g (was %g), "
+        PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s): searching the pairs again within %.6g (was %.6g), "
                               "for facets beyond the radius that may hold the body\n", t_try, stats_.reason.c_str(),
                               widen_to_, contact_.search_radius));
       PetscCall(SetOwnedDisplacement(u_saved));
@@ -409,7 +409,7 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     if (large && stats_.reason == "DIVERGED_NOT_HELD" && lagged && !exact_newton_) {
       exact_newton_ = true;
       exact_repeat = true;
-      PetscCall(PetscPrintf(comm, "Load step at factor %g failed (%s) after lagged Newton searches: repeating it with "
+      PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s) after lagged Newton searches: repeating it with "
                             "exact Newton steps\n", t_try, stats_.reason.c_str()));
       PetscCall(SetOwnedDisplacement(u_saved));
       k_assembled_ = false;
@@ -429,7 +429,7 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
       else {
         char text[200];
         std::snprintf(text, sizeof(text), " (the body was found not held with the pairs of a narrower radius; "
-                      "repeated with those within %g, it deformed so before it could be found held or not)",
+                      "repeated with those within %.6g, it deformed so before it could be found held or not)",
                       contact_.search_radius);
         context = text;
       }
@@ -439,7 +439,7 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     const bool singular = why == "DIVERGED_SINGULAR";
     char within[128] = "the supports (there is no obstacle)";
     if (!obstacle_.facets.empty())
-      std::snprintf(within, sizeof(within), "the supports and the candidate pairs within -contact_search_radius %g",
+      std::snprintf(within, sizeof(within), "the supports and the candidate pairs within -contact_search_radius %.6g",
                     contact_.search_radius);
     const std::string what =
         singular
@@ -468,12 +468,12 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
                   "-contact_max_it change the active set)"
                 : "the active-set loop reached its iteration limit (-contact_max_it)";
     PetscCheck(large && stats_.cuts < opts_.max_cuts && why != "DIVERGED_NOT_HELD" && !singular, comm,
-               PETSC_ERR_NOT_CONVERGED, "the contact solve did not converge at load factor %g: %s: %s%s", t_try,
+               PETSC_ERR_NOT_CONVERGED, "the contact solve did not converge at load factor %.6g: %s: %s%s", t_try,
                why.c_str(), what.c_str(),
                large && !singular ? "; no more load-step cuts allowed (-load_max_cuts)" : "");
     stats_.cuts++;
     dt *= 0.5;
-    PetscCall(PetscPrintf(comm, "Load step at factor %g failed (%s); cutting the increment to %g\n", t_try,
+    PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s); cutting the increment to %.6g\n", t_try,
                           why.c_str(), dt));
     PetscCall(SetOwnedDisplacement(u_saved));
     // The tangent of the failed attempt is not lagged into the next one.

@@ -51,7 +51,7 @@ std::string MumpsControls::PivotControls() const {
       add("-contact_mat_mumps_icntl_" + std::to_string(k) + " " + std::to_string(v));
   char value[32];
   for (const auto &[k, v] : cntl) {
-    std::snprintf(value, sizeof(value), "%g", v);
+    std::snprintf(value, sizeof(value), "%.6g", v);
     add("-contact_mat_mumps_cntl_" + std::to_string(k) + " " + value);
   }
   return list;
@@ -401,8 +401,8 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   // millions).
   const double flops = id_.rinfog[0], entries = id_.INFOG(20) >= 0 ? id_.INFOG(20) : -1e6 * id_.INFOG(20);
   if (may_decline && DenseCostsMore((double)m_all, flops)) {
-    PetscCall(PetscInfo(nullptr, "dense Schur complement of %" PetscInt_FMT " candidates: %g flops per active-set "
-                        "change and %g entries, against %g flops and %g entries of the sparse factors: declined\n",
+    PetscCall(PetscInfo(nullptr, "dense Schur complement of %" PetscInt_FMT " candidates: %.6g flops per active-set "
+                        "change and %.6g entries, against %.6g flops and %.6g entries of the sparse factors: declined\n",
                         m_all, (double)m_all * m_all * m_all / 3, 2.0 * m_all * m_all, flops, entries));
     Release();
     declined_ = true;
@@ -415,7 +415,7 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   }
   redrhs_.assign(m, 0.0);
   PetscCall(FactorNumeric(d0));
-  PetscCall(PetscInfo(nullptr, "MUMPS factors: ordering ICNTL(7) = %d (%s), %g entries, %g flops in the elimination\n",
+  PetscCall(PetscInfo(nullptr, "MUMPS factors: ordering ICNTL(7) = %d (%s), %.6g entries, %.6g flops in the elimination\n",
                       (int)id_.ICNTL(7), id_.ICNTL(7) == 1 ? GRAPH_ORDERING_NAMES[(int)ordering.graph] : "MUMPS's",
                       (double)(id_.INFOG(29) >= 0 ? id_.INFOG(29) : -1e6 * id_.INFOG(29)), (double)id_.rinfog[2]));
   keep_values_ = keep_values;

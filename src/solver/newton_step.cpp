@@ -299,7 +299,7 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0, bool stabilised, double 
     EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_local_.data(), states_, rows_,
                   normals_);
     PetscCall(Residual(new_lambda, r, scale, dir.data(), &g));
-    PetscCall(PetscInfo(nullptr, "line search: step %g g(s)/g(0) %g residual %g (before %g)\n", s, g / g0, r, r0));
+    PetscCall(PetscInfo(nullptr, "line search: step %.6g g(s)/g(0) %.6g residual %.6g (before %.6g)\n", s, g / g0, r, r0));
     if (!std::isfinite(r)) {
       // Safeguard, always on: det F <= MIN_DET_F somewhere, halve the step.
       s *= 0.5;

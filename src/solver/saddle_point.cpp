@@ -219,8 +219,8 @@ PetscErrorCode SaddlePointSystem::CreateKsp(MPI_Comm comm, bool &fieldsplit) {
   PetscReal rtol;
   PetscCall(KSPGetTolerances(ksp_, &rtol, nullptr, nullptr, nullptr));
   PetscCheck(rtol <= ACCEPTED_RESIDUAL, comm, PETSC_ERR_USER_INPUT,
-             "-contact_ksp_rtol %g: a saddle-point solve must leave a relative residual of at most %g; expected a "
-             "value in [0, %g] (the solver presets take 1e-10)",
+             "-contact_ksp_rtol %.6g: a saddle-point solve must leave a relative residual of at most %.6g; expected a "
+             "value in [0, %.6g] (the solver presets take 1e-10)",
              (double)rtol, ACCEPTED_RESIDUAL, ACCEPTED_RESIDUAL);
   PetscCall(KSPGetPC(ksp_, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &is_fieldsplit));
@@ -492,7 +492,7 @@ PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<ConstraintRow
   const PetscScalar zeros[3] = {0, 0, 0};
   PetscFunctionBeginUser;
   PetscCheck(stabilisation >= 0 && stabilisation < aug_inactive_, PetscObjectComm((PetscObject)A_.get()),
-             PETSC_ERR_ARG_OUTOFRANGE, "stabilisation weight %g outside [0, %g)", stabilisation, aug_inactive_);
+             PETSC_ERR_ARG_OUTOFRANGE, "stabilisation weight %.6g outside [0, %.6g)", stabilisation, aug_inactive_);
   if (active != active_ || stabilisation != stab_) pc_current_ = false;
   stab_ = stabilisation;
   if (augmented_ && aug_inactive_ != aug_) {
@@ -638,7 +638,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
       }
       last = rnorm;
       PetscInt its;
-      PetscCall(PetscInfo(nullptr, "Krylov restart %d: true relative residual %g\n", restart + 1,
+      PetscCall(PetscInfo(nullptr, "Krylov restart %d: true relative residual %.6g\n", restart + 1,
                           (double)(rnorm / bnorm)));
       PetscCall(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
       PetscCall(KSPSolve(ksp_, b_, x_));
@@ -752,7 +752,7 @@ PetscErrorCode SaddlePointSystem::CheckAndConvert(KSPConvergedReason reason, Pet
     std::string advice;
     PetscCall(FailureAdvice(advice));
     SETERRQ(comm, PETSC_ERR_NOT_CONVERGED,
-            "the saddle-point solve failed (relative residual %g after %" PetscInt_FMT " iteration(s))%s",
+            "the saddle-point solve failed (relative residual %.6g after %" PetscInt_FMT " iteration(s))%s",
             finite ? (double)(rnorm / bnorm) : -1.0, krylov_iterations, advice.c_str());
   }
   residual = rnorm;

@@ -58,7 +58,7 @@ PetscErrorCode SaddlePointSystem::Refactor() {
 std::string SaddlePointSystem::SingularReport(const std::string &cause) const {
   char found[128];
   if (null_pivots_ == 0 && singular_residual_ > 0)
-    std::snprintf(found, sizeof(found), "MUMPS found no null pivot, but its solve left a relative residual of %g",
+    std::snprintf(found, sizeof(found), "MUMPS found no null pivot, but its solve left a relative residual of %.6g",
                   singular_residual_);
   else std::snprintf(found, sizeof(found), "MUMPS found %d null pivot(s)", (int)null_pivots_);
   std::string report = std::string("the saddle-point system is singular (") + found + "): ";
@@ -99,7 +99,7 @@ PetscErrorCode SaddlePointSystem::SolveWithKeptFactor(const std::vector<PetscSca
     const double rate = n > 1 && history[0] > 0 ? std::pow(history[n - 1] / history[0], 1.0 / (n - 1)) : 0.0;
     refactor_next_ = rate > KEPT_CONTRACTION;
     PetscCall(PetscInfo(nullptr,
-                        "FGMRES with the kept factorisation: %" PetscInt_FMT " iteration(s), contraction %g per "
+                        "FGMRES with the kept factorisation: %" PetscInt_FMT " iteration(s), contraction %.6g per "
                         "iteration%s\n", iterations, rate, refactor_next_ ? ": the next solve refactors" : ""));
     if (reason > 0) {
       check_tol = std::max(check_tol, 2.0 * rtol); // an inexact step (rtol > 0) is as inexact as asked

@@ -1399,7 +1399,7 @@ def inclined_wall_beyond_radius(runner):
     status, out, _ = runner.run_any(free, "block pushed away from a wall", timeout=60)
     runner.expect_true("the free block ends as DIVERGED_NOT_HELD after the repeat (exit %d)" % status,
                        status != 0 and "searching the pairs again" in out and
-                       "signorini: error: the contact solve did not converge at load factor 1.: DIVERGED_NOT_HELD" in out)
+                       "signorini: error: the contact solve did not converge at load factor 1: DIVERGED_NOT_HELD" in out)
 
 
 def expect_svk_balance(runner, r):
