@@ -170,7 +170,7 @@ PetscErrorCode StepFields(ContactSolver &solver, const NodeContact &nodes, std::
         // The kernels' Voigt order is (xx, yy, xy) in 2D and (xx, yy, zz, yz, xz, xy) in 3D.
         const auto &e = r.strain, &s = r.stress;
         const std::array<double, 6> t =
-            which == STRAIN ? (dim == 2 ? std::array<double, 6>{e[0], e[1], 0, e[2], 0, 0}
+            which == STRAIN ? (dim == 2 ? std::array<double, 6>{e[0], e[1], r.strain_zz, e[2], 0, 0}
                                         : std::array<double, 6>{e[0], e[1], e[2], e[5], e[3], e[4]})
                             : (dim == 2 ? std::array<double, 6>{s[0], s[1], r.stress_zz, s[2], 0, 0}
                                         : std::array<double, 6>{s[0], s[1], s[2], s[5], s[3], s[4]});

@@ -398,6 +398,13 @@ CellStress ElementStress(const Material &m, const ElementGeometry &g, const doub
   }
   for (int v = 0; v < nv; ++v) out.strain[v] /= wsum, out.stress[v] /= wsum;
   out.stress_zz /= wsum;
+  if (dim == 2 && m.plane_stress) {
+    // Plane stress: S_zz = lambda tr E + 2 mu E_zz = 0 with the 3D lambda (not LambdaPlane), so E_zz = -lambda /
+    // (lambda + 2 mu) (E_xx + E_yy); the linear eps_zz = -nu / (1 - nu) (eps_xx + eps_yy) alike. Linear in the strain,
+    // so the cell mean is the value of the mean. Output only: the svk kinematics keep F_zz = 1 (reference thickness).
+    const double l = m.Lambda3D();
+    out.strain_zz = -l / (l + 2.0 * m.Mu()) * (out.strain[0] + out.strain[1]);
+  }
   const auto &s = out.stress;
   if (dim == 2) {
     const double sx = s[0], sy = s[1], sz = out.stress_zz, txy = s[2];

@@ -1233,6 +1233,60 @@ def plate_on_arc(runner):
         expect_same_state(runner, arc, r, keys=("contact.active_pairs",))
 
 
+def p1_displacement_gradients(result):
+    """H = grad u of each cell of a triangle mesh (P1: one constant gradient per cell), from solution.h5."""
+    xyz, cells, u = result.solution()
+    H = []
+    for cell in cells:
+        X, U = xyz[cell], u[cell]
+        H.append(np.linalg.solve(X[1:] - X[0], U[1:] - U[0]).T)  # rows: d u_i / d X
+    return np.array(H)
+
+
+@test("plane_stress_strain_zz")
+def plane_stress_strain_zz(runner):
+    """The cell strain's zz component (solution.h5, VTK order xx, yy, zz, xy, yz, xz): in plane stress, where
+    sigma_zz = 0, eps_zz = -lambda / (lambda + 2 mu) (eps_xx + eps_yy) with the 3D lambda (linear) and likewise the
+    Green-Lagrange E_zz (St. Venant-Kirchhoff, S_zz = lambda tr E + 2 mu E_zz = 0); it was written as 0. In plane
+    strain it stays 0, with sigma_zz = nu (sigma_xx + sigma_yy) (linear). The in-plane strain is the one of the P1
+    displacement, the in-plane stress the plane-stress law of it (lambda* = 2 lambda mu / (lambda + 2 mu))."""
+    plate = ["-options_file", "options/plate_on_arc.yml"]
+    for model, args in (("linear", plate), ("svk", plate + ["-material_model", "svk", "-bc_traction", "top:0:-5"])):
+        r = runner.run(args, "plate on arc, %s plane stress" % model)
+        E, nu = r.get("material.E"), r.get("material.nu")
+        lam, mu = E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
+        strain, stress = r.cell_field("strain"), r.cell_field("stress")
+        H = p1_displacement_gradients(r)
+        exact = 0.5 * (H + H.transpose(0, 2, 1))
+        if model == "svk":
+            exact += 0.5 * np.einsum("cki,ckj->cij", H, H)  # Green-Lagrange E = (H + H^T + H^T H) / 2
+        # The same gradient in another order of operations: round-off of the largest strain.
+        scale = np.abs(exact).max()
+        runner.expect_close("%s: in-plane strain xx, yy, xy = the P1 displacement's" % model, strain[:, [0, 1, 3]],
+                            np.column_stack([exact[:, 0, 0], exact[:, 1, 1], exact[:, 0, 1]]), 0, 1e-12 * scale)
+        trace = strain[:, 0] + strain[:, 1]
+        # The formula on the written in-plane values: round-off (and of the largest strain where the trace cancels).
+        runner.expect_close("%s: eps_zz = -lambda / (lambda + 2 mu) (eps_xx + eps_yy)" % model, strain[:, 2],
+                            -lam / (lam + 2 * mu) * trace, 1e-12, 1e-15 * scale)
+        runner.expect_true("%s: eps_zz nonzero (max |eps_zz| %.3g)" % (model, np.abs(strain[:, 2]).max()),
+                           np.abs(strain[:, 2]).max() > 1e-3 * scale)
+        runner.expect_equal("%s: strain yz, xz = 0" % model, bool(np.all(strain[:, 4:] == 0)), True)
+        runner.expect_equal("%s: sigma_zz, yz, xz = 0" % model, bool(np.all(stress[:, [2, 4, 5]] == 0)), True)
+        if model == "linear":
+            lam_star = 2 * lam * mu / (lam + 2 * mu)
+            runner.expect_close("linear: sigma = lambda* tr eps I + 2 mu eps in plane",
+                                stress[:, [0, 1, 3]], np.column_stack([lam_star * trace + 2 * mu * strain[:, 0],
+                                                                       lam_star * trace + 2 * mu * strain[:, 1],
+                                                                       2 * mu * strain[:, 3]]),
+                                0, 1e-12 * np.abs(stress).max())
+    r = runner.run([], "hertz, linear plane strain")
+    nu = r.get("material.nu")
+    strain, stress = r.cell_field("strain"), r.cell_field("stress")
+    runner.expect_equal("plane strain: eps_zz = 0", bool(np.all(strain[:, 2] == 0)), True)
+    runner.expect_close("plane strain: sigma_zz = nu (sigma_xx + sigma_yy)", stress[:, 2],
+                        nu * (stress[:, 0] + stress[:, 1]), 0, 1e-12 * np.abs(stress).max())
+
+
 @test("arc_vertex_under_node")
 def arc_vertex_under_node(runner):
     """The block on a bump faceted by 200 segments of 0.9 degrees, one vertex exactly under its bottom node (1, 0): the

@@ -46,7 +46,7 @@ void ElasticityMatrix(const Material &m, int dim, double D[6][6]);
 /// svk: Green-Lagrange strain and Cauchy stress sigma = F S F^T / J. Returns the minimum J over the quadrature points.
 struct CellStress {
   std::array<double, 6> strain{}, stress{};
-  double stress_zz = 0, von_mises = 0, min_J = 1;
+  double strain_zz = 0, stress_zz = 0, von_mises = 0, min_J = 1; ///< *_zz: the out-of-plane components in 2D
 };
 CellStress ElementStress(const Material &m, const ElementGeometry &g, const double *u);
 

@@ -385,6 +385,7 @@ TEST(LinearElement, PlaneStrainAndPlaneStressConstants) {
   EXPECT_NEAR(s1.stress[1], c * nu * e, 1e-10 * E * e);
   EXPECT_NEAR(s1.stress[2], 0.0, 1e-10 * E * e);
   EXPECT_NEAR(s1.stress_zz, c * nu * e, 1e-10 * E * e);
+  EXPECT_EQ(s1.strain_zz, 0.0);
 
   Material stress = MakeMaterial(true);
   const CellStress s2 = ElementStress(stress, Geometry(cell), u.data());
@@ -399,6 +400,7 @@ TEST(LinearElement, PlaneStrainAndPlaneStressConstants) {
   EXPECT_NEAR(s3.stress[0], E * e, 1e-10 * E * e);
   EXPECT_NEAR(s3.stress[1], 0.0, 1e-10 * E * e);
   EXPECT_NEAR(s3.von_mises, E * e, 1e-10 * E * e);
+  EXPECT_NEAR(s3.strain_zz, -nu * e, 1e-12 * e); // sigma_zz = 0 with the 3D law: eps_zz = -nu sigma_xx / E
 }
 
 TEST(LinearElement, ForceIsStiffnessTimesDisplacement) {
