@@ -539,10 +539,6 @@ CASES = {
     "dirichlet_node_fixed_in_obstacle": (["-bc_dirichlet", "top_centre:x,contact_point:x:y", "-obstacle_segments",
                                           "-12,-7.95,12,-7.95", "-contact_search_radius", "10"],
                                          ["candidate node 4", "inside the obstacle, by 0.05"], {}),
-    # A nearly incompressible material: the correction solves stall above the equilibrium tolerance (they went on
-    # until -contact_max_it; with the kept factorisation the second one failed an internal assertion).
-    "equilibrium_stalls": (["-material_nu", "0.499999"],
-                           ["DIVERGED_EQUILIBRIUM_STALLED", "-material_nu near 0.5", "loosen -newton_rtol"], {}),
     # svk's iteration limits are both honoured: each iteration is a Newton step (-newton_max_it), and at most
     # -contact_max_it of them change the active set (the loop used to run to the larger of the two).
     "svk_newton_max_it": (["-options_file", "{root}/options/cantilever_large.yml", "-newton_max_it", "1",

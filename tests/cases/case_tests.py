@@ -1894,6 +1894,22 @@ def rigid_translation_steps(runner):
     expect_same_state(runner, one, five, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
+@test("nearly_incompressible")
+def nearly_incompressible(runner):
+    """nu = 0.499999 in plane strain: the run used to end DIVERGED_EQUILIBRIUM_STALLED, its residual at round-off
+    (about 0.2 eps ||u|| sum_j |K_ij|) above a tolerance relative to the forces alone; at 0.49999 it converged without
+    a word to a contact 65 % too narrow. Now it converges, its residual within the round-off part of the tolerance, and
+    says that the displacement elements lock; plane stress, which does not lock, says nothing."""
+    r = runner.run(["-material_nu", "0.499999"], "Hertz, nu = 0.499999")
+    runner.expect_true("the locking note", "Note: -material_nu 0.499999 is nearly incompressible" in r.output)
+    runner.expect_true("the certificate holds", r.get("certificate.satisfied"))
+    expect_balance(runner, r, r.label)
+    for extra, what in ((["-material_nu", "0.49"], "nu = 0.49"),
+                        (["-material_nu", "0.499999", "-material_plane", "stress"], "plane stress")):
+        q = runner.run(extra, "Hertz, " + what)
+        runner.expect_true("%s: no locking note" % what, "nearly incompressible" not in q.output)
+
+
 @test("svk_notch_cycle")
 def svk_notch_cycle(runner):
     """svk block in the notch: with the lagged searches (the default) its active set went round a loop of 11 sets

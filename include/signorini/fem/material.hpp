@@ -10,6 +10,8 @@ namespace signorini {
 /// Bounds of the stiffness scale E x thickness (absolute): outside them the saddle-point system, with entries of order
 /// E t and 1 / (E t), is numerically singular or overflows.
 constexpr double STIFFNESS_SCALE_MIN = 1e-6, STIFFNESS_SCALE_MAX = 1e24;
+/// Above this Poisson's ratio (plane strain, 3D) the run says that the displacement elements lock (ReadMaterial).
+constexpr double NEARLY_INCOMPRESSIBLE_NU = 0.499;
 
 enum class MaterialModel { LINEAR, SVK };
 
