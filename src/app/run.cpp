@@ -128,6 +128,14 @@ PetscErrorCode HelpKsp(MPI_Comm comm) {
   PetscCall(KSPSetOperators(ksp, A, A));
   PetscCall(SetDefaultSolver(ksp));
   PetscCall(KSPSetFromOptions(ksp));
+  // PETSc lists no Krylov tolerance for KSPPREONLY, which reads none (the set-up refuses them then: say so).
+  PetscBool preonly;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ksp.get(), KSPPREONLY, &preonly));
+  if (preonly)
+    PetscCall(PetscPrintf(comm, "  -contact_ksp_rtol, -contact_ksp_atol, -contact_ksp_divtol, -contact_ksp_max_it: "
+                          "not listed: -contact_ksp_type preonly (this run's direct solve) reads none of them, and the "
+                          "set-up refuses them; they apply with an iterative solver (-contact_ksp_type other than "
+                          "preonly, or a fieldsplit preset)\n"));
   PC pc;
   PetscBool fieldsplit;
   PetscCall(KSPGetPC(ksp, &pc));

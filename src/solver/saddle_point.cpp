@@ -2,6 +2,8 @@
 // saddle_point_kept.cpp; the contact problem in the multipliers: saddle_point_lcp.cpp).
 #include "signorini/solver/saddle_point.hpp"
 
+#include "signorini/solver/solver_options.hpp"
+
 #include "signorini/core/options.hpp"
 #include "signorini/core/progress.hpp"
 
@@ -287,6 +289,8 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
     PetscCall(GatherSchurRows(comm));
   }
   if (reuse_ && !constant_k_ && reuse_max_it_ > 0) PetscCall(CreateKeptKsp(comm));
+  // The solver is chosen: an option that it will never read is refused now, not after the whole solve.
+  PetscCall(RefuseSolverOptionsNotRead(ksp_, reuse_));
   PetscFunctionReturn(0);
 }
 

@@ -4,6 +4,7 @@
 
 #include "signorini/solver/contact_solver.hpp"
 
+#include "signorini/core/errors.hpp"
 #include "signorini/core/options.hpp"
 #include "signorini/core/parse.hpp"
 
@@ -224,6 +225,83 @@ PetscErrorCode CheckSolverOptionValues(MPI_Comm comm) {
   PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
   for (std::size_t i = 0; i < given.size(); ++i)
     PetscCall(CheckSolverOption(comm, given[i].first, valued[i] ? given[i].second.c_str() : nullptr));
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+/// The Krylov tolerances of the saddle-point KSP: KSPSetFromOptions reads them for a KSP type other than preonly only,
+/// and nothing reads them later.
+constexpr const char *KRYLOV_TOLERANCES[] = {"contact_ksp_rtol", "contact_ksp_atol", "contact_ksp_divtol",
+                                             "contact_ksp_max_it"};
+/// The options of the saddle-point PC, and of the sub-solvers that only PC types other than LU and Cholesky create:
+/// an LU or Cholesky PC reads all of its own options in PCSetFromOptions (its factor's, -contact_mat_*, come later).
+constexpr const char *OTHER_PC_PREFIXES[] = {"contact_pc_",  "contact_fieldsplit_",   "contact_sub_",
+                                             "contact_mg_",  "contact_redundant_",    "contact_telescope_",
+                                             "contact_lsc_", "contact_redistribute_", "contact_galerkin_",
+                                             "contact_hmg_", "contact_patch_"};
+
+/// "-a 1 does" or "-a 1, -b 2 do", for messages.
+std::string NamedOptions(const std::vector<std::string> &options) {
+  return Join(options, ", ") + (options.size() == 1 ? " does" : " do");
+}
+
+/// What the solver is, for messages: "the kept MUMPS factorisation (a direct solve, -contact_pc_type cholesky)", ...
+std::string DescribeSolver(bool kept, bool preonly, bool factor, const std::string &pc_type) {
+  const std::string pc = "-contact_pc_type " + pc_type;
+  if (kept) return "the kept MUMPS factorisation (a direct solve, " + pc + ")";
+  if (preonly && factor) return "a direct solve (-contact_ksp_type preonly, " + pc + ")";
+  if (preonly) return "-contact_ksp_type preonly (one application of " + pc + ")";
+  return pc;
+}
+
+} // namespace
+
+PetscErrorCode RefuseSolverOptionsNotRead(KSP ksp, bool kept) {
+  MPI_Comm comm = PetscObjectComm((PetscObject)ksp);
+  PetscBool refuse = PETSC_TRUE, preonly, factor;
+  PC pc;
+  PCType pc_type;
+  PetscInt n;
+  char **names, **values;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-options_left", &refuse, nullptr));
+  if (!refuse) PetscFunctionReturn(0);
+  PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, ""));
+  PetscCall(PCGetType(pc, &pc_type));
+  std::vector<std::string> tolerances, other_pc; // "-name value" as given, in the database's order
+  PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
+  for (PetscInt i = 0; i < n; ++i) {
+    std::string lower = names[i];
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    const std::string given = "-" + std::string(names[i]) + (values[i] ? std::string(" ") + values[i] : "");
+    const auto is = [&](const char *name) { return lower == name; };
+    const auto under = [&](const char *prefix) { return lower.rfind(prefix, 0) == 0; };
+    if (preonly && std::any_of(std::begin(KRYLOV_TOLERANCES), std::end(KRYLOV_TOLERANCES), is))
+      tolerances.push_back(given);
+    else if (factor && std::any_of(std::begin(OTHER_PC_PREFIXES), std::end(OTHER_PC_PREFIXES), under))
+      other_pc.push_back(given);
+  }
+  PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
+  const std::string solver = DescribeSolver(kept, preonly, factor, pc_type);
+  std::string message;
+  if (!tolerances.empty())
+    message = NamedOptions(tolerances) + " not apply to " + solver + ", which makes no Krylov iterations; " +
+              (tolerances.size() == 1 ? "it applies" : "they apply") +
+              " with an iterative solver (-contact_ksp_type other than preonly, or a fieldsplit preset such as "
+              "-options_file options/solver/fieldsplit_gamg.yml)";
+  else if (!other_pc.empty()) {
+    const bool one = other_pc.size() == 1;
+    message = NamedOptions(other_pc) + " not apply to " + solver + ": " + (one ? "it is an option" : "they are options") +
+              " of another preconditioner, or of a sub-solver that only another one creates (" + pc_type +
+              " has read its own); expected the -contact_pc_type or solver preset that reads " + (one ? "it" : "them") +
+              " (-help lists the options of the solver chosen)";
+  }
+  // Every rank holds the same options and the same solver: rank 0's verdict, so that all raise it or none.
+  PetscCall(Broadcast(comm, 0, message));
+  PetscCheck(message.empty(), comm, PETSC_ERR_USER_INPUT, "%s", message.c_str());
   PetscFunctionReturn(0);
 }
 

@@ -312,9 +312,24 @@ CASES = {
                                   {}),
     "contact_ksp_max_it_zero": (["-options_file", "{root}/options/solver/fieldsplit_gamg.yml", "-contact_ksp_max_it",
                                  "0"], ["-contact_ksp_max_it 0 is out of range", "expected an integer >= 1"], {}),
-    # A Krylov tolerance that the default direct solver does not read: refused after the solve, before any output.
-    "unused_solver_option_new_dir": (["-contact_ksp_rtol", "1e-8", "-output_dir", "{work}/new/out"],
-                                     ["option -contact_ksp_rtol 1e-8 is set but never read"], {}),
+    # A solver option that nothing reads (an ICNTL beyond MUMPS's): refused after the solve, before any output.
+    "unused_solver_option_new_dir": (["-contact_mat_mumps_icntl_99", "1", "-output_dir", "{work}/new/out"],
+                                     ["option -contact_mat_mumps_icntl_99 1 is set but never read"], {}),
+    # Options that the chosen solver never reads: refused when it is set up, before any solve (they used to be
+    # refused only after the whole solve and its printed summary).
+    "contact_ksp_rtol_direct": (["-contact_ksp_rtol", "1e-3", "-output_dir", "{work}/out"],
+                                ["-contact_ksp_rtol 1e-3 does not apply to the kept MUMPS factorisation",
+                                 "makes no Krylov iterations", "-contact_ksp_type other than preonly"], {}),
+    "contact_ksp_max_it_direct": (["-contact_ksp_max_it", "5"],
+                                  ["-contact_ksp_max_it 5 does not apply to the kept MUMPS factorisation",
+                                   "-contact_ksp_type other than preonly"], {}),
+    "contact_ksp_rtol_refactorising": (BEAM + ["-contact_reuse_factorization", "false", "-contact_ksp_rtol", "1e-8"],
+                                       ["-contact_ksp_rtol 1e-8 does not apply to a direct solve "
+                                        "(-contact_ksp_type preonly, -contact_pc_type cholesky)"], {}),
+    "contact_fieldsplit_option_direct": (BEAM + ["-options_file", "{root}/options/solver/mumps_lu.yml",
+                                                 "-contact_fieldsplit_u_pc_type", "gamg"],
+                                         ["-contact_fieldsplit_u_pc_type gamg does not apply", "-contact_pc_type lu"],
+                                         {}),
     "load_steps_zero": (["-load_steps", "0"], ["-load_steps 0", "expected an integer in [1, 10000]"], {}),
     "load_steps_overflow": (["-load_steps", "99999999999999999999"],
                             ["-load_steps 99999999999999999999", "expected an integer in [1, 10000]"], {}),
@@ -490,9 +505,10 @@ CASES = {
                                       ["option -material_EE 5 is set but never read"], {}),
     "unused_solver_option": (["-contact_mat_mumps_icntl_99", "1"],
                              ["option -contact_mat_mumps_icntl_99 1 is set but never read"], {"previous": HERTZ}),
+    # An option of a PC that the solver does not use: refused at the solver's set-up, before any solve.
     "unused_solver_option_of_other_solver": (["-contact_pc_gamg_threshold", "0.01"],
-                                             ["option -contact_pc_gamg_threshold 0.01 is set but never read"],
-                                             {"previous": HERTZ}),
+                                             ["-contact_pc_gamg_threshold 0.01 does not apply to the kept MUMPS "
+                                              "factorisation", "another preconditioner"], {"previous": HERTZ}),
     # The same option twice on the command line: PETSc keeps the last value (the second traction dropped the first).
     "option_before_options_file": (["-bc_traction", "top:0:-1.25", "-options_file", "{root}/options/hertz.yml"],
                                    ["option -bc_traction top:0:-1.25 on the command line is replaced by top:0:-0.625",

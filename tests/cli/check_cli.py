@@ -42,6 +42,8 @@ if TEST == "help":
     check(out.find("Mesh options:") < out.find("Options for all PETSc programs"),
           "-help lists the program's groups before PETSc's generic options")
     check("-contact_mat_mumps_icntl_24" in out, "-help lists the MUMPS options of the default solver")
+    check(re.search(r"^\s+-contact_ksp_rtol, .*-contact_ksp_max_it: not listed: -contact_ksp_type preonly", out, re.M)
+          is not None, "-help says that the default direct solver reads no Krylov tolerance")
     # The program's description, then its groups: no empty group, and the solver's groups come before any generic
     # group of PETSc (the stand-in matrix's -mat_* options belong to PETSc's generic list at the end).
     lines = out.splitlines()
@@ -54,6 +56,8 @@ if TEST == "help":
     rc, out = run(["-help", "-options_file", "options/solver/fieldsplit_gamg.yml"])
     check(rc == 0 and "-contact_fieldsplit_u_pc_gamg_threshold" in out,
           "-help with a fieldsplit preset lists the options of its blocks")
+    check(re.search(r"^\s+-contact_ksp_rtol <", out, re.M) is not None and "not listed: -contact_ksp_type" not in out,
+          "-help with an iterative preset lists -contact_ksp_rtol")
 elif TEST == "misspelled":
     with tempfile.TemporaryDirectory() as work:
         out_dir = os.path.join(work, "out")
@@ -112,6 +116,26 @@ elif TEST.startswith("options_file_paths_np"):
         rc, out = run(["-options_file", copy, "-mesh_file", os.path.relpath(os.path.join(SOURCE, "meshes", "beam.msh"),
                                                                                 elsewhere)], cwd=elsewhere, np=np)
         check(rc == 0, "-mesh_file on the command line is relative to the current directory: " + out[-300:])
+elif TEST.startswith("solver_options_np"):
+    # The options that the chosen saddle-point solver reads pass; one that it never reads is refused at its set-up.
+    np = int(TEST[len("solver_options_np"):])
+    beam = ["-options_file", "options/beam_on_floor.yml"]
+    rc, out = run(beam + ["-options_file", "options/solver/fieldsplit_gamg.yml", "-contact_ksp_rtol", "1e-8",
+                          "-contact_ksp_max_it", "1000"], np=np)
+    check(rc == 0 and "CONVERGED" in out, "an iterative preset reads -contact_ksp_rtol and -contact_ksp_max_it: "
+          + out[-300:])
+    rc, out = run(beam + ["-contact_pc_factor_fill", "3", "-contact_pc_factor_mat_solver_type", "mumps",
+                          "-contact_reuse_factorization", "false"], np=np)
+    check(rc == 0 and "CONVERGED" in out, "the default direct solver reads its Cholesky options: " + out[-300:])
+    with tempfile.TemporaryDirectory() as work:
+        out_dir = os.path.join(work, "out")
+        rc, out = run(beam + ["-contact_ksp_rtol", "1e-3", "-output_dir", out_dir], np=np)
+        errors = [l for l in out.splitlines() if l.startswith("signorini: error:")]
+        check(rc != 0 and len(errors) == 1 and "-contact_ksp_rtol 1e-3 does not apply to the kept MUMPS "
+              "factorisation" in errors[0], "a Krylov tolerance with the direct solver is an error naming it: "
+              + out[-300:])
+        check("unknowns:" not in out and "CONVERGED" not in out and not os.path.exists(out_dir),
+              "it stops the run at the solver's set-up, before any solve and before the output directory is made")
 elif TEST.startswith("progress_np"):
     np = int(TEST[len("progress_np"):])
     launcher = [MPIEXEC, "-n", str(np)]

@@ -3,7 +3,7 @@
 // without naming the option, is an error that names it and the values expected.
 #pragma once
 
-#include <petscsys.h>
+#include <petscksp.h>
 
 namespace signorini {
 
@@ -17,5 +17,18 @@ namespace signorini {
 /// not read is still reported as unused: call it before the saddle-point KSP reads its options. Collective on comm
 /// (every rank holds the same options).
 [[nodiscard]] PetscErrorCode CheckSolverOptionValues(MPI_Comm comm);
+
+/// Refuses, before any solve, the saddle-point solver's options that the solver set up on ksp (KSPSetFromOptions
+/// done; kept: the kept MUMPS factorisation will solve) will certainly never read, naming them and why:
+///  - with -contact_ksp_type preonly (a direct solve, the default), the Krylov tolerances -contact_ksp_rtol,
+///    -contact_ksp_atol, -contact_ksp_divtol and -contact_ksp_max_it, which PETSc reads only for another KSP type and
+///    nothing reads later (the kept factorisation, and PETSc's MUMPS when it declines, make no Krylov iterations);
+///  - with an LU or Cholesky PC, the -contact_pc_* options that it has not read (PCSetFromOptions reads all of a
+///    factorisation's; the others belong to another PC type) and those of the sub-solvers that only other PCs create
+///    (-contact_fieldsplit_*, -contact_sub_*, -contact_mg_*, ...).
+/// Options read lazily (-contact_mat_mumps_* at the factorisation, -contact_ksp_view and the like at the solve, a
+/// fieldsplit's blocks at its set-up) are left to the check after the solve (CheckUnusedOptions). -options_left false
+/// lets these pass too. Collective on ksp's communicator (rank 0's verdict, given to every rank).
+[[nodiscard]] PetscErrorCode RefuseSolverOptionsNotRead(KSP ksp, bool kept);
 
 } // namespace signorini
