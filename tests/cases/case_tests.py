@@ -1903,7 +1903,9 @@ def nearly_incompressible(runner):
     r = runner.run(["-material_nu", "0.499999"], "Hertz, nu = 0.499999")
     runner.expect_true("the locking note", "Note: -material_nu 0.499999 is nearly incompressible" in r.output)
     runner.expect_true("the certificate holds", r.get("certificate.satisfied"))
-    expect_balance(runner, r, r.label)
+    runner.expect_true("its equilibrium residual within the tolerance (%g <= %g)" % (
+        r.get("certificate.equilibrium"), r.get("certificate.equilibrium_tol")),
+        r.get("certificate.equilibrium") <= r.get("certificate.equilibrium_tol"))
     for extra, what in ((["-material_nu", "0.49"], "nu = 0.49"),
                         (["-material_nu", "0.499999", "-material_plane", "stress"], "plane stress")):
         q = runner.run(extra, "Hertz, " + what)
