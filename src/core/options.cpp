@@ -266,12 +266,6 @@ PetscErrorCode CheckUnusedOptions(MPI_Comm comm, UnusedOptions when) {
 
 namespace {
 
-/// s in lower case (PETSc compares option names so).
-std::string LowerCase(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-
 /// An option's value for a message.
 const char *ValueText(const std::string &value) { return value.empty() ? "no value" : value.c_str(); }
 

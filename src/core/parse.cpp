@@ -1,6 +1,7 @@
 // Strict parsing helpers for option values.
 #include "signorini/core/parse.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -81,6 +82,11 @@ std::string Join(const std::vector<std::string> &items, const std::string &separ
   std::string out;
   for (std::size_t i = 0; i < items.size(); ++i) out += (i ? separator : "") + items[i];
   return out;
+}
+
+std::string LowerCase(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
 }
 
 bool EndsWith(const std::string &text, const std::string &suffix) {

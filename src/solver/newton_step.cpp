@@ -43,20 +43,17 @@ PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double
   // Contact forces B^T lambda (all rows of the pair's node are local: pairs live with their owned node).
   for (std::size_t p = 0; p < pairs_.size(); ++p)
     for (int k = 0; k < dim; ++k) r[dofs_.LocalOffset(pairs_[p].vertex, k)] -= lambda[p] * normals_[p][k];
+  // s[3]: ||u||^2 over the owned rows (prescribed values included), for the round-off of F_int (roundoff).
   for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
     if (mesh_.Owned(v))
-      for (int k = 0; k < dim; ++k)
+      for (int k = 0; k < dim; ++k) {
+        s[3] += u_local_[v * dim + k] * u_local_[v * dim + k];
         if (!dirichlet_.fixed[v * dim + k]) {
           const PetscInt i = dofs_.LocalOffset(v, k);
           s[0] += r[i] * r[i];
           if (direction) s[2] += direction[i] * r[i];
         }
-  // ||u|| over the owned rows (prescribed values included) for the round-off of F_int (Residual's roundoff).
-  double s_u = 0;
-  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
-    if (mesh_.Owned(v))
-      for (int k = 0; k < dim; ++k) s_u += u_local_[v * dim + k] * u_local_[v * dim + k];
-  s[3] = s_u;
+      }
   double gs[4];
   PetscCallMPI(MPI_Allreduce(s, gs, 4, MPI_DOUBLE, MPI_SUM, mesh_.Comm()));
   if (dot) *dot = gs[2];

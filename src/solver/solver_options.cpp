@@ -202,29 +202,37 @@ PetscErrorCode CheckSolverOption(MPI_Comm comm, const std::string &lower, const 
   PetscFunctionReturn(0);
 }
 
-} // namespace
+/// An option that no one has read yet: its name as given (without the dash) and in lower case, and its value.
+struct UnreadOption {
+  std::string name, lower, value;
+  bool valued;
+};
 
-PetscErrorCode CheckSolverOptionValues(MPI_Comm comm) {
+/// The options not read yet, in the same order on every rank; copies, so that the database's arrays go back before
+/// an error is raised.
+PetscErrorCode UnreadOptions(std::vector<UnreadOption> &unread) {
   PetscInt n;
   char **names, **values;
   PetscFunctionBeginUser;
+  unread.clear();
+  PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
+  for (PetscInt i = 0; i < n; ++i)
+    unread.push_back({names[i], LowerCase(names[i]), values[i] ? values[i] : "", values[i] != nullptr});
+  PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode CheckSolverOptionValues(MPI_Comm comm) {
+  std::vector<UnreadOption> unread;
+  PetscFunctionBeginUser;
   PetscCall(KSPInitializePackage()); // registers the KSP and PC types
   PetscCall(PCInitializePackage());
-  // The options not read yet (the solver's, before its KSP reads them), in the same order on every rank; the copies
-  // let the database's arrays go back before an error is raised.
-  std::vector<std::pair<std::string, std::string>> given;
-  std::vector<bool> valued;
-  PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
-  for (PetscInt i = 0; i < n; ++i) {
-    std::string lower = names[i];
-    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (!IsSolverOption(lower)) continue;
-    given.emplace_back(lower, values[i] ? values[i] : "");
-    valued.push_back(values[i] != nullptr);
-  }
-  PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
-  for (std::size_t i = 0; i < given.size(); ++i)
-    PetscCall(CheckSolverOption(comm, given[i].first, valued[i] ? given[i].second.c_str() : nullptr));
+  // The options not read yet: the solver's, before its KSP reads them.
+  PetscCall(UnreadOptions(unread));
+  for (const UnreadOption &o : unread)
+    if (IsSolverOption(o.lower)) PetscCall(CheckSolverOption(comm, o.lower, o.valued ? o.value.c_str() : nullptr));
   PetscFunctionReturn(0);
 }
 
@@ -262,8 +270,7 @@ PetscErrorCode RefuseSolverOptionsNotRead(KSP ksp, bool kept) {
   PetscBool refuse = PETSC_TRUE, preonly, factor;
   PC pc;
   PCType pc_type;
-  PetscInt n;
-  char **names, **values;
+  std::vector<UnreadOption> unread;
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-options_left", &refuse, nullptr));
   if (!refuse) PetscFunctionReturn(0);
@@ -272,19 +279,16 @@ PetscErrorCode RefuseSolverOptionsNotRead(KSP ksp, bool kept) {
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, ""));
   PetscCall(PCGetType(pc, &pc_type));
   std::vector<std::string> tolerances, other_pc; // "-name value" as given, in the database's order
-  PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
-  for (PetscInt i = 0; i < n; ++i) {
-    std::string lower = names[i];
-    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
-    const std::string given = "-" + std::string(names[i]) + (values[i] ? std::string(" ") + values[i] : "");
-    const auto is = [&](const char *name) { return lower == name; };
-    const auto under = [&](const char *prefix) { return lower.rfind(prefix, 0) == 0; };
+  PetscCall(UnreadOptions(unread));
+  for (const UnreadOption &o : unread) {
+    const std::string given = "-" + o.name + (o.valued ? " " + o.value : "");
+    const auto is = [&](const char *name) { return o.lower == name; };
+    const auto under = [&](const char *prefix) { return o.lower.rfind(prefix, 0) == 0; };
     if (preonly && std::any_of(std::begin(KRYLOV_TOLERANCES), std::end(KRYLOV_TOLERANCES), is))
       tolerances.push_back(given);
     else if (factor && std::any_of(std::begin(OTHER_PC_PREFIXES), std::end(OTHER_PC_PREFIXES), under))
       other_pc.push_back(given);
   }
-  PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
   const std::string solver = DescribeSolver(kept, preonly, factor, pc_type);
   std::string message;
   if (!tolerances.empty())

@@ -90,6 +90,10 @@ elif TEST == "default_case":
     check(rc1 == 0 and rc2 == 0, "both runs succeed")
     check(strip(out1) == strip(out2), "the default case prints the same summary as options/hertz.yml")
     check("Hertz (R = 8, P = 10)" in out1, "the default case compares with Hertz")
+    # Another traction: the comparison follows the load, and so does the label (it said P = 10 while comparing with 20).
+    rc, out = run(["-bc_traction", "top:0:-1.25"])
+    check(rc == 0 and "Hertz (R = 8, P = 20): half-width a = 0.962766" in out,
+          "with twice the load the report names and uses P = 20: " + out[-400:])
     # README: any option given overrides the default case's value, the mesh too; the rest of the case stays.
     rc3, out3 = run(["-mesh_file", "meshes/hertz.msh"])
     check(rc3 == 0 and strip(out3) == strip(out1),

@@ -23,6 +23,9 @@ std::string FormatNumber(double value);
 /// Joins strings with a separator (for messages).
 std::string Join(const std::vector<std::string> &items, const std::string &separator);
 
+/// s in lower case (PETSc compares option names so).
+std::string LowerCase(std::string s);
+
 /// Whether text ends with suffix (a file name's extension: ".geo", ".yml").
 bool EndsWith(const std::string &text, const std::string &suffix);
 
