@@ -5,6 +5,7 @@ that file."""
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -172,7 +173,15 @@ elif TEST.startswith("closed_pipe_np"):
         proc.stdout.close()
         _, err = proc.communicate(timeout=300)
         check(first.startswith(b"signorini: 2D linear"), "the first line arrives: %r" % first)
-        check(proc.returncode == 0, "the run exits 0 with its stdout closed: %s" % err.decode()[-500:])
+        if np == 1:
+            check(proc.returncode == 0, "the run exits 0 with its stdout closed: %s" % err.decode()[-500:])
+        else:
+            # Under mpiexec the closed pipe is mpiexec's, not a rank's: Open MPI's mpiexec ignores SIGPIPE while the
+            # job runs but may take one as it flushes the last lines at its exit, and then dies of it like any writer
+            # into a closed pipe (`yes | head -1`). That exit status is mpiexec's; what the ranks owe is the output.
+            check(proc.returncode in (0, -signal.SIGPIPE),
+                  "mpiexec exits 0 (or of SIGPIPE after the job) with its stdout closed: %d %s"
+                  % (proc.returncode, err.decode()[-500:]))
         check(os.path.isfile(os.path.join(out, "summary.json")) and os.path.isfile(os.path.join(out, "nodes.csv")),
               "the output is published: %s" % (os.listdir(out) if os.path.isdir(out) else "no directory"))
 else:
