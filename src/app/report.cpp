@@ -218,6 +218,7 @@ std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &s
   JsonWriter j;
   j.BeginObject();
   const Certificate &cert = solver.GetCertificate();
+  j.String("version", SIGNORINI_VERSION);
   j.String("status", cert.Satisfied() ? "converged" : "not_converged").String("reason", st.reason);
   j.BeginObject("certificate")
       .Bool("satisfied", cert.Satisfied())

@@ -10,11 +10,14 @@
 #include "signorini/obstacles/obstacle_mesh.hpp"
 #include "signorini/solver/contact_solver.hpp"
 
+#include <dmumps_c.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,6 +40,43 @@ PetscErrorCode HoldHelpPrintf(MPI_Comm, const char format[], ...) {
   va_end(args);
   HeldHelp() += line;
   return 0;
+}
+
+/// PetscVFPrintf while the -help text of PETSc's generic objects is held: PETSc lists a type option
+/// (-mat_seqaij_type) with PetscFPrintf to stdout, not through PetscHelpPrintf.
+PetscErrorCode (*petsc_vfprintf)(FILE *, const char[], va_list) = nullptr;
+PetscErrorCode HoldVFPrintf(FILE *fd, const char format[], va_list args) {
+  if (fd != stdout && fd != PETSC_STDOUT) return petsc_vfprintf(fd, format, args);
+  char line[4096];
+  std::vsnprintf(line, sizeof(line), format, args);
+  HeldHelp() += line;
+  return 0;
+}
+
+/// PetscHelpPrintf while Run lists the program's and the solver's options. PETSc ends every option's line with its
+/// manual page in parentheses, which our options do not have: the empty "()" goes. A generic -mat_* option (PETSc
+/// lists -mat_seqaij_type again for the matrices the solver's set-up makes) joins the held generic text. PETSc prints
+/// a line in pieces (a list option: its name, each choice, the manual page), so a line's start decides where it goes.
+PetscErrorCode ProgramHelpPrintf(MPI_Comm comm, const char format[], ...) {
+  static bool line_start = true, generic_line = false;
+  char buffer[4096];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buffer, sizeof(buffer), format, args);
+  va_end(args);
+  std::string piece = buffer;
+  if (piece.empty()) return 0;
+  if (line_start) generic_line = piece.rfind("  -mat_", 0) == 0;
+  line_start = piece.back() == '\n';
+  const std::string no_manual = " ()\n";
+  if (piece.size() >= no_manual.size() &&
+      piece.compare(piece.size() - no_manual.size(), no_manual.size(), no_manual) == 0)
+    piece.replace(piece.size() - no_manual.size(), no_manual.size(), "\n");
+  if (generic_line) {
+    HeldHelp() += piece;
+    return 0;
+  }
+  return PetscPrintf(comm, "%s", piece.c_str());
 }
 
 /// The physical groups that the default case's supports, load and candidates name (its mesh has them).
@@ -112,15 +152,21 @@ PetscErrorCode HelpKsp(MPI_Comm comm) {
   PetscMPIInt rank;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  // The program's own group about the saddle-point system comes before PETSc's groups of the solver.
+  SaddlePointOptions opts;
+  PetscCall(ReadSaddlePointOptions(comm, opts));
   // The stand-in matrix's own options (-mat_*, unprefixed) are PETSc's generic ones: they join the held text that is
   // listed last, so that the solver's groups follow the program's.
   PetscHelpPrintf = HoldHelpPrintf;
+  petsc_vfprintf = PetscVFPrintf;
+  PetscVFPrintf = HoldVFPrintf;
   PetscCall(MatCreateAIJ(comm, 3, 3, PETSC_DETERMINE, PETSC_DETERMINE, 1, nullptr, 0, nullptr, A.out()));
   for (PetscInt i = 0; i < 3; ++i) PetscCall(MatSetValue(A, 3 * rank + i, 3 * rank + i, i < 2 ? 1.0 : -1.0,
                                                           INSERT_VALUES));
   PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-  PetscHelpPrintf = PetscHelpPrintfDefault;
+  PetscHelpPrintf = ProgramHelpPrintf;
+  PetscVFPrintf = petsc_vfprintf;
   ISH u, lambda;
   PetscCall(ISCreateStride(comm, 2, 3 * rank, 1, u.out()));
   PetscCall(ISCreateStride(comm, 1, 3 * rank + 2, 1, lambda.out()));
@@ -145,8 +191,6 @@ PetscErrorCode HelpKsp(MPI_Comm comm) {
     PetscCall(PCFieldSplitSetIS(pc, "lambda", lambda));
   }
   PetscCall(KSPSetUp(ksp));
-  SaddlePointOptions opts;
-  PetscCall(ReadSaddlePointOptions(comm, opts));
   PetscFunctionReturn(0);
 }
 
@@ -215,13 +259,28 @@ PetscErrorCode Run() {
   RunInfo info;
   const double t_start = MPI_Wtime();
   PetscFunctionBeginUser;
-  PetscHelpPrintf = PetscHelpPrintfDefault;
+  PetscHelpPrintf = ProgramHelpPrintf;
   PetscCallMPI(MPI_Comm_size(comm, &size));
   info.ranks = size;
   PetscCall(PetscLogStageRegister("Mesh", &stage_mesh));
   PetscCall(PetscLogStageRegister("Setup", &stage_setup));
   PetscCall(PetscLogStageRegister("ContactSolve", &stage_solve));
   PetscCall(PetscLogStageRegister("Output", &stage_output));
+  PetscBool version;
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-version", &version));
+  if (version) {
+    // -version: the versions of the program and of the libraries that decide its results, and nothing else.
+    char petsc[256], mpi[MPI_MAX_LIBRARY_VERSION_STRING];
+    int length;
+    PetscCall(PetscGetVersion(petsc, sizeof(petsc)));
+    for (size_t n = std::strlen(petsc); n > 0 && petsc[n - 1] == ' '; --n) petsc[n - 1] = '\0';
+    PetscCallMPI(MPI_Get_library_version(mpi, &length));
+    std::string mpi_first(mpi, std::min<size_t>(length, std::strcspn(mpi, ",\n")));
+    PetscCall(PetscPrintf(comm, "signorini %s\n%s\nMUMPS %s\n%s\n", SIGNORINI_VERSION, petsc, MUMPS_VERSION,
+                          mpi_first.c_str()));
+    PetscCall(PetscOptionsSetValue(nullptr, "-options_left", "0"));
+    PetscFunctionReturn(0);
+  }
   PetscBool help;
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (help)

@@ -54,6 +54,23 @@ if TEST == "help":
           < out.find("PETSc's own options") < out.find("Options for SEQAIJ matrix"),
           "-help lists the program's groups, then the solver's, then PETSc's generic ones (the -mat_* group last)")
     check("-contact_search_radius <now 0.1 x body diagonal" in out, "-help gives a ratio default with its unit")
+    check(out.find("Contact options:") < out.find("Saddle-point system:") < out.find("Preconditioner (PC) options:"),
+          "-help lists the program's saddle-point group with the program's, before PETSc's groups of the solver")
+    ours = [l for l in lines if re.match(r"^  -(mesh|material|obstacle|load|newton|output|report|bc|contact|progress)",
+                                           l) and not re.match(r"^  -contact_(ksp|pc|mat|fieldsplit)_", l)]
+    check(len(ours) >= 30 and not [l for l in ours if l.endswith("()")],
+          "-help ends none of the program's %d options with an empty manual page '()': %s"
+          % (len(ours), [l for l in ours if l.endswith("()")][:2]))
+    generic = out.find("PETSc's own options")
+    check(generic > 0 and re.search(r"^  -mat_", out[:generic], re.M) is None,
+          "-help lists no generic -mat_* option among the program's and the solver's groups")
+    with open(os.path.join(SOURCE, "CMakeLists.txt")) as f:
+        version = re.search(r"project\(signorini VERSION (\S+)", f.read()).group(1)
+    rc, out = run(["-version", "-output_dir", "version_out"], cwd=tempfile.gettempdir())
+    check(rc == 0 and out.splitlines()[:3] == [f"signorini {version}", out.splitlines()[1], "MUMPS 5.5.1"]
+          and out.splitlines()[1].startswith("Petsc Release Version 3.18")
+          and "active-set" not in out and not os.path.exists(os.path.join(tempfile.gettempdir(), "version_out")),
+          "-version prints the program's, PETSc's, MUMPS's and MPI's versions and runs nothing: %r" % out[:300])
     rc, out = run(["-help", "-options_file", "options/solver/fieldsplit_gamg.yml"])
     check(rc == 0 and "-contact_fieldsplit_u_pc_gamg_threshold" in out,
           "-help with a fieldsplit preset lists the options of its blocks")
