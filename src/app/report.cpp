@@ -290,7 +290,7 @@ std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &s
       .Numbers("applied_force", vec3(s.applied_force))
       .Numbers("reaction_force", vec3(s.reaction_force))
       .Number("force_balance", s.force_balance)
-      .Number("contact_length", s.contact_length)
+      .Number(dim == 2 ? "contact_length" : "contact_area", s.contact_length)
       .Number("max_pressure", s.max_pressure)
       .Number("max_penetration", s.max_penetration)
       .Number("complementarity", s.complementarity)

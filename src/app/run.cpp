@@ -316,13 +316,12 @@ PetscErrorCode Run() {
     PetscCall(PetscOptionsSetValue(nullptr, "-options_left", "0"));
     PetscFunctionReturn(0);
   }
-  info.mesh_file = mesh_opts.file;
-
   Mesh mesh;
   double t = MPI_Wtime();
   PetscCall(PetscLogStagePush(stage_mesh));
   PetscCall(mesh.Create(comm, mesh_opts));
   PetscCall(PetscLogStagePop());
+  info.mesh_file = mesh.Path();
   info.timings["mesh"] = MPI_Wtime() - t;
   if (default_on_user_mesh) PetscCall(CheckDefaultCaseMesh(comm, mesh_opts.file, mesh));
   // What the mesh's dimension decides: the components of loads and supports, the shapes, the 2D-only options.

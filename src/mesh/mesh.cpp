@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <tuple>
 
 namespace signorini {
@@ -255,13 +256,21 @@ PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
     if (path.empty())
       error = "cannot open mesh file '" + opts.file + "': not found at " + looked +
               "; expected a readable gmsh .msh or .geo file";
-    else
+    else {
       error = ReadGmsh(path, opts.size_factor, serial_, opts.max_cells);
+      std::error_code ec;
+      const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+      path_ = ec ? path : absolute.lexically_normal().string();
+    }
   }
   ProgressEnd();
   PetscCall(RaiseFromRoot(comm, error));
   dim_ = serial_.dim;
   PetscCallMPI(MPI_Bcast(&dim_, 1, MPI_INT, 0, comm));
+  int length = (int)path_.size();
+  PetscCallMPI(MPI_Bcast(&length, 1, MPI_INT, 0, comm));
+  path_.resize(length);
+  PetscCallMPI(MPI_Bcast(path_.data(), length, MPI_CHAR, 0, comm));
   PetscCall(BroadcastGroups(comm, serial_, group_names_, group_dims_));
   std::vector<PetscInt> file_node, file_cell;
   if (rank == 0) LocalityOrder(serial_, file_node, file_cell);

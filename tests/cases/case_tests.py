@@ -246,7 +246,8 @@ def expect_pressed_box(runner, r, nodes, bottom, q, area):
     runner.expect_close("sum of tributary areas = %g" % area, w.sum(), area, 1e-14)
     runner.expect_close("lambda_i = q w_i", bottom["lambda"], q * w, 1e-10)
     runner.expect_close("contact pressure = q", bottom["pressure"], np.full(n, q), 1e-10)
-    runner.expect_close("contact area", r.get("contact.contact_length"), area, 1e-12)
+    runner.expect_close("contact area", r.get("contact.contact_area"), area, 1e-12)
+    runner.expect_true("no contact length in 3D", "contact_length" not in r.summary["contact"])
     runner.expect_close("contact force", r.get("contact.contact_force"), [0, 0, q * area], 0, 1e-10 * q)
     runner.expect_true("no penetration beyond round-off (%g)" % r.get("contact.max_penetration"),
                        r.get("contact.max_penetration") <= 1e-15)
@@ -574,7 +575,8 @@ def rank_independence(runner, case):
     runner.expect_close("lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
     # Pressures divide by tributary lengths summed over the ranks sharing a node.
     runner.expect_close("contact pressure", b["pressure"], a["pressure"], 0, 1e-8 * np.abs(a["pressure"]).max())
-    runner.expect_close("contact length", two.get("contact.contact_length"), one.get("contact.contact_length"), 1e-8)
+    extent = "contact.contact_area" if one.get("mesh.dim") == 3 else "contact.contact_length"
+    runner.expect_close(extent, two.get(extent), one.get(extent), 1e-8)
     runner.expect_close("contact force", two.get("contact.contact_force"), one.get("contact.contact_force"), 1e-8,
                         1e-8 * np.abs(one.get("contact.contact_force")).max())
     check_same_files(runner, one, two)

@@ -2,6 +2,7 @@
 """Command-line behaviour: -help lists every option of the README's tables with its default, a misspelled option is
 reported, the built-in default case equals options/hertz.yml, a relative path in an options file is read relative to
 that file."""
+import json
 import os
 import re
 import shutil
@@ -123,8 +124,14 @@ elif TEST.startswith("options_file_paths_np"):
     np = int(TEST[len("options_file_paths_np"):])
     case = os.path.join(SOURCE, "options", "beam_on_floor.yml")
     with tempfile.TemporaryDirectory() as elsewhere:
-        rc, out = run(["-options_file", case], cwd=elsewhere, np=np)
+        rc, out = run(["-options_file", case, "-output_dir", "out"], cwd=elsewhere, np=np)
         check(rc == 0 and "CONVERGED" in out, "a case's options file runs from another directory: " + out[-300:])
+        # The run names the file it read, not the options file's relative path (relative to another directory).
+        beam = os.path.realpath(os.path.join(SOURCE, "meshes", "beam.msh"))
+        with open(os.path.join(elsewhere, "out", "summary.json")) as f:
+            named = json.load(f)["mesh"]["file"]
+        check(os.path.realpath(named) == beam and os.path.isabs(named) and f"  mesh {named}: " in out,
+              "the summary and summary.json name the mesh file read, as an absolute path: " + named)
         # A copy of the case one level deeper than the meshes it names: found neither there nor here.
         os.makedirs(os.path.join(elsewhere, "cases"))
         copy = os.path.join(elsewhere, "cases", "beam.yml")

@@ -50,6 +50,8 @@ public:
   /// by local vertex.
   PetscSF VertexSF() const { return vertex_sf_; }
   int Dim() const { return dim_; }
+  /// The file read (absolute, after the options file's directory and the current one were tried), on every rank.
+  const std::string &Path() const { return path_; }
   PetscInt NumLocalVertices() const { return (PetscInt)vertex_owned_.size(); }
   PetscInt NumLocalCells() const { return (PetscInt)cell_orig_.size(); }
   PetscInt NumGlobalNodes() const { return num_global_nodes_; }
@@ -120,6 +122,7 @@ private:
   MPI_Comm comm_ = MPI_COMM_NULL;
   DMH dm_;
   int dim_ = 2;
+  std::string path_;
   PetscInt vstart_ = 0, cstart_ = 0;
   PetscInt num_global_nodes_ = 0, num_global_cells_ = 0;
   std::vector<PetscInt> vertex_orig_, cell_orig_;
