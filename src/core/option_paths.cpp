@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <sstream>
 
@@ -88,6 +89,25 @@ PetscErrorCode PathCandidatesFor(const std::string &name, const std::string &val
   }
   out.paths.push_back(value);
   out.origins.push_back("relative to the current directory");
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode OptionOrigin(const std::string &name, std::string &origin) {
+  PetscFunctionBeginUser;
+  const std::vector<std::string> args = CommandLineArgs();
+  const char *petsc_options = std::getenv("PETSC_OPTIONS");
+  std::string file;
+  PetscCall(LastOptionsFileSetting(args, petsc_options, name, file));
+  std::vector<std::string> env_words;
+  std::istringstream env(petsc_options ? petsc_options : "");
+  for (std::string w; env >> w;) env_words.push_back(w);
+  const auto in = [&name](const std::vector<std::string> &words) {
+    return std::find(words.begin(), words.end(), name) != words.end();
+  };
+  if (!file.empty()) origin = "set in options file '" + file + "'";
+  else if (in(args)) origin = "on the command line";
+  else if (in(env_words)) origin = "in PETSC_OPTIONS";
+  else origin.clear();
   PetscFunctionReturn(0);
 }
 

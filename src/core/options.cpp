@@ -2,6 +2,7 @@
 #include "signorini/core/options.hpp"
 
 #include "signorini/core/errors.hpp"
+#include "signorini/core/option_paths.hpp"
 #include "signorini/core/parse.hpp"
 
 #include <algorithm>
@@ -252,8 +253,12 @@ PetscErrorCode CheckUnusedOptions(MPI_Comm comm, UnusedOptions when) {
     unused[i] = mine.count(candidates[i]) ? 1 : 0;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, unused.data(), (int)unused.size(), MPI_INT, MPI_LAND, comm));
   std::vector<std::string> refused;
-  for (std::size_t i = 0; i < candidates.size(); ++i)
-    if (unused[i]) refused.push_back(candidates[i]);
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (!unused[i]) continue;
+    std::string origin;
+    if (refuse) PetscCall(OptionOrigin(candidates[i].substr(0, candidates[i].find(' ')), origin));
+    refused.push_back(candidates[i] + (origin.empty() ? "" : " (" + origin + ")"));
+  }
   PetscCheck(!refuse || refused.empty(), comm, PETSC_ERR_USER_INPUT,
              "%s %s set but never read (misspelt, or not an option of this run); expected only options that this run "
              "reads (-help lists them; -options_left 0 lets unread options pass)",

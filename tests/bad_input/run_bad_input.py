@@ -314,7 +314,7 @@ CASES = {
                                  "0"], ["-contact_ksp_max_it 0 is out of range", "expected an integer >= 1"], {}),
     # A solver option that nothing reads (an ICNTL beyond MUMPS's): refused after the solve, before any output.
     "unused_solver_option_new_dir": (["-contact_mat_mumps_icntl_99", "1", "-output_dir", "{work}/new/out"],
-                                     ["option -contact_mat_mumps_icntl_99 1 is set but never read"], {}),
+                                     ["option -contact_mat_mumps_icntl_99 1 (on the command line) is set but never read"], {}),
     # Options that the chosen solver never reads: refused when it is set up, before any solve (they used to be
     # refused only after the whole solve and its printed summary).
     "contact_ksp_rtol_direct": (["-contact_ksp_rtol", "1e-3", "-output_dir", "{work}/out"],
@@ -494,17 +494,19 @@ CASES = {
     # Options that nothing reads (misspelt, or not for this run): refused after the set-up, before the output
     # directory is made, or, for the solver's options that the solve reads as it goes, after the solve and before the
     # output is published.
-    "unused_option": (["-materal_E", "5"], ["option -materal_E 5 is set but never read", "expected"],
+    "unused_option": (["-materal_E", "5"], ["option -materal_E 5 (on the command line) is set but never read", "expected"],
                       {}),
     "unused_options_two": (["-material_nuu", "0.3", "-contact_max_itt", "5"],
-                           ["options -contact_max_itt 5, -material_nuu 0.3 are set but never read"],
+                           ["options -contact_max_itt 5 (on the command line), -material_nuu 0.3 (on the command line) are set but never read"],
                            {}),
     "unused_option_yaml_key": (["-options_file", "{here}/options/unknown_key.yml"],
-                               ["option -materal_E 5 is set but never read"], {}),
+                               ["option -materal_E 5 (set in options file '", "unknown_key.yml') is set but never read"],
+                               {}),
     "unused_option_yaml_nested_key": (["-options_file", "{here}/options/unknown_nested_key.yml"],
-                                      ["option -material_EE 5 is set but never read"], {}),
+                                      ["option -material_EE 5 (set in options file '",
+                                       "unknown_nested_key.yml') is set but never read"], {}),
     "unused_solver_option": (["-contact_mat_mumps_icntl_99", "1"],
-                             ["option -contact_mat_mumps_icntl_99 1 is set but never read"], {"previous": HERTZ}),
+                             ["option -contact_mat_mumps_icntl_99 1 (on the command line) is set but never read"], {"previous": HERTZ}),
     # An option of a PC that the solver does not use: refused at the solver's set-up, before any solve.
     "unused_solver_option_of_other_solver": (["-contact_pc_gamg_threshold", "0.01"],
                                              ["-contact_pc_gamg_threshold 0.01 does not apply to the kept MUMPS "

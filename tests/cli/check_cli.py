@@ -82,15 +82,20 @@ elif TEST == "misspelled":
         out_dir = os.path.join(work, "out")
         rc, out = run(["-material_nuu", "0.3", "-output_dir", out_dir])
         errors = [l for l in out.splitlines() if l.startswith("signorini: error:")]
-        check(rc != 0 and len(errors) == 1 and "option -material_nuu 0.3 is set but never read" in errors[0],
+        check(rc != 0 and len(errors) == 1 and "option -material_nuu 0.3 (on the command line) is set but never read" in errors[0],
               "a misspelled option is an error naming it: " + out[-300:])
         check("unknowns:" not in out and not os.path.exists(out_dir),
               "it stops the run after the set-up, before the output directory is made")
+        # The message says where each option was set: PETSC_OPTIONS, an options file, the command line.
+        env = dict(os.environ, PETSC_OPTIONS="-materal_E 5")
+        proc = subprocess.run([EXE], capture_output=True, text=True, timeout=300, cwd=SOURCE, env=env)
+        check(proc.returncode != 0 and "option -materal_E 5 (in PETSC_OPTIONS) is set but never read" in proc.stderr,
+              "an unread option of PETSC_OPTIONS is named with its origin: " + proc.stderr[-300:])
         # A solver option is read at the first factorisation: one that nothing reads is refused after the solve,
         # before the output is published.
         rc, out = run(["-contact_mat_mumps_icntl_99", "1", "-output_dir", out_dir])
         errors = [l for l in out.splitlines() if l.startswith("signorini: error:")]
-        check(rc != 0 and len(errors) == 1 and "option -contact_mat_mumps_icntl_99 1 is set but never read" in errors[0]
+        check(rc != 0 and len(errors) == 1 and "option -contact_mat_mumps_icntl_99 1 (on the command line) is set but never read" in errors[0]
               and "CONVERGED" in out, "an unread solver option is an error after the solve: " + out[-300:])
         check(not os.path.exists(os.path.join(out_dir, "summary.json"))
               and not os.path.exists(os.path.join(out_dir, "incomplete")), "and nothing is published or left behind")

@@ -28,6 +28,10 @@ std::vector<std::string> CommandLineArgs();
 /// Where to look for the value of option name (as given, possibly relative): see PathCandidates. Not collective.
 [[nodiscard]] PetscErrorCode PathCandidatesFor(const std::string &name, const std::string &value, PathCandidates &out);
 
+/// Where option name ("-name") was set last, for a message: "set in options file 'F'", "on the command line", "in
+/// PETSC_OPTIONS", or "" when none of them names it (PETSc's own defaults). Not collective; the same on every rank.
+[[nodiscard]] PetscErrorCode OptionOrigin(const std::string &name, std::string &origin);
+
 /// The first candidate that exists; else "" and looked names every place looked ("'a' (relative to ...) nor at 'b'
 /// (...)").
 std::string FirstExisting(const PathCandidates &candidates, std::string &looked);
