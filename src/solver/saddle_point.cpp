@@ -81,7 +81,8 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
   const std::string ordering_help = "Ordering of the kept factorisation (with -contact_mat_mumps_icntl_7 1, the "
                                     "default): METIS's nested dissection of the node graph, or cuts across coordinate "
                                     "axes; auto: METIS in 3D and from " + std::to_string(METIS_MIN_ROWS_2D) +
-                                    " rows in 2D, coordinate cuts below";
+                                    " rows in 2D, coordinate cuts below, and METIS whenever "
+                                    "-contact_nested_dissection_parallel is given (an option of METIS's ordering)";
   PetscCall(OptionsRequireValue(PetscOptionsObject, "-contact_nested_dissection", "auto, metis or coordinates"));
   PetscCall(PetscOptionsEList("-contact_nested_dissection", ordering_help.c_str(), "", GRAPH_ORDERING_NAMES, 3,
                               GRAPH_ORDERING_NAMES[ordering], &ordering, &opts.ordering_set));
@@ -92,6 +93,9 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
                              "separators, each rank orders its own nodes) instead of the whole node graph on rank 0",
                              "", parallel, &parallel, &opts.parallel_set));
   opts.ordering.parallel = parallel;
+  // The parallel option is one of METIS's ordering: given, it picks METIS where auto would cut across coordinates
+  // (a small 2D matrix), instead of being ignored there.
+  if (opts.parallel_set && opts.ordering.graph == GraphOrdering::AUTO) opts.ordering.graph = GraphOrdering::METIS;
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

@@ -161,6 +161,13 @@ elif TEST.startswith("solver_options_np"):
     rc, out = run(beam + ["-contact_pc_factor_fill", "3", "-contact_pc_factor_mat_solver_type", "mumps",
                           "-contact_reuse_factorization", "false"], np=np)
     check(rc == 0 and "CONVERGED" in out, "the default direct solver reads its Cholesky options: " + out[-300:])
+    # -contact_nested_dissection_parallel is an option of METIS's ordering: with auto on a small 2D matrix (coordinate
+    # cuts otherwise) it picks METIS rather than being ignored.
+    for given, name in (([], "coordinates"), (["-contact_nested_dissection_parallel", "false"], "metis"),
+                        (["-contact_nested_dissection_parallel", "true"], "metis")):
+        rc, out = run(beam + given + ["-info", ":sys"], np=np)
+        check(rc == 0 and f"ICNTL(7) = 1 ({name})" in out, f"{' '.join(given) or 'auto'} orders by {name}: "
+              + "".join(l for l in out.splitlines(True) if "MUMPS factors" in l)[-300:])
     with tempfile.TemporaryDirectory() as work:
         out_dir = os.path.join(work, "out")
         rc, out = run(beam + ["-contact_ksp_rtol", "1e-3", "-output_dir", out_dir], np=np)
