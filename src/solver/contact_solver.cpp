@@ -350,7 +350,7 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
   std::vector<char> active_saved = active_set_.Flags();
   double t = 0, dt = 1.0 / opts_.load_steps;
   PetscInt step = 0;
-  bool exact_repeat = false; // svk: this attempt repeats a step found free after lagged searches (below)
+  std::string exact_repeat; // svk: the failure that this attempt repeats with exact Newton steps (below), if it does
   while (t < 1.0 - 1e-12) {
     const double t_try = std::min(1.0, t + dt);
     bool ok;
@@ -359,7 +359,6 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
       PetscCall(PetscPrintf(comm, "Contact solve %s: %s at load factor %.6g after %" PetscInt_FMT " solve(s)\n",
                             ok ? "converged" : "diverged", stats_.reason.c_str(), t_try, stats_.solves));
     if (ok) {
-      exact_repeat = false;
       t = t_try;
       ++step;
       stats_.steps = step;
@@ -374,8 +373,10 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
       PetscCall(step_done(step, t));
       continue;
     }
-    // The repeat with exact Newton steps (below) that fails otherwise leaves the finding it was to check: not held.
-    if (exact_repeat) stats_.reason = "DIVERGED_NOT_HELD", widen_to_ = 0;
+    // The repeat with exact Newton steps (below) of a body found free that fails otherwise leaves the finding it was
+    // to check: not held.
+    if (exact_repeat == "DIVERGED_NOT_HELD") stats_.reason = exact_repeat, widen_to_ = 0;
+    exact_repeat.clear();
     if (widen_to_ > 0) {
       // A candidate went into a facet it has no pair with: the step is repeated, from the last converged state, with
       // pairs found within a wider radius (linear material: and that pair; not a cut: the increment stays).
@@ -398,17 +399,19 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
       active_saved = active_set_.Flags();
       continue;
     }
-    // svk: a body found free at the end of the lagged searches' path may be held. Their stale tangent and the
-    // stabilised moves along the free rigid motion can carry the iterate to where its free motion does lead away from
-    // every obstacle: an svk block tipping on a disc towards a wall (seed 4242, case 270) was moved off the wall and
-    // past its balance on the disc, from where the load rolls it off, while exact Newton steps converge without a
-    // stabilised solve. Before that verdict, the step is repeated once, from the last converged state, with exact
-    // Newton steps (as after a set that came back), and so are the load steps after it; a repeat that fails
-    // otherwise ends the run with the first finding.
+    // svk: a step that fails at the end of the lagged searches' path may converge with exact Newton steps. Their
+    // stale tangent and the stabilised moves along a free rigid motion can carry the iterate where the step cannot
+    // converge: an svk block tipping on a disc towards a wall (seed 4242, case 270) was moved off the wall and past its
+    // balance on the disc, from where the load rolls it off; a block dropping 0.04 onto a floor beside an inclined
+    // wall (seed 31337, case 110), found free and searched again within the diagonal, ran out of iterations, and one
+    // over a disc (case 69) deformed non-invertibly, each down to the smallest cut, while exact Newton steps converge
+    // in one step. So before a cut, after any wider search, the step is repeated once, from the last converged state,
+    // with exact Newton steps (as after a set that came back), and so are the load steps after it. A singular system
+    // is no matter of the path.
     const bool lagged = opts_.lagged_search && system_->ReusesFactorization();
-    if (large && stats_.reason == "DIVERGED_NOT_HELD" && lagged && !exact_newton_) {
+    if (large && lagged && !exact_newton_ && stats_.reason != "DIVERGED_SINGULAR") {
       exact_newton_ = true;
-      exact_repeat = true;
+      exact_repeat = stats_.reason;
       PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s) after lagged Newton searches: repeating it with "
                             "exact Newton steps\n", t_try, stats_.reason.c_str()));
       PetscCall(SetOwnedDisplacement(u_saved));

@@ -1843,7 +1843,7 @@ def held_beyond_radius(runner):
 
 @test("svk_free_after_lagged_search")
 def svk_free_after_lagged_search(runner):
-    """svk block on a disc, tipping towards a wall (seed 4242 case 270), held by contact alone: the lagged searches
+    """svk steps that fail at the end of the lagged searches' path are repeated with exact Newton steps. An svk block on a disc, tipping towards a wall (seed 4242 case 270), held by contact alone: the lagged searches
     and the stabilised moves along the free rigid motion carried it off the wall and past its balance on the disc,
     from where the load rolls it off, and the run ended "the body is not held" (also with the pairs within the
     diagonal). Such a step is now repeated with exact Newton steps, and converges: the top-left corner on the wall and
@@ -1869,6 +1869,27 @@ def svk_free_after_lagged_search(runner):
     runner.expect_close("the support carries no load", held.get("contact.reaction_force"), [0, 0], 0,
                         1e-8 * np.linalg.norm(held.get("contact.applied_force")))
     expect_same_state(runner, r, held, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+    # Other failures at the end of the lagged searches' path (seed 31337): a block dropping 0.04 onto a floor beside
+    # an inclined wall (case 110) was found free, searched again within the diagonal, and then deformed
+    # non-invertibly, down to the smallest cut; a block supported on its left side over a disc (case 69) deformed
+    # non-invertibly at every cut. Their first step is now repeated with exact Newton steps and converges to the state
+    # of -contact_reuse_factorization false (1e-8), which never lags.
+    for args, what, reason in (
+            (["-mesh_file", "meshes/notch_block.msh", "-material_E", "2862.82", "-material_nu", "0.390",
+              "-contact_groups", "bottom,left,right", "-material_model", "svk", "-bc_traction", "top:-0.529165:-13.1703",
+              "-obstacle_segments", "-0.5,-0.042087,1.5,-0.042087,0,2,0,-0.5,0.894895,-0.042087,1.8949,0.502567"],
+             "svk block dropping onto a floor", "DIVERGED_NONINVERTIBLE_DEFORMATION"),
+            (["-mesh_file", "meshes/notch_block.msh", "-material_E", "1081.38", "-material_nu", "0.280",
+              "-contact_groups", "bottom,left,right", "-material_model", "svk", "-bc_dirichlet", "left:x",
+              "-bc_traction", "top:-0.225872:-1.07768", "-obstacle_segments", "0,2,0,-0.5,0.608827,0.00590966,1.60883,"
+              "1.36017", "-obstacle_discs", "0.406251,-0.99409,1"], "svk block over a disc",
+             "DIVERGED_NONINVERTIBLE_DEFORMATION")):
+        r = runner.run(args, what)
+        runner.expect_true("%s: repeated with exact Newton steps after the lagged searches failed (%s)" % (what, reason),
+                           "Load step at factor 1 failed (%s) after lagged Newton searches: repeating it with exact "
+                           "Newton steps" % reason in r.output and r.get("iterations.step_cuts") == 0)
+        ref = runner.run(args + ["-contact_reuse_factorization", "false"], what + ", refactorised at every solve")
+        expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
 @test("rigid_translation_steps")
