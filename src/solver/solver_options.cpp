@@ -335,9 +335,9 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptio
                              "changes and the residual halves per step, a Newton step searches the active set in the "
                              "multiplier space with the factored tangent (modified Newton: one forward and one "
                              "backward pass); once it settles, inexact Newton steps with the current tangent (FGMRES "
-                             "to a residual of min(0.1, ||R||/scale) ||R||); the first load step of a run that fails "
-                             "so (not singular) is repeated with exact Newton steps before a cut; false: exact Newton "
-                             "at every iteration",
+                             "to a residual of min(0.1, ||R||/scale) ||R||); the run's first load step that fails "
+                             "after lagged searches (not singular) is repeated with exact Newton steps before a cut; "
+                             "false: exact Newton at every iteration",
                              "", opts.lagged_search, &opts.lagged_search, &opts.lagged_search_set));
   PetscOptionsEnd();
   // The linear material solves a load step by the active-set loop alone (-contact_max_it) and never cuts one: these
