@@ -157,16 +157,25 @@ PetscErrorCode HelpKsp(MPI_Comm comm) {
   PetscCall(ReadSaddlePointOptions(comm, opts));
   // The stand-in matrix's own options (-mat_*, unprefixed) are PETSc's generic ones: they join the held text that is
   // listed last, so that the solver's groups follow the program's.
-  PetscHelpPrintf = HoldHelpPrintf;
-  petsc_vfprintf = PetscVFPrintf;
-  PetscVFPrintf = HoldVFPrintf;
-  PetscCall(MatCreateAIJ(comm, 3, 3, PETSC_DETERMINE, PETSC_DETERMINE, 1, nullptr, 0, nullptr, A.out()));
-  for (PetscInt i = 0; i < 3; ++i) PetscCall(MatSetValue(A, 3 * rank + i, 3 * rank + i, i < 2 ? 1.0 : -1.0,
-                                                          INSERT_VALUES));
-  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-  PetscHelpPrintf = ProgramHelpPrintf;
-  PetscVFPrintf = petsc_vfprintf;
+  {
+    // Held while the stand-in is made; the printers come back however it ends.
+    struct HeldPrinters {
+      HeldPrinters() {
+        PetscHelpPrintf = HoldHelpPrintf;
+        petsc_vfprintf = PetscVFPrintf;
+        PetscVFPrintf = HoldVFPrintf;
+      }
+      ~HeldPrinters() {
+        PetscHelpPrintf = ProgramHelpPrintf;
+        PetscVFPrintf = petsc_vfprintf;
+      }
+    } held;
+    PetscCall(MatCreateAIJ(comm, 3, 3, PETSC_DETERMINE, PETSC_DETERMINE, 1, nullptr, 0, nullptr, A.out()));
+    for (PetscInt i = 0; i < 3; ++i)
+      PetscCall(MatSetValue(A, 3 * rank + i, 3 * rank + i, i < 2 ? 1.0 : -1.0, INSERT_VALUES));
+    PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  }
   ISH u, lambda;
   PetscCall(ISCreateStride(comm, 2, 3 * rank, 1, u.out()));
   PetscCall(ISCreateStride(comm, 1, 3 * rank + 2, 1, lambda.out()));
