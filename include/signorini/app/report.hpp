@@ -21,6 +21,7 @@ struct HertzReport {
   double a = 0, p0 = 0;                 ///< analytical half-width (2D) or contact radius (3D) and peak pressure
   double a_h = 0, p0_h = 0;             ///< computed (see ComputeHertz)
   PetscInt fit_nodes = 0;               ///< nodal pressures in the fit of p0_h
+  double a_fit = 0;                     ///< a of the same fit (0: none), free of a_h's steps of whole elements
   bool out_of_range = false;            ///< the default case's comparison, not made: a is not small against R
   bool check_load = true;               ///< P must be the load the model carries (not when the default case filled
                                         ///< it in: its P follows the run's load)
