@@ -296,7 +296,8 @@ PetscErrorCode Run() {
     PetscCall(PetscPrintf(comm, "signorini: frictionless (Signorini) contact of elastic bodies against rigid "
                           "obstacles.\nEvery input is a PETSc option. The built-in 2D Hertz case (options/hertz.yml) "
                           "fills in every option not given, unless the run gives a case of its own: -mesh_file with "
-                          "any of -bc_*, -obstacle_*, -contact_groups.\n\n"));
+                          "any of -bc_*, -obstacle_*, -contact_groups. -version prints the program's, PETSc's, MUMPS's "
+                          "and MPI's versions.\n\n"));
   bool default_on_user_mesh, hertz_filled;
   PetscCall(ApplyDefaultCase(default_on_user_mesh, hertz_filled));
   PetscCall(ReadProgressOptions(comm));
