@@ -475,10 +475,22 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
         : large ? "the Newton loop reached its iteration limit (-newton_max_it Newton iterations, of which at most "
                   "-contact_max_it change the active set)"
                 : "the active-set loop reached its iteration limit (-contact_max_it)";
+    // svk out of iterations on a body that only contact can hold: a hint where to look (seed 31337: svk cubes that
+    // tip off a sphere, which the linear material finds not held, and a block that must roll 0.5 on a disc to reach
+    // a wall, which the linear material solves, ran out of iterations).
+    std::string hint;
+    if (large && fatal && why == "DIVERGED_MAX_IT") {
+      bool held_by_supports;
+      PetscCall(rigid_.Held(keys_, normals_, std::vector<char>(active_set_.Flags().size(), 0), held_by_supports));
+      if (!held_by_supports)
+        hint = "; the supports leave a rigid-body motion free, so only contact holds the body: one that must travel "
+               "far along that motion to be held, or that nothing holds, can end so (the same case with "
+               "-material_model linear says whether contact holds it)";
+    }
     PetscCheck(large && stats_.cuts < opts_.max_cuts && why != "DIVERGED_NOT_HELD" && !singular, comm,
-               PETSC_ERR_NOT_CONVERGED, "the contact solve did not converge at load factor %.6g: %s: %s%s", t_try,
+               PETSC_ERR_NOT_CONVERGED, "the contact solve did not converge at load factor %.6g: %s: %s%s%s", t_try,
                why.c_str(), what.c_str(),
-               large && !singular ? "; no more load-step cuts allowed (-load_max_cuts)" : "");
+               large && !singular ? "; no more load-step cuts allowed (-load_max_cuts)" : "", hint.c_str());
     stats_.cuts++;
     dt *= 0.5;
     PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s); cutting the increment to %.6g\n", t_try,

@@ -564,6 +564,15 @@ CASES = {
     "svk_contact_max_it": (["-options_file", "{root}/options/beam_on_floor.yml", "-material_model", "svk",
                             "-contact_max_it", "1", "-load_max_cuts", "0"],
                            ["DIVERGED_MAX_IT", "at most -contact_max_it change the active set"], {}),
+    # svk out of iterations on a body that only contact holds (seed 31337 case 138: a block on a disc that must roll
+    # 0.5 to reach an inclined wall; the linear material converges): the error says where to look.
+    "svk_max_it_held_by_contact_alone": (["-mesh_file", "{root}/meshes/block.msh", "-material_E", "5803.01",
+                                          "-material_nu", "0.324", "-contact_groups", "bottom,left,right",
+                                          "-material_model", "svk", "-bc_traction", "top:0.655577:-49.716",
+                                          "-obstacle_segments", "0,2,0,-0.5,2.29919,-0.00973227,3.29919,1.35071",
+                                          "-obstacle_discs", "1.00769,-1.00973,1"],
+                                         ["DIVERGED_MAX_IT", "no more load-step cuts", "only contact holds the body",
+                                          "-material_model linear says whether contact holds it"], {}),
     # Held by contact alone, but pulled up out of the notch: no active set can hold it. The complementarity problem
     # of the linear material says so (ContactSolver::PivotedActiveSet): the whole load is unbalanced.
     "pulled_out_of_notch": (["-options_file", "{root}/options/block_in_notch.yml", "-bc_traction", "top:0:1"],
