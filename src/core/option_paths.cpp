@@ -50,16 +50,21 @@ PetscErrorCode Scan(const std::vector<std::string> &words, const std::string &na
   PetscFunctionReturn(0);
 }
 
+/// The words of PETSC_OPTIONS (null: none), as PETSc splits them.
+std::vector<std::string> Words(const char *text) {
+  std::vector<std::string> words;
+  std::istringstream in(text ? text : "");
+  for (std::string w; in >> w;) words.push_back(w);
+  return words;
+}
+
 } // namespace
 
 PetscErrorCode LastOptionsFileSetting(const std::vector<std::string> &args, const char *petsc_options,
                                       const std::string &name, std::string &file) {
   PetscFunctionBeginUser;
   file.clear();
-  std::vector<std::string> env_words;
-  std::istringstream env(petsc_options ? petsc_options : "");
-  for (std::string w; env >> w;) env_words.push_back(w);
-  PetscCall(Scan(env_words, name, file));
+  PetscCall(Scan(Words(petsc_options), name, file));
   PetscCall(Scan(args, name, file));
   PetscFunctionReturn(0);
 }
@@ -98,15 +103,12 @@ PetscErrorCode OptionOrigin(const std::string &name, std::string &origin) {
   const char *petsc_options = std::getenv("PETSC_OPTIONS");
   std::string file;
   PetscCall(LastOptionsFileSetting(args, petsc_options, name, file));
-  std::vector<std::string> env_words;
-  std::istringstream env(petsc_options ? petsc_options : "");
-  for (std::string w; env >> w;) env_words.push_back(w);
   const auto in = [&name](const std::vector<std::string> &words) {
     return std::find(words.begin(), words.end(), name) != words.end();
   };
   if (!file.empty()) origin = "set in options file '" + file + "'";
   else if (in(args)) origin = "on the command line";
-  else if (in(env_words)) origin = "in PETSC_OPTIONS";
+  else if (in(Words(petsc_options))) origin = "in PETSC_OPTIONS";
   else origin.clear();
   PetscFunctionReturn(0);
 }

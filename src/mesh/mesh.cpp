@@ -267,10 +267,7 @@ PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
   PetscCall(RaiseFromRoot(comm, error));
   dim_ = serial_.dim;
   PetscCallMPI(MPI_Bcast(&dim_, 1, MPI_INT, 0, comm));
-  int length = (int)path_.size();
-  PetscCallMPI(MPI_Bcast(&length, 1, MPI_INT, 0, comm));
-  path_.resize(length);
-  PetscCallMPI(MPI_Bcast(path_.data(), length, MPI_CHAR, 0, comm));
+  PetscCall(Broadcast(comm, 0, path_));
   PetscCall(BroadcastGroups(comm, serial_, group_names_, group_dims_));
   std::vector<PetscInt> file_node, file_cell;
   if (rank == 0) LocalityOrder(serial_, file_node, file_cell);
