@@ -161,6 +161,9 @@ elif TEST.startswith("solver_options_np"):
     rc, out = run(beam + ["-contact_pc_factor_fill", "3", "-contact_pc_factor_mat_solver_type", "mumps",
                           "-contact_reuse_factorization", "false"], np=np)
     check(rc == 0 and "CONVERGED" in out, "the default direct solver reads its Cholesky options: " + out[-300:])
+    rc, out = run(["-version"], np=np)
+    check(rc == 0 and out.count("signorini ") == 1 and out.count("MUMPS ") == 1 and "active-set" not in out,
+          "-version prints the versions once on %d rank(s) and runs nothing: %r" % (np, out[:300]))
     # -contact_nested_dissection_parallel is an option of METIS's ordering: with auto on a small 2D matrix (coordinate
     # cuts otherwise) it picks METIS rather than being ignored.
     for given, name in (([], "coordinates"), (["-contact_nested_dissection_parallel", "false"], "metis"),
