@@ -407,8 +407,8 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     // stale tangent and the stabilised moves along a free rigid motion can carry the iterate where the step cannot
     // converge: an svk block tipping on a disc towards a wall (seed 4242, case 270) was moved off the wall and past its
     // balance on the disc, from where the load rolls it off; a block dropping 0.04 onto a floor beside an inclined
-    // wall (seed 31337, case 110), found free and searched again within the diagonal, ran out of iterations, and one
-    // over a disc (case 69) deformed non-invertibly, each down to the smallest cut, while exact Newton steps converge
+    // wall (seed 31337, case 110), found free and searched again within the diagonal, then deformed non-invertibly,
+    // and one over a disc (case 69) did so at once, each down to the smallest cut, while exact Newton steps converge
     // in one step. So before a cut, after any wider search, the step is repeated once in a run, from the last converged
     // state, with exact Newton steps (as after a set that came back), and so are the load steps after it when it
     // converges. A singular system is no matter of the path.
