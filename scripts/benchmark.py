@@ -300,8 +300,9 @@ def record(res, ela):
         row["rss_sum_mb"] = round(sum(rss) / 1024.0, 1)
     ev, evc = res.get("events", {}), res.get("events_contact", {})
     if ev:
-        row["t_factor_sym"] = ev_time(ev, "MatCholFctrSym", "MatLUFactorSym", "SigMumpsAnalysis")
-        row["t_factor_num"] = ev_time(ev, "MatCholFctrNum", "MatLUFactorNum", "SigMumpsFactor", "SigSchurFactor")
+        row["t_factor_sym"] = ev_time(ev, "MatCholFctrSym", "MatLUFactorSym", "SigMumpsAnalysis", "SigCholAnalysis")
+        row["t_factor_num"] = ev_time(ev, "MatCholFctrNum", "MatLUFactorNum", "SigMumpsFactor", "SigCholFactor",
+                                      "SigSchurFactor")
     s = res.get("summary")
     if s:
         t = s["timings"]
@@ -317,7 +318,8 @@ def record(res, ela):
             row["t_assembly"] = ev_time(evc, "SigAssembly")
             # Factorisations: the PC's (PCSetUp), or with -contact_reuse_factorization the one MUMPS factorisation
             # and the dense factorisations of the Schur complement.
-            fac = ev_time(evc, "PCSetUp", "SigMumpsAnalysis", "SigMumpsFactor", "SigSchurFactor")
+            fac = ev_time(evc, "PCSetUp", "SigMumpsAnalysis", "SigMumpsFactor", "SigCholAnalysis", "SigCholFactor",
+                          "SigSchurFactor")
             row["t_pc_setup"] = fac
             row["t_solve"] = max(0.0, ev_time(evc, "SigSolve") - fac)
         else:

@@ -22,6 +22,7 @@ namespace signorini {
 
 namespace {
 PetscLogEvent EV_ORDERING = 0, EV_ANALYSIS = 0, EV_FACTOR = 0, EV_SCHUR = 0, EV_SOLVE = 0, EV_REDUCED = 0;
+PetscLogEvent EV_CHOL_ANALYSIS = 0, EV_CHOL_FACTOR = 0, EV_CHOL_SOLVE = 0;
 PetscErrorCode RegisterEvents() {
   PetscClassId id;
   PetscFunctionBeginUser;
@@ -33,6 +34,9 @@ PetscErrorCode RegisterEvents() {
   PetscCall(PetscLogEventRegister("SigSchurFactor", id, &EV_SCHUR));
   PetscCall(PetscLogEventRegister("SigMumpsSolve", id, &EV_SOLVE));
   PetscCall(PetscLogEventRegister("SigReducedSolve", id, &EV_REDUCED));
+  PetscCall(PetscLogEventRegister("SigCholAnalysis", id, &EV_CHOL_ANALYSIS));
+  PetscCall(PetscLogEventRegister("SigCholFactor", id, &EV_CHOL_FACTOR));
+  PetscCall(PetscLogEventRegister("SigCholSolve", id, &EV_CHOL_SOLVE));
   PetscFunctionReturn(0);
 }
 } // namespace
@@ -100,7 +104,8 @@ void MumpsSchur::Release() {
     id_.job = -2;
     dmumps_c(&id_);
   }
-  initialised_ = condensed_ = s_factored_ = false;
+  initialised_ = condensed_ = s_factored_ = cholesky_in_use_ = false;
+  cholesky_.Clear();
   for (auto *v : {&irn_, &jcn_, &listvar_, &perm_in_}) std::vector<MUMPS_INT>().swap(*v);
   for (auto *v : {&val_, &schur_raw_, &s0_, &d0_, &s_, &d_factored_, &redrhs_, &work_, &condensed_u_, &reduced_})
     std::vector<double>().swap(*v);
@@ -326,7 +331,8 @@ PetscErrorCode MumpsSchur::ReadValues(Mat A, bool pattern) {
 PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows, const std::vector<PetscScalar> &d0,
                                   bool symmetric, PetscInt owned_u, PetscInt node_size,
                                   const std::vector<double> &coords, OrderingOptions ordering,
-                                  const MumpsControls &controls, bool keep_values, bool may_decline) {
+                                  const MumpsControls &controls, bool keep_values, bool may_decline,
+                                  KeptSolver solver) {
   PetscInt rstart, rend, N;
   PetscFunctionBeginUser;
   Release(); // an earlier factorisation (one that found null pivots) goes first
@@ -392,14 +398,26 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
     PetscCall(NestedDissection(N, rstart, owned_u, node_size, coords, ordering));
     if (rank_ == 0) id_.perm_in = perm_in_.data();
   }
-  PetscCall(PetscLogEventBegin(EV_ANALYSIS, 0, 0, 0, 0));
-  PetscCall(Call(1, "analysis"));
-  perm_in_.clear();
-  perm_in_.shrink_to_fit();
-  PetscCall(PetscLogEventEnd(EV_ANALYSIS, 0, 0, 0, 0));
-  // The analysis' estimates (every rank has them): elimination flops RINFOG(1), factor entries INFOG(20) (negative: in
-  // millions).
-  const double flops = id_.rinfog[0], entries = id_.INFOG(20) >= 0 ? id_.INFOG(20) : -1e6 * id_.INFOG(20);
+  PetscMPIInt size;
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  cholesky_in_use_ = solver == KeptSolver::CHOLESKY ||
+                     (solver == KeptSolver::AUTO && size == 1 && symmetric && id_.ICNTL(7) == 1 &&
+                      controls.icntl.empty() && controls.cntl.empty() && N <= CHOLESKY_MAX_ROWS);
+  double flops, entries;
+  if (cholesky_in_use_) {
+    // The pivot order stays (perm_in_) for MUMPS, should the block turn out not to be positive definite.
+    PetscCheck(size == 1 && symmetric && id_.ICNTL(7) == 1, comm_, PETSC_ERR_PLIB,
+               "the supernodal Cholesky factorisation needs one rank, LDL^T and the given ordering");
+    PetscCall(PetscLogEventBegin(EV_CHOL_ANALYSIS, 0, 0, 0, 0));
+    PetscCall(cholesky_.Analyse(N, m_all, irn_, jcn_, perm_in_, 1));
+    PetscCall(PetscLogEventEnd(EV_CHOL_ANALYSIS, 0, 0, 0, 0));
+    flops = cholesky_.Flops(), entries = cholesky_.Entries();
+  } else {
+    PetscCall(MumpsAnalysis());
+    // The analysis' estimates (every rank has them): elimination flops RINFOG(1), factor entries INFOG(20)
+    // (negative: in millions).
+    flops = id_.rinfog[0], entries = id_.INFOG(20) >= 0 ? id_.INFOG(20) : -1e6 * id_.INFOG(20);
+  }
   if (may_decline && DenseCostsMore((double)m_all, flops)) {
     PetscCall(PetscInfo(nullptr, "dense Schur complement of %" PetscInt_FMT " candidates: %.6g flops per active-set "
                         "change and %.6g entries, against %.6g flops and %.6g entries of the sparse factors: declined\n",
@@ -414,16 +432,25 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
     PetscCall(VecScatterCreateToZero(layout, &to_root_, root_.out()));
   }
   redrhs_.assign(m, 0.0);
+  ordering_name_ = id_.ICNTL(7) == 1 ? GRAPH_ORDERING_NAMES[(int)ordering.graph] : "MUMPS's";
   PetscCall(FactorNumeric(d0));
-  PetscCall(PetscInfo(nullptr, "MUMPS factors: ordering ICNTL(7) = %d (%s), %.6g entries, %.6g flops in the elimination\n",
-                      (int)id_.ICNTL(7), id_.ICNTL(7) == 1 ? GRAPH_ORDERING_NAMES[(int)ordering.graph] : "MUMPS's",
-                      (double)(id_.INFOG(29) >= 0 ? id_.INFOG(29) : -1e6 * id_.INFOG(29)), (double)id_.rinfog[2]));
   keep_values_ = keep_values;
   if (!keep_values) {
     // The matrix values are no longer needed (no refactorisation).
     irn_.clear(), jcn_.clear(), val_.clear();
     irn_.shrink_to_fit(), jcn_.shrink_to_fit(), val_.shrink_to_fit();
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::MumpsAnalysis() {
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(EV_ANALYSIS, 0, 0, 0, 0));
+  if (rank_ == 0 && id_.ICNTL(7) == 1) id_.perm_in = perm_in_.data();
+  PetscCall(Call(1, "analysis"));
+  perm_in_.clear();
+  perm_in_.shrink_to_fit();
+  PetscCall(PetscLogEventEnd(EV_ANALYSIS, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -440,12 +467,36 @@ PetscErrorCode MumpsSchur::FactorNumeric(const std::vector<PetscScalar> &d0) {
   const PetscInt m = rank_ == 0 ? (PetscInt)listvar_.size() : 0;
   PetscFunctionBeginUser;
   schur_raw_.assign((std::size_t)m * m, 0.0);
-  id_.a_loc = val_.data();
-  id_.schur = schur_raw_.data();
-  PetscCall(PetscLogEventBegin(EV_FACTOR, 0, 0, 0, 0));
-  PetscCall(Call(2, "factorisation"));
-  PetscCall(PetscLogEventEnd(EV_FACTOR, 0, 0, 0, 0));
-  null_pivots_ = id_.INFOG(28);
+  if (cholesky_in_use_) {
+    bool positive;
+    PetscCall(PetscLogEventBegin(EV_CHOL_FACTOR, 0, 0, 0, 0));
+    PetscCall(cholesky_.Factor(val_, schur_raw_, positive));
+    PetscCall(PetscLogEventEnd(EV_CHOL_FACTOR, 0, 0, 0, 0));
+    if (positive) {
+      PetscCall(PetscInfo(nullptr, "Cholesky factors (supernodal): ordering ICNTL(7) = 1 (%s), %.6g entries, %.6g "
+                          "flops in the elimination\n", ordering_name_, cholesky_.Entries(), cholesky_.Flops()));
+      null_pivots_ = 0;
+    } else {
+      // Not safely positive definite: MUMPS's LDL^T with its null-pivot detection decides, from the same order.
+      PetscCall(PetscInfo(nullptr, "Cholesky factorisation: a pivot not above %g of the largest diagonal entry; "
+                          "MUMPS factorises instead\n", SchurCholesky::PIVOT_TOLERANCE));
+      cholesky_.Clear();
+      cholesky_in_use_ = false;
+      PetscCall(MumpsAnalysis());
+      schur_raw_.assign((std::size_t)m * m, 0.0);
+    }
+  }
+  if (!cholesky_in_use_) {
+    id_.a_loc = val_.data();
+    id_.schur = schur_raw_.data();
+    PetscCall(PetscLogEventBegin(EV_FACTOR, 0, 0, 0, 0));
+    PetscCall(Call(2, "factorisation"));
+    PetscCall(PetscLogEventEnd(EV_FACTOR, 0, 0, 0, 0));
+    PetscCall(PetscInfo(nullptr, "MUMPS factors: ordering ICNTL(7) = %d (%s), %.6g entries, %.6g flops in the "
+                        "elimination\n", (int)id_.ICNTL(7), ordering_name_,
+                        (double)(id_.INFOG(29) >= 0 ? id_.INFOG(29) : -1e6 * id_.INFOG(29)), (double)id_.rinfog[2]));
+    null_pivots_ = id_.INFOG(28);
+  }
   // The Schur complement is complete for ICNTL(19) = 3; should a MUMPS version return only one triangle (the other
   // then stays zero), the full matrix is rebuilt from the filled one.
   s0_.assign((std::size_t)m * m, 0.0);
@@ -551,21 +602,26 @@ PetscErrorCode MumpsSchur::SolveReducedOnRoot(const std::vector<PetscScalar> &d,
 
 PetscErrorCode MumpsSchur::Condense(Vec b) {
   const PetscInt m = (PetscInt)d0_.size();
+  const PetscLogEvent event = cholesky_in_use_ ? EV_CHOL_SOLVE : EV_SOLVE;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(event, 0, 0, 0, 0));
   PetscCall(VecScatterBegin(to_root_, b, root_, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(to_root_, b, root_, INSERT_VALUES, SCATTER_FORWARD));
   PetscScalar *r;
   PetscCall(VecGetArray(root_, &r));
-  id_.rhs = r;
-  id_.nrhs = 1;
-  id_.lrhs = id_.n;
-  id_.redrhs = redrhs_.data();
-  id_.lredrhs = (MUMPS_INT)std::max<PetscInt>(1, m);
-  id_.ICNTL(20) = 0; // dense right-hand side on the host
-  id_.ICNTL(21) = 0; // solution on the host
-  id_.ICNTL(26) = 1; // the forward elimination, which MUMPS keeps for the expansion, and the reduced right-hand side
-  PetscCall(Call(3, "solve (condensation)"));
+  if (cholesky_in_use_) {
+    PetscCall(cholesky_.Forward(r, redrhs_.data()));
+  } else {
+    id_.rhs = r;
+    id_.nrhs = 1;
+    id_.lrhs = id_.n;
+    id_.redrhs = redrhs_.data();
+    id_.lredrhs = (MUMPS_INT)std::max<PetscInt>(1, m);
+    id_.ICNTL(20) = 0; // dense right-hand side on the host
+    id_.ICNTL(21) = 0; // solution on the host
+    id_.ICNTL(26) = 1; // the forward elimination, which MUMPS keeps for the expansion, and the reduced right-hand side
+    PetscCall(Call(3, "solve (condensation)"));
+  }
   // The part of the reduced right-hand side that comes from the displacement rows, A21 A11^-1 b_u, for SolveReduced.
   if (rank_ == 0) {
     condensed_u_.resize(m);
@@ -574,7 +630,7 @@ PetscErrorCode MumpsSchur::Condense(Vec b) {
   PetscCall(VecRestoreArray(root_, &r));
   condensed_ = true;
   reduced_.clear();
-  PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(event, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -595,21 +651,26 @@ PetscErrorCode MumpsSchur::Expand(Vec x) {
   PetscFunctionBeginUser;
   PetscCheck(condensed_ && (rank_ != 0 || reduced_.size() == (std::size_t)m), comm_, PETSC_ERR_ORDER,
              "Expand needs a Condense and a reduced solution after it");
-  PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
+  const PetscLogEvent event = cholesky_in_use_ ? EV_CHOL_SOLVE : EV_SOLVE;
+  PetscCall(PetscLogEventBegin(event, 0, 0, 0, 0));
   PetscScalar *r;
   PetscCall(VecGetArray(root_, &r));
-  if (rank_ == 0) std::copy(reduced_.begin(), reduced_.end(), redrhs_.begin());
-  id_.rhs = r;
-  id_.redrhs = redrhs_.data();
-  id_.ICNTL(26) = 2; // the backward substitution from the kept forward elimination and the reduced solution
-  PetscCall(Call(3, "solve (expansion)"));
+  if (cholesky_in_use_) {
+    PetscCall(cholesky_.Backward(reduced_.data(), r));
+  } else {
+    if (rank_ == 0) std::copy(reduced_.begin(), reduced_.end(), redrhs_.begin());
+    id_.rhs = r;
+    id_.redrhs = redrhs_.data();
+    id_.ICNTL(26) = 2; // the backward substitution from the kept forward elimination and the reduced solution
+    PetscCall(Call(3, "solve (expansion)"));
+  }
   if (rank_ == 0)
     for (PetscInt i = 0; i < m; ++i) r[listvar_[i] - 1] = reduced_[i];
   PetscCall(VecRestoreArray(root_, &r));
   PetscCall(VecScatterBegin(to_root_, root_, x, INSERT_VALUES, SCATTER_REVERSE));
   PetscCall(VecScatterEnd(to_root_, root_, x, INSERT_VALUES, SCATTER_REVERSE));
   condensed_ = false;
-  PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(event, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

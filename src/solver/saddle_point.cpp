@@ -96,6 +96,18 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
   // The parallel option is one of METIS's ordering: given, it picks METIS where auto would cut across coordinates
   // (a small 2D matrix), instead of being ignored there.
   if (opts.parallel_set && opts.ordering.graph == GraphOrdering::AUTO) opts.ordering.graph = GraphOrdering::METIS;
+  PetscInt kept_solver = (PetscInt)opts.kept_solver;
+  const std::string kept_solver_help =
+      "Who factors the displacement block of the kept factorisation: MUMPS, or signorini's supernodal Cholesky "
+      "(multifrontal, without pivoting, serial: one rank, the Cholesky preset, the given ordering, no "
+      "-contact_mat_mumps_ controls); auto: the Cholesky where it applies, up to " +
+      std::to_string(CHOLESKY_MAX_ROWS) + " rows. A block that is not safely positive definite (a pivot not above " +
+      "1e-11 of the largest diagonal entry: a body that the candidates do not hold, an svk tangent past a limit "
+      "point) goes to MUMPS, whose null-pivot detection judges it";
+  PetscCall(OptionsRequireValue(PetscOptionsObject, "-contact_kept_solver", "auto, mumps or cholesky"));
+  PetscCall(PetscOptionsEList("-contact_kept_solver", kept_solver_help.c_str(), "", KEPT_SOLVER_NAMES, 3,
+                              KEPT_SOLVER_NAMES[kept_solver], &kept_solver, &opts.kept_solver_set));
+  opts.kept_solver = (KeptSolver)kept_solver;
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -287,6 +299,8 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   // Its inactive rows get a smaller weight (INACTIVE_WEIGHT); the kept factorisation needs a constant block.
   if (augmented_ && !reuse_) aug_inactive_ = INACTIVE_WEIGHT * aug_;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu_));
+  PetscCall(CheckKeptSolver(comm, opts, possible));
+  kept_solver_ = opts.kept_solver;
   if (reuse_) {
     coords_ = coords;
     ordering_ = opts.ordering;
@@ -372,6 +386,28 @@ PetscErrorCode SaddlePointSystem::CheckReuseOptions(MPI_Comm comm, const SaddleP
   PetscCheck(!(opts.parallel_set && opts.ordering_set && opts.ordering.graph == GraphOrdering::COORDINATES), comm,
              PETSC_ERR_USER_INPUT, "-contact_nested_dissection_parallel applies to METIS's ordering only, not to "
              "-contact_nested_dissection coordinates");
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::CheckKeptSolver(MPI_Comm comm, const SaddlePointOptions &opts,
+                                                  bool possible) const {
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  const char *name = KEPT_SOLVER_NAMES[(int)opts.kept_solver];
+  PetscCheck(!opts.kept_solver_set || (possible && opts.reuse_factorization), comm, PETSC_ERR_USER_INPUT,
+             "-contact_kept_solver %s applies to the kept factorisation only (-contact_reuse_factorization with a "
+             "MUMPS LU or Cholesky solver, the default)", name);
+  if (opts.kept_solver != KeptSolver::CHOLESKY) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCheck(!lu_, comm, PETSC_ERR_USER_INPUT,
+             "-contact_kept_solver cholesky factors a symmetric matrix; expected the Cholesky preset "
+             "(-contact_pc_type cholesky, the default), not LU, or -contact_kept_solver mumps");
+  PetscCheck(mumps_controls_.icntl.empty() && mumps_controls_.cntl.empty(), comm, PETSC_ERR_USER_INPUT,
+             "-contact_kept_solver cholesky takes no MUMPS controls (-contact_mat_mumps_icntl_<k>, _cntl_<k>: they "
+             "would not apply); expected -contact_kept_solver mumps with them, or none of them");
+  PetscCheck(size == 1, comm, PETSC_ERR_USER_INPUT,
+             "-contact_kept_solver cholesky runs on one rank, not %d; expected -contact_kept_solver auto or mumps "
+             "(MUMPS factorises on several ranks)", (int)size);
   PetscFunctionReturn(0);
 }
 

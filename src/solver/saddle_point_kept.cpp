@@ -18,7 +18,7 @@ PetscErrorCode SaddlePointSystem::Factor() {
   PetscCall(MultiplierDiagonal(d));
   ProgressBegin("analysis and factorisation (MUMPS with the Schur complement on the candidates)");
   PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_, dofs_->OwnedU(), dofs_->Dim(), coords_, ordering_,
-                                mumps_controls_, !constant_k_, !reuse_forced_));
+                                mumps_controls_, !constant_k_, !reuse_forced_, kept_solver_));
   ProgressEnd();
   if (mumps_schur_.Declined()) {
     // The dense Schur complement would cost more than it saves (many candidates on a body that factors cheaply, such

@@ -388,6 +388,19 @@ CASES = {
                                                        "-contact_nested_dissection_parallel", "true"],
                                                ["-contact_nested_dissection_parallel applies to METIS's ordering "
                                                 "only"], {}),
+    # Who factors the kept factorisation (-contact_kept_solver): the supernodal Cholesky only where it applies.
+    "kept_solver_unknown": (["-contact_kept_solver", "lapack"],
+                            ["Unknown option lapack for -contact_kept_solver", "auto mumps cholesky"], {}),
+    "kept_solver_refactorising": (BEAM + ["-contact_kept_solver", "cholesky", "-contact_reuse_factorization", "false"],
+                                  ["-contact_kept_solver cholesky applies to the kept factorisation only"], {}),
+    "kept_solver_cholesky_lu": (BEAM + ["-contact_kept_solver", "cholesky", "-options_file",
+                                        "{root}/options/solver/mumps_lu.yml"],
+                                ["-contact_kept_solver cholesky factors a symmetric matrix", "not LU"], {}),
+    "kept_solver_cholesky_mumps_controls": (BEAM + ["-contact_kept_solver", "cholesky", "-contact_mat_mumps_cntl_3",
+                                                    "1e-10"],
+                                            ["-contact_kept_solver cholesky takes no MUMPS controls"], {}),
+    "kept_solver_cholesky_ranks": (BEAM + ["-contact_kept_solver", "cholesky"],
+                                   ["-contact_kept_solver cholesky runs on one rank, not 2"], {"min_np": 2}),
     "reuse_factorization_mumps_layout": (["-contact_mat_mumps_icntl_19", "1"],
                                          ["-contact_mat_mumps_icntl_19", "cannot be set"], {}),
     # An iterative solver's tolerance above what a solve must reach: refused before any solve (the solve used to fail
@@ -731,6 +744,8 @@ def run_interrupted(cmd, env, sig):
 
 def check_case(name, exe, mpiexec, np_, work, env, verbose):
     args, expected, opts = CASES[name]
+    if np_ < opts.get("min_np", 1):
+        raise Skipped(f"refused on {opts['min_np']} or more ranks only")
     out_dir = os.path.join(work, "out")
     a_file = os.path.join(work, "a_file")
     with open(a_file, "w") as f:

@@ -600,6 +600,17 @@ def log_event_count(output, event):
     return sum(int(m.group(1)) for m in re.finditer(r"^%s\s+(\d+)\s" % re.escape(event), output, re.M))
 
 
+def kept_factorisations(output):
+    """Numerical factorisations of the kept factorisation, by MUMPS or by the supernodal Cholesky
+    (-contact_kept_solver)."""
+    return log_event_count(output, "SigMumpsFactor") + log_event_count(output, "SigCholFactor")
+
+
+def kept_solve_phases(output):
+    """Forward (condensation) and backward (expansion) passes of the kept factorisation, MUMPS's or the Cholesky's."""
+    return log_event_count(output, "SigMumpsSolve") + log_event_count(output, "SigCholSolve")
+
+
 @test("reuse_factorization")
 def reuse_factorization(runner, preset):
     """Hertz (49k dofs, two load steps) with the factorisation kept across active sets and load steps (MUMPS Schur
@@ -618,13 +629,13 @@ def reuse_factorization(runner, preset):
     runner.expect_true("several solves (%d)" % solves, solves > 2)
     numeric = "MatCholFctrNum" if preset == "mumps_cholesky" else "MatLUFactorNum"
     runner.expect_equal("refactorising run: numeric factorisations", log_event_count(fresh.output, numeric), solves)
-    runner.expect_equal("kept: MUMPS factorisations", log_event_count(kept.output, "SigMumpsFactor"), 1)
+    runner.expect_equal("kept: MUMPS factorisations", kept_factorisations(kept.output), 1)
     runner.expect_equal("kept: PETSc factorisations", log_event_count(kept.output, numeric), 0)
     # Kept: per load step one condensation of the right-hand side (MUMPS's forward pass), every active-set iteration
     # in the multiplier space (condensed solves), and one expansion (the backward pass) for the displacement of the
     # last active set.
     steps = kept.get("iterations.load_steps")
-    runner.expect_equal("kept: MUMPS solve phases", log_event_count(kept.output, "SigMumpsSolve"), 2 * steps)
+    runner.expect_equal("kept: MUMPS solve phases", kept_solve_phases(kept.output), 2 * steps)
     runner.expect_equal("kept: condensed solves", log_event_count(kept.output, "SigReducedSolve"), solves)
     runner.expect_equal("kept: solves", kept.get("iterations.solves"), solves + steps)
     a, b = fresh.nodes(), kept.nodes()
@@ -661,12 +672,12 @@ def reuse_factorization(runner, preset):
     kept = runner.run(strip + ["-contact_reuse_factorization", "true"], "strip kept")
     declined = re.search(r"Factor\(\): dense Schur complement of (\d+) candidates: .*: declined$", auto.output, re.M)
     runner.expect_true("strip: the Schur complement declined (-info)", declined is not None)
-    runner.expect_equal("strip declined: MUMPS-Schur factorisations", log_event_count(auto.output, "SigMumpsFactor"), 0)
+    runner.expect_equal("strip declined: Schur-complement factorisations", kept_factorisations(auto.output), 0)
     runner.expect_equal("strip declined: a numeric factorisation per solve", log_event_count(auto.output, numeric),
                         auto.get("iterations.solves"))
     runner.expect_true("strip: several active-set iterations (%d)" % auto.get("iterations.active_set"),
                        auto.get("iterations.active_set") > 2)
-    runner.expect_equal("strip kept: MUMPS-Schur factorisations", log_event_count(kept.output, "SigMumpsFactor"), 1)
+    runner.expect_equal("strip kept: Schur-complement factorisations", kept_factorisations(kept.output), 1)
     for key in ("contact.active_pairs", "iterations.active_set"):
         runner.expect_equal("strip: " + key, auto.get(key), kept.get(key))
     a, b = kept.nodes(), auto.nodes()
@@ -674,6 +685,57 @@ def reuse_factorization(runner, preset):
     runner.expect_close("strip: displacement", displacement(b), displacement(a), 0,
                         1e-8 * np.abs(displacement(a)).max())
     runner.expect_close("strip: lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
+
+
+@test("kept_solver")
+def kept_solver(runner):
+    """The kept factorisation by the supernodal Cholesky (-contact_kept_solver cholesky, auto's choice on one rank)
+    against MUMPS's (-contact_kept_solver mumps): the same state on the 2D Hertz case in two load steps, the 3D cube on
+    a plane and svk Hertz in three load steps, the last also numerically refactored at every solve
+    (-contact_reuse_max_it 0). Two direct factorisations of the same positive definite block: 1e-10 of the largest
+    values for the linear material, svk's Newton tolerance (1e-8) for the two Newton paths. On two ranks auto takes
+    MUMPS. A block that the candidates do not hold (a floor only, free sideways) stops the Cholesky at a pivot that is
+    not positive; MUMPS then judges the block, and the run ends as with MUMPS alone: DIVERGED_SINGULAR, one null
+    pivot."""
+    cases = ((["-options_file", "options/hertz.yml", "-load_steps", "2"], "hertz", 1e-10),
+             (["-options_file", "options/cube_on_plane.yml"], "cube", 1e-10),
+             (["-options_file", "options/hertz.yml", "-material_model", "svk", "-load_steps", "3"], "svk hertz", 1e-8),
+             (["-options_file", "options/hertz.yml", "-material_model", "svk", "-load_steps", "3",
+               "-contact_reuse_max_it", "0"], "svk hertz refactored", 1e-8))
+    for args, what, tol in cases:
+        mumps = runner.run(args + ["-contact_kept_solver", "mumps", "-log_view"], what + ", MUMPS")
+        auto = runner.run(args + ["-log_view"], what + ", auto")
+        runner.expect_equal("%s, MUMPS: no Cholesky factorisation" % what, log_event_count(mumps.output, "SigCholFactor"),
+                            0)
+        cholesky, by_mumps = log_event_count(auto.output, "SigCholFactor"), log_event_count(auto.output, "SigMumpsFactor")
+        if runner.np == 1:
+            runner.expect_true("%s, auto: Cholesky factorisations only (%d, MUMPS %d)" % (what, cholesky, by_mumps),
+                               cholesky >= 1 and by_mumps == 0)
+        else:
+            runner.expect_true("%s, auto on %d ranks: MUMPS only (%d, Cholesky %d)" % (what, runner.np, by_mumps,
+                                                                                      cholesky),
+                               by_mumps >= 1 and cholesky == 0)
+        runner.expect_equal("%s: the same factorisation count" % what, cholesky + by_mumps,
+                            kept_factorisations(mumps.output))
+        expect_same_state(runner, mumps, auto, tol=tol)
+        if what == "hertz":
+            hertz = mumps
+    if runner.np == 1:
+        explicit = runner.run(cases[0][0] + ["-contact_kept_solver", "cholesky", "-log_view"], "hertz, cholesky")
+        runner.expect_equal("hertz, cholesky: Cholesky factorisations", log_event_count(explicit.output,
+                                                                                        "SigCholFactor"), 1)
+        expect_same_state(runner, hertz, explicit)
+    free = ["-mesh_file", "meshes/block.msh", "-material_E", "1000", "-contact_groups", "bottom", "-bc_pressure",
+            "top:1", "-obstacle_segments", "-1,-0.01,3,-0.01", "-info", ":sys"]
+    for solver in ("mumps", "auto"):
+        status, out, _ = runner.run_any(free + ["-contact_kept_solver", solver], "free block, " + solver, timeout=60)
+        errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
+        runner.expect_true("free block, %s: one error, DIVERGED_SINGULAR with MUMPS's null pivot (exit %d): %s" % (
+            solver, status, errors), status != 0 and len(errors) == 1 and "DIVERGED_SINGULAR" in errors[0] and
+            "MUMPS found 1 null pivot" in errors[0])
+        if solver == "auto" and runner.np == 1:
+            runner.expect_true("free block, auto: the Cholesky stops and MUMPS factorises",
+                               "MUMPS factorises instead" in out)
 
 
 SVK_CASES = {"hertz": ["-options_file", "options/hertz.yml", "-material_model", "svk", "-load_steps", "3"],
@@ -711,7 +773,7 @@ def svk_reuse_factorization(runner, case):
     solves = fresh.get("iterations.solves")
     runner.expect_equal("refactorising: numeric factorisations", log_event_count(fresh.output, "MatCholFctrNum"),
                         solves)
-    runner.expect_equal("refactorising: no kept factorisation", log_event_count(fresh.output, "SigMumpsFactor"), 0)
+    runner.expect_equal("refactorising: no kept factorisation", kept_factorisations(fresh.output), 0)
     # The default's active-set search runs in the multiplier space (reduced solves on the dense Schur complement)
     # unless its solves carry the stabilisation springs (onto_disc); exact Newton never condenses.
     if not kept.get("iterations.stabilised_solves"):
@@ -720,7 +782,7 @@ def svk_reuse_factorization(runner, case):
     runner.expect_equal("exact Newton: no reduced solves", log_event_count(exact.output, "SigReducedSolve"), 0)
     for r, what in ((kept, "kept"), (exact, "exact Newton"), (every, "every solve")):
         runner.expect_equal(what + ": no PETSc factorisations", log_event_count(r.output, "MatCholFctrNum"), 0)
-        factors = log_event_count(r.output, "SigMumpsFactor")
+        factors = kept_factorisations(r.output)
         if r is every:
             runner.expect_equal(what + ": a MUMPS factorisation per solve", factors, r.get("iterations.solves"))
         else:
@@ -2118,7 +2180,7 @@ def svk_pairs_kept(runner):
     wide = runner.run(args + ["-contact_search_radius", "1"], "radius of the body diagonal")
     runner.expect_true("new pairs left for a later search", "farther than half the search radius" in kept.output)
     runner.expect_equal("no repairing", kept.get("iterations.repairings"), 0)
-    runner.expect_equal("one MUMPS factorisation", log_event_count(kept.output, "SigMumpsFactor"), 1)
+    runner.expect_equal("one factorisation", kept_factorisations(kept.output), 1)
     a, b = kept.nodes(), wide.nodes()
     runner.expect_true("same active nodes", np.array_equal(a["active"], b["active"]))
     runner.expect_close("displacement", displacement(a), displacement(b), 0, 1e-8 * np.abs(displacement(b)).max())
@@ -2407,8 +2469,9 @@ def obstacle_mesh_plane(runner):
 
 def elimination_flops(output):
     """The elimination flops of the kept factorisation that -info prints (rank 0's line)."""
-    m = re.search(r"^\[0\] <sys> Factor\(\): MUMPS factors: .* ([0-9.e+]+) flops in the elimination", output, re.M)
-    return float(m.group(1)) if m else None
+    m = re.search(r"^\[0\] <sys> \w+\(\): (MUMPS|Cholesky) factors.*: .* ([0-9.e+]+) flops in the elimination",
+                  output, re.M)
+    return float(m.group(2)) if m else None
 
 
 @test("orderings")

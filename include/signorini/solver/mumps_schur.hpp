@@ -11,6 +11,7 @@
 #pragma once
 
 #include "signorini/core/handle.hpp"
+#include "signorini/solver/schur_cholesky.hpp"
 
 #include <dmumps_c.h>
 
@@ -40,6 +41,15 @@ struct OrderingOptions {
   GraphOrdering graph = GraphOrdering::AUTO;
   bool parallel = true;
 };
+
+/// Who factors the kept factorisation's displacement block (-contact_kept_solver): MUMPS, or SchurCholesky (a
+/// supernodal Cholesky without pivoting, serial) where it applies: one rank, an LDL^T solver, the given nested
+/// dissection (ICNTL(7) = 1) and no MUMPS controls; AUTO takes it there up to CHOLESKY_MAX_ROWS rows. A block that
+/// is not safely positive definite (a body that the candidates do not hold, an svk tangent past a limit point) goes
+/// to MUMPS, whose null-pivot detection then judges it.
+enum class KeptSolver { AUTO, MUMPS, CHOLESKY };
+inline const char *const KEPT_SOLVER_NAMES[] = {"auto", "mumps", "cholesky"};
+constexpr PetscInt CHOLESKY_MAX_ROWS = 2000000;
 
 /// The MUMPS controls given for the saddle-point solver (-contact_mat_mumps_icntl_<k>, k in 1..60, and
 /// -contact_mat_mumps_cntl_<k>, k in 1..15), which both MUMPS paths take: PETSc's interface and MumpsSchur.
@@ -78,11 +88,14 @@ public:
   /// analysis, decline (Declined(), nothing factored, everything released) when the dense Schur complement would cost
   /// more than the sparse factorisation it saves (DenseCostsMore). Collective.
   /// controls: the user's (ReadMumpsControls), applied over this class's defaults.
+  /// solver: who factors (KeptSolver; CHOLESKY only where it applies, which the caller checked).
   [[nodiscard]] PetscErrorCode Factor(Mat A, const std::vector<PetscInt> &schur_rows,
                                       const std::vector<PetscScalar> &d0, bool symmetric, PetscInt owned_u,
                                       PetscInt node_size, const std::vector<double> &coords, OrderingOptions ordering,
-                                      const MumpsControls &controls, bool keep_values = false,
-                                      bool may_decline = false);
+                                      const MumpsControls &controls, bool keep_values = false, bool may_decline = false,
+                                      KeptSolver solver = KeptSolver::MUMPS);
+  /// The factorisation in use is SchurCholesky's (else MUMPS's).
+  bool UsesCholesky() const { return cholesky_in_use_; }
   /// The last Factor declined the Schur complement.
   bool Declined() const { return declined_; }
   /// The rule of Factor's may_decline, from the analysis' estimate: a dense LDL^T of the m x m Schur complement, which
@@ -122,6 +135,8 @@ public:
 
 private:
   [[nodiscard]] PetscErrorCode Call(int job, const char *phase);
+  /// MUMPS's analysis of the entries read (irn_, jcn_) with perm_in_ when ICNTL(7) = 1. Collective.
+  [[nodiscard]] PetscErrorCode MumpsAnalysis();
   /// A's owned entries in MUMPS's distributed format (irn_, jcn_, val_): with the pattern, or (pattern false) the
   /// values alone into the pattern read before. Collective only through A.
   [[nodiscard]] PetscErrorCode ReadValues(Mat A, bool pattern);
@@ -146,6 +161,9 @@ private:
                                                 const std::vector<double> &coords, OrderingOptions ordering);
 
   DMUMPS_STRUC_C id_{};
+  SchurCholesky cholesky_;
+  bool cholesky_in_use_ = false; ///< cholesky_ holds the analysis (and factors): MUMPS has not analysed the matrix
+  const char *ordering_name_ = "";
   bool initialised_ = false, keep_values_ = false, declined_ = false;
   MPI_Comm comm_ = MPI_COMM_NULL;
   PetscMPIInt rank_ = 0;

@@ -68,6 +68,8 @@ struct SaddlePointOptions {
   PetscBool reuse_max_it_set = PETSC_FALSE;
   OrderingOptions ordering; ///< -contact_nested_dissection, -contact_nested_dissection_parallel
   PetscBool ordering_set = PETSC_FALSE, parallel_set = PETSC_FALSE; ///< the user gave them
+  KeptSolver kept_solver = KeptSolver::AUTO; ///< -contact_kept_solver
+  PetscBool kept_solver_set = PETSC_FALSE;
 };
 [[nodiscard]] PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts);
 
@@ -200,6 +202,9 @@ private:
   /// workspace) before the user's (ReadMumpsControls). Collective.
   [[nodiscard]] PetscErrorCode SetupMumpsFactor(MPI_Comm comm, PC pc);
   /// SetupKsp: the reuse and ordering options (opts) against the solver and each other. Collective.
+  /// Refuses -contact_kept_solver where the kept factorisation does not run (possible: a MUMPS solver), and
+  /// cholesky where it does not apply (LU, several ranks, MUMPS controls). After lu_ is known.
+  [[nodiscard]] PetscErrorCode CheckKeptSolver(MPI_Comm comm, const SaddlePointOptions &opts, bool possible) const;
   [[nodiscard]] PetscErrorCode CheckReuseOptions(MPI_Comm comm, const SaddlePointOptions &opts, bool constant_k) const;
   /// Reuse mode: every multiplier row's global number on rank 0 (schur_rows_), the diagonal's vectors. Collective.
   [[nodiscard]] PetscErrorCode GatherSchurRows(MPI_Comm comm);
@@ -286,6 +291,7 @@ private:
   std::vector<PetscInt> schur_rows_;  ///< rank 0: every multiplier row, in global order
   MumpsSchur mumps_schur_;
   OrderingOptions ordering_; ///< -contact_nested_dissection, -contact_nested_dissection_parallel
+  KeptSolver kept_solver_ = KeptSolver::AUTO; ///< -contact_kept_solver
   std::vector<double> coords_;                  ///< reuse mode: the coordinates of SetupKsp, for the ordering
   VecH diag_lambda_, diag_root_;
   VecScatter to_root_ = nullptr;      ///< multiplier diagonal to rank 0
