@@ -2,6 +2,7 @@
 #include "signorini/solver/schur_cholesky.hpp"
 
 #include <petscblaslapack.h>
+#include <sys/mman.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,51 +11,56 @@ namespace signorini {
 
 namespace {
 
-/// The lower triangle of the permuted pattern by columns, for the columns < ns: column c holds the rows r >= c
-/// (positions) of the entries whose smaller position is c, with the entry numbers (duplicates kept).
+/// The lower triangle of the permuted pattern by columns: column c < ns holds the rows r >= c (positions) of the
+/// entries whose smaller position is c, with the entry numbers (duplicates kept); a last column, ns, holds the
+/// entries of two Schur rows, its "row" their place in the m x m Schur front (row + column * m, Schur order).
 struct LowerPattern {
   std::vector<int64_t> start, row, entry;
 };
 
-LowerPattern BuildLower(int64_t ns, const std::vector<int> &row, const std::vector<int> &col, int base,
+LowerPattern BuildLower(int64_t ns, int64_t m, const std::vector<int> &row, const std::vector<int> &col, int base,
                         const std::vector<int64_t> &position) {
   LowerPattern p;
-  p.start.assign(ns + 1, 0);
+  p.start.assign(ns + 2, 0);
   const std::size_t nnz = row.size();
   for (std::size_t k = 0; k < nnz; ++k) {
     const int64_t a = position[row[k] - base], b = position[col[k] - base];
-    const int64_t lo = std::min(a, b);
-    if (lo < ns) ++p.start[lo + 1];
+    ++p.start[std::min(std::min(a, b), ns) + 1];
   }
-  for (int64_t c = 0; c < ns; ++c)
+  for (int64_t c = 0; c <= ns; ++c)
     p.start[c + 1] += p.start[c];
-  p.row.resize(p.start[ns]);
-  p.entry.resize(p.start[ns]);
+  p.row.resize(nnz);
+  p.entry.resize(nnz);
   std::vector<int64_t> next(p.start.begin(), p.start.end() - 1);
   for (std::size_t k = 0; k < nnz; ++k) {
     const int64_t a = position[row[k] - base], b = position[col[k] - base];
     const int64_t lo = std::min(a, b), hi = std::max(a, b);
-    if (lo >= ns) continue;
-    p.row[next[lo]] = hi, p.entry[next[lo]] = (int64_t)k;
-    ++next[lo];
+    const int64_t c = std::min(lo, ns);
+    p.row[next[c]] = lo < ns ? hi : (hi - ns) + (lo - ns) * m, p.entry[next[c]] = (int64_t)k;
+    ++next[c];
   }
   return p;
 }
 
-/// The elimination tree of A11, the columns < ns (Liu's algorithm with path compression; the Schur rows play no
-/// part): parent[j], or ns for a root (ns stands for the Schur rows and joins the roots into one tree).
-std::vector<int64_t> EliminationTree(int64_t ns, const LowerPattern &lower) {
-  // Row by row: the columns c < r of row r < ns (the transpose of lower, strictly below the diagonal).
-  std::vector<int64_t> start(ns + 1, 0), cols(lower.row.size());
-  for (int64_t c = 0; c < ns; ++c)
-    for (int64_t e = lower.start[c]; e < lower.start[c + 1]; ++e)
-      if (lower.row[e] > c && lower.row[e] < ns) ++start[lower.row[e] + 1];
+/// The elimination tree of A11, the columns < ns in the pivot positions `position` (Liu's algorithm with path
+/// compression; the Schur rows play no part): parent[j], or ns for a root (ns stands for the Schur rows and joins the
+/// roots into one tree).
+std::vector<int64_t> EliminationTree(int64_t ns, const std::vector<int> &row, const std::vector<int> &col, int base,
+                                     const std::vector<int64_t> &position) {
+  // Row by row: the columns c < r of row r < ns, bucketed from the entries.
+  std::vector<int64_t> start(ns + 1, 0);
+  const std::size_t nnz = row.size();
+  for (std::size_t k = 0; k < nnz; ++k) {
+    const int64_t a = position[row[k] - base], b = position[col[k] - base];
+    if (a != b && std::max(a, b) < ns) ++start[std::max(a, b) + 1];
+  }
   for (int64_t r = 0; r < ns; ++r)
     start[r + 1] += start[r];
-  std::vector<int64_t> next(start.begin(), start.end() - 1);
-  for (int64_t c = 0; c < ns; ++c)
-    for (int64_t e = lower.start[c]; e < lower.start[c + 1]; ++e)
-      if (lower.row[e] > c && lower.row[e] < ns) cols[next[lower.row[e]]++] = c;
+  std::vector<int64_t> cols(start[ns]), next(start.begin(), start.end() - 1);
+  for (std::size_t k = 0; k < nnz; ++k) {
+    const int64_t a = position[row[k] - base], b = position[col[k] - base];
+    if (a != b && std::max(a, b) < ns) cols[next[std::max(a, b)]++] = std::min(a, b);
+  }
   std::vector<int64_t> parent(ns, ns), ancestor(ns, -1);
   for (int64_t r = 0; r < ns; ++r)
     for (int64_t e = start[r]; e < start[r + 1]; ++e)
@@ -134,11 +140,45 @@ std::vector<int64_t> ColumnCounts(int64_t n, int64_t ns, const std::vector<int64
 
 } // namespace
 
+PetscErrorCode SchurCholesky::Buffer::Resize(std::size_t n) {
+  PetscFunctionBeginUser;
+  if (n == size_) PetscFunctionReturn(0);
+  Clear();
+  const std::size_t bytes = n * sizeof(double);
+  if (bytes < LARGE_BYTES) {
+    small_.resize(n);
+    data_ = small_.data();
+  } else {
+    // Aligned to 2 MiB inside a slightly larger mapping, so that whole huge pages cover it.
+    const std::size_t huge = std::size_t(2) << 20;
+    mapped_bytes_ = bytes + huge;
+    mapping_ = mmap(nullptr, mapped_bytes_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    PetscCheck(mapping_ != MAP_FAILED, PETSC_COMM_SELF, PETSC_ERR_MEM,
+               "could not map %.3g GB for the Cholesky factors", 1e-9 * (double)mapped_bytes_);
+    const std::size_t start = ((std::size_t)mapping_ + huge - 1) & ~(huge - 1);
+    data_ = reinterpret_cast<double *>(start);
+    (void)madvise(data_, bytes, MADV_HUGEPAGE); // advice only: without it, 4 KiB pages
+  }
+  size_ = n;
+  PetscFunctionReturn(0);
+}
+
+void SchurCholesky::Buffer::Clear() {
+  if (mapping_ && mapping_ != MAP_FAILED) (void)munmap(mapping_, mapped_bytes_);
+  mapping_ = nullptr;
+  mapped_bytes_ = 0;
+  std::vector<double>().swap(small_);
+  data_ = nullptr;
+  size_ = 0;
+}
+
 void SchurCholesky::Clear() {
   n_ = m_ = ns_ = 0;
   for (auto *v : {&position_, &structure_, &child_, &relative_, &entry_, &offset_, &diagonal_entry_})
     std::vector<int64_t>().swap(*v);
-  for (auto *v : {&factor_, &work_, &stack_, &forward_})
+  factor_.Clear();
+  stack_.Clear();
+  for (auto *v : {&work_, &forward_})
     std::vector<double>().swap(*v);
   std::vector<Supernode>().swap(supernodes_);
   factor_size_ = max_front_ = max_stack_ = 0;
@@ -161,7 +201,7 @@ PetscErrorCode SchurCholesky::Analyse(PetscInt n, PetscInt m, const std::vector<
   // tree relabelled).
   std::vector<int64_t> parent(ns);
   {
-    const std::vector<int64_t> given_parent = EliminationTree(ns, BuildLower(ns, row, col, base, position_));
+    const std::vector<int64_t> given_parent = EliminationTree(ns, row, col, base, position_);
     const std::vector<int64_t> order = Postorder(ns, given_parent);
     PetscCheck((int64_t)order.size() == ns, PETSC_COMM_SELF, PETSC_ERR_PLIB, "SchurCholesky: postorder incomplete");
     std::vector<int64_t> relabel(ns + 1);
@@ -173,7 +213,7 @@ PetscErrorCode SchurCholesky::Analyse(PetscInt n, PetscInt m, const std::vector<
     for (auto &p : position_)
       if (p < ns) p = relabel[p];
   }
-  const LowerPattern lower = BuildLower(ns, row, col, base, position_);
+  const LowerPattern lower = BuildLower(ns, m, row, col, base, position_);
   const std::vector<int64_t> count = ColumnCounts(n, ns, parent, lower);
   std::vector<int64_t> children(ns + 1, 0);
   for (int64_t j = 0; j < ns; ++j)
@@ -255,25 +295,14 @@ PetscErrorCode SchurCholesky::Analyse(PetscInt n, PetscInt m, const std::vector<
     }
   }
 
-  // The entries of A by front: the supernode of their column, the Schur front for two Schur rows.
-  std::vector<int64_t> per_front(count_groups + 2, 0);
-  {
-    std::vector<int64_t> entry_front(row.size());
-    for (std::size_t k = 0; k < row.size(); ++k) {
-      const int64_t a = position_[row[k] - base], b = position_[col[k] - base];
-      const int64_t lo = std::min(a, b);
-      entry_front[k] = lo < ns ? supernode_of[lo] : count_groups;
-      ++per_front[entry_front[k] + 1];
-      if (a == b && a < ns) diagonal_entry_.push_back((int64_t)k), diagonal_entry_.push_back(a);
-    }
-    for (int64_t s = 0; s <= count_groups; ++s)
-      per_front[s + 1] += per_front[s];
-    entry_.resize(row.size());
-    std::vector<int64_t> next(per_front.begin(), per_front.end() - 1);
-    for (std::size_t k = 0; k < row.size(); ++k)
-      entry_[next[entry_front[k]]++] = (int64_t)k;
-  }
-  offset_.resize(row.size());
+  // The entries of A by front (a supernode's columns are consecutive, the Schur front's last) and the diagonal.
+  entry_ = lower.entry;
+  offset_.resize(entry_.size());
+  for (int64_t j = 0; j < ns; ++j)
+    for (int64_t e = lower.start[j]; e < lower.start[j + 1]; ++e)
+      if (lower.row[e] == j) diagonal_entry_.push_back(lower.entry[e]), diagonal_entry_.push_back(j);
+  for (int64_t e = lower.start[ns]; e < lower.start[ns + 1]; ++e)
+    offset_[e] = lower.row[e];
 
   // Factor layout, flops, the stack of update matrices (children are pushed in postorder and popped by their parent:
   // its children's matrices are the top of the stack), and where in each front the entries of A and the children's
@@ -299,13 +328,13 @@ PetscErrorCode SchurCholesky::Analyse(PetscInt n, PetscInt m, const std::vector<
       local[sn.first + k] = k;
     for (int64_t k = 0; k < sn.rows; ++k)
       local[structure_[sn.structure + k]] = sn.cols + k;
-    sn.entries = per_front[s], sn.entries_end = per_front[s + 1];
-    for (int64_t k = sn.entries; k < sn.entries_end; ++k) {
-      const int64_t a = position_[row[entry_[k]] - base], b = position_[col[entry_[k]] - base];
-      const int64_t i = local[std::max(a, b)], j = local[std::min(a, b)];
-      PetscCheck(i >= 0 && j >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "SchurCholesky: an entry outside its front");
-      offset_[k] = i + j * front;
-    }
+    sn.entries = lower.start[sn.first], sn.entries_end = lower.start[sn.first + sn.cols + (schur ? 1 : 0)];
+    for (int64_t j = sn.first; j < sn.first + sn.cols; ++j)
+      for (int64_t e = lower.start[j]; e < lower.start[j + 1]; ++e) {
+        const int64_t i = local[lower.row[e]];
+        PetscCheck(i >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "SchurCholesky: an entry outside its front");
+        offset_[e] = i + (j - sn.first) * front;
+      }
     sn.children = (int64_t)child_.size();
     sn.relative = (int64_t)relative_.size();
     for (int64_t c : kids[s]) {
@@ -326,7 +355,16 @@ PetscErrorCode SchurCholesky::Analyse(PetscInt n, PetscInt m, const std::vector<
   PetscCheck(top == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "SchurCholesky: update matrices left on the stack");
   // The front of a supernode is laid out where its panel goes, so the factor has room for the largest update matrix
   // after the last panel.
-  factor_.resize(factor_size_ + max_front_);
+  PetscCall(factor_.Resize(factor_size_ + max_front_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SchurCholesky::BlasSizes(const Supernode &sn, PetscBLASInt &front, PetscBLASInt &cols,
+                                        PetscBLASInt &rows) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscBLASIntCast(sn.cols + sn.rows, &front));
+  PetscCall(PetscBLASIntCast(sn.cols, &cols));
+  PetscCall(PetscBLASIntCast(sn.rows, &rows));
   PetscFunctionReturn(0);
 }
 
@@ -342,7 +380,7 @@ PetscErrorCode SchurCholesky::Factor(const std::vector<double> &value, std::vect
       diagonal_max_ = std::max(diagonal_max_, std::abs(d));
   }
   const double tolerance = PIVOT_TOLERANCE * diagonal_max_;
-  stack_.resize(max_stack_);
+  PetscCall(stack_.Resize(max_stack_));
   schur.assign(m_ * m_, 0.0);
   const int64_t count = (int64_t)supernodes_.size() - 1;
   int64_t top = 0;
@@ -372,9 +410,7 @@ PetscErrorCode SchurCholesky::Factor(const std::vector<double> &value, std::vect
     if (s == count) break;
     // L11 = chol(F11), L21 = F21 L11^-T, the update matrix F22 - L21 L21^T.
     PetscBLASInt nf, nc, nr, info;
-    PetscCall(PetscBLASIntCast(front, &nf));
-    PetscCall(PetscBLASIntCast(sn.cols, &nc));
-    PetscCall(PetscBLASIntCast(sn.rows, &nr));
+    PetscCall(BlasSizes(sn, nf, nc, nr));
     LAPACKpotrf_("L", &nc, F, &nf, &info);
     if (info != 0) PetscFunctionReturn(0);
     for (int64_t j = 0; j < sn.cols; ++j)
@@ -409,9 +445,7 @@ PetscErrorCode SchurCholesky::Forward(const double *b, double *reduced) {
   for (int64_t s = 0; s < count; ++s) {
     const Supernode &sn = supernodes_[s];
     PetscBLASInt nf, nc, nr;
-    PetscCall(PetscBLASIntCast(sn.cols + sn.rows, &nf));
-    PetscCall(PetscBLASIntCast(sn.cols, &nc));
-    PetscCall(PetscBLASIntCast(sn.rows, &nr));
+    PetscCall(BlasSizes(sn, nf, nc, nr));
     const double *L = factor_.data() + sn.factor;
     double *y = forward_.data() + sn.first;
     BLAStrsm_("L", "L", "N", "N", &nc, &inc, &one, L, &nf, y, &nc);
@@ -435,9 +469,7 @@ PetscErrorCode SchurCholesky::Backward(const double *x2, double *x) {
   for (int64_t s = (int64_t)supernodes_.size() - 2; s >= 0; --s) {
     const Supernode &sn = supernodes_[s];
     PetscBLASInt nf, nc, nr;
-    PetscCall(PetscBLASIntCast(sn.cols + sn.rows, &nf));
-    PetscCall(PetscBLASIntCast(sn.cols, &nc));
-    PetscCall(PetscBLASIntCast(sn.rows, &nr));
+    PetscCall(BlasSizes(sn, nf, nc, nr));
     const double *L = factor_.data() + sn.factor;
     double *y = forward_.data() + sn.first;
     if (sn.rows > 0) {
