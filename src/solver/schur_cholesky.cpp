@@ -388,7 +388,9 @@ PetscErrorCode SchurCholesky::Factor(const std::vector<double> &value, std::vect
     const Supernode &sn = supernodes_[s];
     const int64_t front = sn.cols + sn.rows;
     double *F = s == count ? schur.data() : factor_.data() + sn.factor;
-    if (s < count) std::fill(F, F + front * front, 0.0);
+    if (s < count) // the lower triangle, which alone the factorisation reads and writes
+      for (int64_t j = 0; j < front; ++j)
+        std::fill(F + j + j * front, F + (j + 1) * front, 0.0);
     for (int64_t k = sn.entries; k < sn.entries_end; ++k)
       F[offset_[k]] += value[entry_[k]];
     // The children's update matrices (the top of the stack, in the order pushed), added at their rows' places.
