@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -97,13 +98,15 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
   // (a small 2D matrix), instead of being ignored there.
   if (opts.parallel_set && opts.ordering.graph == GraphOrdering::AUTO) opts.ordering.graph = GraphOrdering::METIS;
   PetscInt kept_solver = (PetscInt)opts.kept_solver;
+  char tolerance[32];
+  std::snprintf(tolerance, sizeof(tolerance), "%g", SchurCholesky::PIVOT_TOLERANCE);
   const std::string kept_solver_help =
       "Who factors the displacement block of the kept factorisation: MUMPS, or signorini's supernodal Cholesky "
       "(multifrontal, without pivoting, serial: one rank, the Cholesky preset, the given ordering, no "
       "-contact_mat_mumps_ controls); auto: the Cholesky where it applies, up to " +
       std::to_string(CHOLESKY_MAX_ROWS) + " rows. A block that is not safely positive definite (a pivot not above " +
-      "1e-11 of the largest diagonal entry: a body that the candidates do not hold, an svk tangent past a limit "
-      "point) goes to MUMPS, whose null-pivot detection judges it";
+      tolerance + " of the largest diagonal entry: a body that the candidates do not hold, an svk tangent past a "
+      "limit point) goes to MUMPS, whose null-pivot detection judges it";
   PetscCall(OptionsRequireValue(PetscOptionsObject, "-contact_kept_solver", "auto, mumps or cholesky"));
   PetscCall(PetscOptionsEList("-contact_kept_solver", kept_solver_help.c_str(), "", KEPT_SOLVER_NAMES, 3,
                               KEPT_SOLVER_NAMES[kept_solver], &kept_solver, &opts.kept_solver_set));
@@ -301,6 +304,7 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu_));
   PetscCall(CheckKeptSolver(comm, opts, possible));
   kept_solver_ = opts.kept_solver;
+  kept_solver_set_ = opts.kept_solver_set;
   if (reuse_) {
     coords_ = coords;
     ordering_ = opts.ordering;

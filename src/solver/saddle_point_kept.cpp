@@ -37,6 +37,13 @@ PetscErrorCode SaddlePointSystem::Factor() {
                             "active-set change), and PETSc's MUMPS, which refactorises instead, orders by its own "
                             "choice (-contact_mat_mumps_icntl_7); -contact_reuse_factorization keeps the Schur "
                             "complement and the ordering\n", ordering_given_.c_str(), dofs_->GlobalLambda()));
+    if (kept_solver_set_)
+      PetscCall(PetscPrintf(PetscObjectComm((PetscObject)A_.get()),
+                            "Note: -contact_kept_solver %s does not apply: the kept factorisation declined its dense "
+                            "Schur complement on the %" PetscInt_FMT " candidates (it would cost more than a "
+                            "refactorisation per active-set change), and PETSc's MUMPS refactorises instead; "
+                            "-contact_reuse_factorization keeps the Schur complement\n",
+                            KEPT_SOLVER_NAMES[(int)kept_solver_], dofs_->GlobalLambda()));
     PetscFunctionReturn(0);
   }
   null_pivots_ = mumps_schur_.NullPivots();

@@ -736,6 +736,14 @@ def kept_solver(runner):
         if solver == "auto" and runner.np == 1:
             runner.expect_true("free block, auto: the Cholesky stops and MUMPS factorises",
                                "MUMPS factorises instead" in out)
+    # Declined (the strip of the reuse_factorization test: many candidates on a body that factors cheaply): PETSc's
+    # MUMPS refactorises, and the run says that the choice given does not apply.
+    strip = ["-mesh_file", "meshes/strip.geo", "-material_E", "1000", "-material_nu", "0.3", "-bc_dirichlet",
+             "left:x", "-bc_pressure", "top:0.001", "-obstacle_segments",
+             "-1,0.0002,11,-0.0001,11,-0.0001,22,0.0002", "-contact_groups", "bottom", "-contact_kept_solver", "mumps"]
+    r = runner.run(strip, "strip, declined")
+    runner.expect_true("strip: the note that -contact_kept_solver mumps does not apply",
+                       "Note: -contact_kept_solver mumps does not apply: the kept factorisation declined" in r.output)
 
 
 SVK_CASES = {"hertz": ["-options_file", "options/hertz.yml", "-material_model", "svk", "-load_steps", "3"],

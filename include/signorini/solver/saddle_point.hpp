@@ -292,6 +292,7 @@ private:
   MumpsSchur mumps_schur_;
   OrderingOptions ordering_; ///< -contact_nested_dissection, -contact_nested_dissection_parallel
   KeptSolver kept_solver_ = KeptSolver::AUTO; ///< -contact_kept_solver
+  bool kept_solver_set_ = false;              ///< the user gave -contact_kept_solver
   std::vector<double> coords_;                  ///< reuse mode: the coordinates of SetupKsp, for the ordering
   VecH diag_lambda_, diag_root_;
   VecScatter to_root_ = nullptr;      ///< multiplier diagonal to rank 0
