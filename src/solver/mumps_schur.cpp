@@ -106,6 +106,11 @@ void MumpsSchur::Release() {
   }
   initialised_ = condensed_ = s_factored_ = cholesky_in_use_ = false;
   cholesky_.Clear();
+  for (auto *v : {&root_irn_, &root_jcn_})
+    std::vector<MUMPS_INT>().swap(*v);
+  std::vector<double>().swap(root_val_);
+  for (auto *v : {&gather_counts_, &gather_displs_})
+    std::vector<PetscMPIInt>().swap(*v);
   for (auto *v : {&irn_, &jcn_, &listvar_, &perm_in_}) std::vector<MUMPS_INT>().swap(*v);
   for (auto *v : {&val_, &schur_raw_, &s0_, &d0_, &s_, &d_factored_, &redrhs_, &work_, &condensed_u_, &reduced_})
     std::vector<double>().swap(*v);
@@ -401,17 +406,26 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   PetscMPIInt size;
   PetscCallMPI(MPI_Comm_size(comm_, &size));
   cholesky_in_use_ = solver == KeptSolver::CHOLESKY ||
-                     (solver == KeptSolver::AUTO && size == 1 && symmetric && id_.ICNTL(7) == 1 &&
-                      controls.icntl.empty() && controls.cntl.empty() && N <= CHOLESKY_MAX_ROWS);
+                     (solver == KeptSolver::AUTO && symmetric && id_.ICNTL(7) == 1 && controls.icntl.empty() &&
+                      controls.cntl.empty() && N <= (size == 1 ? CHOLESKY_MAX_ROWS : CHOLESKY_MAX_ROWS_GATHERED));
   double flops, entries;
   if (cholesky_in_use_) {
-    // The pivot order stays (perm_in_) for MUMPS, should the block turn out not to be positive definite.
-    PetscCheck(size == 1 && symmetric && id_.ICNTL(7) == 1, comm_, PETSC_ERR_PLIB,
-               "the supernodal Cholesky factorisation needs one rank, LDL^T and the given ordering");
+    // The pivot order stays (perm_in_) for MUMPS, should the block turn out not to be positive definite. On several
+    // ranks the entries go to rank 0, which factors alone (the right-hand side and the solution are there already).
+    PetscCheck(symmetric && id_.ICNTL(7) == 1, comm_, PETSC_ERR_PLIB,
+               "the supernodal Cholesky factorisation needs LDL^T and the given ordering");
     PetscCall(PetscLogEventBegin(EV_CHOL_ANALYSIS, 0, 0, 0, 0));
-    PetscCall(cholesky_.Analyse(N, m_all, irn_, jcn_, perm_in_, 1));
+    if (size > 1) PetscCall(GatherEntries(true));
+    double cost[2] = {0, 0};
+    PetscCall(RunOnRoot(comm_, [&]() -> PetscErrorCode {
+      PetscFunctionBeginUser;
+      PetscCall(cholesky_.Analyse(N, m_all, CholeskyRows(), CholeskyCols(), perm_in_, 1));
+      cost[0] = cholesky_.Flops(), cost[1] = cholesky_.Entries();
+      PetscFunctionReturn(0);
+    }));
+    PetscCallMPI(MPI_Bcast(cost, 2, MPI_DOUBLE, 0, comm_));
     PetscCall(PetscLogEventEnd(EV_CHOL_ANALYSIS, 0, 0, 0, 0));
-    flops = cholesky_.Flops(), entries = cholesky_.Entries();
+    flops = cholesky_flops_ = cost[0], entries = cholesky_entries_ = cost[1];
   } else {
     PetscCall(MumpsAnalysis());
     // The analysis' estimates (every rank has them): elimination flops RINFOG(1), factor entries INFOG(20)
@@ -439,7 +453,40 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
     // The matrix values are no longer needed (no refactorisation).
     irn_.clear(), jcn_.clear(), val_.clear();
     irn_.shrink_to_fit(), jcn_.shrink_to_fit(), val_.shrink_to_fit();
+    for (auto *v : {&root_irn_, &root_jcn_})
+      std::vector<MUMPS_INT>().swap(*v);
+    std::vector<double>().swap(root_val_);
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::GatherEntries(bool pattern) {
+  PetscMPIInt size, mine;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  if (pattern) {
+    PetscCall(PetscMPIIntCast((PetscInt)val_.size(), &mine));
+    gather_counts_.assign(size, 0);
+    gather_displs_.assign(size, 0);
+    PetscCallMPI(MPI_Gather(&mine, 1, MPI_INT, gather_counts_.data(), 1, MPI_INT, 0, comm_));
+    std::size_t total = 0;
+    for (PetscMPIInt r = 0; r < size; ++r) {
+      PetscCheck(total + gather_counts_[r] <= (std::size_t)INT_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP,
+                 "too many matrix entries to gather on rank 0 for the Cholesky factorisation");
+      gather_displs_[r] = (PetscMPIInt)total;
+      total += gather_counts_[r];
+    }
+    if (rank_ == 0) root_irn_.resize(total), root_jcn_.resize(total);
+    PetscCallMPI(MPI_Gatherv(irn_.data(), mine, MPI_INT, root_irn_.data(), gather_counts_.data(),
+                             gather_displs_.data(), MPI_INT, 0, comm_));
+    PetscCallMPI(MPI_Gatherv(jcn_.data(), mine, MPI_INT, root_jcn_.data(), gather_counts_.data(),
+                             gather_displs_.data(), MPI_INT, 0, comm_));
+    if (rank_ == 0) root_val_.resize(total);
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscMPIIntCast((PetscInt)val_.size(), &mine));
+  PetscCallMPI(MPI_Gatherv(val_.data(), mine, MPI_DOUBLE, root_val_.data(), gather_counts_.data(),
+                           gather_displs_.data(), MPI_DOUBLE, 0, comm_));
   PetscFunctionReturn(0);
 }
 
@@ -468,13 +515,21 @@ PetscErrorCode MumpsSchur::FactorNumeric(const std::vector<PetscScalar> &d0) {
   PetscFunctionBeginUser;
   schur_raw_.assign((std::size_t)m * m, 0.0);
   if (cholesky_in_use_) {
-    bool positive;
+    int positive = 0;
     PetscCall(PetscLogEventBegin(EV_CHOL_FACTOR, 0, 0, 0, 0));
-    PetscCall(cholesky_.Factor(val_, schur_raw_, positive));
+    if (!gather_counts_.empty()) PetscCall(GatherEntries(false));
+    PetscCall(RunOnRoot(comm_, [&]() -> PetscErrorCode {
+      bool p;
+      PetscFunctionBeginUser;
+      PetscCall(cholesky_.Factor(CholeskyValues(), schur_raw_, p));
+      positive = p;
+      PetscFunctionReturn(0);
+    }));
+    PetscCallMPI(MPI_Bcast(&positive, 1, MPI_INT, 0, comm_));
     PetscCall(PetscLogEventEnd(EV_CHOL_FACTOR, 0, 0, 0, 0));
     if (positive) {
       PetscCall(PetscInfo(nullptr, "Cholesky factors (supernodal): ordering ICNTL(7) = 1 (%s), %.6g entries, %.6g "
-                          "flops in the elimination\n", ordering_name_, cholesky_.Entries(), cholesky_.Flops()));
+                          "flops in the elimination\n", ordering_name_, cholesky_entries_, cholesky_flops_));
       null_pivots_ = 0;
     } else {
       // Not safely positive definite: MUMPS's LDL^T with its null-pivot detection decides, from the same order.
@@ -482,6 +537,9 @@ PetscErrorCode MumpsSchur::FactorNumeric(const std::vector<PetscScalar> &d0) {
                           "MUMPS factorises instead\n", SchurCholesky::PIVOT_TOLERANCE));
       cholesky_.Clear();
       cholesky_in_use_ = false;
+      for (auto *v : {&root_irn_, &root_jcn_})
+        std::vector<MUMPS_INT>().swap(*v);
+      std::vector<double>().swap(root_val_);
       PetscCall(MumpsAnalysis());
       schur_raw_.assign((std::size_t)m * m, 0.0);
     }
@@ -610,7 +668,7 @@ PetscErrorCode MumpsSchur::Condense(Vec b) {
   PetscScalar *r;
   PetscCall(VecGetArray(root_, &r));
   if (cholesky_in_use_) {
-    PetscCall(cholesky_.Forward(r, redrhs_.data()));
+    PetscCall(RunOnRoot(comm_, [&] { return cholesky_.Forward(r, redrhs_.data()); }));
   } else {
     id_.rhs = r;
     id_.nrhs = 1;
@@ -656,7 +714,7 @@ PetscErrorCode MumpsSchur::Expand(Vec x) {
   PetscScalar *r;
   PetscCall(VecGetArray(root_, &r));
   if (cholesky_in_use_) {
-    PetscCall(cholesky_.Backward(reduced_.data(), r));
+    PetscCall(RunOnRoot(comm_, [&] { return cholesky_.Backward(reduced_.data(), r); }));
   } else {
     if (rank_ == 0) std::copy(reduced_.begin(), reduced_.end(), redrhs_.begin());
     id_.rhs = r;

@@ -102,9 +102,10 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
   std::snprintf(tolerance, sizeof(tolerance), "%g", SchurCholesky::PIVOT_TOLERANCE);
   const std::string kept_solver_help =
       "Who factors the displacement block of the kept factorisation: MUMPS, or signorini's supernodal Cholesky "
-      "(multifrontal, without pivoting, serial: one rank, the Cholesky preset, the given ordering, no "
-      "-contact_mat_mumps_ controls); auto: the Cholesky where it applies, up to " +
-      std::to_string(CHOLESKY_MAX_ROWS) + " rows. A block that is not safely positive definite (a pivot not above " +
+      "(multifrontal, without pivoting, serial: on several ranks rank 0 factors the gathered matrix; the Cholesky "
+      "preset, the given ordering, no -contact_mat_mumps_ controls); auto: the Cholesky where it applies, up to " +
+      std::to_string(CHOLESKY_MAX_ROWS) + " rows on one rank and " + std::to_string(CHOLESKY_MAX_ROWS_GATHERED) +
+      " on several. A block that is not safely positive definite (a pivot not above " +
       tolerance + " of the largest diagonal entry: a body that the candidates do not hold, an svk tangent past a "
       "limit point) goes to MUMPS, whose null-pivot detection judges it";
   PetscCall(OptionsRequireValue(PetscOptionsObject, "-contact_kept_solver", "auto, mumps or cholesky"));
@@ -395,23 +396,18 @@ PetscErrorCode SaddlePointSystem::CheckReuseOptions(MPI_Comm comm, const SaddleP
 
 PetscErrorCode SaddlePointSystem::CheckKeptSolver(MPI_Comm comm, const SaddlePointOptions &opts,
                                                   bool possible) const {
-  PetscMPIInt size;
   PetscFunctionBeginUser;
   const char *name = KEPT_SOLVER_NAMES[(int)opts.kept_solver];
   PetscCheck(!opts.kept_solver_set || (possible && opts.reuse_factorization), comm, PETSC_ERR_USER_INPUT,
              "-contact_kept_solver %s applies to the kept factorisation only (-contact_reuse_factorization with a "
              "MUMPS LU or Cholesky solver, the default)", name);
   if (opts.kept_solver != KeptSolver::CHOLESKY) PetscFunctionReturn(0);
-  PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCheck(!lu_, comm, PETSC_ERR_USER_INPUT,
              "-contact_kept_solver cholesky factors a symmetric matrix; expected the Cholesky preset "
              "(-contact_pc_type cholesky, the default), not LU, or -contact_kept_solver mumps");
   PetscCheck(mumps_controls_.icntl.empty() && mumps_controls_.cntl.empty(), comm, PETSC_ERR_USER_INPUT,
              "-contact_kept_solver cholesky takes no MUMPS controls (-contact_mat_mumps_icntl_<k>, _cntl_<k>: they "
              "would not apply); expected -contact_kept_solver mumps with them, or none of them");
-  PetscCheck(size == 1, comm, PETSC_ERR_USER_INPUT,
-             "-contact_kept_solver cholesky runs on one rank, not %d; expected -contact_kept_solver auto or mumps "
-             "(MUMPS factorises on several ranks)", (int)size);
   PetscFunctionReturn(0);
 }
 

@@ -399,8 +399,6 @@ CASES = {
     "kept_solver_cholesky_mumps_controls": (BEAM + ["-contact_kept_solver", "cholesky", "-contact_mat_mumps_cntl_3",
                                                     "1e-10"],
                                             ["-contact_kept_solver cholesky takes no MUMPS controls"], {}),
-    "kept_solver_cholesky_ranks": (BEAM + ["-contact_kept_solver", "cholesky"],
-                                   ["-contact_kept_solver cholesky runs on one rank, not 2"], {"min_np": 2}),
     "reuse_factorization_mumps_layout": (["-contact_mat_mumps_icntl_19", "1"],
                                          ["-contact_mat_mumps_icntl_19", "cannot be set"], {}),
     # An iterative solver's tolerance above what a solve must reach: refused before any solve (the solve used to fail
@@ -744,8 +742,6 @@ def run_interrupted(cmd, env, sig):
 
 def check_case(name, exe, mpiexec, np_, work, env, verbose):
     args, expected, opts = CASES[name]
-    if np_ < opts.get("min_np", 1):
-        raise Skipped(f"refused on {opts['min_np']} or more ranks only")
     out_dir = os.path.join(work, "out")
     a_file = os.path.join(work, "a_file")
     with open(a_file, "w") as f:

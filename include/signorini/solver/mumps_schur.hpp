@@ -43,8 +43,9 @@ struct OrderingOptions {
 };
 
 /// Who factors the kept factorisation's displacement block (-contact_kept_solver): MUMPS, or SchurCholesky (a
-/// supernodal Cholesky without pivoting, serial) where it applies: one rank, an LDL^T solver, the given nested
-/// dissection (ICNTL(7) = 1) and no MUMPS controls; AUTO takes it there up to CHOLESKY_MAX_ROWS rows. A block that
+/// supernodal Cholesky without pivoting, serial: on several ranks rank 0 factors the gathered matrix) where it
+/// applies: an LDL^T solver, the given nested dissection (ICNTL(7) = 1) and no MUMPS controls; AUTO takes it there
+/// up to CHOLESKY_MAX_ROWS rows on one rank, CHOLESKY_MAX_ROWS_GATHERED on several. A block that
 /// is not safely positive definite (a body that the candidates do not hold, an svk tangent past a limit point) goes
 /// to MUMPS, whose null-pivot detection then judges it.
 enum class KeptSolver { AUTO, MUMPS, CHOLESKY };
@@ -53,6 +54,11 @@ inline const char *const KEPT_SOLVER_NAMES[] = {"auto", "mumps", "cholesky"};
 /// 49k 96 against 168 ms, 195k 0.75 against 1.15 s, 1M 9.1 against 10.5 s but 18 % more memory (2.25 against 1.91
 /// GB: the merged supernodes' zeros); the larger matrices, where memory binds, stay with MUMPS.
 constexpr PetscInt CHOLESKY_MAX_ROWS = 500000;
+/// On several ranks the Cholesky factors on rank 0 alone (the matrix gathered there), against MUMPS on all ranks:
+/// AUTO takes it up to this many rows. Measured on 2 ranks (contact solve, Cholesky against MUMPS): 20k rows 35-36
+/// against 45-64 ms; 49k 99-198 against 131-141 ms, 100k 0.27-0.38 against 0.34-0.37 s, 195k 0.71-0.87 against
+/// 0.80-0.86 s with rank 0 at 464 against 287 MB: no gain from 50k rows on.
+constexpr PetscInt CHOLESKY_MAX_ROWS_GATHERED = 50000;
 
 /// The MUMPS controls given for the saddle-point solver (-contact_mat_mumps_icntl_<k>, k in 1..60, and
 /// -contact_mat_mumps_cntl_<k>, k in 1..15), which both MUMPS paths take: PETSc's interface and MumpsSchur.
@@ -165,6 +171,18 @@ private:
 
   DMUMPS_STRUC_C id_{};
   SchurCholesky cholesky_;
+  /// The Cholesky's matrix entries on rank 0 when several ranks hold them (gathered from irn_, jcn_, val_; on one rank
+  /// these stay empty and the owned arrays serve), and where each rank's part starts there.
+  std::vector<MUMPS_INT> root_irn_, root_jcn_;
+  std::vector<double> root_val_;
+  std::vector<PetscMPIInt> gather_counts_, gather_displs_;
+  double cholesky_flops_ = 0, cholesky_entries_ = 0; ///< the Cholesky's analysis (every rank)
+  /// The Cholesky's entries: gathered on several ranks, the owned ones on one (rank 0; elsewhere empty).
+  const std::vector<MUMPS_INT> &CholeskyRows() const { return gather_counts_.empty() ? irn_ : root_irn_; }
+  const std::vector<MUMPS_INT> &CholeskyCols() const { return gather_counts_.empty() ? jcn_ : root_jcn_; }
+  const std::vector<double> &CholeskyValues() const { return gather_counts_.empty() ? val_ : root_val_; }
+  /// Gathers val_ (and with pattern the entries' rows and columns) to rank 0 for the Cholesky. Collective.
+  [[nodiscard]] PetscErrorCode GatherEntries(bool pattern);
   bool cholesky_in_use_ = false; ///< cholesky_ holds the analysis (and factors): MUMPS has not analysed the matrix
   const char *ordering_name_ = "";
   bool initialised_ = false, keep_values_ = false, declined_ = false;

@@ -203,7 +203,7 @@ private:
   [[nodiscard]] PetscErrorCode SetupMumpsFactor(MPI_Comm comm, PC pc);
   /// SetupKsp: the reuse and ordering options (opts) against the solver and each other. Collective.
   /// Refuses -contact_kept_solver where the kept factorisation does not run (possible: a MUMPS solver), and
-  /// cholesky where it does not apply (LU, several ranks, MUMPS controls). After lu_ is known.
+  /// cholesky where it does not apply (LU, MUMPS controls). After lu_ is known.
   [[nodiscard]] PetscErrorCode CheckKeptSolver(MPI_Comm comm, const SaddlePointOptions &opts, bool possible) const;
   [[nodiscard]] PetscErrorCode CheckReuseOptions(MPI_Comm comm, const SaddlePointOptions &opts, bool constant_k) const;
   /// Reuse mode: every multiplier row's global number on rank 0 (schur_rows_), the diagonal's vectors. Collective.
