@@ -410,22 +410,10 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
                       controls.cntl.empty() && N <= (size == 1 ? CHOLESKY_MAX_ROWS : CHOLESKY_MAX_ROWS_GATHERED));
   double flops, entries;
   if (cholesky_in_use_) {
-    // The pivot order stays (perm_in_) for MUMPS, should the block turn out not to be positive definite. On several
-    // ranks the entries go to rank 0, which factors alone (the right-hand side and the solution are there already).
     PetscCheck(symmetric && id_.ICNTL(7) == 1, comm_, PETSC_ERR_PLIB,
                "the supernodal Cholesky factorisation needs LDL^T and the given ordering");
-    PetscCall(PetscLogEventBegin(EV_CHOL_ANALYSIS, 0, 0, 0, 0));
-    if (size > 1) PetscCall(GatherEntries(true));
-    double cost[2] = {0, 0};
-    PetscCall(RunOnRoot(comm_, [&]() -> PetscErrorCode {
-      PetscFunctionBeginUser;
-      PetscCall(cholesky_.Analyse(N, m_all, CholeskyRows(), CholeskyCols(), perm_in_, 1));
-      cost[0] = cholesky_.Flops(), cost[1] = cholesky_.Entries();
-      PetscFunctionReturn(0);
-    }));
-    PetscCallMPI(MPI_Bcast(cost, 2, MPI_DOUBLE, 0, comm_));
-    PetscCall(PetscLogEventEnd(EV_CHOL_ANALYSIS, 0, 0, 0, 0));
-    flops = cholesky_flops_ = cost[0], entries = cholesky_entries_ = cost[1];
+    PetscCall(CholeskyAnalysis(N, m_all));
+    flops = cholesky_flops_, entries = cholesky_entries_;
   } else {
     PetscCall(MumpsAnalysis());
     // The analysis' estimates (every rank has them): elimination flops RINFOG(1), factor entries INFOG(20)
@@ -457,6 +445,27 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
       std::vector<MUMPS_INT>().swap(*v);
     std::vector<double>().swap(root_val_);
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::CholeskyAnalysis(PetscInt N, PetscInt m) {
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  // The pivot order stays (perm_in_) for MUMPS, should the block turn out not to be positive definite. On several
+  // ranks the entries go to rank 0, which factors alone (the right-hand side and the solution are there already).
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  PetscCall(PetscLogEventBegin(EV_CHOL_ANALYSIS, 0, 0, 0, 0));
+  if (size > 1) PetscCall(GatherEntries(true));
+  double cost[2] = {0, 0};
+  PetscCall(RunOnRoot(comm_, [&]() -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCall(cholesky_.Analyse(N, m, CholeskyRows(), CholeskyCols(), perm_in_, 1));
+    cost[0] = cholesky_.Flops(), cost[1] = cholesky_.Entries();
+    PetscFunctionReturn(0);
+  }));
+  PetscCallMPI(MPI_Bcast(cost, 2, MPI_DOUBLE, 0, comm_));
+  PetscCall(PetscLogEventEnd(EV_CHOL_ANALYSIS, 0, 0, 0, 0));
+  cholesky_flops_ = cost[0], cholesky_entries_ = cost[1];
   PetscFunctionReturn(0);
 }
 

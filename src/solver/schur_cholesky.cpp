@@ -138,6 +138,85 @@ std::vector<int64_t> ColumnCounts(int64_t n, int64_t ns, const std::vector<int64
   return delta;
 }
 
+/// A supernode in the making: pivot columns [first, first + cols), rows below, nonzeros of L in its columns.
+struct Group {
+  int64_t first, cols, rows, nonzeros;
+};
+
+/// Fundamental supernodes (column j + 1 continues j's when j is its only child and L's columns nest), then each
+/// merged with the supernode just before it when that is its child and the merged panel stays mostly nonzero (the
+/// rule of CHOLMOD's relaxed amalgamation: up to 4 columns always, 16 with 80 % zeros, 48 with 10 %, any with 5 %).
+/// Merges happen only at a group's start: the groups stay contiguous, each merge a parent with its child.
+std::vector<Group> Supernodes(int64_t ns, const std::vector<int64_t> &parent, const std::vector<int64_t> &count) {
+  std::vector<int64_t> children(ns + 1, 0);
+  for (int64_t j = 0; j < ns; ++j)
+    ++children[parent[j]];
+  std::vector<Group> groups;
+  for (int64_t j = 0; j < ns; ++j) {
+    if (!groups.empty()) {
+      Group &g = groups.back();
+      const int64_t last = g.first + g.cols - 1;
+      if (last == j - 1 && parent[last] == j && children[j] == 1 && count[last] == count[j] + 1) {
+        ++g.cols, --g.rows, g.nonzeros += count[j];
+        continue;
+      }
+    }
+    Group g{j, 1, count[j] - 1, count[j]};
+    while (!groups.empty()) {
+      const Group &c = groups.back();
+      const int64_t c_last = c.first + c.cols - 1;
+      if (c_last + 1 != g.first || parent[c_last] < g.first || parent[c_last] >= g.first + g.cols) break;
+      const double cols = (double)(c.cols + g.cols), stored = cols * (cols + 1) / 2 + cols * (double)g.rows;
+      const double zeros = 1 - (double)(c.nonzeros + g.nonzeros) / stored;
+      if (!(cols <= 4 || (cols <= 16 && zeros < 0.8) || (cols <= 48 && zeros < 0.1) || zeros < 0.05)) break;
+      g = {c.first, c.cols + g.cols, g.rows, c.nonzeros + g.nonzeros};
+      groups.pop_back();
+    }
+    groups.push_back(g);
+  }
+  return groups;
+}
+
+/// Each group's rows below it (sorted positions, appended to structure from start[s]): its columns' entries below it
+/// and its children's rows below it; kids[s]: its children (kids[groups.size()]: the Schur front's, the groups whose
+/// first row below is a Schur row). The row counts are checked against the column counts.
+PetscErrorCode SupernodeRows(int64_t n, int64_t ns, const std::vector<Group> &groups, const LowerPattern &lower,
+                             std::vector<int64_t> &structure, std::vector<int64_t> &start,
+                             std::vector<std::vector<int64_t>> &kids) {
+  PetscFunctionBeginUser;
+  const int64_t count_groups = (int64_t)groups.size();
+  std::vector<int64_t> supernode_of(ns), mark(n, -1), rows;
+  for (int64_t s = 0; s < count_groups; ++s)
+    for (int64_t j = groups[s].first; j < groups[s].first + groups[s].cols; ++j)
+      supernode_of[j] = s;
+  kids.assign(count_groups + 1, {});
+  start.assign(count_groups + 1, 0);
+  structure.clear();
+  for (int64_t s = 0; s < count_groups; ++s) {
+    const int64_t last = groups[s].first + groups[s].cols - 1;
+    const auto add = [&](int64_t r) {
+      if (r > last && mark[r] != s) mark[r] = s, rows.push_back(r);
+    };
+    rows.clear();
+    for (int64_t j = groups[s].first; j <= last; ++j)
+      for (int64_t e = lower.start[j]; e < lower.start[j + 1]; ++e)
+        add(lower.row[e]);
+    for (int64_t c : kids[s])
+      for (int64_t k = start[c]; k < start[c] + groups[c].rows; ++k)
+        add(structure[k]);
+    std::sort(rows.begin(), rows.end());
+    start[s] = (int64_t)structure.size();
+    structure.insert(structure.end(), rows.begin(), rows.end());
+    PetscCheck((int64_t)rows.size() == groups[s].rows, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+               "SchurCholesky: supernode %" PetscInt64_FMT " has %" PetscInt64_FMT
+               " rows, its counts say %" PetscInt64_FMT,
+               s, (int64_t)rows.size(), groups[s].rows);
+    if (!rows.empty()) kids[rows.front() < ns ? supernode_of[rows.front()] : count_groups].push_back(s);
+  }
+  start[count_groups] = (int64_t)structure.size();
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode SchurCholesky::Buffer::Resize(std::size_t n) {
@@ -186,6 +265,58 @@ void SchurCholesky::Clear() {
   factored_ = false;
 }
 
+PetscErrorCode SchurCholesky::Layout(const std::vector<int64_t> &lower_start, const std::vector<int64_t> &lower_row,
+                                     const std::vector<std::vector<int64_t>> &kids) {
+  PetscFunctionBeginUser;
+  // Factor layout, flops, the stack of update matrices (children are pushed in postorder and popped by their parent:
+  // its children's matrices are the top of the stack), and where in each front the entries of A and the children's
+  // rows go (row + column * front size).
+  const int64_t count_groups = (int64_t)supernodes_.size() - 1;
+  std::vector<int64_t> local(n_, -1);
+  int64_t top = 0;
+  for (int64_t s = 0; s <= count_groups; ++s) {
+    Supernode &sn = supernodes_[s];
+    const bool schur = s == count_groups;
+    const int64_t front = sn.cols + sn.rows;
+    if (!schur) {
+      sn.factor = factor_size_;
+      factor_size_ += front * sn.cols;
+      max_front_ = std::max(max_front_, front * front);
+      const double c = (double)sn.cols, r = (double)sn.rows;
+      flops_ += c * c * c / 3 + r * c * c + r * r * c;
+    }
+    for (int64_t k = 0; k < sn.cols; ++k)
+      local[sn.first + k] = k;
+    for (int64_t k = 0; k < sn.rows; ++k)
+      local[structure_[sn.structure + k]] = sn.cols + k;
+    sn.entries = lower_start[sn.first], sn.entries_end = lower_start[sn.first + sn.cols + (schur ? 1 : 0)];
+    for (int64_t j = sn.first; j < sn.first + sn.cols; ++j)
+      for (int64_t e = lower_start[j]; e < lower_start[j + 1]; ++e) {
+        const int64_t i = local[lower_row[e]];
+        PetscCheck(i >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "SchurCholesky: an entry outside its front");
+        offset_[e] = i + (j - sn.first) * front;
+      }
+    sn.children = (int64_t)child_.size();
+    sn.relative = (int64_t)relative_.size();
+    for (int64_t c : kids[s]) {
+      const Supernode &cn = supernodes_[c];
+      child_.push_back(c);
+      for (int64_t k = cn.structure; k < cn.structure + cn.rows; ++k)
+        relative_.push_back(local[structure_[k]]);
+      top -= cn.rows * cn.rows;
+    }
+    sn.children_end = (int64_t)child_.size();
+    if (!schur) top += sn.rows * sn.rows;
+    max_stack_ = std::max(max_stack_, top);
+    for (int64_t k = 0; k < sn.cols; ++k)
+      local[sn.first + k] = -1;
+    for (int64_t k = 0; k < sn.rows; ++k)
+      local[structure_[sn.structure + k]] = -1;
+  }
+  PetscCheck(top == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "SchurCholesky: update matrices left on the stack");
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SchurCholesky::Analyse(PetscInt n, PetscInt m, const std::vector<int> &row, const std::vector<int> &col,
                                       const std::vector<int> &position, int base) {
   PetscFunctionBeginUser;
@@ -213,146 +344,32 @@ PetscErrorCode SchurCholesky::Analyse(PetscInt n, PetscInt m, const std::vector<
     for (auto &p : position_)
       if (p < ns) p = relabel[p];
   }
-  const LowerPattern lower = BuildLower(ns, m, row, col, base, position_);
-  const std::vector<int64_t> count = ColumnCounts(n, ns, parent, lower);
-  std::vector<int64_t> children(ns + 1, 0);
-  for (int64_t j = 0; j < ns; ++j)
-    ++children[parent[j]];
-
-  // Fundamental supernodes (column j + 1 continues j's when j is its only child and L's columns nest), then each
-  // merged with the supernode just before it when that is its child and the merged panel stays mostly nonzero.
-  struct Group {
-    int64_t first, cols, rows, nonzeros;
-  };
-  std::vector<Group> groups;
-  for (int64_t j = 0; j < ns; ++j) {
-    if (!groups.empty()) {
-      Group &g = groups.back();
-      const int64_t last = g.first + g.cols - 1;
-      if (last == j - 1 && parent[last] == j && children[j] == 1 && count[last] == count[j] + 1) {
-        ++g.cols, --g.rows, g.nonzeros += count[j];
-        continue;
-      }
-    }
-    Group g{j, 1, count[j] - 1, count[j]};
-    // The groups just before this one that are its children merge into it while the merged panel stays mostly
-    // nonzero (the rule of CHOLMOD's relaxed amalgamation: up to 4 columns always, 16 with 80 % zeros, 48 with 10 %,
-    // any with 5 %). Only at a group's start: the groups stay contiguous, each merge a parent with its child.
-    while (!groups.empty()) {
-      const Group &c = groups.back();
-      const int64_t c_last = c.first + c.cols - 1;
-      if (c_last + 1 != g.first || parent[c_last] < g.first || parent[c_last] >= g.first + g.cols) break;
-      const double cols = (double)(c.cols + g.cols), stored = cols * (cols + 1) / 2 + cols * (double)g.rows;
-      const double zeros = 1 - (double)(c.nonzeros + g.nonzeros) / stored;
-      if (!(cols <= 4 || (cols <= 16 && zeros < 0.8) || (cols <= 48 && zeros < 0.1) || zeros < 0.05)) break;
-      g = {c.first, c.cols + g.cols, g.rows, c.nonzeros + g.nonzeros};
-      groups.pop_back();
-    }
-    groups.push_back(g);
-  }
-
-  // Supernodes, the column -> supernode map, and each supernode's rows below (sorted positions): its columns' entries
-  // below it and its children's rows below it.
+  LowerPattern lower = BuildLower(ns, m, row, col, base, position_);
+  const std::vector<Group> groups = Supernodes(ns, parent, ColumnCounts(n, ns, parent, lower));
   const int64_t count_groups = (int64_t)groups.size();
-  std::vector<int64_t> supernode_of(ns);
-  supernodes_.resize(count_groups + 1); // the last one: the Schur front
-  for (int64_t s = 0; s < count_groups; ++s) {
-    supernodes_[s].first = groups[s].first, supernodes_[s].cols = groups[s].cols;
-    for (int64_t j = groups[s].first; j < groups[s].first + groups[s].cols; ++j)
-      supernode_of[j] = s;
-  }
-  supernodes_[count_groups].first = ns, supernodes_[count_groups].cols = 0, supernodes_[count_groups].rows = m;
-  std::vector<int64_t> parent_of(count_groups + 1, -1), mark(n, -1), rows;
-  std::vector<std::vector<int64_t>> kids(count_groups + 1);
-  structure_.clear();
+  std::vector<int64_t> start;
+  std::vector<std::vector<int64_t>> kids;
+  PetscCall(SupernodeRows(n, ns, groups, lower, structure_, start, kids));
+  supernodes_.resize(count_groups + 1); // the last one: the Schur front, its rows the Schur rows
   for (int64_t s = 0; s < count_groups; ++s) {
     Supernode &sn = supernodes_[s];
-    const int64_t last = sn.first + sn.cols - 1;
-    rows.clear();
-    for (int64_t j = sn.first; j <= last; ++j)
-      for (int64_t e = lower.start[j]; e < lower.start[j + 1]; ++e) {
-        const int64_t r = lower.row[e];
-        if (r > last && mark[r] != s) mark[r] = s, rows.push_back(r);
-      }
-    for (int64_t c : kids[s]) {
-      const Supernode &cn = supernodes_[c];
-      for (int64_t k = cn.structure; k < cn.structure + cn.rows; ++k) {
-        const int64_t r = structure_[k];
-        if (r > last && mark[r] != s) mark[r] = s, rows.push_back(r);
-      }
-    }
-    std::sort(rows.begin(), rows.end());
-    sn.structure = (int64_t)structure_.size();
-    sn.rows = (int64_t)rows.size();
-    structure_.insert(structure_.end(), rows.begin(), rows.end());
-    PetscCheck(sn.rows == groups[s].rows, PETSC_COMM_SELF, PETSC_ERR_PLIB,
-               "SchurCholesky: supernode %" PetscInt64_FMT " has %" PetscInt64_FMT
-               " rows, its counts say %" PetscInt64_FMT,
-               s, sn.rows, groups[s].rows);
-    if (!rows.empty()) {
-      parent_of[s] = rows.front() < ns ? supernode_of[rows.front()] : count_groups;
-      kids[parent_of[s]].push_back(s);
-    }
+    sn.first = groups[s].first, sn.cols = groups[s].cols, sn.rows = groups[s].rows, sn.structure = start[s];
   }
+  Supernode &schur = supernodes_[count_groups];
+  schur.first = ns, schur.cols = 0, schur.rows = m, schur.structure = (int64_t)structure_.size();
+  for (int64_t k = 0; k < m; ++k)
+    structure_.push_back(ns + k);
 
   // The entries of A by front (a supernode's columns are consecutive, the Schur front's last) and the diagonal.
-  entry_ = lower.entry;
+  entry_ = std::move(lower.entry);
   offset_.resize(entry_.size());
   for (int64_t j = 0; j < ns; ++j)
     for (int64_t e = lower.start[j]; e < lower.start[j + 1]; ++e)
-      if (lower.row[e] == j) diagonal_entry_.push_back(lower.entry[e]), diagonal_entry_.push_back(j);
+      if (lower.row[e] == j) diagonal_entry_.push_back(entry_[e]), diagonal_entry_.push_back(j);
   for (int64_t e = lower.start[ns]; e < lower.start[ns + 1]; ++e)
     offset_[e] = lower.row[e];
 
-  // Factor layout, flops, the stack of update matrices (children are pushed in postorder and popped by their parent:
-  // its children's matrices are the top of the stack), and where in each front the entries of A and the children's
-  // rows go (row + column * front size).
-  std::vector<int64_t> local(n, -1);
-  int64_t top = 0;
-  for (int64_t s = 0; s <= count_groups; ++s) {
-    Supernode &sn = supernodes_[s];
-    const bool schur = s == count_groups;
-    const int64_t front = sn.cols + sn.rows;
-    if (!schur) {
-      sn.factor = factor_size_;
-      factor_size_ += front * sn.cols;
-      max_front_ = std::max(max_front_, front * front);
-      const double c = (double)sn.cols, r = (double)sn.rows;
-      flops_ += c * c * c / 3 + r * c * c + r * r * c;
-    } else {
-      sn.structure = (int64_t)structure_.size();
-      for (int64_t k = 0; k < m; ++k)
-        structure_.push_back(ns + k);
-    }
-    for (int64_t k = 0; k < sn.cols; ++k)
-      local[sn.first + k] = k;
-    for (int64_t k = 0; k < sn.rows; ++k)
-      local[structure_[sn.structure + k]] = sn.cols + k;
-    sn.entries = lower.start[sn.first], sn.entries_end = lower.start[sn.first + sn.cols + (schur ? 1 : 0)];
-    for (int64_t j = sn.first; j < sn.first + sn.cols; ++j)
-      for (int64_t e = lower.start[j]; e < lower.start[j + 1]; ++e) {
-        const int64_t i = local[lower.row[e]];
-        PetscCheck(i >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "SchurCholesky: an entry outside its front");
-        offset_[e] = i + (j - sn.first) * front;
-      }
-    sn.children = (int64_t)child_.size();
-    sn.relative = (int64_t)relative_.size();
-    for (int64_t c : kids[s]) {
-      const Supernode &cn = supernodes_[c];
-      child_.push_back(c);
-      for (int64_t k = cn.structure; k < cn.structure + cn.rows; ++k)
-        relative_.push_back(local[structure_[k]]);
-      top -= cn.rows * cn.rows;
-    }
-    sn.children_end = (int64_t)child_.size();
-    if (!schur) top += sn.rows * sn.rows;
-    max_stack_ = std::max(max_stack_, top);
-    for (int64_t k = 0; k < sn.cols; ++k)
-      local[sn.first + k] = -1;
-    for (int64_t k = 0; k < sn.rows; ++k)
-      local[structure_[sn.structure + k]] = -1;
-  }
-  PetscCheck(top == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "SchurCholesky: update matrices left on the stack");
+  PetscCall(Layout(lower.start, lower.row, kids));
   // The front of a supernode is laid out where its panel goes, so the factor has room for the largest update matrix
   // after the last panel.
   PetscCall(factor_.Resize(factor_size_ + max_front_));
@@ -450,12 +467,25 @@ PetscErrorCode SchurCholesky::Forward(const double *b, double *reduced) {
     PetscCall(BlasSizes(sn, nf, nc, nr));
     const double *L = factor_.data() + sn.factor;
     double *y = forward_.data() + sn.first;
-    BLAStrsm_("L", "L", "N", "N", &nc, &inc, &one, L, &nf, y, &nc);
-    if (sn.rows == 0) continue;
-    BLASgemv_("N", &nr, &nc, &one, L + sn.cols, &nf, y, &inc, &zero, work_.data(), &inc);
     const int64_t *rows = structure_.data() + sn.structure;
-    for (int64_t i = 0; i < sn.rows; ++i)
-      forward_[rows[i]] -= work_[i];
+    if (sn.cols * (sn.cols + sn.rows) > SMALL_PANEL) {
+      BLAStrsm_("L", "L", "N", "N", &nc, &inc, &one, L, &nf, y, &nc);
+      if (sn.rows == 0) continue;
+      BLASgemv_("N", &nr, &nc, &one, L + sn.cols, &nf, y, &inc, &zero, work_.data(), &inc);
+      for (int64_t i = 0; i < sn.rows; ++i)
+        forward_[rows[i]] -= work_[i];
+      continue;
+    }
+    // A small panel: the same by columns, without the calls' overhead.
+    const int64_t front = sn.cols + sn.rows;
+    for (int64_t j = 0; j < sn.cols; ++j) {
+      const double *column = L + j * front;
+      const double yj = y[j] /= column[j];
+      for (int64_t i = j + 1; i < sn.cols; ++i)
+        y[i] -= column[i] * yj;
+      for (int64_t i = 0; i < sn.rows; ++i)
+        forward_[rows[i]] -= column[sn.cols + i] * yj;
+    }
   }
   std::copy(forward_.begin() + ns_, forward_.end(), reduced);
   PetscFunctionReturn(0);
@@ -474,13 +504,25 @@ PetscErrorCode SchurCholesky::Backward(const double *x2, double *x) {
     PetscCall(BlasSizes(sn, nf, nc, nr));
     const double *L = factor_.data() + sn.factor;
     double *y = forward_.data() + sn.first;
-    if (sn.rows > 0) {
-      const int64_t *rows = structure_.data() + sn.structure;
-      for (int64_t i = 0; i < sn.rows; ++i)
-        work_[i] = forward_[rows[i]];
-      BLASgemv_("T", &nr, &nc, &minus_one, L + sn.cols, &nf, work_.data(), &inc, &one, y, &inc);
+    const int64_t *rows = structure_.data() + sn.structure;
+    for (int64_t i = 0; i < sn.rows; ++i)
+      work_[i] = forward_[rows[i]];
+    if (sn.cols * (sn.cols + sn.rows) > SMALL_PANEL) {
+      if (sn.rows > 0) BLASgemv_("T", &nr, &nc, &minus_one, L + sn.cols, &nf, work_.data(), &inc, &one, y, &inc);
+      BLAStrsm_("L", "L", "T", "N", &nc, &inc, &one, L, &nf, y, &nc);
+      continue;
     }
-    BLAStrsm_("L", "L", "T", "N", &nc, &inc, &one, L, &nf, y, &nc);
+    // A small panel: the same by columns (dot products), without the calls' overhead.
+    const int64_t front = sn.cols + sn.rows;
+    for (int64_t j = sn.cols - 1; j >= 0; --j) {
+      const double *column = L + j * front;
+      double sum = y[j];
+      for (int64_t i = 0; i < sn.rows; ++i)
+        sum -= column[sn.cols + i] * work_[i];
+      for (int64_t i = j + 1; i < sn.cols; ++i)
+        sum -= column[i] * y[i];
+      y[j] = sum / column[j];
+    }
   }
   for (int64_t i = 0; i < n_; ++i)
     x[i] = forward_[position_[i]];

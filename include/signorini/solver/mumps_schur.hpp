@@ -7,7 +7,9 @@
 // nested dissection of the node graph (METIS's, computed by all ranks with the partition's interfaces as the top
 // separators, or coordinate cuts for a small 2D matrix, computed on rank 0), given to MUMPS (ICNTL(7) = 1), the
 // analysis sequential, with null-pivot detection (ICNTL(24)) so that a singular A11 is reported; the options
-// -contact_mat_mumps_icntl_<k> and -contact_mat_mumps_cntl_<k> override them as for PETSc's interface.
+// -contact_mat_mumps_icntl_<k> and -contact_mat_mumps_cntl_<k> override them as for PETSc's interface. Where A11 is
+// positive definite and the problem small enough (KeptSolver), SchurCholesky does MUMPS's part instead (analysis,
+// factorisation with the Schur complement, condensation and expansion), from the same order, on rank 0.
 #pragma once
 
 #include "signorini/core/handle.hpp"
@@ -181,6 +183,9 @@ private:
   const std::vector<MUMPS_INT> &CholeskyRows() const { return gather_counts_.empty() ? irn_ : root_irn_; }
   const std::vector<MUMPS_INT> &CholeskyCols() const { return gather_counts_.empty() ? jcn_ : root_jcn_; }
   const std::vector<double> &CholeskyValues() const { return gather_counts_.empty() ? val_ : root_val_; }
+  /// The Cholesky's analysis of the entries read (gathered to rank 0 on several ranks) with perm_in_ (N rows, the
+  /// last m the Schur rows): cholesky_flops_, cholesky_entries_ on every rank. Collective.
+  [[nodiscard]] PetscErrorCode CholeskyAnalysis(PetscInt N, PetscInt m);
   /// Gathers val_ (and with pattern the entries' rows and columns) to rank 0 for the Cholesky. Collective.
   [[nodiscard]] PetscErrorCode GatherEntries(bool pattern);
   bool cholesky_in_use_ = false; ///< cholesky_ holds the analysis (and factors): MUMPS has not analysed the matrix

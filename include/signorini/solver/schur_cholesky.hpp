@@ -72,6 +72,9 @@ public:
   /// round-off of a singular block (1e-16), far below the pivots of the elastic stiffness matrices met (1e-6 of it
   /// for the 2D Hertz meshes).
   static constexpr double PIVOT_TOLERANCE = 1e-11;
+  /// Panels (columns x front rows) up to this many entries are solved by plain loops in Forward and Backward, larger
+  /// ones by BLAS (trsm, gemv): the 2D Hertz matrices' thousands of small supernodes cost more in calls than in work.
+  static constexpr int64_t SMALL_PANEL = 2048;
 
 private:
   struct Supernode {
@@ -83,6 +86,11 @@ private:
     int64_t relative = 0;                   ///< start of the children's rows mapped into this front (relative_)
   };
 
+  /// From the supernodes and their rows (structure_) and the lower pattern by columns (lower_start, lower_row; the
+  /// last column the Schur front's entries): the factor's layout, the flops, the stack's size, and where in each front
+  /// the entries of A and the children's rows go (offset_, relative_, child_; kids[s]: supernode s's children).
+  [[nodiscard]] PetscErrorCode Layout(const std::vector<int64_t> &lower_start, const std::vector<int64_t> &lower_row,
+                                      const std::vector<std::vector<int64_t>> &kids);
   /// A supernode's front size (its panel's leading dimension), pivot columns and rows below, as BLAS takes them.
   [[nodiscard]] static PetscErrorCode BlasSizes(const Supernode &sn, PetscBLASInt &front, PetscBLASInt &cols,
                                                 PetscBLASInt &rows);

@@ -201,6 +201,15 @@ TEST(SchurCholesky, MatchesDenseEliminationInAnyOrder) {
   }
 }
 
+TEST(SchurCholesky, LargePanelsMatchDenseElimination) {
+  // A random order of a 20 x 20 grid fills in: supernodes with panels beyond SMALL_PANEL, solved by BLAS.
+  std::mt19937 gen(99);
+  const Problem p = RandomProblem(20, 20, 30, 1e-2, gen);
+  std::vector<int> order = DisplacementRows(p);
+  std::shuffle(order.begin(), order.end(), gen);
+  ExpectMatchesDense(p, order, gen);
+}
+
 TEST(SchurCholesky, NoSchurRowsAndOnlySchurRows) {
   std::mt19937 gen(7);
   const Problem p = RandomProblem(5, 5, 0, 1e-2, gen);
