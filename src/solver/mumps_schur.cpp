@@ -109,6 +109,7 @@ void MumpsSchur::Release() {
   for (auto *v : {&root_irn_, &root_jcn_})
     std::vector<MUMPS_INT>().swap(*v);
   std::vector<double>().swap(root_val_);
+  gathered_ = false;
   for (auto *v : {&gather_counts_, &gather_displs_})
     std::vector<PetscMPIInt>().swap(*v);
   for (auto *v : {&irn_, &jcn_, &listvar_, &perm_in_}) std::vector<MUMPS_INT>().swap(*v);
@@ -470,30 +471,22 @@ PetscErrorCode MumpsSchur::CholeskyAnalysis(PetscInt N, PetscInt m) {
 }
 
 PetscErrorCode MumpsSchur::GatherEntries(bool pattern) {
-  PetscMPIInt size, mine;
+  PetscMPIInt mine;
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  PetscCall(PetscMPIIntCast((PetscInt)val_.size(), &mine));
   if (pattern) {
-    PetscCall(PetscMPIIntCast((PetscInt)val_.size(), &mine));
-    gather_counts_.assign(size, 0);
-    gather_displs_.assign(size, 0);
-    PetscCallMPI(MPI_Gather(&mine, 1, MPI_INT, gather_counts_.data(), 1, MPI_INT, 0, comm_));
-    std::size_t total = 0;
-    for (PetscMPIInt r = 0; r < size; ++r) {
-      PetscCheck(total + gather_counts_[r] <= (std::size_t)INT_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP,
-                 "too many matrix entries to gather on rank 0 for the Cholesky factorisation");
-      gather_displs_[r] = (PetscMPIInt)total;
-      total += gather_counts_[r];
-    }
-    if (rank_ == 0) root_irn_.resize(total), root_jcn_.resize(total);
+    PetscCall(GatherLayout(comm_, mine, gather_counts_, gather_displs_,
+                           "too many matrix entries to gather on rank 0 for the Cholesky factorisation; expected "
+                           "-contact_kept_solver mumps"));
+    gathered_ = true;
+    const std::size_t total = rank_ == 0 ? (std::size_t)gather_displs_.back() : 0;
+    root_irn_.resize(total), root_jcn_.resize(total), root_val_.resize(total);
     PetscCallMPI(MPI_Gatherv(irn_.data(), mine, MPI_INT, root_irn_.data(), gather_counts_.data(),
                              gather_displs_.data(), MPI_INT, 0, comm_));
     PetscCallMPI(MPI_Gatherv(jcn_.data(), mine, MPI_INT, root_jcn_.data(), gather_counts_.data(),
                              gather_displs_.data(), MPI_INT, 0, comm_));
-    if (rank_ == 0) root_val_.resize(total);
     PetscFunctionReturn(0);
   }
-  PetscCall(PetscMPIIntCast((PetscInt)val_.size(), &mine));
   PetscCallMPI(MPI_Gatherv(val_.data(), mine, MPI_DOUBLE, root_val_.data(), gather_counts_.data(),
                            gather_displs_.data(), MPI_DOUBLE, 0, comm_));
   PetscFunctionReturn(0);
@@ -526,7 +519,7 @@ PetscErrorCode MumpsSchur::FactorNumeric(const std::vector<PetscScalar> &d0) {
   if (cholesky_in_use_) {
     int positive = 0;
     PetscCall(PetscLogEventBegin(EV_CHOL_FACTOR, 0, 0, 0, 0));
-    if (!gather_counts_.empty()) PetscCall(GatherEntries(false));
+    if (gathered_) PetscCall(GatherEntries(false));
     PetscCall(RunOnRoot(comm_, [&]() -> PetscErrorCode {
       bool p;
       PetscFunctionBeginUser;
@@ -549,6 +542,7 @@ PetscErrorCode MumpsSchur::FactorNumeric(const std::vector<PetscScalar> &d0) {
       for (auto *v : {&root_irn_, &root_jcn_})
         std::vector<MUMPS_INT>().swap(*v);
       std::vector<double>().swap(root_val_);
+      gathered_ = false;
       PetscCall(MumpsAnalysis());
       schur_raw_.assign((std::size_t)m * m, 0.0);
     }

@@ -42,6 +42,27 @@ void Compose(int lo, int hi, int depth, const std::vector<std::vector<idx_t>> &i
 
 } // namespace
 
+PetscErrorCode GatherLayout(MPI_Comm comm, PetscMPIInt count, std::vector<PetscMPIInt> &counts,
+                            std::vector<PetscMPIInt> &displs, const char *too_large) {
+  PetscMPIInt rank, size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  counts.assign(rank == 0 ? size : 0, 0);
+  PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
+  displs.assign(rank == 0 ? size + 1 : 0, 0);
+  PetscCall(RunOnRoot(comm, [&]() -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    for (PetscMPIInt r = 0; r < size; ++r) {
+      PetscCheck((std::size_t)displs[r] + counts[r] <= (std::size_t)INT_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP, "%s",
+                 too_large);
+      displs[r + 1] = displs[r] + counts[r];
+    }
+    PetscFunctionReturn(0);
+  }));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode GatherOnRoot(MPI_Comm comm, const std::vector<idx_t> &list, std::vector<idx_t> &all,
                             std::vector<PetscMPIInt> &displs) {
   PetscMPIInt rank, size, count;
@@ -49,19 +70,10 @@ PetscErrorCode GatherOnRoot(MPI_Comm comm, const std::vector<idx_t> &list, std::
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(PetscMPIIntCast((PetscInt)list.size(), &count));
-  std::vector<PetscMPIInt> counts(size);
-  PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
-  displs.assign(rank == 0 ? size + 1 : 0, 0);
-  PetscCall(RunOnRoot(comm, [&]() -> PetscErrorCode {
-    PetscFunctionBeginUser;
-    for (PetscMPIInt r = 0; r < size; ++r) {
-      PetscCheck((std::size_t)displs[r] + counts[r] <= (std::size_t)INT_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP,
-                 "the matrix graph is too large for the nested-dissection ordering on one rank; choose one of "
-                 "MUMPS's orderings with -contact_mat_mumps_icntl_7");
-      displs[r + 1] = displs[r] + counts[r];
-    }
-    PetscFunctionReturn(0);
-  }));
+  std::vector<PetscMPIInt> counts;
+  PetscCall(GatherLayout(comm, count, counts, displs,
+                         "the matrix graph is too large for the nested-dissection ordering on one rank; choose one of "
+                         "MUMPS's orderings with -contact_mat_mumps_icntl_7"));
   all.resize(rank == 0 ? displs[size] : 0);
   PetscCallMPI(
       MPI_Gatherv(list.data(), count, IDX_T_MPI, all.data(), counts.data(), displs.data(), IDX_T_MPI, 0, comm));

@@ -463,12 +463,12 @@ PetscErrorCode SchurCholesky::Forward(const double *b, double *reduced) {
   const PetscBLASInt inc = 1;
   for (int64_t s = 0; s < count; ++s) {
     const Supernode &sn = supernodes_[s];
-    PetscBLASInt nf, nc, nr;
-    PetscCall(BlasSizes(sn, nf, nc, nr));
     const double *L = factor_.data() + sn.factor;
     double *y = forward_.data() + sn.first;
     const int64_t *rows = structure_.data() + sn.structure;
     if (sn.cols * (sn.cols + sn.rows) > SMALL_PANEL) {
+      PetscBLASInt nf, nc, nr;
+      PetscCall(BlasSizes(sn, nf, nc, nr));
       BLAStrsm_("L", "L", "N", "N", &nc, &inc, &one, L, &nf, y, &nc);
       if (sn.rows == 0) continue;
       BLASgemv_("N", &nr, &nc, &one, L + sn.cols, &nf, y, &inc, &zero, work_.data(), &inc);
@@ -500,14 +500,14 @@ PetscErrorCode SchurCholesky::Backward(const double *x2, double *x) {
   const PetscBLASInt inc = 1;
   for (int64_t s = (int64_t)supernodes_.size() - 2; s >= 0; --s) {
     const Supernode &sn = supernodes_[s];
-    PetscBLASInt nf, nc, nr;
-    PetscCall(BlasSizes(sn, nf, nc, nr));
     const double *L = factor_.data() + sn.factor;
     double *y = forward_.data() + sn.first;
     const int64_t *rows = structure_.data() + sn.structure;
     for (int64_t i = 0; i < sn.rows; ++i)
       work_[i] = forward_[rows[i]];
     if (sn.cols * (sn.cols + sn.rows) > SMALL_PANEL) {
+      PetscBLASInt nf, nc, nr;
+      PetscCall(BlasSizes(sn, nf, nc, nr));
       if (sn.rows > 0) BLASgemv_("T", &nr, &nc, &minus_one, L + sn.cols, &nf, work_.data(), &inc, &one, y, &inc);
       BLAStrsm_("L", "L", "T", "N", &nc, &inc, &one, L, &nf, y, &nc);
       continue;

@@ -177,12 +177,13 @@ private:
   /// these stay empty and the owned arrays serve), and where each rank's part starts there.
   std::vector<MUMPS_INT> root_irn_, root_jcn_;
   std::vector<double> root_val_;
-  std::vector<PetscMPIInt> gather_counts_, gather_displs_;
+  std::vector<PetscMPIInt> gather_counts_, gather_displs_; ///< GatherLayout's (rank 0)
+  bool gathered_ = false;                                  ///< the Cholesky's entries are gathered (every rank)
   double cholesky_flops_ = 0, cholesky_entries_ = 0; ///< the Cholesky's analysis (every rank)
   /// The Cholesky's entries: gathered on several ranks, the owned ones on one (rank 0; elsewhere empty).
-  const std::vector<MUMPS_INT> &CholeskyRows() const { return gather_counts_.empty() ? irn_ : root_irn_; }
-  const std::vector<MUMPS_INT> &CholeskyCols() const { return gather_counts_.empty() ? jcn_ : root_jcn_; }
-  const std::vector<double> &CholeskyValues() const { return gather_counts_.empty() ? val_ : root_val_; }
+  const std::vector<MUMPS_INT> &CholeskyRows() const { return gathered_ ? root_irn_ : irn_; }
+  const std::vector<MUMPS_INT> &CholeskyCols() const { return gathered_ ? root_jcn_ : jcn_; }
+  const std::vector<double> &CholeskyValues() const { return gathered_ ? root_val_ : val_; }
   /// The Cholesky's analysis of the entries read (gathered to rank 0 on several ranks) with perm_in_ (N rows, the
   /// last m the Schur rows): cholesky_flops_, cholesky_entries_ on every rank. Collective.
   [[nodiscard]] PetscErrorCode CholeskyAnalysis(PetscInt N, PetscInt m);

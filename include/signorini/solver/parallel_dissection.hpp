@@ -16,6 +16,11 @@ struct Graph {
   idx_t Size() const { return (idx_t)xadj.size() - 1; }
 };
 
+/// Where each rank's part of a gather to rank 0 goes (MPI_Gatherv): on rank 0 counts[r] (each rank's count) and
+/// displs[r] (where its part starts; displs[size] the total), empty elsewhere. A total beyond what an int counts raises
+/// PETSC_ERR_SUP with the message too_large on every rank. Collective.
+[[nodiscard]] PetscErrorCode GatherLayout(MPI_Comm comm, PetscMPIInt count, std::vector<PetscMPIInt> &counts,
+                                          std::vector<PetscMPIInt> &displs, const char *too_large);
 /// The lists of every rank on rank 0 of comm, in rank order: rank r's is all[displs[r] .. displs[r + 1]) (all and
 /// displs are empty on the other ranks). Raises PETSC_ERR_SUP on every rank when they hold more entries than an int
 /// counts. Collective.
