@@ -16,7 +16,7 @@ PetscErrorCode SaddlePointSystem::Factor() {
   if (factored_) PetscFunctionReturn(0);
   std::vector<PetscScalar> d;
   PetscCall(MultiplierDiagonal(d));
-  ProgressBegin("analysis and factorisation (MUMPS with the Schur complement on the candidates)");
+  ProgressBegin("analysis and factorisation (the Schur complement on the candidates)");
   PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_, dofs_->OwnedU(), dofs_->Dim(), coords_, ordering_,
                                 mumps_controls_, !constant_k_, !reuse_forced_, kept_solver_));
   ProgressEnd();
@@ -55,7 +55,7 @@ PetscErrorCode SaddlePointSystem::Refactor() {
   std::vector<PetscScalar> d;
   PetscFunctionBeginUser;
   PetscCall(MultiplierDiagonal(d));
-  ProgressBegin("numerical refactorisation (MUMPS with the Schur complement on the candidates)");
+  ProgressBegin("numerical refactorisation (the Schur complement on the candidates)");
   PetscCall(mumps_schur_.Refactor(A_, d));
   ProgressEnd();
   null_pivots_ = mumps_schur_.NullPivots();
@@ -65,8 +65,8 @@ PetscErrorCode SaddlePointSystem::Refactor() {
 std::string SaddlePointSystem::SingularReport(const std::string &cause) const {
   char found[128];
   if (null_pivots_ == 0 && singular_residual_ > 0)
-    std::snprintf(found, sizeof(found), "MUMPS found no null pivot, but its solve left a relative residual of %.6g",
-                  singular_residual_);
+    std::snprintf(found, sizeof(found), "%s found no null pivot, but its solve left a relative residual of %.6g",
+                  mumps_schur_.UsesCholesky() ? "the Cholesky factorisation" : "MUMPS", singular_residual_);
   else std::snprintf(found, sizeof(found), "MUMPS found %d null pivot(s)", (int)null_pivots_);
   std::string report = std::string("the saddle-point system is singular (") + found + "): ";
   const std::string controls = mumps_controls_.PivotControls();
