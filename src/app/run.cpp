@@ -1,14 +1,14 @@
 // One run: options, mesh, set-up, contact solve, results, output; and the built-in default case.
 #include "signorini/app/run.hpp"
 
-#include "signorini/app/report.hpp"
-#include "signorini/contact/contact_results.hpp"
+#include "signorini/post/report.hpp"
+#include "signorini/post/contact_results.hpp"
 #include "signorini/core/options.hpp"
 #include "signorini/core/parse.hpp"
 #include "signorini/core/progress.hpp"
 #include "signorini/io/output.hpp"
 #include "signorini/obstacles/obstacle_mesh.hpp"
-#include "signorini/solver/contact_solver.hpp"
+#include "signorini/loop/contact_solver.hpp"
 
 #include <dmumps_c.h>
 

@@ -6,12 +6,16 @@
 #include "signorini/contact/active_set.hpp"
 #include "signorini/contact/contact_set.hpp"
 #include "signorini/fem/dof_map.hpp"
-#include "signorini/solver/saddle_point.hpp"
+#include "signorini/linalg/sparse_row.hpp"
 
 #include <array>
 #include <vector>
 
 namespace signorini {
+
+/// A contact constraint row: the row of B of one pair, -n on the free displacement dofs of its node (the saddle-point
+/// system takes it as a plain sparse row).
+using ConstraintRow = SparseRow;
 
 /// Gap, inside flag (in states) and constraint rows (free dofs only, coefficients -n) of every owned pair at the
 /// local displacement u_local. fixed marks the Dirichlet dofs per local vertex dof.

@@ -1,5 +1,5 @@
 // A serial multifrontal sparse Cholesky factorisation with a Schur complement on the last rows.
-#include "signorini/solver/schur_cholesky.hpp"
+#include "signorini/linalg/schur_cholesky.hpp"
 
 #include <petscblaslapack.h>
 #include <sys/mman.h>

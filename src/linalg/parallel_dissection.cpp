@@ -1,5 +1,5 @@
 // Nested dissection of a distributed graph: the partition's interfaces as separators, each rank's part by METIS.
-#include "signorini/solver/parallel_dissection.hpp"
+#include "signorini/linalg/parallel_dissection.hpp"
 
 #include "signorini/core/errors.hpp"
 

@@ -1,7 +1,7 @@
 // The contact solver per run and per load step: set-up, the pairs and the system built on them, the load steps (Solve,
 // LoadStep) and the record of each iteration. Per active-set iteration: active_set_step.cpp; per Newton iteration:
 // newton_step.cpp.
-#include "signorini/solver/contact_solver.hpp"
+#include "signorini/loop/contact_solver.hpp"
 
 #include "contact_solver_detail.hpp"
 #include "signorini/core/progress.hpp"

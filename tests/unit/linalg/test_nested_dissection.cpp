@@ -1,5 +1,5 @@
 // CoordinateNestedDissection on grid graphs: a permutation, with far less fill than the grid's natural order.
-#include "signorini/solver/nested_dissection.hpp"
+#include "signorini/linalg/nested_dissection.hpp"
 
 #include <algorithm>
 #include <numeric>

@@ -1,9 +1,9 @@
 // MUMPS with a Schur complement on the multipliers: one factorisation, then solves with a changing diagonal D.
-#include "signorini/solver/mumps_schur.hpp"
+#include "signorini/linalg/mumps_schur.hpp"
 
 #include "signorini/core/errors.hpp"
-#include "signorini/solver/nested_dissection.hpp"
-#include "signorini/solver/parallel_dissection.hpp"
+#include "signorini/linalg/nested_dissection.hpp"
+#include "signorini/linalg/parallel_dissection.hpp"
 
 #include <metis.h>
 #include <petscblaslapack.h>

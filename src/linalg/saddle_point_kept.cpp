@@ -1,6 +1,6 @@
 // The saddle-point system's kept factorisation: MUMPS with the Schur complement on the multipliers (factor, refactor,
 // solves through the Schur complement, condensed solves in the multiplier space and their expansion).
-#include "signorini/solver/saddle_point.hpp"
+#include "signorini/linalg/saddle_point.hpp"
 
 #include "signorini/core/progress.hpp"
 

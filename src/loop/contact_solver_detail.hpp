@@ -2,7 +2,7 @@
 // active-set iteration; newton_step.cpp: per Newton iteration). Not installed.
 #pragma once
 
-#include "signorini/solver/contact_solver.hpp"
+#include "signorini/loop/contact_solver.hpp"
 
 #include <algorithm>
 #include <mpi.h>

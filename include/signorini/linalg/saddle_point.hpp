@@ -36,21 +36,15 @@
 
 #include "signorini/core/handle.hpp"
 #include "signorini/fem/dof_map.hpp"
-#include "signorini/solver/lcp.hpp"
-#include "signorini/solver/mumps_schur.hpp"
+#include "signorini/linalg/lcp.hpp"
+#include "signorini/linalg/mumps_schur.hpp"
+#include "signorini/linalg/sparse_row.hpp"
 
 #include <functional>
 #include <string>
 #include <vector>
 
 namespace signorini {
-
-/// A constraint row: the global displacement rows it touches and their coefficients (free dofs only).
-struct ConstraintRow {
-  PetscInt ncols = 0;
-  PetscInt cols[3] = {-1, -1, -1};
-  double coef[3] = {0, 0, 0};
-};
 
 /// The default saddle-point solver (MUMPS LDL^T of the whole matrix, options prefix -contact_, iterative
 /// tolerances rtol 1e-10); options given by the user override it at KSPSetFromOptions.
@@ -82,7 +76,7 @@ public:
   /// changed matrix, see above); kscale: the stiffness scale, the weight of the augmentation. insert_k gets
   /// Stiffness().
   /// Collective.
-  [[nodiscard]] PetscErrorCode Create(const DofMap &dofs, const std::vector<ConstraintRow> &rows,
+  [[nodiscard]] PetscErrorCode Create(const DofMap &dofs, const std::vector<SparseRow> &rows,
                                       const std::vector<double> &coords, bool constant_k, double kscale,
                                       const std::vector<PetscInt> &d_nnz_k, const std::vector<PetscInt> &o_nnz_k,
                                       const std::function<PetscErrorCode(Mat)> &insert_k);
@@ -108,16 +102,16 @@ public:
   bool Augmented() const { return augmented_; }
   /// Adds r B_C^T B_C over every candidate row to the displacement block (ADD_VALUES, flush assembly); an iterative
   /// solver's rows inactive in the current system get r_I (SetConstraints changes the weights of the next).
-  [[nodiscard]] PetscErrorCode AddAugmentation(const std::vector<ConstraintRow> &rows);
+  [[nodiscard]] PetscErrorCode AddAugmentation(const std::vector<SparseRow> &rows);
   /// Changes the augmentation weight of every owned row to weight[p] (ADD_VALUES of the difference, flush assembly).
-  [[nodiscard]] PetscErrorCode Reweight(const std::vector<ConstraintRow> &rows, const std::vector<double> &weight);
+  [[nodiscard]] PetscErrorCode Reweight(const std::vector<SparseRow> &rows, const std::vector<double> &weight);
   /// Writes the constraint rows. Plain form: active rows get their coefficients (in both B and B^T) and D = 0,
   /// inactive rows zeros and D = inactive_diag. Augmented form: every row keeps its coefficients, D = 0 on active
   /// rows and 1/r_I on inactive ones (weights r, r_I: Reweight). stabilisation s > 0 (s < r_I) adds a spring
   /// s B_i^T B_i on the normal of every inactive pair to the displacement block (plain form: the row kept with
   /// D = -1/s; augmented: D = 1/(r_I - s)), for a body that the active set does not hold. Ends with a final assembly
   /// of A. Collective.
-  [[nodiscard]] PetscErrorCode SetConstraints(const std::vector<ConstraintRow> &rows, const std::vector<char> &active,
+  [[nodiscard]] PetscErrorCode SetConstraints(const std::vector<SparseRow> &rows, const std::vector<char> &active,
                                               double inactive_diag, double stabilisation = 0);
   /// Solves A x = b; a failed or inaccurate solve is an error naming the likely cause. On return the multiplier
   /// rows of the solution hold, in both forms, the contact multipliers lambda on active rows and the spring forces
@@ -180,17 +174,17 @@ private:
   /// Collective.
   [[nodiscard]] PetscErrorCode CreateKsp(MPI_Comm comm, bool &fieldsplit);
   /// Inserts zeros at the constraint entries and the multiplier diagonal, then assembles A (final). Collective.
-  [[nodiscard]] PetscErrorCode CreatePattern(const std::vector<ConstraintRow> &rows, Mat A) const;
+  [[nodiscard]] PetscErrorCode CreatePattern(const std::vector<SparseRow> &rows, Mat A) const;
   /// A as a MATNEST of the blocks K_, Bt_, B_, D_ with their patterns (K's from insert_k, the constraint entries and
   /// the multiplier diagonal), assembled. Collective.
-  [[nodiscard]] PetscErrorCode CreateNest(const std::vector<ConstraintRow> &rows, const std::vector<PetscInt> &d_nnz_k,
+  [[nodiscard]] PetscErrorCode CreateNest(const std::vector<SparseRow> &rows, const std::vector<PetscInt> &d_nnz_k,
                                           const std::vector<PetscInt> &o_nnz_k,
                                           const std::function<PetscErrorCode(Mat)> &insert_k);
   /// Writes constraint row p (its coefficients coef, or zeros) into B and B^T and its diagonal d (INSERT_VALUES), in A
   /// or in the nest's blocks. Not collective.
-  [[nodiscard]] PetscErrorCode SetRow(const ConstraintRow &row, PetscInt p, const PetscScalar *coef, PetscScalar d);
+  [[nodiscard]] PetscErrorCode SetRow(const SparseRow &row, PetscInt p, const PetscScalar *coef, PetscScalar d);
   /// Nonzeros per owned row of the whole matrix: K's counts plus the constraint entries.
-  void RowCounts(const std::vector<ConstraintRow> &rows, const std::vector<PetscInt> &d_nnz_k,
+  void RowCounts(const std::vector<SparseRow> &rows, const std::vector<PetscInt> &d_nnz_k,
                  const std::vector<PetscInt> &o_nnz_k, std::vector<PetscInt> &d_nnz,
                  std::vector<PetscInt> &o_nnz) const;
   /// The KSP's operators and what depends on them (near-null space, fieldsplit index sets, MUMPS controls, the reuse

@@ -1,5 +1,5 @@
 // Nested dissection of a mesh's node graph by coordinate cuts.
-#include "signorini/solver/nested_dissection.hpp"
+#include "signorini/linalg/nested_dissection.hpp"
 
 #include <algorithm>
 #include <utility>

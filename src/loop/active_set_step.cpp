@@ -1,7 +1,7 @@
 // The contact solver per active-set iteration: the pairs and residual at the iterate (EvaluateIterate), the step's
 // control (certificate, stabilisation, stopping reasons), the complementarity problem as a last resort
 // (PivotedActiveSet) and the repeated steps with the pairs a failed one lacked (UnpairedAfterFailure, WidenSearch).
-#include "signorini/solver/contact_solver.hpp"
+#include "signorini/loop/contact_solver.hpp"
 
 #include "contact_solver_detail.hpp"
 

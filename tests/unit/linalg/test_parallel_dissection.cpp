@@ -1,5 +1,5 @@
 // BuildGraph and PartitionNestedDissection on one rank: the symmetrised graph, and METIS's order of the whole graph.
-#include "signorini/solver/parallel_dissection.hpp"
+#include "signorini/linalg/parallel_dissection.hpp"
 
 #include <algorithm>
 #include <numeric>

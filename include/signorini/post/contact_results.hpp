@@ -2,7 +2,7 @@
 // (contact force and its balance, contact length, peak pressure, penetration, complementarity residual).
 #pragma once
 
-#include "signorini/solver/contact_solver.hpp"
+#include "signorini/loop/contact_solver.hpp"
 
 #include <array>
 #include <vector>

@@ -13,7 +13,7 @@
 #pragma once
 
 #include "signorini/core/handle.hpp"
-#include "signorini/solver/schur_cholesky.hpp"
+#include "signorini/linalg/schur_cholesky.hpp"
 
 #include <dmumps_c.h>
 

@@ -1,5 +1,5 @@
 // Printed summary, summary.json and the Hertz comparison.
-#include "signorini/app/report.hpp"
+#include "signorini/post/report.hpp"
 
 #include "signorini/core/options.hpp"
 #include "signorini/io/json.hpp"

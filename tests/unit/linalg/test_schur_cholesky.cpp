@@ -1,7 +1,7 @@
 // The multifrontal Cholesky with a Schur complement (SchurCholesky) against dense elimination: the Schur complement,
 // the reduced right-hand side and the solution, for random positive definite blocks in several pivot orders; and its
 // refusal of singular and indefinite blocks.
-#include "signorini/solver/schur_cholesky.hpp"
+#include "signorini/linalg/schur_cholesky.hpp"
 
 #include "petsc_helpers.hpp"
 

@@ -1,5 +1,5 @@
 // Lemke's method on a dense tableau.
-#include "signorini/solver/lcp.hpp"
+#include "signorini/linalg/lcp.hpp"
 
 #include <algorithm>
 #include <cmath>

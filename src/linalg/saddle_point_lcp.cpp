@@ -1,6 +1,6 @@
 // The saddle-point system's contact problem in the multipliers: the linear complementarity problem of ContactLcp,
 // set up and solved on rank 0 from the kept factorisation's Schur complement.
-#include "signorini/solver/saddle_point.hpp"
+#include "signorini/linalg/saddle_point.hpp"
 
 #include "signorini/core/errors.hpp"
 

@@ -1,8 +1,8 @@
 // Pattern, constraint rows, KSP set-up and solve of the saddle-point system (the kept factorisation:
 // saddle_point_kept.cpp; the contact problem in the multipliers: saddle_point_lcp.cpp).
-#include "signorini/solver/saddle_point.hpp"
+#include "signorini/linalg/saddle_point.hpp"
 
-#include "signorini/solver/solver_options.hpp"
+#include "signorini/linalg/solver_options.hpp"
 
 #include "signorini/core/options.hpp"
 #include "signorini/core/progress.hpp"
@@ -15,7 +15,7 @@
 
 namespace signorini {
 
-void SaddlePointSystem::RowCounts(const std::vector<ConstraintRow> &rows, const std::vector<PetscInt> &d_nnz_k,
+void SaddlePointSystem::RowCounts(const std::vector<SparseRow> &rows, const std::vector<PetscInt> &d_nnz_k,
                                   const std::vector<PetscInt> &o_nnz_k, std::vector<PetscInt> &d_nnz,
                                   std::vector<PetscInt> &o_nnz) const {
   const PetscInt start = dofs_->RowStart(), end = start + dofs_->OwnedRows();
@@ -34,7 +34,7 @@ void SaddlePointSystem::RowCounts(const std::vector<ConstraintRow> &rows, const 
   }
 }
 
-PetscErrorCode SaddlePointSystem::CreatePattern(const std::vector<ConstraintRow> &rows, Mat P) const {
+PetscErrorCode SaddlePointSystem::CreatePattern(const std::vector<SparseRow> &rows, Mat P) const {
   const PetscScalar zeros[3] = {0, 0, 0};
   PetscFunctionBeginUser;
   for (std::size_t p = 0; p < rows.size(); ++p) {
@@ -116,7 +116,7 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::Create(const DofMap &dofs, const std::vector<ConstraintRow> &rows,
+PetscErrorCode SaddlePointSystem::Create(const DofMap &dofs, const std::vector<SparseRow> &rows,
                                          const std::vector<double> &coords, bool constant_k, double kscale,
                                          const std::vector<PetscInt> &d_nnz_k, const std::vector<PetscInt> &o_nnz_k,
                                          const std::function<PetscErrorCode(Mat)> &insert_k) {
@@ -157,7 +157,7 @@ PetscErrorCode SaddlePointSystem::Create(const DofMap &dofs, const std::vector<C
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::CreateNest(const std::vector<ConstraintRow> &rows,
+PetscErrorCode SaddlePointSystem::CreateNest(const std::vector<SparseRow> &rows,
                                              const std::vector<PetscInt> &d_nnz_k, const std::vector<PetscInt> &o_nnz_k,
                                              const std::function<PetscErrorCode(Mat)> &insert_k) {
   MPI_Comm comm = PetscObjectComm((PetscObject)dofs_->IsU());
@@ -210,7 +210,7 @@ PetscErrorCode SaddlePointSystem::CreateNest(const std::vector<ConstraintRow> &r
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::SetRow(const ConstraintRow &row, PetscInt p, const PetscScalar *coef,
+PetscErrorCode SaddlePointSystem::SetRow(const SparseRow &row, PetscInt p, const PetscScalar *coef,
                                          PetscScalar d) {
   PetscFunctionBeginUser;
   if (!nest_) {
@@ -455,7 +455,7 @@ PetscErrorCode SaddlePointSystem::CreateKeptKsp(MPI_Comm comm) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<ConstraintRow> &rows) {
+PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<SparseRow> &rows) {
   PetscFunctionBeginUser;
   // The weights of the current active set (an iterative solver's inactive rows: r_I), so that SetConstraints only
   // changes the rows whose state changes.
@@ -469,12 +469,12 @@ PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<ConstraintRo
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::Reweight(const std::vector<ConstraintRow> &rows, const std::vector<double> &weight) {
+PetscErrorCode SaddlePointSystem::Reweight(const std::vector<SparseRow> &rows, const std::vector<double> &weight) {
   PetscFunctionBeginUser;
   // Adds (w_new - w_old) B_p^T B_p: the rows must have the coefficients AddAugmentation added them with (they change
   // only with a new assembly of K, which AddAugmentation follows).
   for (std::size_t p = 0; p < rows.size(); ++p) {
-    const ConstraintRow &row = rows[p];
+    const SparseRow &row = rows[p];
     const double dw = weight[p] - weight_[p];
     if (dw == 0) continue;
     PetscScalar v[9];
@@ -530,7 +530,7 @@ PetscErrorCode SaddlePointSystem::MultiplierDiagonal(std::vector<PetscScalar> &d
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<ConstraintRow> &rows,
+PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<SparseRow> &rows,
                                                  const std::vector<char> &active, double inactive_diag,
                                                  double stabilisation) {
   const PetscScalar zeros[3] = {0, 0, 0};

@@ -1,6 +1,6 @@
 // Lemke's method (SolveLcp) against brute force over every complementary basis, on random positive definite,
 // positive semidefinite and ill-scaled problems in units from 1e-12 to 1e12, and its ray on problems without one.
-#include "signorini/solver/lcp.hpp"
+#include "signorini/linalg/lcp.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Contact results per node and for the summary.
-#include "signorini/contact/contact_results.hpp"
+#include "signorini/post/contact_results.hpp"
 
 #include <cmath>
 #include <limits>

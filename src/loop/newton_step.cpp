@@ -1,6 +1,6 @@
 // The contact solver per Newton iteration (for the linear material, per solve): the residual, the assembly of the
 // saddle-point system, the solve (full or condensed in the multiplier space) and the update with its step length.
-#include "signorini/solver/contact_solver.hpp"
+#include "signorini/loop/contact_solver.hpp"
 
 #include "contact_solver_detail.hpp"
 #include "signorini/core/progress.hpp"

@@ -1,10 +1,10 @@
 // The printed summary and summary.json of a run, and the Hertz comparison (-report_hertz R,P).
 #pragma once
 
-#include "signorini/contact/contact_results.hpp"
+#include "signorini/post/contact_results.hpp"
 #include "signorini/fem/material.hpp"
 #include "signorini/mesh/mesh.hpp"
-#include "signorini/solver/contact_solver.hpp"
+#include "signorini/loop/contact_solver.hpp"
 
 #include <map>
 #include <string>

@@ -1,0 +1,61 @@
+// The options of the loop: load stepping and Newton-Raphson, read and checked in one place.
+#include "signorini/loop/loop_options.hpp"
+
+#include "signorini/core/options.hpp"
+#include "signorini/linalg/solver_options.hpp"
+
+namespace signorini {
+
+PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptions &opts) {
+  // Ranges (README): a relative residual above 1e-4 or an absolute one above 1e-6 (force units) would accept a
+  // visibly unconverged state; the counts are bounded so that a typo cannot start a run that never ends.
+  const RealRange rtol{0, SolverOptions::NEWTON_RTOL_MAX, true, false}, atol{0, SolverOptions::NEWTON_ATOL_MAX};
+  PetscBool max_cuts_set = PETSC_FALSE, max_it_set = PETSC_FALSE, line_search_set = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Load stepping and Newton-Raphson", "signorini");
+  PetscCall(OptionsInt(PetscOptionsObject, "-load_steps", "Number of load increments", 1, SolverOptions::LOAD_STEPS_MAX,
+                       opts.load_steps));
+  PetscCall(OptionsInt(PetscOptionsObject, "-load_max_cuts", "Halvings allowed for a failed load increment (svk)", 0,
+                       SolverOptions::LOAD_MAX_CUTS_MAX, opts.max_cuts, &max_cuts_set));
+  PetscCall(OptionsInt(PetscOptionsObject, "-newton_max_it", "Newton iterations per load step (svk; at most "
+                       "-contact_max_it of them change the active set)", 1,
+                       SolverOptions::NEWTON_MAX_IT_MAX, opts.newton_max_it, &max_it_set));
+  PetscCall(OptionsReal(PetscOptionsObject, "-newton_rtol", "Residual tolerance relative to the force scale", rtol,
+                        opts.newton_rtol));
+  PetscCall(OptionsReal(PetscOptionsObject, "-newton_atol", "Absolute residual tolerance (force units)", atol,
+                        opts.newton_atol));
+  PetscCall(PetscOptionsBool("-newton_linesearch",
+                             "svk: line search on du.R(u + s du) (det F <= 1e-10 always halves the step)", "",
+                             opts.line_search, &opts.line_search, &line_search_set));
+  PetscCall(PetscOptionsBool("-newton_lagged_search",
+                             "svk with the kept factorisation (-contact_reuse_factorization): while the active set "
+                             "changes and the residual halves per step, a Newton step searches the active set in the "
+                             "multiplier space with the factored tangent (modified Newton: one forward and one "
+                             "backward pass); once it settles, inexact Newton steps with the current tangent (FGMRES "
+                             "to a residual of min(0.1, ||R||/scale) ||R||); the run's first load step that fails "
+                             "after lagged searches (not singular) is repeated with exact Newton steps before a cut; "
+                             "false: exact Newton at every iteration",
+                             "", opts.lagged_search, &opts.lagged_search, &opts.lagged_search_set));
+  PetscOptionsEnd();
+  // The linear material solves a load step by the active-set loop alone (-contact_max_it) and never cuts one: these
+  // would be ignored.
+  if (model != MaterialModel::SVK) {
+    PetscCheck(!max_cuts_set, comm, PETSC_ERR_USER_INPUT,
+               "-load_max_cuts %" PetscInt_FMT " applies to -material_model svk only (the linear material never cuts a "
+               "load step)", opts.max_cuts);
+    PetscCheck(!max_it_set, comm, PETSC_ERR_USER_INPUT,
+               "-newton_max_it %" PetscInt_FMT " applies to -material_model svk only (the linear material's "
+               "iterations are bounded by -contact_max_it)", opts.newton_max_it);
+    PetscCheck(!line_search_set, comm, PETSC_ERR_USER_INPUT,
+               "-newton_linesearch %s applies to -material_model svk only", opts.line_search ? "true" : "false");
+    PetscCheck(!opts.lagged_search_set, comm, PETSC_ERR_USER_INPUT,
+               "-newton_lagged_search %s applies to -material_model svk only, with the kept factorisation "
+               "(-contact_reuse_factorization with a MUMPS LU or Cholesky solver)",
+               opts.lagged_search ? "true" : "false");
+  }
+  // The saddle-point solver's PETSc options, before its KSP reads them (and before the mesh is read).
+  PetscCall(CheckSolverOptionValues(comm));
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini
