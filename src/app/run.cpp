@@ -367,7 +367,7 @@ PetscErrorCode Run() {
   mesh.ReleaseDM(); // the mesh's own arrays serve from here on
   output.SetObstacle(obstacle, body);
   PetscCall(output.SetContactBoundary(solver.Candidates()));
-  PetscCall(PrintHeader(comm, info, material, solver));
+  PetscCall(PrintHeader(comm, info, material, solver.State()));
 
   double t_output = 0;
   NodeContact nodes;
@@ -378,7 +378,7 @@ PetscErrorCode Run() {
     const double t0 = MPI_Wtime();
     PetscCall(PetscLogStagePush(stage_output));
     ProgressBegin("output of load step");
-    PetscCall(ComputeContactResults(solver, material, nodes, summary));
+    PetscCall(ComputeContactResults(solver.State(), material, nodes, summary));
     std::vector<Field> fields; // made one at a time as they are written
     PetscCall(StepFields(solver, nodes, fields));
     PetscCall(output.WriteStep(step, factor, fields));
@@ -401,9 +401,9 @@ PetscErrorCode Run() {
   t = MPI_Wtime();
   PetscCall(PetscLogStagePush(stage_output));
   ProgressBegin("results and output");
-  PetscCall(ComputeContactResults(solver, material, nodes, summary));
-  PetscCall(ComputeHertz(solver, material, nodes, summary, hertz));
-  PetscCall(PrintSummary(comm, solver, summary, hertz));
+  PetscCall(ComputeContactResults(solver.State(), material, nodes, summary));
+  PetscCall(ComputeHertz(solver.State(), material, nodes, summary, hertz));
+  PetscCall(PrintSummary(comm, solver.State(), summary, hertz));
   if (output.Enabled()) PetscCall(output.WriteNodeTable(NodeTableFields(solver, nodes)));
   PetscCall(PetscLogStagePop());
   info.timings["output"] = t_output + MPI_Wtime() - t;
@@ -414,7 +414,7 @@ PetscErrorCode Run() {
     v = m;
   }
   PetscCall(CheckUnusedOptions(comm, UnusedOptions::AFTER_SOLVE));
-  PetscCall(output.Publish(SummaryJson(info, material, solver, summary, hertz)));
+  PetscCall(output.Publish(SummaryJson(info, material, solver.State(), summary, hertz)));
   ProgressEnd();
   PetscFunctionReturn(0);
 }

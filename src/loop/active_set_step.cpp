@@ -77,7 +77,7 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   const bool large = material_.model == MaterialModel::SVK;
   PetscFunctionBeginUser;
   widen_to_ = 0;
-  if (stats_.reason == "DIVERGED_NONINVERTIBLE_DEFORMATION" || stats_.search_widenings >= MAX_WIDENINGS)
+  if (stats_.reason == Reason::DIVERGED_NONINVERTIBLE_DEFORMATION || stats_.search_widenings >= MAX_WIDENINGS)
     PetscFunctionReturn(0);
   // The displacement of the step's last iterate (a condensed search keeps it at its base until it is expanded; a
   // singular refactorisation left nothing to expand).
@@ -88,18 +88,18 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   PetscCall(DeepestUnpaired(mesh_, obstacle_, contact_, candidate_, held_, dirichlet_.fixed, pairs_, st.u_eval.data(),
                             unpaired, prescribed, &found, &reach));
   // A set that cycles or leaves the body free may lack the facets that would hold it, beyond the radius: such a step
-  // is repeated once with a radius of at least the body's diagonal (a block pushed towards an inclined wall 0.1 away
-  // cycled with the default radius and converged with 0.3; a body that nothing holds then says so,
-  // DIVERGED_NOT_HELD, where it cycled before).
+  // is repeated once with a radius of at least the body's diagonal (a block pushed towards an inclined wall beyond
+  // the default radius cycles with it and converges with the wall's pairs; a body that nothing holds then says so,
+  // DIVERGED_NOT_HELD, instead of cycling).
   // svk cuts the load step first (a smaller increment is the usual cure of a cycle, and its pairs within the whole
-  // diagonal would be many: the svk punch cut once in 1.5 s, and took 14.6 s with such a radius).
-  const bool can_cut = large && stats_.cuts < opts_.max_cuts && stats_.reason != "DIVERGED_NOT_HELD";
-  const bool unheld = (stats_.reason == "DIVERGED_CYCLING" || stats_.reason == "DIVERGED_NOT_HELD") && !can_cut;
+  // diagonal would be many and slow).
+  const bool can_cut = large && stats_.cuts < opts_.max_cuts && stats_.reason != Reason::DIVERGED_NOT_HELD;
+  const bool unheld = (stats_.reason == Reason::DIVERGED_CYCLING || stats_.reason == Reason::DIVERGED_NOT_HELD) && !can_cut;
   const bool penetrates = unpaired.depth > contact_.gap_tol;
   // A singular system (null pivots) with pairs found within less than the body's diagonal: the facets that would
   // hold the body may be beyond the radius (a block 0.05 above the floor of its notch, searched within 0.01, had
   // pairs with its side wall alone). Only pairs within the whole diagonal that leave it singular say it is not held.
-  const bool singular = stats_.reason == "DIVERGED_SINGULAR" && contact_.search_radius < contact_.length &&
+  const bool singular = stats_.reason == Reason::DIVERGED_SINGULAR && contact_.search_radius < contact_.length &&
                         !obstacle_.facets.empty();
   if (!penetrates && !(unheld && !widened_unheld_) && !singular) PetscFunctionReturn(0);
   // A node that went into the obstacle farther than the radius reaches, or started there deeper than it: the radius
@@ -250,7 +250,7 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
         }
         if (pivot == Pivot::UNHELD) {
           // No contact forces on these pairs hold the body (the step may then be repeated with wider pairs).
-          stats_.reason = "DIVERGED_NOT_HELD";
+          stats_.reason = Reason::DIVERGED_NOT_HELD;
           outcome = Outcome::STOP;
           PetscFunctionReturn(0);
         }
@@ -286,12 +286,12 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
         PetscCall(Certify(st.u_eval, st.rnorm, tol, cert));
         if (cert.Satisfied()) {
           certificate_ = cert;
-          stats_.reason = st.large ? "CONVERGED_ACTIVE_SET_AND_RESIDUAL" : "CONVERGED_ACTIVE_SET_UNCHANGED";
+          stats_.reason = st.large ? Reason::CONVERGED_ACTIVE_SET_AND_RESIDUAL : Reason::CONVERGED_ACTIVE_SET_UNCHANGED;
           outcome = Outcome::CONVERGED;
           PetscFunctionReturn(0);
         }
         if (cert.equilibrium <= cert.equilibrium_tol) {
-          stats_.reason = "DIVERGED_CERTIFICATE";
+          stats_.reason = Reason::DIVERGED_CERTIFICATE;
           stats_.violation = cert.Violation();
           outcome = Outcome::STOP;
           PetscFunctionReturn(0);
@@ -311,7 +311,7 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
         const bool halved = st.candidate_rnorm <= 0 || st.rnorm <= 0.5 * st.candidate_rnorm;
         st.stalled_corrections = halved ? 0 : st.stalled_corrections + 1;
         if (st.stalled_corrections >= 2) {
-          stats_.reason = "DIVERGED_EQUILIBRIUM_STALLED";
+          stats_.reason = Reason::DIVERGED_EQUILIBRIUM_STALLED;
           char text[256];
           std::snprintf(text, sizeof(text), "%.6g after two correction solves, %.6g before them, tolerance %.6g", st.rnorm,
                         st.candidate_rnorm, tol);
@@ -327,8 +327,8 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
       // The springs let the body move along the rigid motions its active set leaves free, and no pair closed. Where
       // the body goes is the free rigid part of the solve's displacement (RigidModes::FreeMotion), not the whole of
       // it: the elastic deformation of the step moves nodes by amounts unrelated to that, and a pair it brought a
-      // little nearer used to stretch the step by a huge factor (a block pushed away from its only wall along a
-      // frictionless floor then cycled instead of being reported free). If that motion brings some pair to close on
+      // little nearer would stretch the step by a huge factor (a block pushed away from its only wall along a
+      // frictionless floor would cycle instead of being reported free). If that motion brings some pair to close on
       // its facet, the body is moved along it past the point where the nearest such pair closes (once more the
       // motion beyond it), so that the next update activates it; if none, the load moves the body away from every
       // obstacle (a block on a disc held at two nodes rolls about the disc's centre, which closes no pair on it). A
@@ -360,7 +360,7 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
       PetscCall(PetscInfo(nullptr, "stabilised state: free rigid motion of size %.6g, nearest pair closes at %.6g of it\n",
                           size, reach));
       if (!std::isfinite(reach) || reach > 1e12) {
-        stats_.reason = "DIVERGED_NOT_HELD";
+        stats_.reason = Reason::DIVERGED_NOT_HELD;
         outcome = Outcome::STOP;
       } else {
         // The next check, when the move closes no pair, is made without a solve in between: it must see the same
@@ -379,9 +379,9 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
   const bool limit = st.large ? it >= opts_.newton_max_it || st.set_changes > contact_.max_it : it >= contact_.max_it;
   bool cycling = false;
   if (std::isfinite(st.rnorm) && !limit) PetscCall(active_set_.Seen(st.next, keys_, st.large ? 3 : 1, cycling));
-  if (!std::isfinite(st.rnorm)) stats_.reason = "DIVERGED_NONINVERTIBLE_DEFORMATION";
-  else if (limit) stats_.reason = "DIVERGED_MAX_IT";
-  else if (cycling && changes > 0 && it > 0) stats_.reason = "DIVERGED_CYCLING";
+  if (!std::isfinite(st.rnorm)) stats_.reason = Reason::DIVERGED_NONINVERTIBLE_DEFORMATION;
+  else if (limit) stats_.reason = Reason::DIVERGED_MAX_IT;
+  else if (cycling && changes > 0 && it > 0) stats_.reason = Reason::DIVERGED_CYCLING;
   else PetscFunctionReturn(0);
   outcome = Outcome::STOP;
   PetscFunctionReturn(0);

@@ -267,17 +267,17 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     Outcome outcome;
     PetscCall(StepControl(st, it, changes, outcome));
     if (outcome == Outcome::STOP && !st.singular && st.pivoted < 2 &&
-        (stats_.reason == "DIVERGED_CYCLING" || stats_.reason == "DIVERGED_NOT_HELD" ||
-         stats_.reason == "DIVERGED_MAX_IT")) {
+        (stats_.reason == Reason::DIVERGED_CYCLING || stats_.reason == Reason::DIVERGED_NOT_HELD ||
+         stats_.reason == Reason::DIVERGED_MAX_IT)) {
       // The rule's sets cycled, or the body seemed free: the linear material's last resort, a finite method (again
       // after a set that came back was pivoted: the sets from it may have cycled, or not held the body). Out of
       // iterations, only its verdict on the body counts.
       Pivot pivot;
-      PetscCall(PivotedActiveSet(st, it, stats_.reason.c_str(), pivot));
-      if (pivot == Pivot::UNHELD) stats_.reason = "DIVERGED_NOT_HELD";
-      else if (pivot == Pivot::SET && stats_.reason != "DIVERGED_MAX_IT") {
+      PetscCall(PivotedActiveSet(st, it, ReasonName(stats_.reason), pivot));
+      if (pivot == Pivot::UNHELD) stats_.reason = Reason::DIVERGED_NOT_HELD;
+      else if (pivot == Pivot::SET && stats_.reason != Reason::DIVERGED_MAX_IT) {
         outcome = Outcome::SOLVE, changes = 1;
-        stats_.reason.clear();
+        stats_.reason = Reason::NONE;
       }
     }
     st.searching = it == 0 || changes > 0;
@@ -294,7 +294,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
   }
   // A factorisation found null pivots: the supports and the candidate pairs do not hold the body, or the MUMPS controls
   // call regular pivots null (the step may be repeated with the pairs of a wider radius, UnpairedAfterFailure).
-  if (st.singular) stats_.reason = "DIVERGED_SINGULAR";
+  if (st.singular) stats_.reason = Reason::DIVERGED_SINGULAR;
   if (!ok) PetscCall(UnpairedAfterFailure(st, it));
   PetscFunctionReturn(0);
 }
@@ -339,183 +339,150 @@ PetscErrorCode ContactSolver::RecordIteration(PetscInt step, PetscInt it, double
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ContactSolver::SaveConverged(Converged &c) const {
+  PetscFunctionBeginUser;
+  PetscCall(OwnedDisplacement(c.u));
+  c.pairs = pairs_;
+  c.lambda = lambda_;
+  c.mult = mult_;
+  c.active = active_set_.Flags();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::RestoreConverged(const Converged &c) {
+  PetscFunctionBeginUser;
+  PetscCall(SetOwnedDisplacement(c.u));
+  // The tangent of the failed attempt is not lagged into the next one.
+  k_assembled_ = false;
+  bool differ = pairs_.size() != c.pairs.size() ||
+                !std::equal(pairs_.begin(), pairs_.end(), c.pairs.begin(),
+                            [](const ContactPair &a, const ContactPair &b) {
+                              return a.vertex == b.vertex && a.facet == b.facet;
+                            });
+  // Collective decision: the pairs may have changed on some ranks only.
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &differ, 1, MPI_CXX_BOOL, MPI_LOR, mesh_.Comm()));
+  if (differ) PetscCall(AdoptPairs(c.pairs, c.lambda, c.mult, c.active));
+  pairs_ = c.pairs;
+  lambda_ = c.lambda;
+  mult_ = c.mult;
+  active_set_.Set(c.active);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt, double)> &step_done) {
   MPI_Comm comm = mesh_.Comm();
   const bool large = material_.model == MaterialModel::SVK;
   PetscFunctionBeginUser;
-  std::vector<double> u_saved;
-  PetscCall(OwnedDisplacement(u_saved));
-  std::vector<ContactPair> pairs_saved = pairs_;
-  std::vector<double> lambda_saved = lambda_, mult_saved = mult_;
-  std::vector<char> active_saved = active_set_.Flags();
+  Converged saved;
+  PetscCall(SaveConverged(saved));
   double t = 0, dt = 1.0 / opts_.load_steps;
   PetscInt step = 0;
-  std::string exact_repeat; // svk: the failure that this attempt repeats with exact Newton steps (below), if it does
-  bool exact_tried = false;  // svk: a step has been repeated so (once per run)
+  Reason repeated = Reason::NONE; // svk: the failure that this attempt repeats with exact Newton steps, if it does
+  bool exact_tried = false;       // svk: a step has been repeated so (once per run)
   while (t < 1.0 - 1e-12) {
     const double t_try = std::min(1.0, t + dt);
     bool ok;
     PetscCall(LoadStep(step + 1, t_try, step == 0, ok));
     if (contact_.converged_reason)
       PetscCall(PetscPrintf(comm, "Contact solve %s: %s at load factor %.6g after %" PetscInt_FMT " solve(s)\n",
-                            ok ? "converged" : "diverged", stats_.reason.c_str(), t_try, stats_.solves));
+                            ok ? "converged" : "diverged", ReasonName(stats_.reason), t_try, stats_.solves));
     if (ok) {
       t = t_try;
-      ++step;
-      stats_.steps = step;
-      PetscCall(OwnedDisplacement(u_saved));
-      pairs_saved = pairs_;
-      mult_saved = mult_;
-      lambda_saved = lambda_;
-      active_saved = active_set_.Flags();
-      // After the last solve the factorisation or preconditioner goes before the last step's output (1M dofs in 2D:
-      // MUMPS's factors 1.35 GB, fieldsplit_gamg's blocks and hierarchy 0.36 GB).
+      stats_.steps = ++step;
+      PetscCall(SaveConverged(saved));
+      // After the last solve the factorisation or preconditioner goes before the last step's output.
       if (t >= 1.0 - 1e-12) PetscCall(system_->Release());
       PetscCall(step_done(step, t));
       continue;
     }
-    // The repeat with exact Newton steps (below) of a body found free that fails otherwise leaves the finding it was
-    // to check: not held. The repeat of another failure that fails too leaves the step as it was: that failure, the
-    // lagged searches again, and a cut (exact Newton steps at every cut lost the svk block of seed 777 case 224,
-    // which converges by lagged searches in 32 load steps).
-    if (exact_repeat == "DIVERGED_NOT_HELD") stats_.reason = exact_repeat, widen_to_ = 0;
-    else if (!exact_repeat.empty()) stats_.reason = exact_repeat, widen_to_ = 0, exact_newton_ = false;
-    exact_repeat.clear();
-    if (widen_to_ > 0) {
-      // A candidate went into a facet it has no pair with: the step is repeated, from the last converged state, with
-      // pairs found within a wider radius (linear material: and that pair; not a cut: the increment stays).
-      if (widen_node_ >= 0)
-        PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s) with node %" PetscInt_FMT " %.6g inside the "
-                              "obstacle, on a facet it has no contact pair with: searching the pairs again within %.6g "
-                              "(was %.6g)\n", t_try, stats_.reason.c_str(), widen_node_, widen_depth_, widen_to_,
-                              contact_.search_radius));
-      else
-        PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s): searching the pairs again within %.6g (was %.6g), "
-                              "for facets beyond the radius that may hold the body\n", t_try, stats_.reason.c_str(),
-                              widen_to_, contact_.search_radius));
-      PetscCall(SetOwnedDisplacement(u_saved));
+    const RetryHistory history{large,         opts_.lagged_search && system_->ReusesFactorization(),
+                               exact_newton_, exact_tried,
+                               stats_.cuts,   opts_.max_cuts,
+                               first_unheld_};
+    const RetryDecision d = DecideRetry({stats_.reason, widen_to_ > 0, repeated}, history);
+    stats_.reason = d.reason;
+    exact_newton_ = d.exact_newton;
+    if (!d.wider_search) widen_to_ = 0;
+    repeated = Reason::NONE;
+    switch (d.action) {
+    case Retry::WIDEN:
+      PetscCall(PrintWidening(t_try));
+      PetscCall(SetOwnedDisplacement(saved.u));
       k_assembled_ = false;
-      pairs_ = pairs_saved;
-      PetscCall(WidenSearch(lambda_saved, mult_saved, active_saved));
-      pairs_saved = pairs_;
-      lambda_saved = lambda_;
-      mult_saved = mult_;
-      active_saved = active_set_.Flags();
-      continue;
-    }
-    // svk: a step that fails at the end of the lagged searches' path may converge with exact Newton steps. Their
-    // stale tangent and the stabilised moves along a free rigid motion can carry the iterate where the step cannot
-    // converge: an svk block tipping on a disc towards a wall (seed 4242, case 270) was moved off the wall and past its
-    // balance on the disc, from where the load rolls it off; a block dropping 0.04 onto a floor beside an inclined
-    // wall (seed 31337, case 110), found free and searched again within the diagonal, then deformed non-invertibly,
-    // and one over a disc (case 69) did so at once, each down to the smallest cut, while exact Newton steps converge
-    // in one step. So before a cut, after any wider search, the step is repeated once in a run, from the last converged
-    // state, with exact Newton steps (as after a set that came back), and so are the load steps after it when it
-    // converges. A singular system is no matter of the path.
-    const bool lagged = opts_.lagged_search && system_->ReusesFactorization();
-    if (large && lagged && !exact_newton_ && !exact_tried && stats_.reason != "DIVERGED_SINGULAR") {
-      exact_newton_ = true;
+      pairs_ = saved.pairs;
+      PetscCall(WidenSearch(saved.lambda, saved.mult, saved.active));
+      saved.pairs = pairs_;
+      saved.lambda = lambda_;
+      saved.mult = mult_;
+      saved.active = active_set_.Flags();
+      break;
+    case Retry::EXACT_NEWTON:
       exact_tried = true;
-      exact_repeat = stats_.reason;
+      repeated = stats_.reason;
       PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s) after lagged Newton searches: repeating it with "
-                            "exact Newton steps\n", t_try, stats_.reason.c_str()));
-      PetscCall(SetOwnedDisplacement(u_saved));
+                            "exact Newton steps\n", t_try, ReasonName(stats_.reason)));
+      PetscCall(SetOwnedDisplacement(saved.u));
       k_assembled_ = false;
-      PetscCall(AdoptPairs(pairs_saved, lambda_saved, mult_saved, active_saved));
-      continue;
+      PetscCall(AdoptPairs(saved.pairs, saved.lambda, saved.mult, saved.active));
+      break;
+    case Retry::CUT:
+      stats_.cuts++;
+      dt *= 0.5;
+      PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s); cutting the increment to %.6g\n", t_try,
+                            ReasonName(stats_.reason), dt));
+      PetscCall(RestoreConverged(saved));
+      break;
+    case Retry::FAIL: {
+      std::string message;
+      PetscCall(Failure(t_try, d, message));
+      SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "%s", message.c_str());
     }
-    // A body found free, then repeated with the facets of a wider radius, stays free when the repeat fails otherwise
-    // (it cycles or runs out of iterations): the first finding is the clearer report. Not when the repeat's
-    // deformation became non-invertible before any verdict: the wider pairs may hold the body (an svk block on a disc
-    // beside an inclined wall, found free with the pairs of the default radius, is held by the wall's: seed 777 case
-    // 136) or not (seed 777 case 56), so the report is the deformation, with both facts.
-    const bool fatal = !(large && stats_.cuts < opts_.max_cuts);
-    const bool deformed = stats_.reason == "DIVERGED_NONINVERTIBLE_DEFORMATION";
-    std::string context;
-    if (first_unheld_ == "DIVERGED_NOT_HELD" && stats_.reason != first_unheld_ && fatal) {
-      if (!deformed) stats_.reason = first_unheld_;
-      else {
-        char text[200];
-        std::snprintf(text, sizeof(text), " (the body was found not held with the pairs of a narrower radius; "
-                      "repeated with those within %.6g, it deformed so before it could be found held or not)",
-                      contact_.search_radius);
-        context = text;
-      }
     }
-    const std::string &why = stats_.reason;
-    // A singular system is no matter of the increment: never cut.
-    const bool singular = why == "DIVERGED_SINGULAR";
-    char within[128] = "the supports (there is no obstacle)";
-    if (!obstacle_.facets.empty())
-      std::snprintf(within, sizeof(within), "the supports and the candidate pairs within -contact_search_radius %.6g",
-                    contact_.search_radius);
-    const std::string what =
-        singular
-            ? system_->SingularReport(std::string("the body is not held by ") + within +
-                                      "; add Dirichlet conditions (e.g. on a symmetry line) or candidate contact "
-                                      "nodes so that every rigid-body motion is removed")
-        : why == "DIVERGED_CYCLING"
-            ? "the active set cycles (an earlier set came back, also with one pair switched per update); a body held "
-              "only by contact at a point it can rock about (e.g. a block on a disc) cycles so: check that the "
-              "supports and obstacles hold every rigid-body motion"
-        : why == "DIVERGED_NONINVERTIBLE_DEFORMATION" ? "the deformation became non-invertible (det F <= 1e-10)" + context
-        : why == "DIVERGED_NOT_HELD"
-            ? (unheld_detail_.empty()
-                   ? std::string("the body is not held: along a rigid-body motion that the supports and the active "
-                                 "contact leave free, the load moves it away from every obstacle")
-                   : "the body is not held: " + unheld_detail_) +
-                  " (add Dirichlet conditions, or check the obstacle's position and orientation and "
-                  "-contact_search_radius)"
-        : why == "DIVERGED_CERTIFICATE"
-            ? "the state is not a contact solution (" + stats_.violation + ") and the active-set rule cannot change it"
-        : why == "DIVERGED_EQUILIBRIUM_STALLED"
-            ? "the equilibrium residual stalls above its tolerance (" + stats_.violation + "): the solver cannot "
-              "resolve the system more accurately (ill-conditioned, e.g. -material_nu near 0.5; or an iterative "
-              "solver's tolerance); loosen -newton_rtol or use a direct solver"
-        : large ? "the Newton loop reached its iteration limit (-newton_max_it Newton iterations, of which at most "
-                  "-contact_max_it change the active set)"
-                : "the active-set loop reached its iteration limit (-contact_max_it)";
-    // svk out of iterations on a body that only contact can hold: a hint where to look (seed 31337: svk cubes that
-    // tip off a sphere, which the linear material finds not held, and a block that must roll 0.5 on a disc to reach
-    // a wall, which the linear material solves, ran out of iterations).
-    std::string hint;
-    if (large && fatal && why == "DIVERGED_MAX_IT") {
-      bool held_by_supports;
-      PetscCall(rigid_.Held(keys_, normals_, std::vector<char>(active_set_.Flags().size(), 0), held_by_supports));
-      if (!held_by_supports)
-        hint = "; the supports leave a rigid-body motion free, so only contact holds the body: one that must travel "
-               "far along that motion to be held, or that nothing holds, can end so (the same case with "
-               "-material_model linear says whether contact holds it)";
-    }
-    PetscCheck(large && stats_.cuts < opts_.max_cuts && why != "DIVERGED_NOT_HELD" && !singular, comm,
-               PETSC_ERR_NOT_CONVERGED, "the contact solve did not converge at load factor %.6g: %s: %s%s%s", t_try,
-               why.c_str(), what.c_str(),
-               large && !singular ? "; no more load-step cuts allowed (-load_max_cuts)" : "", hint.c_str());
-    stats_.cuts++;
-    dt *= 0.5;
-    PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s); cutting the increment to %.6g\n", t_try,
-                          why.c_str(), dt));
-    PetscCall(SetOwnedDisplacement(u_saved));
-    // The tangent of the failed attempt is not lagged into the next one.
-    k_assembled_ = false;
-    bool differ = pairs_.size() != pairs_saved.size() ||
-                  !std::equal(pairs_.begin(), pairs_.end(), pairs_saved.begin(),
-                              [](const ContactPair &a, const ContactPair &b) {
-                                return a.vertex == b.vertex && a.facet == b.facet;
-                              });
-    // Collective decision: the pairs may have changed on some ranks only.
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &differ, 1, MPI_CXX_BOOL, MPI_LOR, comm));
-    if (differ) PetscCall(AdoptPairs(pairs_saved, lambda_saved, mult_saved, active_saved));
-    pairs_ = pairs_saved;
-    lambda_ = lambda_saved;
-    mult_ = mult_saved;
-    active_set_.Set(active_saved);
   }
   stats_.search_radius = contact_.search_radius;
   // The final state is the last converged step's, whose pairs (states_), internal force (fint_) and certificate
   // StepControl left as they are.
   PetscCheck(certificate_.Satisfied(), comm, PETSC_ERR_NOT_CONVERGED,
              "the final state is not a contact solution: %s", certificate_.Violation().c_str());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::PrintWidening(double t_try) const {
+  MPI_Comm comm = mesh_.Comm();
+  PetscFunctionBeginUser;
+  // A candidate went into a facet it has no pair with: the step is repeated, from the last converged state, with
+  // pairs found within a wider radius (linear material: and that pair; not a cut: the increment stays).
+  if (widen_node_ >= 0)
+    PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s) with node %" PetscInt_FMT " %.6g inside the "
+                          "obstacle, on a facet it has no contact pair with: searching the pairs again within %.6g "
+                          "(was %.6g)\n", t_try, ReasonName(stats_.reason), widen_node_, widen_depth_, widen_to_,
+                          contact_.search_radius));
+  else
+    PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s): searching the pairs again within %.6g (was %.6g), "
+                          "for facets beyond the radius that may hold the body\n", t_try, ReasonName(stats_.reason),
+                          widen_to_, contact_.search_radius));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::Failure(double t_try, const RetryDecision &d, std::string &message) {
+  const bool large = material_.model == MaterialModel::SVK;
+  PetscFunctionBeginUser;
+  FailureReport r;
+  r.reason = d.reason;
+  r.load_factor = t_try;
+  r.svk = large;
+  r.deformed_after_unheld = d.deformed_after_unheld;
+  r.has_obstacle = !obstacle_.facets.empty();
+  r.search_radius = contact_.search_radius;
+  if (d.reason == Reason::DIVERGED_SINGULAR) r.singular_prefix = system_->SingularReport("");
+  r.unheld_detail = unheld_detail_;
+  r.violation = stats_.violation;
+  if (large && d.reason == Reason::DIVERGED_MAX_IT) {
+    bool held_by_supports;
+    PetscCall(rigid_.Held(keys_, normals_, std::vector<char>(active_set_.Flags().size(), 0), held_by_supports));
+    r.free_without_contact = !held_by_supports;
+  }
+  message = FailureMessage(r);
   PetscFunctionReturn(0);
 }
 

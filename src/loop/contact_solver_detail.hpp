@@ -10,9 +10,9 @@
 namespace signorini::detail {
 
 /// The smallest det F of an invertible deformation. A cell that a trial step squeezes to within round-off of zero
-/// volume has a det F of about 1e-16 whose sign round-off decides: the same trial state was invertible on two ranks and
-/// not on one, and the two took different paths (svk, seeds 4242 cases 101 and 163; test
-/// rank_independence:svk_degenerate_cell). It counts as non-invertible on any number of ranks.
+/// volume has a det F of about 1e-16 whose sign round-off decides, so that the same trial state could be invertible on
+/// two ranks and not on one (test rank_independence:svk_degenerate_cell). It counts as non-invertible on any number
+/// of ranks.
 constexpr double MIN_DET_F = 1e-10;
 
 /// Log events of the loop, registered by ContactSolver::Setup.

@@ -21,7 +21,7 @@ namespace signorini {
 
 namespace {
 
-/// Peak resident memory per cell of a whole run with the default solver on one rank (README, Performance: 6.6 GB at
+/// Peak resident memory per cell of a whole run with the default solver on one rank (docs/performance.md: 6.6 GB at
 /// 2.06M displacement dofs, 2.05M triangles of the Hertz mesh).
 constexpr double BYTES_PER_CELL = 3.2e3;
 

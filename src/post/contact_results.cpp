@@ -6,20 +6,20 @@
 
 namespace signorini {
 
-PetscErrorCode ComputeContactResults(ContactSolver &solver, const Material &material, NodeContact &nodes,
+PetscErrorCode ComputeContactResults(const SolvedState &state, const Material &material, NodeContact &nodes,
                                      ContactSummary &s) {
-  const Mesh &mesh = solver.GetMesh();
-  const DofMap &dofs = solver.Dofs();
+  const Mesh &mesh = state.mesh;
+  const DofMap &dofs = state.dofs;
   const int dim = mesh.Dim();
   const PetscInt nv = mesh.NumLocalVertices();
-  const auto &pairs = solver.Pairs();
-  const auto &states = solver.States();
-  const auto &normals = solver.Normals();
+  const auto &pairs = state.pairs;
+  const auto &states = state.states;
+  const auto &normals = state.normals;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   MPI_Comm comm = mesh.Comm();
   PetscFunctionBeginUser;
   std::vector<double> w;
-  PetscCall(TributaryLengths(mesh, solver.Candidates(), w));
+  PetscCall(TributaryLengths(mesh, state.candidates, w));
   nodes.lambda.assign(nv, 0.0);
   nodes.pressure.assign(nv, 0.0);
   nodes.gap.assign(nv, nan);
@@ -43,7 +43,7 @@ PetscErrorCode ComputeContactResults(ContactSolver &solver, const Material &mate
   }
   for (PetscInt v = 0; v < nv; ++v) {
     if (!mesh.Owned(v)) continue;
-    counts[0] += solver.Candidates()[v];
+    counts[0] += state.candidates[v];
     if (w[v] > 0) nodes.pressure[v] = nodes.lambda[v] / (w[v] * material.thickness);
     if (nodes.active[v]) {
       counts[3]++;
@@ -53,8 +53,8 @@ PetscErrorCode ComputeContactResults(ContactSolver &solver, const Material &mate
   }
   // Applied load, reactions R = F_int - f - lambda n on the Dirichlet dofs, largest displacement, strain energy.
   const PetscScalar *fi, *fe;
-  PetscCall(VecGetArrayRead(solver.Fint(), &fi));
-  PetscCall(VecGetArrayRead(solver.Fext(), &fe));
+  PetscCall(VecGetArrayRead(state.fint, &fi));
+  PetscCall(VecGetArrayRead(state.fext, &fe));
   std::vector<double> contact_at(dofs.OwnedU(), 0.0);
   for (std::size_t p = 0; p < pairs.size(); ++p)
     for (int k = 0; k < dim; ++k) contact_at[dofs.LocalOffset(pairs[p].vertex, k)] += states[p].lambda * normals[p][k];
@@ -64,16 +64,16 @@ PetscErrorCode ComputeContactResults(ContactSolver &solver, const Material &mate
     double u2 = 0;
     for (int k = 0; k < dim; ++k) {
       const PetscInt i = dofs.LocalOffset(v, k);
-      const double u = solver.ULocal()[v * dim + k];
+      const double u = state.u_local[v * dim + k];
       u2 += u * u;
       local[4 + k] += fe[i];
-      if (solver.Dirichlet().fixed[v * dim + k]) local[8 + k] += fi[i] - fe[i] - contact_at[i];
+      if (state.dirichlet.fixed[v * dim + k]) local[8 + k] += fi[i] - fe[i] - contact_at[i];
       local[12] += 0.5 * fi[i] * u;
     }
     umax = std::max(umax, std::sqrt(u2));
   }
-  PetscCall(VecRestoreArrayRead(solver.Fint(), &fi));
-  PetscCall(VecRestoreArrayRead(solver.Fext(), &fe));
+  PetscCall(VecRestoreArrayRead(state.fint, &fi));
+  PetscCall(VecRestoreArrayRead(state.fext, &fe));
   maxes[0] = std::max(maxes[0], 0.0);
   double global[16], gmax[5], lmax[5] = {maxes[0], maxes[1], maxes[2], maxes[3], umax};
   PetscInt gcounts[4];

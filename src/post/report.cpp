@@ -34,9 +34,9 @@ namespace {
 
 /// The contact centre: the candidate node of the first contact (the smallest initial gap; the smallest original
 /// vertex number at a tie), its reference position and the normal of its pair, the same on every rank. Collective.
-PetscErrorCode ContactCentre(ContactSolver &solver, double centre[3], double normal[3]) {
-  const Mesh &mesh = solver.GetMesh();
-  const auto &pairs = solver.Pairs();
+PetscErrorCode ContactCentre(const SolvedState &state, double centre[3], double normal[3]) {
+  const Mesh &mesh = state.mesh;
+  const auto &pairs = state.pairs;
   MPI_Comm comm = mesh.Comm();
   double g_local = std::numeric_limits<double>::infinity(), g_min;
   PetscFunctionBeginUser;
@@ -70,9 +70,9 @@ PetscErrorCode ContactCentre(ContactSolver &solver, double centre[3], double nor
 /// have a / R = 0.085 in 2D and 0.08 in 3D).
 constexpr double HERTZ_MAX_A_OVER_R = 0.5;
 
-PetscErrorCode ComputeHertz(ContactSolver &solver, const Material &m, const NodeContact &nodes,
+PetscErrorCode ComputeHertz(const SolvedState &state, const Material &m, const NodeContact &nodes,
                             const ContactSummary &s, HertzReport &h) {
-  const Mesh &mesh = solver.GetMesh();
+  const Mesh &mesh = state.mesh;
   const int dim = mesh.Dim();
   MPI_Comm comm = mesh.Comm();
   PetscFunctionBeginUser;
@@ -120,7 +120,7 @@ PetscErrorCode ComputeHertz(ContactSolver &solver, const Material &m, const Node
   // outer ring average the pressure over the edge of the contact zone).
   constexpr double HERTZ_FIT_RADIUS = 0.8;
   double centre[3], normal[3];
-  PetscCall(ContactCentre(solver, centre, normal));
+  PetscCall(ContactCentre(state, centre, normal));
   std::vector<double> r2(mesh.NumLocalVertices(), 0.0);
   double r2_out_local = 0, r2_out;
   for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) {
@@ -158,12 +158,12 @@ PetscErrorCode ComputeHertz(ContactSolver &solver, const Material &m, const Node
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m, ContactSolver &solver) {
-  const Mesh &mesh = solver.GetMesh();
-  const DofMap &dofs = solver.Dofs();
+PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m, const SolvedState &state) {
+  const Mesh &mesh = state.mesh;
+  const DofMap &dofs = state.dofs;
   PetscInt owned = 0, candidates;
   PetscFunctionBeginUser;
-  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) owned += mesh.Owned(v) && solver.Candidates()[v];
+  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) owned += mesh.Owned(v) && state.candidates[v];
   PetscCallMPI(MPI_Allreduce(&owned, &candidates, 1, MPIU_INT, MPI_SUM, comm));
   if (mesh.Dim() == 2)
     PetscCall(PetscPrintf(comm, "signorini: 2D %s, plane %s, E = %.6g, nu = %.6g, thickness = %.6g\n", m.ModelName(),
@@ -177,13 +177,13 @@ PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PrintSummary(MPI_Comm comm, ContactSolver &solver, const ContactSummary &s, const HertzReport &h) {
-  const SolveStats &st = solver.Stats();
-  const int dim = solver.GetMesh().Dim();
+PetscErrorCode PrintSummary(MPI_Comm comm, const SolvedState &state, const ContactSummary &s, const HertzReport &h) {
+  const SolveStats &st = state.stats;
+  const int dim = state.mesh.Dim();
   PetscFunctionBeginUser;
   PetscCall(PetscPrintf(comm, "  %s after %" PetscInt_FMT " active-set iteration(s) in %" PetscInt_FMT
                         " load step(s): %" PetscInt_FMT " active pair(s) on %" PetscInt_FMT " node(s)\n",
-                        st.reason.c_str(), st.active_set_iterations, st.steps, s.active_pairs, s.active_nodes));
+                        ReasonName(st.reason), st.active_set_iterations, st.steps, s.active_pairs, s.active_nodes));
   const auto vec = [dim](const std::array<double, 3> &v) {
     char text[96];
     if (dim == 2) std::snprintf(text, sizeof(text), "(%.6g, %.6g)", v[0], v[1]);
@@ -218,17 +218,17 @@ PetscErrorCode PrintSummary(MPI_Comm comm, ContactSolver &solver, const ContactS
   PetscFunctionReturn(0);
 }
 
-std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &solver, const ContactSummary &s,
+std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedState &state, const ContactSummary &s,
                         const HertzReport &h) {
-  const SolveStats &st = solver.Stats();
-  const DofMap &dofs = solver.Dofs();
-  const int dim = solver.GetMesh().Dim();
+  const SolveStats &st = state.stats;
+  const DofMap &dofs = state.dofs;
+  const int dim = state.mesh.Dim();
   const auto vec3 = [dim](const std::array<double, 3> &v) { return std::vector<double>(v.begin(), v.begin() + dim); };
   JsonWriter j;
   j.BeginObject();
-  const Certificate &cert = solver.GetCertificate();
+  const Certificate &cert = state.certificate;
   j.String("version", SIGNORINI_VERSION);
-  j.String("status", cert.Satisfied() ? "converged" : "not_converged").String("reason", st.reason);
+  j.String("status", cert.Satisfied() ? "converged" : "not_converged").String("reason", ReasonName(st.reason));
   j.BeginObject("certificate")
       .Bool("satisfied", cert.Satisfied())
       .Number("max_penetration", cert.max_penetration)
@@ -246,8 +246,8 @@ std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &s
   j.BeginObject("mesh")
       .String("file", info.mesh_file)
       .Integer("dim", dim)
-      .Integer("nodes", solver.GetMesh().NumGlobalNodes())
-      .Integer("cells", solver.GetMesh().NumGlobalCells())
+      .Integer("nodes", state.mesh.NumGlobalNodes())
+      .Integer("cells", state.mesh.NumGlobalCells())
       .Integer("ranks", info.ranks)
       .EndObject();
   j.BeginObject("material")

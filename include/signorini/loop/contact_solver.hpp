@@ -10,6 +10,8 @@
 #include "signorini/fem/assembly.hpp"
 #include "signorini/linalg/saddle_point.hpp"
 #include "signorini/loop/loop_options.hpp"
+#include "signorini/loop/retry_policy.hpp"
+#include "signorini/loop/solved_state.hpp"
 
 #include <functional>
 #include <map>
@@ -19,27 +21,6 @@
 #include <vector>
 
 namespace signorini {
-
-/// One line of the monitor.
-struct IterationRecord {
-  PetscInt step, iteration, active, changed, krylov;
-  double load_factor, min_lambda, max_penetration, residual;
-  double solve_time; ///< seconds of the saddle-point solve that produced this iterate (factorisation included)
-};
-
-/// Timings (seconds, maximum over ranks) and counters of a run.
-struct SolveStats {
-  double time_assembly = 0, time_active_set = 0, time_solve = 0;
-  PetscInt solves = 0, active_set_iterations = 0, krylov_iterations = 0, steps = 0, cuts = 0;
-  PetscInt repairings = 0;        ///< svk: pair searches that changed the pairs (each rebuilds the pattern)
-  PetscInt search_widenings = 0;  ///< load steps repeated with a wider search radius (WidenSearch)
-  PetscInt pivoted_sets = 0;      ///< complementarity problems solved by Lemke's method (PivotedActiveSet)
-  double search_radius = 0;       ///< the search radius of the final pairs
-  PetscInt stabilised_solves = 0; ///< solves with the stabilisation springs (the active set did not hold the body)
-  std::vector<IterationRecord> history;
-  std::string reason;
-  std::string violation; ///< the certificate's failed condition, with reason DIVERGED_CERTIFICATE
-};
 
 /// Index of pairs by (local vertex, facet).
 using PairIndex = std::map<std::pair<PetscInt, PetscInt>, std::size_t>;
@@ -93,6 +74,11 @@ public:
   /// The certificate of the final state (Solve).
   const Certificate &GetCertificate() const { return certificate_; }
   SaddlePointSystem &System() { return *system_; }
+  /// A plain view of the final state for post-processing (valid while the solver lives).
+  SolvedState State() const {
+    return {mesh_,   dofs_,    dirichlet_, pairs_, states_,       normals_,
+            candidate_, u_local_, fext_,      fint_,  stats_, certificate_};
+  }
   /// External load and internal force at the converged state (displacement rows of the saddle-point layout).
   Vec Fext() const { return fext_; }
   Vec Fint() const { return fint_; }
@@ -101,11 +87,11 @@ public:
 private:
   /// The saddle-point system, its vectors and the pair keys for the current pairs. Collective.
   [[nodiscard]] PetscErrorCode CreateSystem();
-  /// svk: searches the pairs again at the current configuration u_eval (force, or when a candidate moved more than
-  /// half the search radius since the last search); new pairs rebuild the system (rebuilt). Collective.
   /// The certificate of the current state (states_ and the displacement u_eval, dim values per local vertex): the
   /// active-set conditions over the pairs, and no candidate node without a pair inside the obstacle. Collective.
   [[nodiscard]] PetscErrorCode Certify(const std::vector<double> &u_eval, double rnorm, double tol, Certificate &cert);
+  /// svk: searches the pairs again at the current configuration u_eval (force, or when a candidate moved more than
+  /// half the search radius since the last search); new pairs rebuild the system (rebuilt). Collective.
   [[nodiscard]] PetscErrorCode Repair(const std::vector<double> &u_eval, bool force, bool &rebuilt);
   /// Takes new pairs (with their multipliers and active flags), keeping the displacement. Collective.
   [[nodiscard]] PetscErrorCode AdoptPairs(std::vector<ContactPair> pairs, const std::vector<double> &lambda,
@@ -115,6 +101,20 @@ private:
   [[nodiscard]] PetscErrorCode AdoptPairsFrom(std::vector<ContactPair> pairs, const PairIndex &old,
                                               const std::vector<double> &lambda, const std::vector<double> &mult,
                                               const std::vector<char> &active);
+  /// The state of the last converged load step, to which a failed one goes back.
+  struct Converged {
+    std::vector<double> u; ///< owned displacement (OwnedDisplacement)
+    std::vector<ContactPair> pairs;
+    std::vector<double> lambda, mult;
+    std::vector<char> active;
+  };
+  [[nodiscard]] PetscErrorCode SaveConverged(Converged &c) const;
+  /// Goes back to c after a failed attempt (the pairs adopted again where they changed on some rank). Collective.
+  [[nodiscard]] PetscErrorCode RestoreConverged(const Converged &c);
+  /// Prints why a failed load step is repeated with a wider pair search. Collective.
+  [[nodiscard]] PetscErrorCode PrintWidening(double t_try) const;
+  /// The message of a run that stops after a failed step at load factor t_try (FailureMessage). Collective.
+  [[nodiscard]] PetscErrorCode Failure(double t_try, const RetryDecision &d, std::string &message);
   [[nodiscard]] PetscErrorCode OwnedDisplacement(std::vector<double> &u) const;
   [[nodiscard]] PetscErrorCode SetOwnedDisplacement(const std::vector<double> &u);
   [[nodiscard]] PetscErrorCode UpdateLocal();
@@ -193,7 +193,7 @@ private:
   /// stiffness, so not on E / load or the mesh (the spring itself carried 0.004 of the load of a block held between a
   /// floor and a wall under a small load). A body that its pairs hold leaves round-off (3e-8 at most in the tests), one
   /// that rolls off a disc or a sphere, or slides away along a frictionless floor, 0.009 to 0.3 in the tests and
-  /// surveys (README), and 1 when its load pulls it off every obstacle.
+  /// surveys (docs/survey.md), and 1 when its load pulls it off every obstacle.
   static constexpr double LCP_UNHELD = 1e-3;
   /// PivotedActiveSet's problem size (multipliers) at most: its eigendecomposition and pivots cost O(m^3) on rank 0
   /// (Lemke on a dense m = 1000 problem with 500 pivots: 0.56 s).
@@ -206,9 +206,9 @@ private:
   [[nodiscard]] PetscErrorCode StepControl(StepState &st, PetscInt it, PetscInt &changes, Outcome &outcome);
   [[nodiscard]] PetscErrorCode AssembleSystem(StepState &st);
   [[nodiscard]] PetscErrorCode SolveAndUpdate(StepState &st);
-  /// Whether the next solve can be condensed (StepState::base).
   /// The relative tolerance of an svk solve that is not lagged: an inexact Newton step (0: the KSP's).
   [[nodiscard]] PetscErrorCode NewtonForcing(const StepState &st, double &rtol) const;
+  /// Whether the next solve can be condensed (StepState::base).
   bool Condensable(const StepState &st) const;
   /// The right-hand side assembled for the current iterate as the base of the condensed solves (StepState::base):
   /// u_base, g_base, base_rnorm, and its condensation. Collective.
@@ -238,7 +238,7 @@ private:
   /// svk: a step found free along the lagged searches' path was repeated with exact Newton steps (once); every load
   /// step from then on takes them (StepState::exact_newton from its start)
   bool exact_newton_ = false;
-  std::string first_unheld_;     ///< the reason of that step's failure
+  Reason first_unheld_ = Reason::NONE; ///< the reason of that step's failure
   std::string unheld_detail_;    ///< PivotedActiveSet's finding that the pairs cannot hold the body (this load step)
   /// Load steps repeated with a wider search radius in a run, at most (each at least doubles it).
   static constexpr PetscInt MAX_WIDENINGS = 8;

@@ -2,7 +2,8 @@
 // (contact force and its balance, contact length, peak pressure, penetration, complementarity residual).
 #pragma once
 
-#include "signorini/loop/contact_solver.hpp"
+#include "signorini/fem/material.hpp"
+#include "signorini/loop/solved_state.hpp"
 
 #include <array>
 #include <vector>
@@ -19,13 +20,13 @@ struct ContactSummary {
 };
 
 /// Per local vertex: summed multiplier, pressure lambda / (w t), smallest gap over its pairs in their zone (NaN
-/// where there is none),
-/// active flag. Collective.
+/// where there is none), active flag.
 struct NodeContact {
   std::vector<double> lambda, pressure, gap, active;
 };
 
-[[nodiscard]] PetscErrorCode ComputeContactResults(ContactSolver &solver, const Material &material,
+/// The per-node contact fields and the summary's global quantities of a solved state. Collective.
+[[nodiscard]] PetscErrorCode ComputeContactResults(const SolvedState &state, const Material &material,
                                                    NodeContact &nodes, ContactSummary &summary);
 
 } // namespace signorini

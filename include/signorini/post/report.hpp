@@ -4,7 +4,7 @@
 #include "signorini/post/contact_results.hpp"
 #include "signorini/fem/material.hpp"
 #include "signorini/mesh/mesh.hpp"
-#include "signorini/loop/contact_solver.hpp"
+#include "signorini/loop/solved_state.hpp"
 
 #include <map>
 #include <string>
@@ -36,7 +36,7 @@ struct HertzReport {
 /// (2 fraction). 3D: a = (3 P R / (4 E*))^(1/3), p0 = 3 P / (2 pi a^2), computed a = radius of the circle of area
 /// contact area / fraction. Computed p0: the intercept of Hertz's profile p^2 = p0^2 (1 - r^2 / a^2) fitted to the
 /// nodal pressures around the contact centre (the candidate node of the first contact). Collective.
-[[nodiscard]] PetscErrorCode ComputeHertz(ContactSolver &solver, const Material &m, const NodeContact &nodes,
+[[nodiscard]] PetscErrorCode ComputeHertz(const SolvedState &state, const Material &m, const NodeContact &nodes,
                                           const ContactSummary &s, HertzReport &hertz);
 
 /// Everything the report needs besides the solver.
@@ -48,14 +48,14 @@ struct RunInfo {
 
 /// Prints the header of the run on rank 0 (model, mesh, unknowns), before the solve and its -contact_monitor
 /// lines. Collective.
-[[nodiscard]] PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m, ContactSolver &solver);
+[[nodiscard]] PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m, const SolvedState &state);
 
 /// Prints the short deterministic summary of the result on rank 0. Collective.
-[[nodiscard]] PetscErrorCode PrintSummary(MPI_Comm comm, ContactSolver &solver, const ContactSummary &s,
+[[nodiscard]] PetscErrorCode PrintSummary(MPI_Comm comm, const SolvedState &state, const ContactSummary &s,
                                           const HertzReport &hertz);
 
 /// The text of summary.json.
-std::string SummaryJson(const RunInfo &info, const Material &m, ContactSolver &solver, const ContactSummary &s,
+std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedState &state, const ContactSummary &s,
                         const HertzReport &hertz);
 
 } // namespace signorini
