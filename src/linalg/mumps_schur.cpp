@@ -381,8 +381,8 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   // Ordering: a nested dissection of the node graph, given to MUMPS (ICNTL(7) = 1; Debian's MUMPS has only AMD, AMF,
   // QAMD and PORD built in), unless -contact_mat_mumps_icntl_7 picks one of those. With a Schur complement MUMPS's
   // own choice (AMD) nearly doubles the elimination flops of the 2D Hertz matrices (3.8e8 at 20k rows, METIS 2.0e8).
-  // METIS's is the better one, but at 20k rows it takes 30 ms, more than its smaller factor saves: a small 2D matrix
-  // gets the coordinate cuts (6-8 ms, 2.6e8 flops); in 3D METIS pays from 6k rows on (measurements: README).
+  // METIS's is the better one, but on a small 2D matrix it takes longer than its smaller factor saves, so that gets
+  // the coordinate cuts; in 3D METIS pays from a few thousand rows on (measurements: docs/performance.md).
   id_.ICNTL(7) = 1;
   if (ordering.graph == GraphOrdering::AUTO)
     ordering.graph = node_size == 3 || N >= METIS_MIN_ROWS_2D ? GraphOrdering::METIS : GraphOrdering::COORDINATES;
@@ -743,6 +743,33 @@ PetscErrorCode MumpsSchur::Solve(const std::vector<PetscScalar> &d, Vec b, Vec x
   reduced_ = redrhs_;
   PetscCall(RunOnRoot(comm_, [&] { return DenseSolve(reduced_); }));
   PetscCall(Expand(x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::View(PetscViewer viewer) const {
+  PetscFunctionBeginUser;
+  if (!initialised_) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "no factorisation (released or not made)\n"));
+    PetscFunctionReturn(0);
+  }
+  double entries, flops;
+  if (cholesky_in_use_) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "factored by: signorini's supernodal Cholesky on rank 0%s\n",
+                                     gathered_ ? " (the matrix gathered from every rank)" : ""));
+    entries = cholesky_entries_, flops = cholesky_flops_;
+  } else {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "factored by: MUMPS %s, called directly\n",
+                                     symmetric_ ? "LDL^T (SYM = 2)" : "LU (SYM = 0)"));
+    entries = id_.INFOG(29) >= 0 ? id_.INFOG(29) : -1e6 * id_.INFOG(29), flops = id_.rinfog[2];
+  }
+  PetscCall(PetscViewerASCIIPrintf(viewer, "rows: %d, of which %d multipliers in the Schur complement (dense %s on "
+                                   "rank 0, refactored when D changes)\n", (int)id_.n, (int)id_.size_schur,
+                                   symmetric_ ? "LDL^T" : "LU"));
+  if (id_.ICNTL(7) == 1)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "ordering: nested dissection of the node graph (%s)\n", ordering_name_));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "ordering: MUMPS's own (ICNTL(7) = %d)\n", (int)id_.ICNTL(7)));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "factor entries: %.6g, elimination flops: %.6g, null pivots: %d\n", entries,
+                                   flops, (int)null_pivots_));
   PetscFunctionReturn(0);
 }
 

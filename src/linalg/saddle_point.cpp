@@ -2,6 +2,7 @@
 // saddle_point_kept.cpp; the contact problem in the multipliers: saddle_point_lcp.cpp).
 #include "signorini/linalg/saddle_point.hpp"
 
+#include "signorini/linalg/pc_kept.hpp"
 #include "signorini/linalg/solver_options.hpp"
 
 #include "signorini/core/options.hpp"
@@ -439,7 +440,7 @@ PetscErrorCode SaddlePointSystem::CreateKeptKsp(MPI_Comm comm) {
   PetscFunctionBeginUser;
   // FGMRES on the current matrix, right-preconditioned by the kept factorisation: the residual it tests is the true
   // one (tolerances: SolveWithKeptFactor).
-  PC shell;
+  PC kept;
   PetscCall(KSPCreate(comm, ksp_kept_.out()));
   PetscCall(KSPSetType(ksp_kept_, KSPFGMRES)); // keeps the preconditioned directions: no apply to form the solution
   PetscCall(KSPGMRESSetRestart(ksp_kept_, reuse_max_it_));
@@ -447,11 +448,10 @@ PetscErrorCode SaddlePointSystem::CreateKeptKsp(MPI_Comm comm) {
   PetscCall(KSPSetResidualHistory(ksp_kept_, nullptr, reuse_max_it_ + 1, PETSC_TRUE));
   PetscCall(KSPSetNormType(ksp_kept_, KSP_NORM_UNPRECONDITIONED));
   PetscCall(KSPSetOperators(ksp_kept_, A_, A_));
-  PetscCall(KSPGetPC(ksp_kept_, &shell));
-  PetscCall(PCSetType(shell, PCSHELL));
-  PetscCall(PCShellSetContext(shell, this));
-  PetscCall(PCShellSetApply(shell, ApplyKeptFactor));
-  PetscCall(PCShellSetName(shell, "kept MUMPS factorisation of an earlier tangent"));
+  PetscCall(KSPGetPC(ksp_kept_, &kept));
+  PetscCall(PCKeptRegister());
+  PetscCall(PCSetType(kept, PCKEPT));
+  PetscCall(PCKeptSetFactorization(kept, &mumps_schur_, "an earlier tangent"));
   PetscFunctionReturn(0);
 }
 
@@ -642,16 +642,22 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
     krylov_iterations = 1;
     singular = null_pivots_ > 0;
     if (singular) PetscFunctionReturn(0);
-    if (fresh || constant_k_) PetscCall(mumps_schur_.Solve(d, b_, x_));
-    else PetscCall(SolveWithKeptFactor(d, rtol, krylov_iterations, check_tol));
+    if (fresh || constant_k_) {
+      // The KSP's PC is the kept factorisation (PCKEPT, UseKeptPc): an exact solve with the current D.
+      PC pc;
+      PetscCall(KSPGetPC(ksp_, &pc));
+      PetscCall(PCKeptSetDiagonal(pc, d));
+      PetscCall(KSPSolve(ksp_, b_, x_));
+      kept_viewed_ = true; // KSPSolve shows the KSP with -contact_ksp_view
+
+    } else PetscCall(SolveWithKeptFactor(d, rtol, krylov_iterations, check_tol));
     singular = null_pivots_ > 0;
     if (singular) PetscFunctionReturn(0);
     reason = KSP_CONVERGED_ITS;
   } else {
     // KSPSetUp sets the preconditioner up (a factorisation, for the direct presets) before KSPSolve would.
     // An iterative solver's preconditioner stays for a solve with the matrix it was set up for (a correction solve:
-    // the same active set, K not reassembled; the values SetConstraints wrote are the same). 2D Hertz at 1M dofs,
-    // fieldsplit_gamg: one GAMG set-up (1.3 s) less.
+    // the same active set, K not reassembled; the values SetConstraints wrote are the same): one set-up less.
     // The active set may have changed on another rank only: all ranks must agree.
     PetscBool same = augmented_ && !reuse_ && pc_current_ ? PETSC_TRUE : PETSC_FALSE;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_BOOL, MPI_LAND, comm));
@@ -718,6 +724,9 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
 
 PetscErrorCode SaddlePointSystem::Release() {
   PetscFunctionBeginUser;
+  // The kept factorisation's solves in the multiplier space make no KSPSolve: -contact_ksp_view shows the KSP with
+  // its kept factorisation here, after the last of them.
+  if (reuse_ && factored_ && !kept_viewed_) PetscCall(KSPViewFromOptions(ksp_, nullptr, "-ksp_view"));
   PetscCall(KSPReset(ksp_));
   if (ksp_kept_) PetscCall(KSPReset(ksp_kept_));
   mumps_schur_.Release();

@@ -3,6 +3,7 @@
 #include "signorini/linalg/saddle_point.hpp"
 
 #include "signorini/core/progress.hpp"
+#include "signorini/linalg/pc_kept.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -48,6 +49,7 @@ PetscErrorCode SaddlePointSystem::Factor() {
   }
   null_pivots_ = mumps_schur_.NullPivots();
   factored_ = null_pivots_ == 0;
+  PetscCall(UseKeptPc());
   PetscFunctionReturn(0);
 }
 
@@ -75,11 +77,24 @@ std::string SaddlePointSystem::SingularReport(const std::string &cause) const {
   return report + cause;
 }
 
-PetscErrorCode SaddlePointSystem::ApplyKeptFactor(PC pc, Vec b, Vec x) {
-  SaddlePointSystem *sys;
+PetscErrorCode SaddlePointSystem::UseKeptPc() {
+  PC pc;
   PetscFunctionBeginUser;
-  PetscCall(PCShellGetContext(pc, &sys));
-  PetscCall(sys->mumps_schur_.Solve(sys->kept_d_, b, x));
+  PetscCall(KSPGetPC(ksp_, &pc));
+  PetscCall(PCKeptRegister());
+  PetscCall(PCSetType(pc, PCKEPT));
+  PetscCall(PCKeptSetFactorization(pc, &mumps_schur_, "the saddle-point matrix (augmented form)"));
+  PetscCall(KSPSetUp(ksp_));
+  mumps_factor_ = nullptr; // PETSc's MUMPS factor went with its PC
+  kept_viewed_ = false;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::KeptFactorization(MumpsSchur *&kept) const {
+  PC pc;
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetPC(ksp_, &pc));
+  PetscCall(PCKeptGetFactorization(pc, &kept));
   PetscFunctionReturn(0);
 }
 
@@ -94,7 +109,9 @@ PetscErrorCode SaddlePointSystem::SolveWithKeptFactor(const std::vector<PetscSca
     PetscInt max_it;
     PetscCall(KSPGetTolerances(ksp_, &default_rtol, &abstol, &dtol, &max_it));
     PetscCall(KSPSetTolerances(ksp_kept_, rtol > 0 ? rtol : default_rtol, abstol, PETSC_DEFAULT, reuse_max_it_));
-    kept_d_ = d;
+    PC kept;
+    PetscCall(KSPGetPC(ksp_kept_, &kept));
+    PetscCall(PCKeptSetDiagonal(kept, d));
     PetscCall(KSPSolve(ksp_kept_, b_, x_));
     PetscCall(KSPGetConvergedReason(ksp_kept_, &reason));
     PetscCall(KSPGetIterationNumber(ksp_kept_, &iterations));
@@ -132,7 +149,9 @@ PetscErrorCode SaddlePointSystem::Condense(bool &singular) {
   singular = null_pivots_ > 0;
   // Declined: the caller solves in full (ExactFactorization() is false now).
   if (!reuse_ || singular) PetscFunctionReturn(0);
-  PetscCall(mumps_schur_.Condense(b_));
+  MumpsSchur *kept;
+  PetscCall(KeptFactorization(kept));
+  PetscCall(kept->Condense(b_));
   PetscFunctionReturn(0);
 }
 
@@ -147,7 +166,9 @@ PetscErrorCode SaddlePointSystem::SolveCondensed(const std::vector<double> &bm, 
   PetscCall(MultiplierDiagonal(d));
   // b_m to rank 0, the dense solve there, x_m back.
   PetscCall(ToRoot(bm, y));
-  PetscCall(mumps_schur_.SolveReduced(d, y, residual));
+  MumpsSchur *kept;
+  PetscCall(KeptFactorization(kept));
+  PetscCall(kept->SolveReduced(d, y, residual));
   PetscCall(FromRoot(y, x));
   // Row p: -B_p du + D_p x_p = b_p, so B_p du = D_p x_p - b_p; an active row's multiplier is x_p + r b_p.
   lambda.assign(nl, 0.0);
@@ -164,7 +185,9 @@ PetscErrorCode SaddlePointSystem::Expand(double &residual) {
   PetscFunctionBeginUser;
   PetscCheck(reuse_ && factored_ && stab_ == 0, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
              "an expansion needs the kept factorisation and no stabilisation");
-  PetscCall(mumps_schur_.Expand(x_));
+  MumpsSchur *kept;
+  PetscCall(KeptFactorization(kept));
+  PetscCall(kept->Expand(x_));
   // A changing K (svk): the factored matrix is an earlier tangent, so the residual against the current matrix
   // measures the modified Newton step, not the solve; the factorisation's null-pivot check and the Newton iteration
   // judge it (only a non-finite result is an error here).

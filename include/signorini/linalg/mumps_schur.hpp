@@ -52,14 +52,12 @@ struct OrderingOptions {
 /// to MUMPS, whose null-pivot detection then judges it.
 enum class KeptSolver { AUTO, MUMPS, CHOLESKY };
 inline const char *const KEPT_SOLVER_NAMES[] = {"auto", "mumps", "cholesky"};
-/// Measured on the 2D Hertz family, one rank (contact solve, Cholesky against MUMPS): 20k rows 35 against 60 ms,
-/// 49k 96 against 168 ms, 195k 0.75 against 1.15 s, 1M 9.1 against 10.5 s but 18 % more memory (2.25 against 1.91
-/// GB: the merged supernodes' zeros); the larger matrices, where memory binds, stay with MUMPS.
+/// The Cholesky is faster than MUMPS at every size measured, but its merged supernodes' zeros cost more memory, so the
+/// larger matrices, where memory binds, stay with MUMPS (measurements: docs/performance.md).
 constexpr PetscInt CHOLESKY_MAX_ROWS = 500000;
 /// On several ranks the Cholesky factors on rank 0 alone (the matrix gathered there), against MUMPS on all ranks:
-/// AUTO takes it up to this many rows. Measured on 2 ranks (contact solve, Cholesky against MUMPS): 20k rows 35-36
-/// against 45-64 ms; 49k 99-198 against 131-141 ms, 100k 0.27-0.38 against 0.34-0.37 s, 195k 0.71-0.87 against
-/// 0.80-0.86 s with rank 0 at 464 against 287 MB: no gain from 50k rows on.
+/// AUTO takes it up to this many rows, beyond which rank 0's memory grows and the time gained vanishes
+/// (docs/performance.md).
 constexpr PetscInt CHOLESKY_MAX_ROWS_GATHERED = 50000;
 
 /// The MUMPS controls given for the saddle-point solver (-contact_mat_mumps_icntl_<k>, k in 1..60, and
@@ -111,11 +109,8 @@ public:
   bool Declined() const { return declined_; }
   /// The rule of Factor's may_decline, from the analysis' estimate: a dense LDL^T of the m x m Schur complement, which
   /// every active-set change costs, takes more flops than the whole sparse factorisation (flops), which a
-  /// refactorisation at every change would cost instead. Kept: 2D Hertz at 1M dofs, m = 1325, 7.8e8 against 8.5e10
-  /// flops; 3D Hertz at 110k dofs, m = 2202, 3.6e9 against 3.6e11; a 3D plate 1 x 1 x 0.02 of 40 x 40 x 2 hexahedra
-  /// with its 1681 bottom nodes the candidates, 1.6e9 against 3.5e9 (2.1 s, 19 active-set iterations). Declined: the
-  /// plate of 120 x 120 x 2, m = 14641, 1.0e12 against 4.4e11 (66 s and 0.81 GB refactorising at each of 37 changes;
-  /// kept, each change took 26 s and the run 6.4 GB).
+  /// refactorisation at every change would cost instead: a thin plate whose whole face is a candidate declines, a
+  /// Hertz contact keeps it (examples: docs/performance.md).
   static bool DenseCostsMore(double m, double flops) { return m * m * m / 3 > flops; }
   /// The numerical factorisation of A's current values (the pattern and the analysis of Factor, which kept the
   /// values) with the Schur complement, d0 its multiplier diagonal now. Collective.
@@ -143,6 +138,9 @@ public:
   void Release();
   /// Null pivots MUMPS met in A11 (INFOG(28)).
   PetscInt NullPivots() const { return null_pivots_; }
+  /// Prints who factored, the ordering, the sizes, the factor's entries and flops (ASCII viewers). Collective on the
+  /// viewer's communicator.
+  [[nodiscard]] PetscErrorCode View(PetscViewer viewer) const;
 
 private:
   [[nodiscard]] PetscErrorCode Call(int job, const char *phase);

@@ -228,8 +228,11 @@ private:
   /// inexact FGMRES solve). Collective.
   [[nodiscard]] PetscErrorCode SolveWithKeptFactor(const std::vector<PetscScalar> &d, double rtol,
                                                    PetscInt &iterations, double &check_tol);
-  /// PCSHELL apply of the kept factorisation with the multiplier diagonal kept_d_ (ctx: the system). Collective.
-  static PetscErrorCode ApplyKeptFactor(PC pc, Vec b, Vec x);
+  /// Makes the KSP's PC the kept factorisation (PCKEPT) once it is made, so that the KSP solves with it and
+  /// -contact_ksp_view shows it. Collective.
+  [[nodiscard]] PetscErrorCode UseKeptPc();
+  /// The kept factorisation that the KSP's PC (PCKEPT) applies, for the solves in the multiplier space.
+  [[nodiscard]] PetscErrorCode KeptFactorization(MumpsSchur *&kept) const;
   /// After a solve into x_ (reason, iterations: the KSP's): an error naming the likely cause for a failed or
   /// inaccurate solve (relative residual above tol), residual = ||b - A x||, and the multiplier rows of x_ in the
   /// plain form's meaning. known: {||b - A x||, ||b||} of the current x_ when the caller has them (else computed).
@@ -243,9 +246,8 @@ private:
   /// A direct solve that leaves a relative residual above this solved nothing: its matrix is singular to round-off.
   static constexpr double SINGULAR_RESIDUAL = 1e-2;
   /// The mean contraction of the residual per FGMRES iteration on the kept factorisation above which the next solve
-  /// refactors (the factored tangent has drifted from the current one). 2D Hertz, svk, 195k dofs, 3 load steps: the
-  /// factorisation of the undeformed tangent contracts by 0.003 to 0.08 per iteration throughout, so none is made
-  /// again (the former rule, more than half of -contact_reuse_max_it iterations, refactored twice, 0.55 s each).
+  /// refactors (the factored tangent has drifted from the current one); a factorisation of the undeformed tangent of
+  /// a moderately deformed body contracts by well under it (docs/performance.md).
   static constexpr double KEPT_CONTRACTION = 0.1;
   static constexpr int MAX_KRYLOV_RESTARTS = 3;
   /// r_I / r of an iterative solver (see the head of this file). On 2D Hertz with fieldsplit_gamg (FGMRES, upper Schur
@@ -274,8 +276,8 @@ private:
   bool ksp_set_up_ = false;         ///< iterative solver: the KSP has been set up (a fieldsplit's sub-KSPs exist)
   bool u_pc_valid_ = false;         ///< K is the one the displacement block's preconditioner was set up with
   std::vector<double> u_pc_weight_; ///< the augmentation weights at that set-up
+  bool kept_viewed_ = false; ///< a KSPSolve with the kept PC showed it (-contact_ksp_view); else Release does
   KSPH ksp_kept_;                      ///< changing K: FGMRES preconditioned by the kept factorisation
-  std::vector<PetscScalar> kept_d_;    ///< the multiplier diagonal of the current solve (rank 0), for ApplyKeptFactor
   PetscBool lu_ = PETSC_FALSE; ///< the PC is LU (the mumps_lu preset): the reuse mode factors with LU too
   double aug_ = 1;  ///< augmentation weight r (the stiffness scale)
   double aug_inactive_ = 1; ///< augmentation weight r_I of an inactive row (r, or INACTIVE_WEIGHT r: iterative)
