@@ -1,7 +1,9 @@
 // signorini: frictionless contact of elastic bodies against rigid obstacles. Initialise, run, finalise.
 #include "signorini/app/run.hpp"
 #include "signorini/core/errors.hpp"
-#include "signorini/core/options.hpp"
+#include "signorini/options/command_line.hpp"
+#include "signorini/options/help.hpp"
+#include "signorini/options/options_files.hpp"
 
 #include <csignal>
 #include <cstdio>

@@ -3,7 +3,8 @@
 
 #include "signorini/post/report.hpp"
 #include "signorini/post/contact_results.hpp"
-#include "signorini/core/options.hpp"
+#include "signorini/options/help.hpp"
+#include "signorini/options/unused_options.hpp"
 #include "signorini/core/parse.hpp"
 #include "signorini/core/progress.hpp"
 #include "signorini/io/output.hpp"
@@ -15,7 +16,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -25,59 +25,6 @@
 namespace signorini {
 
 namespace {
-
-std::string &HeldHelp() {
-  static std::string text;
-  return text;
-}
-
-/// PetscHelpPrintf while PetscInitialize runs: keeps the text for later.
-PetscErrorCode HoldHelpPrintf(MPI_Comm, const char format[], ...) {
-  char line[4096];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(line, sizeof(line), format, args);
-  va_end(args);
-  HeldHelp() += line;
-  return 0;
-}
-
-/// PetscVFPrintf while the -help text of PETSc's generic objects is held: PETSc lists a type option
-/// (-mat_seqaij_type) with PetscFPrintf to stdout, not through PetscHelpPrintf.
-PetscErrorCode (*petsc_vfprintf)(FILE *, const char[], va_list) = nullptr;
-PetscErrorCode HoldVFPrintf(FILE *fd, const char format[], va_list args) {
-  if (fd != stdout && fd != PETSC_STDOUT) return petsc_vfprintf(fd, format, args);
-  char line[4096];
-  std::vsnprintf(line, sizeof(line), format, args);
-  HeldHelp() += line;
-  return 0;
-}
-
-/// PetscHelpPrintf while Run lists the program's and the solver's options. PETSc ends every option's line with its
-/// manual page in parentheses, which our options do not have: the empty "()" goes. A generic -mat_* option (PETSc
-/// lists -mat_seqaij_type again for the matrices the solver's set-up makes) joins the held generic text. PETSc prints
-/// a line in pieces (a list option: its name, each choice, the manual page), so a line's start decides where it goes.
-PetscErrorCode ProgramHelpPrintf(MPI_Comm comm, const char format[], ...) {
-  static bool line_start = true, generic_line = false;
-  char buffer[4096];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buffer, sizeof(buffer), format, args);
-  va_end(args);
-  std::string piece = buffer;
-  if (piece.empty()) return 0;
-  if (line_start) generic_line = piece.rfind("  -mat_", 0) == 0;
-  line_start = piece.back() == '\n';
-  const std::string no_manual = " ()\n";
-  if (piece.size() >= no_manual.size() &&
-      piece.compare(piece.size() - no_manual.size(), no_manual.size(), no_manual) == 0)
-    piece.replace(piece.size() - no_manual.size(), no_manual.size(), "\n");
-  if (generic_line) {
-    HeldHelp() += piece;
-    return 0;
-  }
-  return PetscPrintf(comm, "%s", piece.c_str());
-}
 
 /// The physical groups that the default case's supports, load and candidates name (its mesh has them).
 const std::vector<std::string> DEFAULT_CASE_GROUPS = {"top_centre", "contact_point", "top", "contact"};
@@ -158,18 +105,7 @@ PetscErrorCode HelpKsp(MPI_Comm comm) {
   // The stand-in matrix's own options (-mat_*, unprefixed) are PETSc's generic ones: they join the held text that is
   // listed last, so that the solver's groups follow the program's.
   {
-    // Held while the stand-in is made; the printers come back however it ends.
-    struct HeldPrinters {
-      HeldPrinters() {
-        PetscHelpPrintf = HoldHelpPrintf;
-        petsc_vfprintf = PetscVFPrintf;
-        PetscVFPrintf = HoldVFPrintf;
-      }
-      ~HeldPrinters() {
-        PetscHelpPrintf = ProgramHelpPrintf;
-        PetscVFPrintf = petsc_vfprintf;
-      }
-    } held;
+    const GenericHelpHeld held; // while the stand-in is made; the printers come back however it ends
     PetscCall(MatCreateAIJ(comm, 3, 3, PETSC_DETERMINE, PETSC_DETERMINE, 1, nullptr, 0, nullptr, A.out()));
     for (PetscInt i = 0; i < 3; ++i)
       PetscCall(MatSetValue(A, 3 * rank + i, 3 * rank + i, i < 2 ? 1.0 : -1.0, INSERT_VALUES));
@@ -259,8 +195,6 @@ std::vector<Field> NodeTableFields(ContactSolver &solver, const NodeContact &nod
 
 } // namespace
 
-void HoldGenericHelp() { PetscHelpPrintf = HoldHelpPrintf; }
-
 PetscErrorCode Run() {
   MPI_Comm comm = PETSC_COMM_WORLD;
   PetscLogStage stage_mesh, stage_setup, stage_solve, stage_output;
@@ -268,7 +202,7 @@ PetscErrorCode Run() {
   RunInfo info;
   const double t_start = MPI_Wtime();
   PetscFunctionBeginUser;
-  PetscHelpPrintf = ProgramHelpPrintf;
+  ListProgramHelp();
   PetscCallMPI(MPI_Comm_size(comm, &size));
   info.ranks = size;
   PetscCall(PetscLogStageRegister("Mesh", &stage_mesh));
@@ -321,8 +255,7 @@ PetscErrorCode Run() {
     PetscCall(ReadBoundaryConditions(comm, 0, bc));
     PetscCall(ReadContactOptions(comm, 1.0, material.E * material.thickness, contact));
     PetscCall(HelpKsp(comm));
-    PetscCall(PetscPrintf(comm, "----------------------------------------\nPETSc's own options (every PETSc "
-                          "program):\n%s", HeldHelp().c_str()));
+    PetscCall(PrintGenericHelp(comm));
     PetscCall(PetscOptionsSetValue(nullptr, "-options_left", "0"));
     PetscFunctionReturn(0);
   }

@@ -1,7 +1,7 @@
 // Parsing of the boundary-condition and load options.
 #include "signorini/bc/boundary_conditions.hpp"
 
-#include "signorini/core/options.hpp"
+#include "signorini/options/readers.hpp"
 #include "signorini/core/parse.hpp"
 
 #include <cmath>

@@ -1,7 +1,7 @@
 // Contact options, the spatial search for candidate pairs, initial gaps and tributary lengths.
 #include "signorini/contact/contact_set.hpp"
 
-#include "signorini/core/options.hpp"
+#include "signorini/options/readers.hpp"
 #include "signorini/fem/element.hpp"
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // Reading and validating the material options.
 #include "signorini/fem/material.hpp"
 
-#include "signorini/core/options.hpp"
+#include "signorini/options/readers.hpp"
 #include "signorini/core/parse.hpp"
 
 #include <limits>

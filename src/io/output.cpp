@@ -2,7 +2,7 @@
 #include "signorini/io/output.hpp"
 
 #include "signorini/core/errors.hpp"
-#include "signorini/core/options.hpp"
+#include "signorini/options/readers.hpp"
 #include "signorini/io/ordered_text.hpp"
 
 #include <algorithm>

@@ -334,11 +334,12 @@ PetscErrorCode MumpsSchur::ReadValues(Mat A, bool pattern) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows, const std::vector<PetscScalar> &d0,
-                                  bool symmetric, PetscInt owned_u, PetscInt node_size,
-                                  const std::vector<double> &coords, OrderingOptions ordering,
-                                  const MumpsControls &controls, bool keep_values, bool may_decline,
-                                  KeptSolver solver) {
+PetscErrorCode MumpsSchur::Factor(Mat A, const SchurLayout &layout, const FactorChoices &how) {
+  const std::vector<PetscInt> &schur_rows = layout.schur_rows;
+  const PetscInt owned_u = layout.owned_u, node_size = layout.node_size;
+  const bool symmetric = how.symmetric;
+  const MumpsControls &controls = how.controls;
+  OrderingOptions ordering = how.ordering;
   PetscInt rstart, rend, N;
   PetscFunctionBeginUser;
   Release(); // an earlier factorisation (one that found null pivots) goes first
@@ -401,13 +402,13 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   id_.listvar_schur = listvar_.data();
   id_.schur_lld = (MUMPS_INT)m_all;
   if (id_.ICNTL(7) == 1) {
-    PetscCall(NestedDissection(N, rstart, owned_u, node_size, coords, ordering));
+    PetscCall(NestedDissection(N, rstart, owned_u, node_size, layout.coords, ordering));
     if (rank_ == 0) id_.perm_in = perm_in_.data();
   }
   PetscMPIInt size;
   PetscCallMPI(MPI_Comm_size(comm_, &size));
-  cholesky_in_use_ = solver == KeptSolver::CHOLESKY ||
-                     (solver == KeptSolver::AUTO && symmetric && id_.ICNTL(7) == 1 && controls.icntl.empty() &&
+  cholesky_in_use_ = how.solver == KeptSolver::CHOLESKY ||
+                     (how.solver == KeptSolver::AUTO && symmetric && id_.ICNTL(7) == 1 && controls.icntl.empty() &&
                       controls.cntl.empty() && N <= (size == 1 ? CHOLESKY_MAX_ROWS : CHOLESKY_MAX_ROWS_GATHERED));
   double flops, entries;
   if (cholesky_in_use_) {
@@ -421,7 +422,7 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
     // (negative: in millions).
     flops = id_.rinfog[0], entries = id_.INFOG(20) >= 0 ? id_.INFOG(20) : -1e6 * id_.INFOG(20);
   }
-  if (may_decline && DenseCostsMore((double)m_all, flops)) {
+  if (how.may_decline && DenseCostsMore((double)m_all, flops)) {
     PetscCall(PetscInfo(nullptr, "dense Schur complement of %" PetscInt_FMT " candidates: %.6g flops per active-set "
                         "change and %.6g entries, against %.6g flops and %.6g entries of the sparse factors: declined\n",
                         m_all, (double)m_all * m_all * m_all / 3, 2.0 * m_all * m_all, flops, entries));
@@ -436,9 +437,9 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const std::vector<PetscInt> &schur_rows
   }
   redrhs_.assign(m, 0.0);
   ordering_name_ = id_.ICNTL(7) == 1 ? GRAPH_ORDERING_NAMES[(int)ordering.graph] : "MUMPS's";
-  PetscCall(FactorNumeric(d0));
-  keep_values_ = keep_values;
-  if (!keep_values) {
+  PetscCall(FactorNumeric(layout.d0));
+  keep_values_ = how.keep_values;
+  if (!how.keep_values) {
     // The matrix values are no longer needed (no refactorisation).
     irn_.clear(), jcn_.clear(), val_.clear();
     irn_.shrink_to_fit(), jcn_.shrink_to_fit(), val_.shrink_to_fit();

@@ -5,7 +5,7 @@
 #include "signorini/linalg/pc_kept.hpp"
 #include "signorini/linalg/solver_options.hpp"
 
-#include "signorini/core/options.hpp"
+#include "signorini/options/readers.hpp"
 #include "signorini/core/progress.hpp"
 
 #include <algorithm>

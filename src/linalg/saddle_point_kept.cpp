@@ -18,8 +18,14 @@ PetscErrorCode SaddlePointSystem::Factor() {
   std::vector<PetscScalar> d;
   PetscCall(MultiplierDiagonal(d));
   ProgressBegin("analysis and factorisation (the Schur complement on the candidates)");
-  PetscCall(mumps_schur_.Factor(A_, schur_rows_, d, !lu_, dofs_->OwnedU(), dofs_->Dim(), coords_, ordering_,
-                                mumps_controls_, !constant_k_, !reuse_forced_, kept_solver_));
+  FactorChoices how;
+  how.symmetric = !lu_;
+  how.ordering = ordering_;
+  how.controls = mumps_controls_;
+  how.keep_values = !constant_k_;
+  how.may_decline = !reuse_forced_;
+  how.solver = kept_solver_;
+  PetscCall(mumps_schur_.Factor(A_, {schur_rows_, d, dofs_->OwnedU(), dofs_->Dim(), coords_}, how));
   ProgressEnd();
   if (mumps_schur_.Declined()) {
     // The dense Schur complement would cost more than it saves (many candidates on a body that factors cheaply, such

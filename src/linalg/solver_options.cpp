@@ -3,7 +3,8 @@
 #include "signorini/linalg/solver_options.hpp"
 
 #include "signorini/core/errors.hpp"
-#include "signorini/core/options.hpp"
+#include "signorini/options/readers.hpp"
+#include "signorini/options/unused_options.hpp"
 #include "signorini/core/parse.hpp"
 
 #include <petscksp.h>

@@ -1,7 +1,7 @@
 // The options of the loop: load stepping and Newton-Raphson, read and checked in one place.
 #include "signorini/loop/loop_options.hpp"
 
-#include "signorini/core/options.hpp"
+#include "signorini/options/readers.hpp"
 #include "signorini/linalg/solver_options.hpp"
 
 namespace signorini {

@@ -3,7 +3,7 @@
 
 #include "signorini/core/blocks.hpp"
 #include "signorini/core/errors.hpp"
-#include "signorini/core/options.hpp"
+#include "signorini/options/readers.hpp"
 #include "signorini/core/parse.hpp"
 #include "signorini/core/progress.hpp"
 #include "signorini/mesh/geo_mesher.hpp"

@@ -1,8 +1,8 @@
 // The registry of obstacle shapes and the reading of the -obstacle_ options.
 #include "signorini/obstacles/obstacle.hpp"
 
-#include "signorini/core/option_paths.hpp"
-#include "signorini/core/options.hpp"
+#include "signorini/options/option_paths.hpp"
+#include "signorini/options/readers.hpp"
 #include "signorini/core/parse.hpp"
 
 #include <algorithm>

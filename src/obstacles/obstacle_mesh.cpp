@@ -3,7 +3,7 @@
 #include "signorini/obstacles/obstacle_mesh.hpp"
 
 #include "signorini/core/errors.hpp"
-#include "signorini/core/option_paths.hpp"
+#include "signorini/options/option_paths.hpp"
 #include "signorini/core/parse.hpp"
 #include "signorini/core/progress.hpp"
 

@@ -1,7 +1,7 @@
 // Printed summary, summary.json and the Hertz comparison.
 #include "signorini/post/report.hpp"
 
-#include "signorini/core/options.hpp"
+#include "signorini/options/readers.hpp"
 #include "signorini/io/json.hpp"
 
 #include <algorithm>

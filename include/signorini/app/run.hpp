@@ -5,10 +5,6 @@
 
 namespace signorini {
 
-/// Holds back the help text that PetscInitialize prints for -help (PETSc's generic options), so that the program's
-/// own option groups come first; Run prints it after them. Call before PetscInitialize.
-void HoldGenericHelp();
-
 /// Runs one case described by the options database. Collective on PETSC_COMM_WORLD.
 [[nodiscard]] PetscErrorCode Run();
 

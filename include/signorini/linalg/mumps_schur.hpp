@@ -81,6 +81,26 @@ struct MumpsControls {
 /// factorisation. Collective.
 [[nodiscard]] PetscErrorCode ReadMumpsControls(MPI_Comm comm, MumpsControls &controls);
 
+/// The matrix that MumpsSchur::Factor factors: its Schur rows with their diagonal, and the node layout of its
+/// displacement rows for the ordering.
+struct SchurLayout {
+  const std::vector<PetscInt> &schur_rows; ///< global rows of the Schur complement (rank 0 only; the order of D)
+  const std::vector<PetscScalar> &d0;      ///< A's diagonal on those rows now (rank 0 only)
+  PetscInt owned_u;                        ///< the first owned_u owned rows of each rank are displacements
+  PetscInt node_size;                      ///< consecutive displacement rows per node
+  const std::vector<double> &coords;       ///< coords[node_size * i + k]: coordinate k of the owned node i
+};
+
+/// How MumpsSchur::Factor factors.
+struct FactorChoices {
+  bool symmetric = true;                 ///< LDL^T (MUMPS SYM = 2, LAPACK sytrf for S) or LU (SYM = 0, getrf)
+  OrderingOptions ordering;              ///< the nested dissection given to MUMPS
+  MumpsControls controls;                ///< the user's (ReadMumpsControls), over this class's defaults
+  bool keep_values = false;              ///< keep the entries in MUMPS's format for Refactor (else freed)
+  bool may_decline = false;              ///< decline the Schur complement where it costs more (DenseCostsMore)
+  KeptSolver solver = KeptSolver::MUMPS; ///< who factors (CHOLESKY only where it applies, which the caller checked)
+};
+
 class MumpsSchur {
 public:
   MumpsSchur() = default;
@@ -89,20 +109,10 @@ public:
   ~MumpsSchur();
 
   /// Analyses and factors A (parallel AIJ, symmetric; its values now are the ones factored) with the Schur
-  /// complement on the global rows `schur_rows`; d0: A's diagonal on those rows (both on rank 0 only, in the order of
-  /// D in Solve). symmetric: LDL^T (MUMPS SYM = 2, LAPACK sytrf for S) or LU (SYM = 0, getrf). The first owned_u
-  /// owned rows of each rank are displacements, node_size consecutive rows per node, and coords holds each of those
-  /// rows' node coordinate (coords[node_size * i + k]: coordinate k of the owned node i), for the ordering.
-  /// keep_values: keep the matrix entries in MUMPS's format for Refactor (else they are freed). may_decline: after the
-  /// analysis, decline (Declined(), nothing factored, everything released) when the dense Schur complement would cost
-  /// more than the sparse factorisation it saves (DenseCostsMore). Collective.
-  /// controls: the user's (ReadMumpsControls), applied over this class's defaults.
-  /// solver: who factors (KeptSolver; CHOLESKY only where it applies, which the caller checked).
-  [[nodiscard]] PetscErrorCode Factor(Mat A, const std::vector<PetscInt> &schur_rows,
-                                      const std::vector<PetscScalar> &d0, bool symmetric, PetscInt owned_u,
-                                      PetscInt node_size, const std::vector<double> &coords, OrderingOptions ordering,
-                                      const MumpsControls &controls, bool keep_values = false, bool may_decline = false,
-                                      KeptSolver solver = KeptSolver::MUMPS);
+  /// complement on the rows of layout, as how says. With how.may_decline it declines after the analysis (Declined(),
+  /// nothing factored, everything released) when the dense Schur complement would cost more than the sparse
+  /// factorisation it saves (DenseCostsMore). Collective.
+  [[nodiscard]] PetscErrorCode Factor(Mat A, const SchurLayout &layout, const FactorChoices &how);
   /// The factorisation in use is SchurCholesky's (else MUMPS's).
   bool UsesCholesky() const { return cholesky_in_use_; }
   /// The last Factor declined the Schur complement.

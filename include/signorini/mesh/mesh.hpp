@@ -3,7 +3,7 @@
 #pragma once
 
 #include "signorini/core/handle.hpp"
-#include "signorini/core/option_paths.hpp"
+#include "signorini/options/option_paths.hpp"
 #include "signorini/mesh/serial_mesh.hpp"
 
 #include <array>

@@ -1,5 +1,5 @@
 // Where a file-valued option was set, so that a relative path in an options file is read relative to that file.
-#include "signorini/core/option_paths.hpp"
+#include "signorini/options/option_paths.hpp"
 
 #include <unistd.h>
 

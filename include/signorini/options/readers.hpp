@@ -65,39 +65,4 @@ struct RealRange {
 [[nodiscard]] PetscErrorCode OptionsRequireValue(PetscOptionItems *PetscOptionsObject, const char *name,
                                                  const char *expected);
 
-/// Whether the option name (without its '-', in lower case) is one of the saddle-point solver's, which PETSc reads
-/// while the solve runs: -contact_ followed by the KSP's, the PC's, the factor matrix's (-contact_mat_mumps_*) or a
-/// sub-solver's prefix (fieldsplit_, sub_, mg_, ...).
-bool IsSolverOption(const std::string &name);
-
-/// When CheckUnusedOptions runs: after the set-up (every component but the solve has read its options), or after the
-/// solve (before the output is published).
-enum class UnusedOptions { AFTER_SETUP, AFTER_SOLVE };
-
-/// Refuses the options that were set (command line, options files, PETSC_OPTIONS) but never read, misspelt or not
-/// meant for this run, with one error naming them, unless -options_left is false (the documented opt-out). After the
-/// set-up it leaves those the solve may still read: the saddle-point solver's (-contact_ksp_*, -contact_pc_*,
-/// -contact_mat_*, -contact_fieldsplit_*, the options of the sub-solvers it creates) and those of the vectors and
-/// matrices it assembles (-vec_*, -mat_*, -is_*, -sf_*, -vecscatter_*, -viewer_*, -draw_*). PETSc's generic options
-/// that it reads only in PetscFinalize (-options_view, ...) are never refused. After the solve it sets -options_left 0,
-/// so that PetscFinalize does not list them again. Collective.
-[[nodiscard]] PetscErrorCode CheckUnusedOptions(MPI_Comm comm, UnusedOptions when);
-
-/// Checks the command line as PETSc reads it (-name value, -name, -options_file FILE, ...): an argument that is
-/// neither an option nor an option's value (PETSc would skip it silently, e.g. a case file given without
-/// -options_file), a misspelling of -options_file (PETSc would take it for an unused option and run the default
-/// case), an option given twice (PETSc would keep the last value; -options_file may be given several times), or an
-/// option that an -options_file after it sets again (PETSc would take the file's value; an option of the command
-/// line overrides one of a file before it or of PETSC_OPTIONS) is an error that names it and says what was expected.
-/// Collective (every rank has the same arguments).
-[[nodiscard]] PetscErrorCode CheckCommandLine(int argc, char **argv);
-
-/// The first options file that cannot be read, or a YAML one that sets an option twice (in one document or in two) or
-/// names an options_file (PETSc would take either silently), as a message naming it and saying what was expected;
-/// empty when there is none. The files are those of -options_file FILE and -options_file_yaml FILE on the command
-/// line and in PETSC_OPTIONS, and those that a plain options file names in turn. files: the ones it saw, for
-/// SetOptionsFiles.
-/// Needs no PETSc (it runs before PetscInitialize).
-std::string OptionsFileProblem(int argc, char **argv, std::string &files);
-
 } // namespace signorini

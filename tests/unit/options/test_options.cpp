@@ -1,5 +1,7 @@
 // Strict option readers: empty values, hexadecimal, overflow and out-of-range values are errors naming the option.
-#include "signorini/core/options.hpp"
+#include "signorini/options/readers.hpp"
+#include "signorini/options/command_line.hpp"
+#include "signorini/options/options_files.hpp"
 
 #include "petsc_helpers.hpp"
 

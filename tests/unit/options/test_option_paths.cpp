@@ -1,6 +1,6 @@
 // Which options file last set an option (plain and YAML files, layered, overridden by the command line), and where a
 // relative path is looked for.
-#include "signorini/core/option_paths.hpp"
+#include "signorini/options/option_paths.hpp"
 
 #include <gtest/gtest.h>
 
