@@ -722,13 +722,13 @@ def kept_solver(runner):
     free = ["-mesh_file", "meshes/block.msh", "-material_E", "1000", "-contact_groups", "bottom", "-bc_pressure",
             "top:1", "-obstacle_segments", "-1,-0.01,3,-0.01"]
     for solver in ("mumps", "auto"):
-        status, out, _ = runner.run_any(free + ["-contact_kept_solver", solver], "free block, " + solver, timeout=60)
+        status, out, _ = runner.run_any(free + ["-contact_kept_solver", solver], "free block, " + solver)
         errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
         runner.expect_true("free block, %s: one error, DIVERGED_SINGULAR with MUMPS's null pivot (exit %d): %s" % (
             solver, status, errors), status != 0 and len(errors) == 1 and "DIVERGED_SINGULAR" in errors[0] and
             "MUMPS found 1 null pivot" in errors[0])
     # The same run with -info (its lines from both ranks may interleave with the error line: a run of its own).
-    status, out, _ = runner.run_any(free + ["-info", ":sys"], "free block, auto, -info", timeout=60)
+    status, out, _ = runner.run_any(free + ["-info", ":sys"], "free block, auto, -info")
     runner.expect_true("free block, auto: the Cholesky stops and MUMPS factorises (exit %d)" % status,
                        status != 0 and "MUMPS factorises instead" in out)
     # Declined (the strip of the reuse_factorization test: many candidates on a body that factors cheaply): PETSc's
@@ -1522,7 +1522,7 @@ def inclined_wall_beyond_radius(runner):
     loose = ["-mesh_file", "meshes/notch_block.msh", "-material_E", "1214.81", "-material_nu", "0.369",
              "-contact_groups", "bottom,left,right", "-bc_traction", "top:0.00521992:-0.300851", "-obstacle_segments",
              "0.994634,-0.0437555,1.99463,1.18488", "-obstacle_discs", "0.544461,-1.04376,1"]
-    status, out, _ = runner.run_any(loose, "block on a disc beside an inclined wall", timeout=60)
+    status, out, _ = runner.run_any(loose, "block on a disc beside an inclined wall")
     runner.expect_true("the loose block ends as DIVERGED_NOT_HELD (exit %d)" % status,
                        status != 0 and "DIVERGED_NOT_HELD" in out)
     # Random case 54: the 2 x 1 block pushed right on a frictionless floor, away from the wall at its left. Found free,
@@ -1530,7 +1530,7 @@ def inclined_wall_beyond_radius(runner):
     free = ["-mesh_file", "meshes/block.msh", "-material_E", "3441.21", "-material_nu", "0.435", "-contact_groups",
             "bottom,left,right", "-bc_traction", "top:2.57396:-10.5632", "-obstacle_segments",
             "-0.5,-0.0298311,2.5,-0.0298311,0,2,0,-0.5"]
-    status, out, _ = runner.run_any(free, "block pushed away from a wall", timeout=60)
+    status, out, _ = runner.run_any(free, "block pushed away from a wall")
     runner.expect_true("the free block ends as DIVERGED_NOT_HELD after the repeat (exit %d)" % status,
                        status != 0 and "searching the pairs again" in out and
                        "signorini: error: the contact solve did not converge at load factor 1: DIVERGED_NOT_HELD" in out)
@@ -1557,7 +1557,7 @@ def free_along_floor(runner):
     pushed = ["-mesh_file", "meshes/block.msh", "-material_E", "130.924", "-material_nu", "0.093", "-contact_groups",
               "bottom,left,right", "-bc_traction", "top:0.167226:-0.89568", "-obstacle_segments",
               "-0.5,-0.026905,2.5,-0.026905,0,2,0,-0.5"]
-    status, out, _ = runner.run_any(pushed, "block pushed away from its wall", timeout=60)
+    status, out, _ = runner.run_any(pushed, "block pushed away from its wall")
     errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
     runner.expect_true("one error line, DIVERGED_NOT_HELD (exit %d): %s" % (status, errors),
                        status != 0 and len(errors) == 1 and "DIVERGED_NOT_HELD" in errors[0] and
@@ -1627,7 +1627,7 @@ def cycling_set_pivoted(runner):
             "bottom,front,left", "-bc_traction", "top:0.0197162:0.0408767:-0.149286", "-obstacle_planes",
             "0,0,0,1,0,0,0,0,0,0,1,0,1.05037,0,-0.0342131,-1.46851,0,1", "-obstacle_spheres",
             "0.666416,0.593367,-1.03421,1"]
-    status, out, _ = runner.run_any(free, "3D cube sliding off its sphere", timeout=120)
+    status, out, _ = runner.run_any(free, "3D cube sliding off its sphere")
     errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
     runner.expect_true("one error line, DIVERGED_NOT_HELD by the complementarity problem (exit %d): %s" %
                        (status, errors), status != 0 and len(errors) == 1 and "DIVERGED_NOT_HELD" in errors[0] and
@@ -1666,7 +1666,7 @@ def not_held_in_any_units(runner):
     free = ["-mesh_file", "meshes/block.msh", "-material_E", "130.924", "-material_nu", "0.093", "-contact_groups",
             "bottom,left,right", "-bc_traction", "top:1.67226e-05:-8.9568e-05", "-obstacle_segments",
             "-0.5,-0.026905,2.5,-0.026905,0,2,0,-0.5"]
-    status, out, _ = runner.run_any(free, "block pushed away from its wall, load x 1e-4", timeout=60)
+    status, out, _ = runner.run_any(free, "block pushed away from its wall, load x 1e-4")
     errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
     runner.expect_true("one error line, DIVERGED_NOT_HELD by the complementarity problem, 0.18 unbalanced (exit %d): %s"
                        % (status, errors), status != 0 and len(errors) == 1 and "DIVERGED_NOT_HELD" in errors[0] and
@@ -1859,7 +1859,7 @@ def singular_narrow_radius(runner):
             expect_same_state(runner, ref, narrow, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
     loose = ["-mesh_file", "meshes/beam.msh", "-material_E", "1000", "-bc_pressure", "top:0.2", "-bc_point_force",
              "top:0:1", "-obstacle_segments", "-10,-0.5,10,-0.5"]
-    status, out, _ = runner.run_any(loose, "beam pulled up off a floor", timeout=60)
+    status, out, _ = runner.run_any(loose, "beam pulled up off a floor")
     errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
     runner.expect_true("one error line, not held within the diagonal (exit %d): %s" % (status, errors),
                        status != 0 and len(errors) == 1 and "DIVERGED_SINGULAR" in errors[0] and
@@ -1896,7 +1896,7 @@ def held_beyond_radius(runner):
                                              (what, radius)), r, keys=("contact.active_pairs", "contact.active_nodes"),
                           tol=1e-8)
     rolling = cases[2][0][:-4] + ["-obstacle_discs", "0.40798,-1.02783,1"]
-    status, out, _ = runner.run_any(rolling, "block rolling off a disc", timeout=60)
+    status, out, _ = runner.run_any(rolling, "block rolling off a disc")
     errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
     runner.expect_true("rolling off the disc: one error line, not held (exit %d): %s" % (status, errors),
                        status != 0 and len(errors) == 1 and "not held" in errors[0])
@@ -1906,7 +1906,7 @@ def held_beyond_radius(runner):
     svk = ["-mesh_file", "meshes/notch_block.msh", "-material_E", "5989.53", "-material_nu", "0.312", "-contact_groups",
            "bottom,left,right", "-material_model", "svk", "-bc_traction", "top:0.190318:-1.10502", "-obstacle_segments",
            "0.829454,-0.0144737,1.82945,0.818844", "-obstacle_discs", "0.448063,-1.01447,1"]
-    status, out, result = runner.run_any(svk, "svk block on a disc beside a wall", timeout=60)
+    status, out, result = runner.run_any(svk, "svk block on a disc beside a wall")
     errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
     if status == 0:  # a better svk path may converge: then to a state outside the obstacles
         depth = geometric_penetration(result.nodes(), svk)
@@ -2140,7 +2140,7 @@ def random_cases(runner):
     outcomes = {"converged": 0, "refused": 0}
     for seed in range(50):
         args = random_case(rng)
-        status, out, r = runner.run_any(args, "random %d" % seed, timeout=60)
+        status, out, r = runner.run_any(args, "random %d" % seed)
         label = "seed %d (%s)" % (seed, " ".join(args))
         if r is None:
             outcomes["refused"] += 1
@@ -2215,15 +2215,21 @@ def nonlinear_sliding_repair(runner):
 PARAVIEW_READERS = ("Xdmf3ReaderS", "Xdmf3ReaderT", "XDMFReader")
 
 
-def paraview_dump(runner, results):
-    """What each ParaView XDMF reader shows of each result's solution.xdmf and of its per-block files
-    (paraview_dump.py under pvpython, one call for all): per result, a dict reader -> {class, times, blocks at the last
-    time step} with "files": block name -> the same per reader, or None when pvpython failed (a recorded check). Skips
-    the test when pvpython is not installed."""
+def require_pvpython():
+    """pvpython's path; skips the test when it is not installed. Called before the test's first run, so that a skip
+    never hides a check made before it."""
     pvpython = shutil.which("pvpython")
     if not pvpython:
         from run_case import Skipped
         raise Skipped("pvpython not found (Debian package python3-paraview; scripts/bootstrap.sh installs it)")
+    return pvpython
+
+
+def paraview_dump(runner, results):
+    """What each ParaView XDMF reader shows of each result's solution.xdmf and of its per-block files
+    (paraview_dump.py under pvpython, one call for all): per result, a dict reader -> {class, times, blocks at the last
+    time step} with "files": block name -> the same per reader, or None when pvpython failed (a recorded check)."""
+    pvpython = require_pvpython()
     args = []
     for r in results:
         args += [os.path.join(r.dir, "solution.xdmf"), os.path.join(r.dir, "paraview.json")]
@@ -2299,6 +2305,7 @@ def paraview_view(runner):
     stress and strain under the right component names, the floor as its own grid, the contact fields and the
     displacement on a grid of the contact boundary (finite gap everywhere), node and cell tags that match nodes.csv;
     and each block in a file of its own (check_block_files)."""
+    require_pvpython()
     q = 2.0
     r = runner.run(["-options_file", "options/block_on_floor.yml", "-load_steps", "2"], "block_on_floor")
     check_contact_displacement(runner, r)
@@ -2360,6 +2367,7 @@ def paraview_view_3d(runner):
     obstacle grid, each with the bounds its options give: the plane z = 0 as the rectangle under the body, a cylinder
     over the body's extent along its axis, a whole sphere (placed apart, below the body, so that they do not touch
     it); in two load steps, at the last one; and each block in a file of its own (check_block_files)."""
+    require_pvpython()
     plane, cylinder, sphere = [0, 0, 0, 0, 0, 1], [0, 0.5, -4, 1, 0, 0, 0.5], [1, 0.5, -10, 2]
     r = runner.run(["-options_file", "options/cube_on_plane.yml", "-mesh_file", "meshes/cube_mixed_conforming.msh",
                     "-obstacle_planes", ",".join(map(str, plane)), "-obstacle_cylinders",
