@@ -2132,24 +2132,71 @@ def geometric_penetration(nodes, args):
     return deepest
 
 
+def held_by_construction(args):
+    """Whether a random_case's block is held whatever the load's size, so that it must converge: supported on its left
+    side (u_x = 0, which also stops its rotation) over a floor or a disc, or on a floor against the left wall and pushed
+    towards it; in both without the inclined wall (which may start deep inside the block's corner)."""
+    values = lambda name: [float(v) for v in args[args.index(name) + 1].split(",")] if name in args else []
+    segments = values("-obstacle_segments")
+    pieces = [segments[k:k + 4] for k in range(0, len(segments), 4)]
+    floor = any(p[1] == p[3] for p in pieces)
+    wall = [0, 2, 0, -0.5] in pieces
+    inclined = any(p[1] != p[3] and p[0] != p[2] for p in pieces)
+    tx = float(args[args.index("-bc_traction") + 1].split(":")[1])
+    if inclined:
+        return False
+    if "-bc_dirichlet" in args:
+        return floor or "-obstacle_discs" in args
+    return floor and wall and tx <= 0
+
+
+def outcome(status, out, result):
+    """A run's outcome as pinned: ("converged", active-set iterations), or (the final DIVERGED_ reason,)."""
+    if result is not None:
+        return ("converged", result.get("iterations.active_set"))
+    m = re.search(r"signorini: error: .*?(DIVERGED_\w+)", out)
+    return (m.group(1) if m else "no reason (exit %d)" % status,)
+
+
+# The outcome of each random case of random_cases (seed 20261123), the same on 1 and 2 ranks: the fixed seed makes
+# them deterministic, so a change of outcome or of iteration count is a change of the solver's path to be looked at
+# (and pinned again, with the reason in the commit message). Read case by case, every refusal is a block that nothing
+# holds against its load (pushed along a frictionless floor away from any wall, or rolling off a disc), but case 47:
+# an svk block whose corner starts deep inside an inclined wall (DIVERGED_NONINVERTIBLE_DEFORMATION).
+RANDOM_CASES_SEED = 20261123
+RANDOM_CASES_OUTCOMES = {
+    0: ('DIVERGED_NOT_HELD',), 1: ('converged', 3), 2: ('converged', 11), 3: ('DIVERGED_NOT_HELD',),
+    4: ('converged', 3), 5: ('converged', 15), 6: ('converged', 2), 7: ('DIVERGED_NOT_HELD',), 8: ('converged', 7),
+    9: ('DIVERGED_NOT_HELD',), 10: ('converged', 23), 11: ('converged', 3), 12: ('DIVERGED_SINGULAR',),
+    13: ('converged', 17), 14: ('converged', 2), 15: ('converged', 4), 16: ('converged', 7),
+    17: ('DIVERGED_SINGULAR',), 18: ('converged', 12), 19: ('converged', 3), 20: ('DIVERGED_SINGULAR',),
+    21: ('DIVERGED_NOT_HELD',), 22: ('converged', 10), 23: ('converged', 8), 24: ('converged', 1),
+    25: ('DIVERGED_NOT_HELD',), 26: ('DIVERGED_SINGULAR',), 27: ('converged', 5), 28: ('converged', 6),
+    29: ('DIVERGED_SINGULAR',), 30: ('DIVERGED_NOT_HELD',), 31: ('converged', 6), 32: ('DIVERGED_SINGULAR',),
+    33: ('DIVERGED_SINGULAR',), 34: ('converged', 5), 35: ('DIVERGED_SINGULAR',), 36: ('converged', 4),
+    37: ('converged', 3), 38: ('converged', 1), 39: ('converged', 12), 40: ('converged', 3), 41: ('converged', 8),
+    42: ('converged', 6), 43: ('DIVERGED_NOT_HELD',), 44: ('converged', 6), 45: ('DIVERGED_NOT_HELD',),
+    46: ('converged', 2), 47: ('DIVERGED_NONINVERTIBLE_DEFORMATION',), 48: ('converged', 30), 49: ('converged', 1)}
+
+
 @test("random_cases")
 def random_cases(runner):
-    """Property test over 50 random small cases: every exit 0 is a certified contact state, checked again from the
-    node table; every failure is one clean error line and no output, never a hang."""
-    rng = np.random.default_rng(20261123)
-    outcomes = {"converged": 0, "refused": 0}
+    """Property test over 50 random small cases: each ends as pinned (RANDOM_CASES_OUTCOMES: converged in as many
+    active-set iterations, or refused with the same reason); every exit 0 is a certified contact state, checked again
+    from the node table; every failure is one clean error line and no output (Runner.run_any); a case held by
+    construction (held_by_construction) converges."""
+    rng = np.random.default_rng(RANDOM_CASES_SEED)
+    outcomes = {}
     for seed in range(50):
         args = random_case(rng)
         status, out, r = runner.run_any(args, "random %d" % seed)
         label = "seed %d (%s)" % (seed, " ".join(args))
+        outcomes[seed] = outcome(status, out, r)
+        runner.expect_equal("%s: outcome" % label, outcomes[seed], RANDOM_CASES_OUTCOMES.get(seed))
+        if held_by_construction(args):
+            runner.expect_equal("%s: held by construction, converges" % label, outcomes[seed][0], "converged")
         if r is None:
-            outcomes["refused"] += 1
-            errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
-            runner.expect_true("%s: exit %d with one error line (%d)" % (label, status, len(errors)),
-                               status != 0 and len(errors) == 1 and "PETSC ERROR" not in out)
             continue
-        outcomes["converged"] += 1
-        runner.expect_certificate(r)
         # Independently of the certificate: no node in a pair's zone behind the obstacle beyond the gap tolerance,
         # no tensile multiplier beyond its tolerance, balance of forces.
         c, nodes = r.get("certificate"), r.nodes()
@@ -2165,11 +2212,7 @@ def random_cases(runner):
             np.array(r.get("contact.applied_force"))
         runner.expect_true("%s: force balance %.2g" % (label, np.linalg.norm(total)),
                            np.linalg.norm(total) <= 1e-8 * np.linalg.norm(r.get("contact.applied_force")))
-    print("  outcomes: %s" % outcomes)
-    # Not a vacuous pass: a good part of the cases converge (many others are refused rightly: a horizontal load on a
-    # frictionless floor without a wall moves the block away for ever).
-    runner.expect_true("at least 15 of 50 random cases converge (%d)" % outcomes["converged"],
-                       outcomes["converged"] >= 15)
+    print("  outcomes: {%s}" % ", ".join("%d: %r" % kv for kv in sorted(outcomes.items())))
 
 
 @test("svk_pairs_kept")
