@@ -80,21 +80,57 @@ def check_same_mesh(runner, what, a, b):
     runner.expect_close("%s: node coordinates" % what, coordinates(b), coordinates(a), 0, 1e-14)
 
 
-def hertz_refinement_levels(runner, case, factors, h_contact, bound, check_load, heap_check=True):
-    """Runs options/CASE.yml on meshes/CASE.geo at each size factor, checks the load with check_load(runner, result,
-    hertz, what) and the computed a within the contact element size h_contact x factor, prints the errors and checks
-    that both errors of a and p0 decrease overall, ending at most bound on the finest mesh."""
+def johnson(dim, R, P, E, nu):
+    """Johnson's (1985, 4.2) contact half-width (2D, P per unit thickness) or radius (3D) a and peak pressure p0 of a
+    cylinder or sphere of radius R pressed on a rigid flat by the load P: E* = E / (1 - nu^2); 2D a = sqrt(4 P R /
+    (pi E*)), p0 = 2 P / (pi a); 3D a = (3 P R / (4 E*))^(1/3), p0 = 3 P / (2 pi a^2)."""
+    E_star = E / (1 - nu * nu)
+    if dim == 2:
+        a = np.sqrt(4 * P * R / (np.pi * E_star))
+        return a, 2 * P / (np.pi * a)
+    a = (3 * P * R / (4 * E_star)) ** (1 / 3)
+    return a, 3 * P / (2 * np.pi * a * a)
+
+
+def area_on_plane(result, z):
+    """The area of the cells' faces on the plane z = const, by hand from solution.h5 (a triangle of a tetrahedron, or a
+    quadrilateral of a hexahedron, taken as the convex polygon of its vertices)."""
+    xyz, cells, _ = result.solution()
+    on = np.abs(xyz[:, 2] - z) < 1e-12
+    area = 0.0
+    for cell in cells:
+        face = [v for v in cell if on[v]]
+        if len(face) < 3:
+            continue
+        p = xyz[face][:, :2]
+        p = p[np.argsort(np.arctan2(*(p - p.mean(axis=0)).T[::-1]))]
+        area += 0.5 * abs(np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1]))
+    return area
+
+
+def hertz_refinement_levels(runner, case, factors, h_contact, bound, load, heap_check=True):
+    """Runs options/CASE.yml on meshes/CASE.geo at each size factor, computes here the load P the model stands for
+    with load(runner, result, what) and from it Johnson's a and p0 (johnson: R, E and nu of the case's files), checks
+    the summary's comparison against them and the computed a within the contact element size h_contact x factor,
+    prints the errors and checks that both errors of a and p0 decrease overall, ending at most bound on the finest
+    mesh, and that the pressure profile's fitted a converges to Johnson's."""
+    options = dict(yaml_options(runner.path("options/%s.yml" % case)))
+    R = float(options["report_hertz"].split(",")[0])
+    E, nu = float(options["material_E"]), float(options["material_nu"])
     rows = []
     for f in factors:
         r = runner.run(["-options_file", "options/%s.yml" % case, "-mesh_file", "meshes/%s.geo" % case,
                         "-mesh_size_factor", f], "%s factor %g" % (case, f), heap_check=heap_check)
         h = r.summary["hertz"]
-        check_load(runner, r, h, "factor %g" % f)
+        P = load(runner, r, "factor %g" % f)
+        a, p0 = johnson(r.get("mesh.dim"), R, P, E, nu)
+        # The program's own comparison uses the same formulas; summary.json holds 10 significant digits.
+        runner.expect_close("factor %g: summary's Johnson a" % f, h["a"], a, 1e-9)
+        runner.expect_close("factor %g: summary's Johnson p0" % f, h["p0"], p0, 1e-9)
         # The contact zone is resolved node by node: a_computed comes from the summed tributary lengths (2D) or areas
         # (3D) of the active nodes, so it cannot be closer to a than about the element size at the contact.
         h_c = h_contact * f
-        runner.expect_close("factor %g: a within the contact element size %g" % (f, h_c), h["a_computed"], h["a"], 0,
-                            h_c)
+        runner.expect_close("factor %g: a within the contact element size %g" % (f, h_c), h["a_computed"], a, 0, h_c)
         # The fit of the nodal pressures' profile, p^2 = p0^2 (1 - r^2/a^2) over the active nodes within 0.8 of the
         # outermost one's radius, recomputed here from the node table (the contact centre is the origin). Its a does
         # not move by whole elements, but rests on few nodes on a coarse 3D mesh: within the contact element size too
@@ -104,15 +140,14 @@ def hertz_refinement_levels(runner, case, factors, h_contact, bound, check_load,
         r2 = active["x"] ** 2 + (active["y"] ** 2 if case == "hertz3d" else 0)
         inner = r2 <= 0.64 * r2.max()
         slope, intercept = np.polyfit(r2[inner], active["pressure"][inner] ** 2, 1)
-        runner.expect_close("factor %g: a of the pressure profile's fit" % f, h["a_fit"], np.sqrt(-intercept / slope),
-                            1e-6)
-        runner.expect_close("factor %g: the fit's a within the contact element size %g" % (f, h_c), h["a_fit"], h["a"],
-                            0, h_c)
-        rows.append((f, abs(h["a_computed"] - h["a"]) / h["a"], abs(h["p0_computed"] - h["p0"]) / h["p0"],
+        a_fit = np.sqrt(-intercept / slope)
+        runner.expect_close("factor %g: a of the pressure profile's fit" % f, h["a_fit"], a_fit, 1e-6)
+        runner.expect_close("factor %g: the fit's a within the contact element size %g" % (f, h_c), a_fit, a, 0, h_c)
+        rows.append((f, abs(h["a_computed"] - a) / a, abs(h["p0_computed"] - p0) / p0, abs(a_fit - a) / a,
                      r.get("contact.active_pairs"), r.get("iterations.active_set"), r.get("mesh.nodes")))
-    print("  factor  nodes  active  iterations  a error %  p0 error %")
-    for f, ea, ep, act, its, n in rows:
-        print("  %6g %6d %7d %11d %10.3f %11.3f" % (f, n, act, its, 100 * ea, 100 * ep))
+    print("  factor  nodes  active  iterations  a error %  p0 error %  fit a error %")
+    for f, ea, ep, ef, act, its, n in rows:
+        print("  %6g %6d %7d %11d %10.3f %11.3f %14.3f" % (f, n, act, its, 100 * ea, 100 * ep, 100 * ef))
     h = np.array([r[0] for r in rows])
     for col, name in ((1, "a"), (2, "p0")):
         e = np.array([r[col] for r in rows])
@@ -135,13 +170,16 @@ HERTZ_H_CONTACT = 0.02
 def hertz_refinement(runner):
     """Hertz cylinder on a flat: half-width and peak pressure converge to Johnson's values under mesh refinement."""
 
-    def check_load(runner, r, h, what):
-        # Equilibrium: the rigid flat carries the whole load P (round-off of a direct solve); a straight loaded edge.
-        P = h["P"]
+    def load(runner, r, what):
+        # The traction of options/hertz.yml on the flat top, 2R wide (meshes/hertz.geo): P per unit thickness. The
+        # rigid flat carries the whole load (round-off of a direct solve).
+        options = dict(yaml_options(runner.path("options/hertz.yml")))
+        P = -float(options["bc_traction"].split(":")[2]) * 2 * float(options["report_hertz"].split(",")[0])
         runner.expect_close("%s: contact force" % what, r.get("contact.contact_force"), [0, P], 1e-10, 1e-10 * P)
-        runner.expect_equal("%s: symmetry fraction" % what, h["fraction"], 1.0)
+        runner.expect_equal("%s: symmetry fraction" % what, r.get("hertz.fraction"), 1.0)
+        return P
 
-    hertz_refinement_levels(runner, "hertz", HERTZ_FACTORS, HERTZ_H_CONTACT, 0.02, check_load)
+    hertz_refinement_levels(runner, "hertz", HERTZ_FACTORS, HERTZ_H_CONTACT, 0.02, load)
 
 
 # Hertz sphere on a flat (options/hertz3d.yml, an octant of a ball with two symmetry planes): mesh size factors of
@@ -154,20 +192,25 @@ HERTZ3D_H_CONTACT = 0.04
 def hertz3d_refinement(runner):
     """Hertz sphere on a flat: contact radius and peak pressure converge to Johnson's values under mesh refinement."""
 
-    def check_load(runner, r, h, what):
-        # Two symmetry planes: the model is a quarter of the hemisphere. It carries the pressure times the area of
-        # its faceted top, a little less than P / 4; Johnson's values are those of the load it carries.
-        runner.expect_equal("%s: symmetry fraction" % what, h["fraction"], 0.25)
+    def load(runner, r, what):
+        # Two symmetry planes: the model is a quarter of the hemisphere. It carries the pressure q times the area of
+        # its faceted top z = 0 (computed here from the mesh), a little less than P / 4; Johnson's values are those of
+        # the load P_model = 4 q area it stands for.
+        q = float(dict(yaml_options(runner.path("options/hertz3d.yml")))["bc_pressure"].split(":")[1])
+        P_model = 4 * q * area_on_plane(r, 0.0)
+        runner.expect_equal("%s: symmetry fraction" % what, r.get("hertz.fraction"), 0.25)
         F = r.get("contact.contact_force")
-        runner.expect_close("%s: the model carries P_model / 4" % what, F, [0, 0, h["P_model"] / 4], 0,
-                            1e-10 * h["P_model"])
+        runner.expect_close("%s: the model carries P_model / 4" % what, F, [0, 0, P_model / 4], 0, 1e-10 * P_model)
         runner.expect_close("%s: contact force = applied load" % what, F, -np.array(r.get("contact.applied_force")),
-                            0, 1e-10 * h["P_model"])
+                            0, 1e-10 * P_model)
+        # summary.json holds 10 significant digits.
+        runner.expect_close("%s: summary's P_model" % what, r.get("hertz.P_model"), P_model, 1e-9)
         # The faceted top falls short of the quarter disc by the segments its rim cuts off (10 % on the coarsest).
-        runner.expect_close("%s: P_model close to P" % what, h["P_model"], h["P"], 0.12)
+        runner.expect_close("%s: P_model close to P = q pi R^2" % what, P_model, q * np.pi * 10.0 ** 2, 0.12)
+        return P_model
 
     # heap_check off: -malloc_debug validates the whole heap at every allocation, slow on the finer 3D meshes.
-    hertz_refinement_levels(runner, "hertz3d", HERTZ3D_FACTORS, HERTZ3D_H_CONTACT, 0.03, check_load, heap_check=False)
+    hertz_refinement_levels(runner, "hertz3d", HERTZ3D_FACTORS, HERTZ3D_H_CONTACT, 0.03, load, heap_check=False)
 
 
 @test("hertz_thickness")
@@ -820,9 +863,12 @@ def svk_reuse_factorization(runner, case):
 
 @test("solver_preset")
 def solver_preset(runner, preset):
-    """beam_on_floor with a solver preset gives the active set and contact force of mumps_cholesky."""
+    """beam_on_floor with a solver preset gives the state of another solver: mumps_cholesky's, or for mumps_cholesky
+    itself mumps_lu's (a second factorisation, not the same run twice): the same active set, contact force,
+    displacements and multipliers."""
     base = ["-options_file", "options/beam_on_floor.yml"]
-    ref = runner.run(base + ["-options_file", "options/solver/mumps_cholesky.yml"], "beam_on_floor mumps_cholesky")
+    other = "mumps_lu" if preset == "mumps_cholesky" else "mumps_cholesky"
+    ref = runner.run(base + ["-options_file", "options/solver/%s.yml" % other], "beam_on_floor %s" % other)
     # On two ranks the preset runs without the heap validation at every allocation (the leak check stays): it makes
     # GAMG set-up about 50 times slower there (4 s -> 240 s); one rank keeps the full check.
     r = runner.run(base + ["-options_file", "options/solver/%s.yml" % preset], "beam_on_floor %s" % preset,
@@ -831,11 +877,15 @@ def solver_preset(runner, preset):
     runner.expect_equal("active nodes", r.get("contact.active_nodes"), ref.get("contact.active_nodes"))
     a, b = ref.nodes(), r.nodes()
     runner.expect_true("same active nodes", np.array_equal(a["active"], b["active"]))
-    # The iterative presets solve to ksp_rtol 1e-10; the contact force then agrees to about that (K is regular).
+    # The iterative presets solve to ksp_rtol 1e-10; the state then agrees to about that times the conditioning of
+    # the saddle-point matrix, within 1e-8 of the largest value (two direct factorisations agree far closer).
     f_ref = np.array(ref.get("contact.contact_force"))
     runner.expect_close("contact force", r.get("contact.contact_force"), f_ref, 1e-8, 1e-8 * np.abs(f_ref).max())
-    print("  iterations: active set %d, Krylov %d (mumps_cholesky: %d, %d)" % (
-        r.get("iterations.active_set"), r.get("iterations.krylov"), ref.get("iterations.active_set"),
+    u = displacement(a)
+    runner.expect_close("displacement", displacement(b), u, 0, 1e-8 * np.abs(u).max())
+    runner.expect_close("lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
+    print("  iterations: active set %d, Krylov %d (%s: %d, %d)" % (
+        r.get("iterations.active_set"), r.get("iterations.krylov"), other, ref.get("iterations.active_set"),
         ref.get("iterations.krylov")))
 
 
@@ -1171,14 +1221,22 @@ def search_radius(runner):
 
 @test("svk_rank_independence")
 def svk_rank_independence(runner):
-    """St. Venant-Kirchhoff with contact and load steps on 1 and 2 ranks: the same iterations and solution."""
+    """St. Venant-Kirchhoff with contact and load steps on 1 and 2 ranks: the same iterations, active set, displacements,
+    multipliers and contact force."""
     args = ["-options_file", "options/beam_on_floor.yml", "-material_model", "svk", "-load_steps", "2"]
     one = runner.run(args, "beam svk", np_=1)
     two = runner.run(args, "beam svk", np_=2)
-    for key in ("contact.active_pairs", "iterations.active_set", "iterations.load_steps"):
+    for key in ("contact.active_pairs", "contact.active_nodes", "iterations.active_set", "iterations.load_steps"):
         runner.expect_equal("%s on 2 ranks" % key, two.get(key), one.get(key))
     a, b = one.nodes(), two.nodes()
+    check_same_mesh(runner, "1 and 2 ranks", a, b)
+    runner.expect_true("same active nodes", np.array_equal(a["active"], b["active"]))
+    # Two Newton paths to the same state, each to the Newton tolerance (1e-9 of the force scale): 1e-8 of the largest
+    # value (rank_independence).
     runner.expect_close("displacement", displacement(b), displacement(a), 0, 1e-8 * np.abs(displacement(a)).max())
+    runner.expect_close("lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
+    runner.expect_close("contact force", two.get("contact.contact_force"), one.get("contact.contact_force"), 1e-8,
+                        1e-8 * np.abs(one.get("contact.contact_force")).max())
 
 
 # Nonlinear (St. Venant-Kirchhoff) cases, on the same harness (leaks, PETSc errors, unused options, certificate).
@@ -1634,6 +1692,17 @@ def cycling_set_pivoted(runner):
                        "no contact forces on its" in errors[0])
 
 
+def rigid_and_deformation(nodes):
+    """A 2D displacement field split into its least-squares rigid motion (u_x, u_y of the origin and the small rotation
+    w: u = c + w (-y, x)) and the rest, the deformation (one row per node)."""
+    x, y = nodes["x"], nodes["y"]
+    A = np.zeros((2 * len(x), 3))
+    A[0::2, 0], A[1::2, 1], A[0::2, 2], A[1::2, 2] = 1, 1, -y, x
+    u = displacement(nodes).ravel()
+    move = np.linalg.lstsq(A, u, rcond=None)[0]
+    return move, (u - A @ move).reshape(-1, 2)
+
+
 @test("not_held_in_any_units")
 def not_held_in_any_units(runner):
     """The complementarity problem's answers do not depend on the units. Random case 8 of seed 777 (the 2 x 1 block on a
@@ -1644,33 +1713,48 @@ def not_held_in_any_units(runner):
     that load (a fraction proportional to E / load), above the verdict's 1e-3, and it ended with DIVERGED_NOT_HELD. Both
     now converge to the state of -contact_reuse_factorization false (which has no complementarity problem). A free body
     in small units (free_along_floor's block pushed away from its wall, load times 1e-4) is still found not held, with
-    the fraction of the load that nothing balances of the unscaled case (0.18)."""
+    the fraction of the load that nothing balances, its tangential part |t_x| / |t|."""
     disc = ["-mesh_file", "meshes/block.msh", "-material_E", "0.000941803", "-material_nu", "0.167", "-contact_groups",
             "bottom,left,right", "-bc_traction", "top:-9.99894e-08:-5.09574e-07", "-obstacle_segments", "0,2,0,-0.5",
             "-obstacle_discs", "1.36854,-0.995587,1"]
     wall = ["-mesh_file", "meshes/block.msh", "-material_E", "159.398", "-material_nu", "0.099", "-contact_groups",
             "bottom,left,right", "-bc_traction", "top:2.20444e-06:-1.10633e-05", "-obstacle_segments",
             "-0.5,-0.00417123,2.5,-0.00417123,0,2,0,-0.5,1.74823,-0.00417123,2.74823,1.09528"]
-    # The same active set gives the same linear system, solved by two factorisations: 1e-8 of the largest value; the
-    # wedged block's multipliers 1e-6 (they differ by 1e-7 between the two, on 1 and on 2 ranks): the block slides
-    # 0.27 rigidly into its wedge while its elastic deformation, which alone sets the multipliers, is of order load / E
-    # = 7e-8, so the round-off of the travel (1e-16 of 0.27) is about 1e-9 of the deformation, amplified by the
-    # condition of the stiffness.
+    # The same active set gives the same linear system, solved by two factorisations. The wedged block slides 0.27
+    # rigidly into its wedge while its elastic deformation, which alone sets the multipliers, is of order load / E
+    # = 7e-8: the displacement is compared as its rigid part (round-off of the travel) and its deformation, each
+    # against its own size, so that the tolerance is not larger than the deformation it checks. The round-off of the
+    # travel (1e-16 of 0.27) is about 1e-9 of the deformation, amplified by the condition of the stiffness: 1e-6 of
+    # the deformation and of the multipliers for the wedged block (they differ by 2e-8 of the largest), 1e-8 on the
+    # disc.
     for args, what, tol in ((disc, "block on a disc, E x 1e-6", 1e-8),
                             (wall, "block between floor and wall, load x 1e-4", 1e-6)):
         r = runner.run(args, what)
         runner.expect_true("%s: pivoted (%d)" % (what, r.get("iterations.pivoted_sets")),
                            r.get("iterations.pivoted_sets") >= 1)
         ref = runner.run(args + ["-contact_reuse_factorization", "false"], what + ", no kept factorisation")
-        expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=tol)
+        for key in ("contact.active_pairs", "contact.active_nodes"):
+            runner.expect_equal("%s: %s" % (what, key), r.get(key), ref.get(key))
+        a, b = ref.nodes(), r.nodes()
+        runner.expect_true("%s: the same active nodes" % what, np.array_equal(a["active"], b["active"]))
+        (move_a, strain_a), (move_b, strain_b) = rigid_and_deformation(a), rigid_and_deformation(b)
+        runner.expect_close("%s: rigid motion (translation, rotation)" % what, move_b, move_a, 0,
+                            1e-10 * np.abs(move_a).max())
+        runner.expect_close("%s: deformation (displacement less its rigid part)" % what, strain_b, strain_a, 0,
+                            tol * np.abs(strain_a).max())
+        runner.expect_close("%s: lambda" % what, b["lambda"], a["lambda"], 0, tol * np.abs(a["lambda"]).max())
     free = ["-mesh_file", "meshes/block.msh", "-material_E", "130.924", "-material_nu", "0.093", "-contact_groups",
             "bottom,left,right", "-bc_traction", "top:1.67226e-05:-8.9568e-05", "-obstacle_segments",
             "-0.5,-0.026905,2.5,-0.026905,0,2,0,-0.5"]
     status, out, _ = runner.run_any(free, "block pushed away from its wall, load x 1e-4")
     errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
-    runner.expect_true("one error line, DIVERGED_NOT_HELD by the complementarity problem, 0.18 unbalanced (exit %d): %s"
-                       % (status, errors), status != 0 and len(errors) == 1 and "DIVERGED_NOT_HELD" in errors[0] and
-                       "leaves 0.18 of it" in errors[0])
+    # The frictionless floor balances the load's normal part; the tangential part |t_x| / |t| is left along the free
+    # rigid motion (the sliding), whatever the units.
+    tx, ty = (float(v) for v in free[free.index("-bc_traction") + 1].split(":")[1:])
+    left = "leaves %.2g of it" % (abs(tx) / np.hypot(tx, ty))
+    runner.expect_true("one error line, DIVERGED_NOT_HELD by the complementarity problem, '%s' (exit %d): %s"
+                       % (left, status, errors), status != 0 and len(errors) == 1 and "DIVERGED_NOT_HELD" in errors[0]
+                       and left in errors[0])
 
 
 @test("search_radius_widened")
@@ -1903,20 +1987,17 @@ def held_beyond_radius(runner):
     # svk, seed 777 case 136: found free with the default radius's pairs, held by the inclined wall's, and the
     # repeat's deformation becomes non-invertible at every cut (svk's linearised rigid moves on a disc). The report
     # used to be the first finding, "the body is not held"; it is now the deformation, with that finding as context.
+    # A known failure, pinned so that any change shows: the linear material converges on it (3 active pairs) and the
+    # strains are of order load / E = 2e-4, so svk should converge too.
     svk = ["-mesh_file", "meshes/notch_block.msh", "-material_E", "5989.53", "-material_nu", "0.312", "-contact_groups",
            "bottom,left,right", "-material_model", "svk", "-bc_traction", "top:0.190318:-1.10502", "-obstacle_segments",
            "0.829454,-0.0144737,1.82945,0.818844", "-obstacle_discs", "0.448063,-1.01447,1"]
     status, out, result = runner.run_any(svk, "svk block on a disc beside a wall")
     errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
-    if status == 0:  # a better svk path may converge: then to a state outside the obstacles
-        depth = geometric_penetration(result.nodes(), svk)
-        runner.expect_true("svk block on a disc beside a wall converged outside the obstacles (%g)" % depth,
-                           depth <= result.get("certificate.gap_tol"))
-    else:
-        runner.expect_true("svk block held by the wall's pairs: not reported as not held (exit %d): %s" %
-                           (status, errors), len(errors) == 1 and "DIVERGED_NOT_HELD" not in errors[0] and
-                           "found not held with the pairs of a narrower radius; repeated with those within"
-                           in errors[0])
+    runner.expect_true("svk block held by the wall's pairs: DIVERGED_NONINVERTIBLE_DEFORMATION after the repeat, not "
+                       "reported as not held (exit %d): %s" % (status, errors),
+                       status != 0 and len(errors) == 1 and "DIVERGED_NONINVERTIBLE_DEFORMATION" in errors[0] and
+                       "found not held with the pairs of a narrower radius; repeated with those within" in errors[0])
 
 
 @test("svk_free_after_lagged_search")
@@ -2003,10 +2084,16 @@ def nearly_incompressible(runner):
     says that the displacement elements lock; plane stress, which does not lock, says nothing."""
     r = runner.run(["-material_nu", "0.499999"], "Hertz, nu = 0.499999")
     runner.expect_true("the locking note", "Note: -material_nu 0.499999 is nearly incompressible" in r.output)
-    runner.expect_true("the certificate holds", r.get("certificate.satisfied"))
-    runner.expect_true("its equilibrium residual within the tolerance (%g <= %g)" % (
-        r.get("certificate.equilibrium"), r.get("certificate.equilibrium_tol")),
-        r.get("certificate.equilibrium") <= r.get("certificate.equilibrium_tol"))
+    # Independently of the certificate: the load P = |t_y| 2R of options/hertz.yml, applied exactly (a straight edge),
+    # and balanced by the flat. The round-off of K u grows with the stiffness's largest entries, (lambda + 2 mu)
+    # against mu = 2 (1 - nu) / (1 - 2 nu), 5e5 here: 1e-12 of the load per unit of that ratio (nu = 0.3: 3.5).
+    options = dict(yaml_options(runner.path("options/hertz.yml")))
+    P = -float(options["bc_traction"].split(":")[2]) * 2 * float(options["report_hertz"].split(",")[0])
+    runner.expect_close("applied load", r.get("contact.applied_force"), [0, -P], 0, 1e-12 * P)
+    nu = 0.499999
+    expect_balance(runner, r, r.label, 1e-12 * P * 2 * (1 - nu) / (1 - 2 * nu))
+    runner.expect_close("the flat carries the load", r.get("contact.contact_force"), [0, P], 0,
+                        1e-12 * P * 2 * (1 - nu) / (1 - 2 * nu))
     for extra, what in ((["-material_nu", "0.49"], "nu = 0.49"),
                         (["-material_nu", "0.499999", "-material_plane", "stress"], "plane stress")):
         q = runner.run(extra, "Hertz, " + what)
