@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Command-line behaviour: -help lists every option of the README's tables with its default, a misspelled option is
+"""Command-line behaviour: -help and docs/options.md list the same options with the same defaults, a misspelled option is
 reported, the built-in default case equals options/hertz.yml, a relative path in an options file is read relative to
 that file."""
 import json
@@ -37,14 +37,51 @@ def check(cond, message):
 if TEST == "help":
     rc, out = run(["-help"])
     check(rc == 0, "-help exits 0")
-    with open(os.path.join(SOURCE, "README.md")) as f:
-        readme = f.read()
-    documented = set(re.findall(r"^\| `(-[a-z_]+)", readme, re.M))
-    check(len(documented) >= 30, f"README documents {len(documented)} options")
-    for option in sorted(documented):
-        if option.startswith("-contact_ksp") or option.startswith("-contact_pc") or option.endswith("_"):
+    # docs/options.md against -help, both ways: every option of the program's groups (before PETSc's first group of the
+    # solver) is a row of an options table there with -help's default, and every option documented is in -help.
+    # A default cell matches when a `literal` in it is -help's value (numbers compared as numbers, "×" as "x", a path
+    # by its end), or -help's text says "default: <cell>", or it says none for an empty value, on/off for a flag.
+    with open(os.path.join(SOURCE, "docs", "options.md")) as f:
+        doc_lines = f.read().splitlines()
+    documented, column = {}, None
+    for line in doc_lines:
+        cells = [c.strip() for c in line.strip().strip("|").split("|")] if line.startswith("|") else []
+        if cells and cells[0] == "option":
+            column = cells.index("default") if "default" in cells else None
+        elif cells and not set(cells[0]) <= set("- ") and cells[0].startswith("`-"):
+            if column is None:
+                check(False, f"docs/options.md gives a default column for {cells[0]}")
+            for option in re.findall(r"`(-[A-Za-z_0-9{},<>*]+)", cells[0]):
+                documented[option] = cells[column]
+    check(len(documented) >= 30, f"docs/options.md documents {len(documented)} options")
+    _, gamg_help = run(["-help", "-options_file", "options/solver/fieldsplit_gamg.yml"])
+    ours_end = out.find("Preconditioner (PC) options:")
+    check(ours_end > 0, "-help has the solver's PC group after the program's groups")
+    ours = {m.group(1): m.group(0) for m in re.finditer(r"^  (-[a-z_0-9]+)\b.*$", out[:ours_end], re.M)}
+    check(len(ours) >= 30, f"-help lists {len(ours)} options of the program")
+    for option in sorted(ours):
+        check(option in documented, f"docs/options.md documents {option} of -help")
+
+    def norm(text):
+        text = text.replace("×", "x").strip()
+        return re.sub(r"-?\d+\.?\d*(e[-+]?\d+)?", lambda m: "%g" % float(m.group(0)), text)
+
+    for option, cell in sorted(documented.items()):
+        if re.search(r"[*<{]", option):  # a family: some option of -help starts with its prefix
+            prefix = re.split(r"[*<{]", option)[0]
+            check(prefix in out or prefix in gamg_help, f"-help lists options of {option}")
             continue
         check(re.search(r"^\s+" + re.escape(option) + r"\b", out, re.M) is not None, f"-help lists {option}")
+        if option not in ours:
+            continue
+        line = ours[option]
+        value = re.search(r"<(?:now )?(.*?) : ", line).group(1).strip()
+        literals = [norm(v) for v in re.findall(r"`([^`]*)`", cell)]
+        said = "default: " + cell.split(" (")[0] in line
+        flag = {"TRUE": "on", "FALSE": "off"}.get(value)
+        good = (norm(value) in literals or any(l and norm(value).endswith("/" + l) for l in literals) or said
+                or (value == "" and cell.startswith("none")) or (flag is not None and cell.split()[0] == flag))
+        check(good, f"docs/options.md gives {option} the default of -help ({value!r}): {cell!r}")
     check("-contact_ksp_type <now preonly" in out, "-help shows the default saddle-point KSP (preonly)")
     check("-contact_pc_type <now cholesky" in out, "-help shows the default PC (cholesky)")
     check(in_order(out, "Mesh options:", "Options for all PETSc programs"),
