@@ -266,5 +266,33 @@ elif TEST.startswith("closed_pipe_np"):
                   % (proc.returncode, err.decode()[-500:]))
         check(os.path.isfile(os.path.join(out, "summary.json")) and os.path.isfile(os.path.join(out, "nodes.csv")),
               "the output is published: %s" % (os.listdir(out) if os.path.isdir(out) else "no directory"))
+elif TEST.startswith("kept_view_np"):
+    # The kept factorisation is the saddle-point KSP's PC (type kept): -contact_ksp_view shows it once per run of
+    # condensed solves, with who factored, the ordering and the sizes, and the options and presets change what it says.
+    np = int(TEST[len("kept_view_np"):])
+    rc, out = run(["-contact_ksp_view"], np=np)
+    check(rc == 0, "the default case with -contact_ksp_view exits 0: %s" % out[-300:])
+    header = re.search(r"unknowns: (\d+) displacements, (\d+) multipliers", out)
+    check(header is not None, "the run header gives the unknowns")
+    rows, multipliers = int(header.group(1)) + int(header.group(2)), int(header.group(2))
+    check(out.count("KSP Object: (contact_)") == 1, "the saddle-point KSP is viewed once")
+    check(re.search(r"^PC Object: \(contact_\) .*\n  type: kept$", out, re.M) is not None, "its PC is of type kept")
+    check(f"rows: {rows}, of which {multipliers} multipliers in the Schur complement" in out,
+          f"the view gives the {rows} rows and the {multipliers} multipliers of the header")
+    gathered = " (the matrix gathered from every rank)" if np > 1 else ""
+    check("factored by: signorini's supernodal Cholesky on rank 0" + gathered + "\n" in out,
+          "the default factors by the supernodal Cholesky" + gathered)
+    check("ordering: nested dissection of the node graph (coordinates)" in out,
+          "a small 2D matrix is ordered by coordinate cuts")
+    check(re.search(r"factor entries: [0-9.e+]+, elimination flops: [0-9.e+]+, null pivots: 0$", out, re.M)
+          is not None, "the view gives the factor's entries and flops")
+    for extra, who in ((["-contact_kept_solver", "mumps"], "MUMPS LDL^T (SYM = 2)"),
+                       (["-options_file", "options/solver/mumps_lu.yml"], "MUMPS LU (SYM = 0)")):
+        rc, out = run(["-contact_ksp_view"] + extra, np=np)
+        check(rc == 0 and f"factored by: {who}, called directly" in out, f"{' '.join(extra)}: factored by {who}")
+    # svk: the first solve of a load step factors the tangent and solves through the KSP, which shows it then.
+    rc, out = run(["-contact_ksp_view", "-material_model", "svk"], np=np)
+    check(rc == 0 and "type: kept" in out and "kept factorisation of the saddle-point matrix" in out,
+          "svk: the KSP shows the kept factorisation")
 else:
     sys.exit("unknown test " + TEST)
