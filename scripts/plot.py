@@ -249,10 +249,10 @@ def pvpython():
 
 
 @contextlib.contextmanager
-def x_display():
+def x_display(log):
     """The DISPLAY for pvpython: a private Xvfb's (Debian's ParaView renders through X only), which picks a free
-    display number and writes it to a pipe once it accepts connections; the DISPLAY there is without Xvfb; NotDrawable
-    with neither."""
+    display number and writes it to a pipe once it accepts connections, its messages in the file log; the DISPLAY
+    there is without Xvfb; NotDrawable with neither."""
     xvfb = shutil.which("Xvfb")
     if not xvfb:
         if os.environ.get("DISPLAY"):
@@ -261,16 +261,16 @@ def x_display():
         raise NotDrawable("Debian's ParaView draws through an X server, and there is no DISPLAY and no Xvfb (Debian "
                           "package xvfb; scripts/bootstrap.sh installs it)")
     read_end, write_end = os.pipe()
-    server = subprocess.Popen([xvfb, "-displayfd", str(write_end), "-screen", "0", "1280x1024x24", "-nolisten", "tcp"],
-                              pass_fds=(write_end,), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    with open(log, "w") as messages:
+        server = subprocess.Popen([xvfb, "-displayfd", str(write_end), "-screen", "0", "1280x1024x24", "-nolisten",
+                                   "tcp"], pass_fds=(write_end,), stdout=messages, stderr=messages)
     os.close(write_end)
     try:
         with os.fdopen(read_end) as pipe:
             ready, _, _ = select.select([pipe], [], [], 60)
             number = pipe.readline().strip() if ready else ""
         if not number.isdigit():
-            server.kill()
-            raise NotDrawable("Xvfb did not start: %s" % server.communicate()[1].decode(errors="replace").strip())
+            raise NotDrawable("Xvfb did not start:\n%s" % open(log).read())
         yield ":" + number
     finally:
         if server.poll() is None:
@@ -295,17 +295,24 @@ def plot_3d(summary, directory, out, scale):
     force = np.array(summary["contact"]["contact_force"], dtype=float)
     up = list(force / np.linalg.norm(force)) if np.linalg.norm(force) > 0 else [0.0, 0.0, 1.0]
     patch_lo, patch_hi = contact_patch(d)
+    # The box that clips the contact boundary: the patch's, deep along the axis nearest the line of sight.
+    # (a little wider than the patch, whose sides may lie on the contact boundary's edges).
+    clip_lo, clip_hi = [c - 1e-3 * d["size"] for c in patch_lo], [c + 1e-3 * d["size"] for c in patch_hi]
+    axis = int(np.argmax(np.abs(up)))
+    clip_lo[axis] -= d["size"]
+    clip_hi[axis] += d["size"]
     mesh = summary["mesh"]["file"].split("/")[-1]
     steps = summary["iterations"]["load_steps"]
-    pressure_title = "contact pressure seen from the obstacle, %s: max %.4g, contact area %.4g" % (
-        mesh, summary["contact"]["max_pressure"], summary["contact"]["contact_area"])
+    pressure_title = ("contact pressure seen from the obstacle, %s: max %.4g, contact area %.4g\n"
+                      "red: the edge of the active set" % (mesh, summary["contact"]["max_pressure"],
+                                                           summary["contact"]["contact_area"]))
     if summary.get("hertz"):
-        pressure_title += "\nHertz: contact radius a = %.4g, peak pressure p0 = %.4g" % (
+        pressure_title += "; Hertz: contact radius a = %.4g, peak pressure p0 = %.4g" % (
             summary["hertz"]["a"], summary["hertz"]["p0"])
     spec = {"body": os.path.join(directory, "body.xdmf"), "contact_boundary": os.path.join(directory,
                                                                                             "contact_boundary.xdmf"),
             "obstacle": os.path.join(directory, "obstacle.xdmf") if d["has_obstacle"] else None,
-            "scale": scale, "up": up, "patch_lo": patch_lo, "patch_hi": patch_hi, "body_size": d["size"],
+            "scale": scale, "up": up, "patch_lo": patch_lo, "patch_hi": patch_hi, "clip_lo": clip_lo, "clip_hi": clip_hi, "body_size": d["size"],
             "size": PICTURE_SIZE,
             "deformed_title": "deformed body (displacements x %.3g), %s%s" % (
                 scale, mesh, ", load step %d of %d" % (steps, steps) if steps > 1 else ""),
@@ -315,15 +322,18 @@ def plot_3d(summary, directory, out, scale):
         spec_path = os.path.join(work, "spec.json")
         with open(spec_path, "w") as f:
             json.dump(spec, f)
-        with x_display() as display:
+        xvfb_log = os.path.join(work, "xvfb.log")
+        with x_display(xvfb_log) as display:
             run = subprocess.run(command + [spec_path], capture_output=True, text=True,
                                  env=dict(os.environ, DISPLAY=display))
+        x_messages = open(xvfb_log).read() if os.path.exists(xvfb_log) else ""
     # The helper prints "PICTURE FIELD MIN MAX" per picture: the colour bar's field and range.
     lines = [line for line in run.stdout.splitlines()
              if line.rsplit(" ", 3)[0] in (spec["deformed_png"], spec["pressure_png"])]
     if run.returncode != 0 or len(lines) != 2:
-        raise NotDrawable("ParaView failed to draw '%s' (%s, exit status %d):\n%s%s" % (
-            directory, " ".join(command), run.returncode, run.stdout, run.stderr))
+        raise NotDrawable("ParaView failed to draw '%s' (%s on DISPLAY %s, exit status %d):\n%s%s%s" % (
+            directory, " ".join(command), display, run.returncode, run.stdout, run.stderr,
+            "Xvfb said:\n" + x_messages if x_messages else ""))
     plot_history(summary, os.path.join(out, "active_set.png"))
     lines.append(os.path.join(out, "active_set.png"))
     if len(d["steps"]) > 1:

@@ -16,10 +16,12 @@ import json
 import math
 import sys
 
-from paraview.simple import (ColorBy, CreateRenderView, ExtractSurface, GetColorTransferFunction, GetScalarBar,
-                             Render, SaveScreenshot, Show, Text, WarpByVector, Xdmf3ReaderS)
+from paraview.simple import (Clip, ColorBy, Contour, ExtractEdges, CreateRenderView, ExtractSurface, GetColorTransferFunction, GetScalarBar,
+                             Render, SaveScreenshot, Show, Text, WarpByVector, Xdmf3ReaderS,
+                             _DisableFirstRenderCameraReset)
 
 WHITE, BLACK, GREY = [1.0, 1.0, 1.0], [0.0, 0.0, 0.0], [0.6, 0.6, 0.6]
+LOG_RATIO = 100
 
 
 def unit(v):
@@ -94,17 +96,28 @@ def colour(source, display, view, association, field, bar_title):
         hi = lo + (abs(lo) or 1.0) * 1e-6
     lut = GetColorTransferFunction(field)
     lut.ApplyPreset("Viridis (matplotlib)", True)
-    lut.RescaleTransferFunction(lo, hi)
     lut.AutomaticRescaleRangeMode = "Never"
+    lut.RescaleTransferFunction(lo, hi)
+    # A field spread over decades (the stress under a Hertz contact) is shown on a log scale.
+    log = lo > 0 and hi / lo >= LOG_RATIO
+    if log:
+        lut.MapControlPointsToLogSpace()
+        lut.UseLogScale = 1
     bar = GetScalarBar(lut, view)
-    bar.Title = bar_title
+    bar.Title = bar_title + (" (log scale)" if log else "")
     bar.ComponentTitle = ""
     bar.TitleColor = BLACK
     bar.LabelColor = BLACK
     bar.TitleFontSize = 16
     bar.LabelFontSize = 14
+    bar.AutomaticLabelFormat = 0
     bar.RangeLabelFormat = "%-#.4g"
     bar.LabelFormat = "%-#.3g"
+    if hi - lo <= 1e-9 * max(abs(lo), abs(hi)):
+        # A uniform field (the cube on a plane): one colour, the range labels alone.
+        bar.Title = bar_title + " (uniform)"
+        bar.DrawTickLabels = 0
+        bar.DrawTickMarks = 0
     bar.ScalarBarLength = 0.5
     bar.WindowLocation = "Any Location"
     bar.Position = [0.87, 0.25]
@@ -112,14 +125,21 @@ def colour(source, display, view, association, field, bar_title):
     return lo, hi
 
 
-def place_camera(view, centre, direction, up, distance, parallel_scale):
-    """A parallel projection from centre + distance * direction, up on the screen, parallel_scale half the height in
-    view: centre shown in the middle of the part of the picture left of the colour bar."""
+def place_camera(view, lo, hi, direction, up, distance):
+    """A parallel projection from the box's centre + distance * direction, up on the screen, framing the box [lo, hi]
+    in the part of the picture left of the colour bar and below the title."""
+    centre = [(a + b) / 2 for a, b in zip(lo, hi)]
+    right = unit(cross(up, direction))
+    corners = [[(lo, hi)[(k >> i) & 1][i] for i in range(3)] for k in range(8)]
+    half_height = max(abs(sum((c - m) * u for c, m, u in zip(p, centre, up))) for p in corners)
+    half_width = max(abs(sum((c - m) * r for c, m, r in zip(p, centre, right))) for p in corners)
+    # The box fills at most 0.75 of the width (the colour bar is right of it) and 0.8 of the height (the title above).
+    aspect = view.ViewSize[0] / view.ViewSize[1]
+    parallel_scale = max(half_height / 0.8, half_width / (0.75 * aspect), 1e-12)
+    width = 2 * parallel_scale * aspect
+    focal = [c + 0.09 * width * r + 0.06 * parallel_scale * u for c, r, u in zip(centre, right, up)]
     cam = view.GetActiveCamera()
     view.CameraParallelProjection = 1
-    width = 2 * parallel_scale * view.ViewSize[0] / view.ViewSize[1]
-    right = unit(cross(up, direction))
-    focal = [c + 0.07 * width * r for c, r in zip(centre, right)]
     cam.SetFocalPoint(*focal)
     cam.SetPosition(*[f + distance * d for f, d in zip(focal, direction)])
     cam.SetViewUp(*up)
@@ -134,8 +154,7 @@ def deformed(spec):
     surface = ExtractSurface(Input=warped)
     surface.UpdatePipeline(time)
     display = Show(surface, view)
-    display.SetRepresentationType("Surface With Edges")
-    display.EdgeColor = [0.25, 0.25, 0.25]
+    display.Ambient, display.Diffuse = 0.3, 0.8
     lo, hi = colour(body, display, view, "CELLS", "von_mises", "von Mises stress")
     if spec.get("obstacle"):
         obstacle, _ = read(spec["obstacle"])
@@ -146,39 +165,53 @@ def deformed(spec):
     title(view, spec["deformed_title"])
     # Frame the warped body (not the obstacles, which may be much larger), seen from the side and above the contact.
     b = surface.GetDataInformation().GetBounds()
-    centre = [(b[2 * i] + b[2 * i + 1]) / 2 for i in range(3)]
-    radius = 0.5 * math.sqrt(sum((b[2 * i + 1] - b[2 * i]) ** 2 for i in range(3)))
     up = unit(spec["up"])
     side = side_direction(up)
     elevation = math.radians(25)
     direction = [math.cos(elevation) * s + math.sin(elevation) * u for s, u in zip(side, up)]
     screen_up = unit(cross(cross(direction, up), direction))
-    place_camera(view, centre, direction, screen_up, 4 * radius, 0.78 * radius)
+    place_camera(view, b[0::2], b[1::2], direction, screen_up, 4 * spec["body_size"])
     Render(view)
     SaveScreenshot(spec["deformed_png"], view, ImageResolution=spec["size"], TransparentBackground=0, CompressionLevel="9")
     print("%s von_mises %.17g %.17g" % (spec["deformed_png"], lo, hi))
 
 
 def pressure(spec):
-    boundary, time = read(spec["contact_boundary"])
+    whole, time = read(spec["contact_boundary"])
     view = view_of(spec, time)
+    # The contact boundary inside the patch's box (clip_lo, clip_hi: the box, deep along the line of sight).
+    boundary = Clip(Input=whole, ClipType="Box", Invert=1, Scalars=["POINTS", "contact_pressure"])
+    boundary.ClipType.UseReferenceBounds = 0
+    boundary.ClipType.Position = spec["clip_lo"]
+    boundary.ClipType.Length = [b - a for a, b in zip(spec["clip_lo"], spec["clip_hi"])]
+    boundary.UpdatePipeline(time)
     display = Show(boundary, view)
     display.SetRepresentationType("Surface")
     # Unlit: the colours are the colour map's, whatever the curvature of the face.
     display.Ambient, display.Diffuse = 1.0, 0.0
-    lo, hi = colour(boundary, display, view, "POINTS", "contact_pressure", "contact pressure")
+    lo, hi = colour(whole, display, view, "POINTS", "contact_pressure", "contact pressure")
+    # Bands of equal pressure, read off the colour bar.
+    lut = GetColorTransferFunction("contact_pressure")
+    lut.Discretize = 1
+    lut.NumberOfTableValues = 12
+    # The mesh, faint (a second representation of a source needs a filter of its own).
+    mesh = Show(ExtractEdges(Input=boundary), view)
+    ColorBy(mesh, ("POINTS", None))
+    mesh.AmbientColor = mesh.DiffuseColor = WHITE
+    mesh.Opacity = 0.3
+    # The edge of the active set: the contour contact_active = 1/2 of the nodal 0/1 field.
+    edge = Contour(Input=boundary, ContourBy=["POINTS", "contact_active"], Isosurfaces=[0.5])
+    edge.UpdatePipeline(time)
+    ed = Show(edge, view)
+    ColorBy(ed, ("POINTS", None))
+    ed.AmbientColor = ed.DiffuseColor = [0.85, 0.1, 0.1]
+    ed.LineWidth = 2.5
     title(view, spec["pressure_title"])
-    # The camera inside the obstacle, on the far side of the contact patch from the body, looking along the push.
-    lo_box, hi_box = spec["patch_lo"], spec["patch_hi"]
-    centre = [(a + b) / 2 for a, b in zip(lo_box, hi_box)]
+    # The camera inside the obstacle, on the far side of the contact patch from the body, looking along the push,
+    # framing the patch's box.
     push = unit(spec["up"])
-    extent = [b - a for a, b in zip(lo_box, hi_box)]
-    # The patch's extent across the line of sight sets the zoom.
-    across = math.sqrt(max(sum(e * e for e in extent) - sum(e * p for e, p in zip(extent, push)) ** 2, 0.0))
-    radius = max(0.5 * across, 1e-12)
-    direction = [-p for p in push]
-    screen_up = screen_up_for(push)
-    place_camera(view, centre, direction, screen_up, 10 * max(radius, spec["body_size"]), 1.05 * radius)
+    place_camera(view, spec["patch_lo"], spec["patch_hi"], [-p for p in push], screen_up_for(push),
+                 4 * spec["body_size"])
     Render(view)
     SaveScreenshot(spec["pressure_png"], view, ImageResolution=spec["size"], TransparentBackground=0, CompressionLevel="9")
     print("%s contact_pressure %.17g %.17g" % (spec["pressure_png"], lo, hi))
@@ -187,6 +220,8 @@ def pressure(spec):
 def main():
     with open(sys.argv[1]) as f:
         spec = json.load(f)
+    # The cameras are placed here; paraview.simple would reset the first one to frame everything.
+    _DisableFirstRenderCameraReset()
     deformed(spec)
     pressure(spec)
 
