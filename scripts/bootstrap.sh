@@ -14,7 +14,7 @@ esac
 
 packages=(petsc-dev libmumps-dev libyaml-dev liblapack-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libmetis-dev gmsh
           libgmsh-dev libopenblas0-serial cmake pkg-config g++ make libgtest-dev
-          python3 python3-numpy python3-h5py python3-matplotlib python3-paraview)
+          python3 python3-numpy python3-h5py python3-matplotlib python3-paraview xvfb)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

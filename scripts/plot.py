@@ -248,11 +248,35 @@ def pvpython():
     return pvpython
 
 
+def start_xvfb(xvfb, log):
+    """A private Xvfb and its display number, or (None, None): a display number of its own (from the process id, so
+    that plot.py's run side by side do not meet; Xvfb exits when another server holds it, and the next is tried),
+    written by Xvfb to a pipe once it accepts connections; its messages in the file log."""
+    for attempt in range(10):
+        number = 100 + (os.getpid() * 10 + attempt) % 30000
+        read_end, write_end = os.pipe()
+        with open(log, "a") as messages:
+            # -noreset: by default the server resets when its last client leaves, and pvpython, which connects,
+            # leaves and connects again, then meets a server that refuses it ("bad X server connection").
+            server = subprocess.Popen([xvfb, ":%d" % number, "-displayfd", str(write_end), "-screen", "0",
+                                       "1280x1024x24", "-nolisten", "tcp", "-noreset"], pass_fds=(write_end,),
+                                      stdout=messages, stderr=messages)
+        os.close(write_end)
+        with os.fdopen(read_end) as pipe:
+            ready, _, _ = select.select([pipe], [], [], 60)
+            written = pipe.readline().strip() if ready else ""
+        if written == str(number) and server.poll() is None:
+            return server, number
+        if server.poll() is None:
+            server.kill()
+        server.wait()
+    return None, None
+
+
 @contextlib.contextmanager
 def x_display(log):
-    """The DISPLAY for pvpython: a private Xvfb's (Debian's ParaView renders through X only), which picks a free
-    display number and writes it to a pipe once it accepts connections, its messages in the file log; the DISPLAY
-    there is without Xvfb; NotDrawable with neither."""
+    """The DISPLAY for pvpython: a private Xvfb's (Debian's ParaView renders through X only), its messages in the file
+    log; the DISPLAY there is without Xvfb; NotDrawable with neither."""
     xvfb = shutil.which("Xvfb")
     if not xvfb:
         if os.environ.get("DISPLAY"):
@@ -260,22 +284,14 @@ def x_display(log):
             return
         raise NotDrawable("Debian's ParaView draws through an X server, and there is no DISPLAY and no Xvfb (Debian "
                           "package xvfb; scripts/bootstrap.sh installs it)")
-    read_end, write_end = os.pipe()
-    with open(log, "w") as messages:
-        server = subprocess.Popen([xvfb, "-displayfd", str(write_end), "-screen", "0", "1280x1024x24", "-nolisten",
-                                   "tcp"], pass_fds=(write_end,), stdout=messages, stderr=messages)
-    os.close(write_end)
+    server, number = start_xvfb(xvfb, log)
+    if server is None:
+        raise NotDrawable("Xvfb did not start:\n%s" % open(log).read())
     try:
-        with os.fdopen(read_end) as pipe:
-            ready, _, _ = select.select([pipe], [], [], 60)
-            number = pipe.readline().strip() if ready else ""
-        if not number.isdigit():
-            raise NotDrawable("Xvfb did not start:\n%s" % open(log).read())
-        yield ":" + number
+        yield ":%d" % number
     finally:
-        if server.poll() is None:
-            server.terminate()
-            server.wait()
+        server.terminate()
+        server.wait()
 
 
 def plot_3d(summary, directory, out, scale):
