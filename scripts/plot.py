@@ -81,9 +81,10 @@ def read_summary(directory):
     return summary
 
 
-def read(directory, summary):
+def read(directory):
+    """The last load step of a 2D output's solution.h5; NotDrawable when it cannot be read."""
     try:
-        return summary, read_solution(directory)
+        return read_solution(directory)
     except (OSError, KeyError, IndexError) as e:
         raise NotDrawable("'%s' is not a signorini output (cannot read its last load step: %s)" % (
             os.path.join(directory, "solution.h5"), e))
@@ -372,7 +373,7 @@ def main():
             os.makedirs(out, exist_ok=True)
             lines = plot_3d(summary, args.output_dir, out, args.scale)
         else:
-            data = read(args.output_dir, summary)
+            data = read(args.output_dir)
             os.makedirs(out, exist_ok=True)
             scale = 1.0 if args.scale is None else args.scale
             plot_deformed(summary, data, os.path.join(out, "deformed.png"), scale)
