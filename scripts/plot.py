@@ -329,12 +329,13 @@ def plot_3d(summary, directory, out, scale):
     spec = {"body": os.path.join(directory, "body.xdmf"), "contact_boundary": os.path.join(directory,
                                                                                             "contact_boundary.xdmf"),
             "obstacle": os.path.join(directory, "obstacle.xdmf") if d["has_obstacle"] else None,
-            "scale": scale, "up": up, "patch_lo": patch_lo, "patch_hi": patch_hi, "clip_lo": clip_lo, "clip_hi": clip_hi, "body_size": d["size"],
-            "size": PICTURE_SIZE,
+            "scale": scale, "up": up, "patch_lo": patch_lo, "patch_hi": patch_hi, "clip_lo": clip_lo,
+            "clip_hi": clip_hi, "body_size": d["size"], "size": PICTURE_SIZE,
             "deformed_title": "deformed body (displacements x %.3g), %s%s" % (
                 scale, mesh, ", load step %d of %d" % (steps, steps) if steps > 1 else ""),
             "pressure_title": pressure_title,
-            "deformed_png": os.path.join(out, "deformed.png"), "pressure_png": os.path.join(out, "contact_pressure.png")}
+            "deformed_png": os.path.join(out, "deformed.png"),
+            "pressure_png": os.path.join(out, "contact_pressure.png")}
     with tempfile.TemporaryDirectory(prefix="signorini_plot3d_") as work:
         spec_path = os.path.join(work, "spec.json")
         with open(spec_path, "w") as f:

@@ -1,14 +1,17 @@
-"""Pictures of a 3D signorini output drawn by ParaView: run by pvpython (ParaView 5.11) under an X server, not by python3.
+"""Pictures of a 3D signorini output drawn by ParaView: run by pvpython (ParaView 5.11) on an X display, not by python3.
 
     pvpython plot3d_pvpython.py SPEC.json
 
-scripts/plot.py writes SPEC.json (what it read with h5py: the per-block XDMF files, the displacement scale, the direction the obstacles push the body, the box of the contact patch, the titles, the picture
-paths and size) and calls this script on a private Xvfb's display. It draws, with ParaView's readers of the output's per-block XDMF
-files at the last load step:
-  deformed   the body warped by displacement x scale, coloured by the von_mises cell field, the obstacles translucent
-             beside it, seen from above the contact (the obstacles at the bottom of the picture);
-  pressure   the contact boundary coloured by the contact_pressure point field, seen from the obstacle's side (the
-             camera inside the obstacle, looking at the contact face), framed on the contact patch.
+scripts/plot.py writes SPEC.json (what it read with h5py: the per-block XDMF files, the displacement scale, the
+direction the obstacles push the body, the box of the contact patch, the titles, the picture paths and size) and calls
+this script on a private Xvfb's display. It draws, with ParaView's reader of the output's per-block XDMF files, at the
+last load step:
+  deformed   the body warped by displacement x scale, coloured by the von_mises cell field (on a log scale when it
+             spans two decades), the obstacles translucent beside it, seen from above the contact (the obstacles at the
+             bottom of the picture);
+  pressure   the contact boundary coloured by the contact_pressure point field in bands, its mesh faint, the edge of
+             the active set in red, seen from the obstacle's side (the camera inside the obstacle, looking at the
+             contact face), framed on the contact patch.
 For each picture it prints one line, "PICTURE FIELD MIN MAX": the colour bar's range, which is the range of the field
 ParaView read (the test compares it with the file's values read by h5py).
 """
@@ -16,9 +19,9 @@ import json
 import math
 import sys
 
-from paraview.simple import (Clip, ColorBy, Contour, ExtractEdges, CreateRenderView, ExtractSurface, GetColorTransferFunction, GetScalarBar,
-                             Render, SaveScreenshot, Show, Text, WarpByVector, Xdmf3ReaderS,
-                             _DisableFirstRenderCameraReset)
+from paraview.simple import (Clip, ColorBy, Contour, CreateRenderView, ExtractEdges, ExtractSurface,
+                             GetColorTransferFunction, GetScalarBar, Render, SaveScreenshot, Show, Text, WarpByVector,
+                             Xdmf3ReaderS, _DisableFirstRenderCameraReset)
 
 WHITE, BLACK, GREY = [1.0, 1.0, 1.0], [0.0, 0.0, 0.0], [0.6, 0.6, 0.6]
 LOG_RATIO = 100
@@ -172,7 +175,8 @@ def deformed(spec):
     screen_up = unit(cross(cross(direction, up), direction))
     place_camera(view, b[0::2], b[1::2], direction, screen_up, 4 * spec["body_size"])
     Render(view)
-    SaveScreenshot(spec["deformed_png"], view, ImageResolution=spec["size"], TransparentBackground=0, CompressionLevel="9")
+    SaveScreenshot(spec["deformed_png"], view, ImageResolution=spec["size"], TransparentBackground=0,
+                   CompressionLevel="9")
     print("%s von_mises %.17g %.17g" % (spec["deformed_png"], lo, hi))
 
 
@@ -213,7 +217,8 @@ def pressure(spec):
     place_camera(view, spec["patch_lo"], spec["patch_hi"], [-p for p in push], screen_up_for(push),
                  4 * spec["body_size"])
     Render(view)
-    SaveScreenshot(spec["pressure_png"], view, ImageResolution=spec["size"], TransparentBackground=0, CompressionLevel="9")
+    SaveScreenshot(spec["pressure_png"], view, ImageResolution=spec["size"], TransparentBackground=0,
+                   CompressionLevel="9")
     print("%s contact_pressure %.17g %.17g" % (spec["pressure_png"], lo, hi))
 
 
