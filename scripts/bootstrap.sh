@@ -14,8 +14,8 @@ esac
 
 packages=(petsc-dev libmumps-dev libyaml-dev liblapack-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libmetis-dev gmsh
           libgmsh-dev libopenblas0-serial cmake pkg-config g++ make libgtest-dev
-          python3 python3-numpy python3-h5py python3-matplotlib python3-paraview
-          strace)  # the bad-input tests inject failed opens and kills with strace (they would skip without it)
+          python3 python3-numpy python3-h5py python3-matplotlib python3-paraview xvfb
+          strace)  # xvfb: plot.py's 3D pictures (ParaView draws through X); strace: the bad-input tests inject failures
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
