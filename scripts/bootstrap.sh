@@ -14,7 +14,8 @@ esac
 
 packages=(petsc-dev libmumps-dev libyaml-dev liblapack-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libmetis-dev gmsh
           libgmsh-dev libopenblas0-serial cmake pkg-config g++ make libgtest-dev
-          python3 python3-numpy python3-h5py python3-matplotlib python3-paraview)
+          python3 python3-numpy python3-h5py python3-matplotlib python3-paraview xvfb
+          strace)  # xvfb: plot.py's 3D pictures (ParaView draws through X); strace: the bad-input tests inject failures
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -28,7 +29,7 @@ if ((${#missing[@]})); then
 fi
 
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
-# mpiexec otherwise waits 2 s after a rank exits non-zero (README, Running).
+# mpiexec otherwise waits 2 s after a rank exits non-zero (docs/running.md, MPI).
 export OMPI_MCA_odls_base_sigkill_timeout=0
 # nproc honours OMP_NUM_THREADS (set to 1 above for the runs): the cores without it, for the build and CTest.
 jobs=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)

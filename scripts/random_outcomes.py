@@ -12,8 +12,8 @@ one line: its number, OK with its active-set iterations, load steps, active pair
 checked against the obstacles' geometry from its node table (case_tests.geometric_penetration, independent of the
 solver's pairs): one with a candidate inside an obstacle beyond the gap tolerance is counted INSIDE, with its depth.
 Then the counts.
-Two builds run with the same --seed see the same cases, so `diff` of their outputs shows what changed (README,
-Robustness survey); so do two rank counts (--np 2: every case under mpiexec -n 2), whose outputs must be the same.
+Two builds run with the same --seed see the same cases, so `diff` of their outputs shows what changed (docs/survey.md,
+Running the survey); so do two rank counts (--np 2: every case under mpiexec -n 2), whose outputs must be the same.
 """
 import argparse
 import collections

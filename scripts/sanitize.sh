@@ -15,7 +15,7 @@ cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSIGNORINI_S
 cmake --build "$build_dir" -j "$jobs"
 
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
-# mpiexec otherwise waits 2 s after a rank exits non-zero (README, Running).
+# mpiexec otherwise waits 2 s after a rank exits non-zero (docs/running.md, MPI).
 export OMPI_MCA_odls_base_sigkill_timeout=0
 # Leak checking is off: Open MPI, hwloc, PETSc and gmsh keep allocations until exit or never free them, so
 # LeakSanitizer would report those libraries on every run. Our own PETSc objects are checked for leaks by the case

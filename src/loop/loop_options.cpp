@@ -7,7 +7,7 @@
 namespace signorini {
 
 PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptions &opts) {
-  // Ranges (README): a relative residual above 1e-4 or an absolute one above 1e-6 (force units) would accept a
+  // Ranges (docs/options.md): a relative residual above 1e-4 or an absolute one above 1e-6 (force units) would accept a
   // visibly unconverged state; the counts are bounded so that a typo cannot start a run that never ends.
   const RealRange rtol{0, SolverOptions::NEWTON_RTOL_MAX, true, false}, atol{0, SolverOptions::NEWTON_ATOL_MAX};
   PetscBool max_cuts_set = PETSC_FALSE, max_it_set = PETSC_FALSE, line_search_set = PETSC_FALSE;

@@ -1,4 +1,4 @@
-// Oriented segments: gap, normal and projection parameter (seed section 4.2.3, Eqs. 22-25).
+// Oriented segments: gap, normal and projection parameter (docs/theory.md §1).
 #include "signorini/obstacles/obstacle.hpp"
 
 #include <algorithm>

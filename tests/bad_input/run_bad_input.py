@@ -2,7 +2,7 @@
 """Runs one case of the catalogue of bad inputs: the signorini executable under mpiexec, expected to fail cleanly.
 
 A case passes when the run
-  - exits non-zero before the time limit (a run still going after it is a hang and is killed),
+  - exits non-zero (a run that hangs is left to CTest's TIMEOUT: no wall-clock limit here),
   - prints exactly one line starting with "signorini: error:", on stderr, holding every expected substring (the
     offending input and what was expected),
   - prints no PETSc error message or stack trace and leaves no process behind,
@@ -10,8 +10,7 @@ A case passes when the run
     nor a parent of it that the run made), and where the case starts from an earlier good run in that directory,
     every file of that run byte for byte and with its modification time.
 The signal cases interrupt a long run instead, once it reports the first active-set iteration of its third load step
-(the first two steps are written to DIR/incomplete by then), and expect a non-zero exit within a few seconds and no
-summary.json.
+(the first two steps are written to DIR/incomplete by then), and expect a non-zero exit and no summary.json.
 
     run_bad_input.py --exe build/signorini --np 2 material_E_zero
     run_bad_input.py --exe build/signorini --np 1 --all
@@ -32,8 +31,6 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-TIME_LIMIT = 60.0
-SIGNAL_EXIT_LIMIT = 10.0
 ERROR_PREFIX = "signorini: error:"
 FORBIDDEN = ("PETSC ERROR", "Caught signal", "Segmentation", "AddressSanitizer", "runtime error:", "terminate called",
              "HDF5-DIAG")
@@ -672,19 +669,19 @@ def environment():
 
 
 def reap(proc):
-    """Kills whatever is left of the run's process group; returns True when something was left."""
-    deadline = time.monotonic() + 2.0
-    while time.monotonic() < deadline:
+    """Waits until no process of the run's group is left after mpiexec returned. One that never goes is left to
+    CTest's TIMEOUT; the line printed after a while says what the test is waiting for."""
+    waited = 0
+    while True:
         try:
             os.killpg(proc.pid, 0)
         except ProcessLookupError:
-            return False
+            return
+        waited += 1
+        if waited == 40:
+            print(f"waiting for processes of the run's group (pgid {proc.pid}) left after mpiexec returned",
+                  flush=True)
         time.sleep(0.05)
-    try:
-        os.killpg(proc.pid, signal.SIGKILL)
-    except ProcessLookupError:
-        return False
-    return True
 
 
 def run_failing(cmd, env):
@@ -692,15 +689,9 @@ def run_failing(cmd, env):
     start = time.monotonic()
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=ROOT,
                             start_new_session=True)
-    try:
-        out, err = proc.communicate(timeout=TIME_LIMIT)
-    except subprocess.TimeoutExpired:
-        os.killpg(proc.pid, signal.SIGKILL)
-        out, err = proc.communicate()
-        raise CheckFailed(f"still running after {TIME_LIMIT:.0f} s (a hang); stderr:\n{err[-2000:]}")
+    out, err = proc.communicate()
     seconds = time.monotonic() - start
-    if reap(proc):
-        raise CheckFailed("mpiexec returned but left processes of the run behind")
+    reap(proc)
     return proc.returncode, out, err, seconds
 
 
@@ -710,33 +701,26 @@ def run_interrupted(cmd, env, sig):
                             start_new_session=True)
     lines = []
     try:
-        deadline = time.monotonic() + TIME_LIMIT
-        while time.monotonic() < deadline:
+        while True:
             line = proc.stdout.readline()
             if not line:
                 raise CheckFailed("the run ended before load step 3:\n" + "".join(lines) + proc.stderr.read())
             lines.append(line)
             if "step 3 (" in line:
                 break
-        else:
-            raise CheckFailed(f"no load step 3 within {TIME_LIMIT:.0f} s")
         # SIGTERM as `kill PID` sends it, to mpiexec alone; SIGINT as Ctrl-C sends it, to the whole process group.
         start = time.monotonic()
         if sig == signal.SIGINT:
             os.killpg(proc.pid, sig)
         else:
             proc.send_signal(sig)
-        try:
-            out, err = proc.communicate(timeout=SIGNAL_EXIT_LIMIT)
-        except subprocess.TimeoutExpired:
-            raise CheckFailed(f"still running {SIGNAL_EXIT_LIMIT:.0f} s after {signal.Signals(sig).name}")
+        out, err = proc.communicate()
         seconds = time.monotonic() - start
     finally:
         if proc.poll() is None:
             os.killpg(proc.pid, signal.SIGKILL)
             proc.communicate()
-    if reap(proc):
-        raise CheckFailed(f"processes of the run outlived {signal.Signals(sig).name}")
+    reap(proc)
     return proc.returncode, "".join(lines) + out, err, seconds
 
 

@@ -80,21 +80,57 @@ def check_same_mesh(runner, what, a, b):
     runner.expect_close("%s: node coordinates" % what, coordinates(b), coordinates(a), 0, 1e-14)
 
 
-def hertz_refinement_levels(runner, case, factors, h_contact, bound, check_load, heap_check=True):
-    """Runs options/CASE.yml on meshes/CASE.geo at each size factor, checks the load with check_load(runner, result,
-    hertz, what) and the computed a within the contact element size h_contact x factor, prints the errors and checks
-    that both errors of a and p0 decrease overall, ending at most bound on the finest mesh."""
+def johnson(dim, R, P, E, nu):
+    """Johnson's (1985, 4.2) contact half-width (2D, P per unit thickness) or radius (3D) a and peak pressure p0 of a
+    cylinder or sphere of radius R pressed on a rigid flat by the load P: E* = E / (1 - nu^2); 2D a = sqrt(4 P R /
+    (pi E*)), p0 = 2 P / (pi a); 3D a = (3 P R / (4 E*))^(1/3), p0 = 3 P / (2 pi a^2)."""
+    E_star = E / (1 - nu * nu)
+    if dim == 2:
+        a = np.sqrt(4 * P * R / (np.pi * E_star))
+        return a, 2 * P / (np.pi * a)
+    a = (3 * P * R / (4 * E_star)) ** (1 / 3)
+    return a, 3 * P / (2 * np.pi * a * a)
+
+
+def area_on_plane(result, z):
+    """The area of the cells' faces on the plane z = const, by hand from solution.h5 (a triangle of a tetrahedron, or a
+    quadrilateral of a hexahedron, taken as the convex polygon of its vertices)."""
+    xyz, cells, _ = result.solution()
+    on = np.abs(xyz[:, 2] - z) < 1e-12
+    area = 0.0
+    for cell in cells:
+        face = [v for v in cell if on[v]]
+        if len(face) < 3:
+            continue
+        p = xyz[face][:, :2]
+        p = p[np.argsort(np.arctan2(*(p - p.mean(axis=0)).T[::-1]))]
+        area += 0.5 * abs(np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1]))
+    return area
+
+
+def hertz_refinement_levels(runner, case, factors, h_contact, bound, load, heap_check=True):
+    """Runs options/CASE.yml on meshes/CASE.geo at each size factor, computes here the load P the model stands for
+    with load(runner, result, what) and from it Johnson's a and p0 (johnson: R, E and nu of the case's files), checks
+    the summary's comparison against them and the computed a within the contact element size h_contact x factor,
+    prints the errors and checks that both errors of a and p0 decrease overall, ending at most bound on the finest
+    mesh, and that the pressure profile's fitted a converges to Johnson's."""
+    options = dict(yaml_options(runner.path("options/%s.yml" % case)))
+    R = float(options["report_hertz"].split(",")[0])
+    E, nu = float(options["material_E"]), float(options["material_nu"])
     rows = []
     for f in factors:
         r = runner.run(["-options_file", "options/%s.yml" % case, "-mesh_file", "meshes/%s.geo" % case,
                         "-mesh_size_factor", f], "%s factor %g" % (case, f), heap_check=heap_check)
         h = r.summary["hertz"]
-        check_load(runner, r, h, "factor %g" % f)
+        P = load(runner, r, "factor %g" % f)
+        a, p0 = johnson(r.get("mesh.dim"), R, P, E, nu)
+        # The program's own comparison uses the same formulas; summary.json holds 10 significant digits.
+        runner.expect_close("factor %g: summary's Johnson a" % f, h["a"], a, 1e-9)
+        runner.expect_close("factor %g: summary's Johnson p0" % f, h["p0"], p0, 1e-9)
         # The contact zone is resolved node by node: a_computed comes from the summed tributary lengths (2D) or areas
         # (3D) of the active nodes, so it cannot be closer to a than about the element size at the contact.
         h_c = h_contact * f
-        runner.expect_close("factor %g: a within the contact element size %g" % (f, h_c), h["a_computed"], h["a"], 0,
-                            h_c)
+        runner.expect_close("factor %g: a within the contact element size %g" % (f, h_c), h["a_computed"], a, 0, h_c)
         # The fit of the nodal pressures' profile, p^2 = p0^2 (1 - r^2/a^2) over the active nodes within 0.8 of the
         # outermost one's radius, recomputed here from the node table (the contact centre is the origin). Its a does
         # not move by whole elements, but rests on few nodes on a coarse 3D mesh: within the contact element size too
@@ -104,15 +140,14 @@ def hertz_refinement_levels(runner, case, factors, h_contact, bound, check_load,
         r2 = active["x"] ** 2 + (active["y"] ** 2 if case == "hertz3d" else 0)
         inner = r2 <= 0.64 * r2.max()
         slope, intercept = np.polyfit(r2[inner], active["pressure"][inner] ** 2, 1)
-        runner.expect_close("factor %g: a of the pressure profile's fit" % f, h["a_fit"], np.sqrt(-intercept / slope),
-                            1e-6)
-        runner.expect_close("factor %g: the fit's a within the contact element size %g" % (f, h_c), h["a_fit"], h["a"],
-                            0, h_c)
-        rows.append((f, abs(h["a_computed"] - h["a"]) / h["a"], abs(h["p0_computed"] - h["p0"]) / h["p0"],
+        a_fit = np.sqrt(-intercept / slope)
+        runner.expect_close("factor %g: a of the pressure profile's fit" % f, h["a_fit"], a_fit, 1e-6)
+        runner.expect_close("factor %g: the fit's a within the contact element size %g" % (f, h_c), a_fit, a, 0, h_c)
+        rows.append((f, abs(h["a_computed"] - a) / a, abs(h["p0_computed"] - p0) / p0, abs(a_fit - a) / a,
                      r.get("contact.active_pairs"), r.get("iterations.active_set"), r.get("mesh.nodes")))
-    print("  factor  nodes  active  iterations  a error %  p0 error %")
-    for f, ea, ep, act, its, n in rows:
-        print("  %6g %6d %7d %11d %10.3f %11.3f" % (f, n, act, its, 100 * ea, 100 * ep))
+    print("  factor  nodes  active  iterations  a error %  p0 error %  fit a error %")
+    for f, ea, ep, ef, act, its, n in rows:
+        print("  %6g %6d %7d %11d %10.3f %11.3f %14.3f" % (f, n, act, its, 100 * ea, 100 * ep, 100 * ef))
     h = np.array([r[0] for r in rows])
     for col, name in ((1, "a"), (2, "p0")):
         e = np.array([r[col] for r in rows])
@@ -135,13 +170,16 @@ HERTZ_H_CONTACT = 0.02
 def hertz_refinement(runner):
     """Hertz cylinder on a flat: half-width and peak pressure converge to Johnson's values under mesh refinement."""
 
-    def check_load(runner, r, h, what):
-        # Equilibrium: the rigid flat carries the whole load P (round-off of a direct solve); a straight loaded edge.
-        P = h["P"]
+    def load(runner, r, what):
+        # The traction of options/hertz.yml on the flat top, 2R wide (meshes/hertz.geo): P per unit thickness. The
+        # rigid flat carries the whole load (round-off of a direct solve).
+        options = dict(yaml_options(runner.path("options/hertz.yml")))
+        P = -float(options["bc_traction"].split(":")[2]) * 2 * float(options["report_hertz"].split(",")[0])
         runner.expect_close("%s: contact force" % what, r.get("contact.contact_force"), [0, P], 1e-10, 1e-10 * P)
-        runner.expect_equal("%s: symmetry fraction" % what, h["fraction"], 1.0)
+        runner.expect_equal("%s: symmetry fraction" % what, r.get("hertz.fraction"), 1.0)
+        return P
 
-    hertz_refinement_levels(runner, "hertz", HERTZ_FACTORS, HERTZ_H_CONTACT, 0.02, check_load)
+    hertz_refinement_levels(runner, "hertz", HERTZ_FACTORS, HERTZ_H_CONTACT, 0.02, load)
 
 
 # Hertz sphere on a flat (options/hertz3d.yml, an octant of a ball with two symmetry planes): mesh size factors of
@@ -154,20 +192,25 @@ HERTZ3D_H_CONTACT = 0.04
 def hertz3d_refinement(runner):
     """Hertz sphere on a flat: contact radius and peak pressure converge to Johnson's values under mesh refinement."""
 
-    def check_load(runner, r, h, what):
-        # Two symmetry planes: the model is a quarter of the hemisphere. It carries the pressure times the area of
-        # its faceted top, a little less than P / 4; Johnson's values are those of the load it carries.
-        runner.expect_equal("%s: symmetry fraction" % what, h["fraction"], 0.25)
+    def load(runner, r, what):
+        # Two symmetry planes: the model is a quarter of the hemisphere. It carries the pressure q times the area of
+        # its faceted top z = 0 (computed here from the mesh), a little less than P / 4; Johnson's values are those of
+        # the load P_model = 4 q area it stands for.
+        q = float(dict(yaml_options(runner.path("options/hertz3d.yml")))["bc_pressure"].split(":")[1])
+        P_model = 4 * q * area_on_plane(r, 0.0)
+        runner.expect_equal("%s: symmetry fraction" % what, r.get("hertz.fraction"), 0.25)
         F = r.get("contact.contact_force")
-        runner.expect_close("%s: the model carries P_model / 4" % what, F, [0, 0, h["P_model"] / 4], 0,
-                            1e-10 * h["P_model"])
+        runner.expect_close("%s: the model carries P_model / 4" % what, F, [0, 0, P_model / 4], 0, 1e-10 * P_model)
         runner.expect_close("%s: contact force = applied load" % what, F, -np.array(r.get("contact.applied_force")),
-                            0, 1e-10 * h["P_model"])
+                            0, 1e-10 * P_model)
+        # summary.json holds 10 significant digits.
+        runner.expect_close("%s: summary's P_model" % what, r.get("hertz.P_model"), P_model, 1e-9)
         # The faceted top falls short of the quarter disc by the segments its rim cuts off (10 % on the coarsest).
-        runner.expect_close("%s: P_model close to P" % what, h["P_model"], h["P"], 0.12)
+        runner.expect_close("%s: P_model close to P = q pi R^2" % what, P_model, q * np.pi * 10.0 ** 2, 0.12)
+        return P_model
 
     # heap_check off: -malloc_debug validates the whole heap at every allocation, slow on the finer 3D meshes.
-    hertz_refinement_levels(runner, "hertz3d", HERTZ3D_FACTORS, HERTZ3D_H_CONTACT, 0.03, check_load, heap_check=False)
+    hertz_refinement_levels(runner, "hertz3d", HERTZ3D_FACTORS, HERTZ3D_H_CONTACT, 0.03, load, heap_check=False)
 
 
 @test("hertz_thickness")
@@ -722,13 +765,13 @@ def kept_solver(runner):
     free = ["-mesh_file", "meshes/block.msh", "-material_E", "1000", "-contact_groups", "bottom", "-bc_pressure",
             "top:1", "-obstacle_segments", "-1,-0.01,3,-0.01"]
     for solver in ("mumps", "auto"):
-        status, out, _ = runner.run_any(free + ["-contact_kept_solver", solver], "free block, " + solver, timeout=60)
+        status, out, _ = runner.run_any(free + ["-contact_kept_solver", solver], "free block, " + solver)
         errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
         runner.expect_true("free block, %s: one error, DIVERGED_SINGULAR with MUMPS's null pivot (exit %d): %s" % (
             solver, status, errors), status != 0 and len(errors) == 1 and "DIVERGED_SINGULAR" in errors[0] and
             "MUMPS found 1 null pivot" in errors[0])
     # The same run with -info (its lines from both ranks may interleave with the error line: a run of its own).
-    status, out, _ = runner.run_any(free + ["-info", ":sys"], "free block, auto, -info", timeout=60)
+    status, out, _ = runner.run_any(free + ["-info", ":sys"], "free block, auto, -info")
     runner.expect_true("free block, auto: the Cholesky stops and MUMPS factorises (exit %d)" % status,
                        status != 0 and "MUMPS factorises instead" in out)
     # Declined (the strip of the reuse_factorization test: many candidates on a body that factors cheaply): PETSc's
@@ -820,9 +863,12 @@ def svk_reuse_factorization(runner, case):
 
 @test("solver_preset")
 def solver_preset(runner, preset):
-    """beam_on_floor with a solver preset gives the active set and contact force of mumps_cholesky."""
+    """beam_on_floor with a solver preset gives the state of another solver: mumps_cholesky's, or for mumps_cholesky
+    itself mumps_lu's (a second factorisation, not the same run twice): the same active set, contact force,
+    displacements and multipliers."""
     base = ["-options_file", "options/beam_on_floor.yml"]
-    ref = runner.run(base + ["-options_file", "options/solver/mumps_cholesky.yml"], "beam_on_floor mumps_cholesky")
+    other = "mumps_lu" if preset == "mumps_cholesky" else "mumps_cholesky"
+    ref = runner.run(base + ["-options_file", "options/solver/%s.yml" % other], "beam_on_floor %s" % other)
     # On two ranks the preset runs without the heap validation at every allocation (the leak check stays): it makes
     # GAMG set-up about 50 times slower there (4 s -> 240 s); one rank keeps the full check.
     r = runner.run(base + ["-options_file", "options/solver/%s.yml" % preset], "beam_on_floor %s" % preset,
@@ -831,11 +877,15 @@ def solver_preset(runner, preset):
     runner.expect_equal("active nodes", r.get("contact.active_nodes"), ref.get("contact.active_nodes"))
     a, b = ref.nodes(), r.nodes()
     runner.expect_true("same active nodes", np.array_equal(a["active"], b["active"]))
-    # The iterative presets solve to ksp_rtol 1e-10; the contact force then agrees to about that (K is regular).
+    # The iterative presets solve to ksp_rtol 1e-10; the state then agrees to about that times the conditioning of
+    # the saddle-point matrix, within 1e-8 of the largest value (two direct factorisations agree far closer).
     f_ref = np.array(ref.get("contact.contact_force"))
     runner.expect_close("contact force", r.get("contact.contact_force"), f_ref, 1e-8, 1e-8 * np.abs(f_ref).max())
-    print("  iterations: active set %d, Krylov %d (mumps_cholesky: %d, %d)" % (
-        r.get("iterations.active_set"), r.get("iterations.krylov"), ref.get("iterations.active_set"),
+    u = displacement(a)
+    runner.expect_close("displacement", displacement(b), u, 0, 1e-8 * np.abs(u).max())
+    runner.expect_close("lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
+    print("  iterations: active set %d, Krylov %d (%s: %d, %d)" % (
+        r.get("iterations.active_set"), r.get("iterations.krylov"), other, ref.get("iterations.active_set"),
         ref.get("iterations.krylov")))
 
 
@@ -1171,14 +1221,22 @@ def search_radius(runner):
 
 @test("svk_rank_independence")
 def svk_rank_independence(runner):
-    """St. Venant-Kirchhoff with contact and load steps on 1 and 2 ranks: the same iterations and solution."""
+    """St. Venant-Kirchhoff with contact and load steps on 1 and 2 ranks: the same iterations, active set, displacements,
+    multipliers and contact force."""
     args = ["-options_file", "options/beam_on_floor.yml", "-material_model", "svk", "-load_steps", "2"]
     one = runner.run(args, "beam svk", np_=1)
     two = runner.run(args, "beam svk", np_=2)
-    for key in ("contact.active_pairs", "iterations.active_set", "iterations.load_steps"):
+    for key in ("contact.active_pairs", "contact.active_nodes", "iterations.active_set", "iterations.load_steps"):
         runner.expect_equal("%s on 2 ranks" % key, two.get(key), one.get(key))
     a, b = one.nodes(), two.nodes()
+    check_same_mesh(runner, "1 and 2 ranks", a, b)
+    runner.expect_true("same active nodes", np.array_equal(a["active"], b["active"]))
+    # Two Newton paths to the same state, each to the Newton tolerance (1e-9 of the force scale): 1e-8 of the largest
+    # value (rank_independence).
     runner.expect_close("displacement", displacement(b), displacement(a), 0, 1e-8 * np.abs(displacement(a)).max())
+    runner.expect_close("lambda", b["lambda"], a["lambda"], 0, 1e-8 * np.abs(a["lambda"]).max())
+    runner.expect_close("contact force", two.get("contact.contact_force"), one.get("contact.contact_force"), 1e-8,
+                        1e-8 * np.abs(one.get("contact.contact_force")).max())
 
 
 # Nonlinear (St. Venant-Kirchhoff) cases, on the same harness (leaks, PETSc errors, unused options, certificate).
@@ -1522,7 +1580,7 @@ def inclined_wall_beyond_radius(runner):
     loose = ["-mesh_file", "meshes/notch_block.msh", "-material_E", "1214.81", "-material_nu", "0.369",
              "-contact_groups", "bottom,left,right", "-bc_traction", "top:0.00521992:-0.300851", "-obstacle_segments",
              "0.994634,-0.0437555,1.99463,1.18488", "-obstacle_discs", "0.544461,-1.04376,1"]
-    status, out, _ = runner.run_any(loose, "block on a disc beside an inclined wall", timeout=60)
+    status, out, _ = runner.run_any(loose, "block on a disc beside an inclined wall")
     runner.expect_true("the loose block ends as DIVERGED_NOT_HELD (exit %d)" % status,
                        status != 0 and "DIVERGED_NOT_HELD" in out)
     # Random case 54: the 2 x 1 block pushed right on a frictionless floor, away from the wall at its left. Found free,
@@ -1530,7 +1588,7 @@ def inclined_wall_beyond_radius(runner):
     free = ["-mesh_file", "meshes/block.msh", "-material_E", "3441.21", "-material_nu", "0.435", "-contact_groups",
             "bottom,left,right", "-bc_traction", "top:2.57396:-10.5632", "-obstacle_segments",
             "-0.5,-0.0298311,2.5,-0.0298311,0,2,0,-0.5"]
-    status, out, _ = runner.run_any(free, "block pushed away from a wall", timeout=60)
+    status, out, _ = runner.run_any(free, "block pushed away from a wall")
     runner.expect_true("the free block ends as DIVERGED_NOT_HELD after the repeat (exit %d)" % status,
                        status != 0 and "searching the pairs again" in out and
                        "signorini: error: the contact solve did not converge at load factor 1: DIVERGED_NOT_HELD" in out)
@@ -1557,7 +1615,7 @@ def free_along_floor(runner):
     pushed = ["-mesh_file", "meshes/block.msh", "-material_E", "130.924", "-material_nu", "0.093", "-contact_groups",
               "bottom,left,right", "-bc_traction", "top:0.167226:-0.89568", "-obstacle_segments",
               "-0.5,-0.026905,2.5,-0.026905,0,2,0,-0.5"]
-    status, out, _ = runner.run_any(pushed, "block pushed away from its wall", timeout=60)
+    status, out, _ = runner.run_any(pushed, "block pushed away from its wall")
     errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
     runner.expect_true("one error line, DIVERGED_NOT_HELD (exit %d): %s" % (status, errors),
                        status != 0 and len(errors) == 1 and "DIVERGED_NOT_HELD" in errors[0] and
@@ -1627,11 +1685,22 @@ def cycling_set_pivoted(runner):
             "bottom,front,left", "-bc_traction", "top:0.0197162:0.0408767:-0.149286", "-obstacle_planes",
             "0,0,0,1,0,0,0,0,0,0,1,0,1.05037,0,-0.0342131,-1.46851,0,1", "-obstacle_spheres",
             "0.666416,0.593367,-1.03421,1"]
-    status, out, _ = runner.run_any(free, "3D cube sliding off its sphere", timeout=120)
+    status, out, _ = runner.run_any(free, "3D cube sliding off its sphere")
     errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
     runner.expect_true("one error line, DIVERGED_NOT_HELD by the complementarity problem (exit %d): %s" %
                        (status, errors), status != 0 and len(errors) == 1 and "DIVERGED_NOT_HELD" in errors[0] and
                        "no contact forces on its" in errors[0])
+
+
+def rigid_and_deformation(nodes):
+    """A 2D displacement field split into its least-squares rigid motion (u_x, u_y of the origin and the small rotation
+    w: u = c + w (-y, x)) and the rest, the deformation (one row per node)."""
+    x, y = nodes["x"], nodes["y"]
+    A = np.zeros((2 * len(x), 3))
+    A[0::2, 0], A[1::2, 1], A[0::2, 2], A[1::2, 2] = 1, 1, -y, x
+    u = displacement(nodes).ravel()
+    move = np.linalg.lstsq(A, u, rcond=None)[0]
+    return move, (u - A @ move).reshape(-1, 2)
 
 
 @test("not_held_in_any_units")
@@ -1644,33 +1713,48 @@ def not_held_in_any_units(runner):
     that load (a fraction proportional to E / load), above the verdict's 1e-3, and it ended with DIVERGED_NOT_HELD. Both
     now converge to the state of -contact_reuse_factorization false (which has no complementarity problem). A free body
     in small units (free_along_floor's block pushed away from its wall, load times 1e-4) is still found not held, with
-    the fraction of the load that nothing balances of the unscaled case (0.18)."""
+    the fraction of the load that nothing balances, its tangential part |t_x| / |t|."""
     disc = ["-mesh_file", "meshes/block.msh", "-material_E", "0.000941803", "-material_nu", "0.167", "-contact_groups",
             "bottom,left,right", "-bc_traction", "top:-9.99894e-08:-5.09574e-07", "-obstacle_segments", "0,2,0,-0.5",
             "-obstacle_discs", "1.36854,-0.995587,1"]
     wall = ["-mesh_file", "meshes/block.msh", "-material_E", "159.398", "-material_nu", "0.099", "-contact_groups",
             "bottom,left,right", "-bc_traction", "top:2.20444e-06:-1.10633e-05", "-obstacle_segments",
             "-0.5,-0.00417123,2.5,-0.00417123,0,2,0,-0.5,1.74823,-0.00417123,2.74823,1.09528"]
-    # The same active set gives the same linear system, solved by two factorisations: 1e-8 of the largest value; the
-    # wedged block's multipliers 1e-6 (they differ by 1e-7 between the two, on 1 and on 2 ranks): the block slides
-    # 0.27 rigidly into its wedge while its elastic deformation, which alone sets the multipliers, is of order load / E
-    # = 7e-8, so the round-off of the travel (1e-16 of 0.27) is about 1e-9 of the deformation, amplified by the
-    # condition of the stiffness.
+    # The same active set gives the same linear system, solved by two factorisations. The wedged block slides 0.27
+    # rigidly into its wedge while its elastic deformation, which alone sets the multipliers, is of order load / E
+    # = 7e-8: the displacement is compared as its rigid part (round-off of the travel) and its deformation, each
+    # against its own size, so that the tolerance is not larger than the deformation it checks. The round-off of the
+    # travel (1e-16 of 0.27) is about 1e-9 of the deformation, amplified by the condition of the stiffness: 1e-6 of
+    # the deformation and of the multipliers for the wedged block (they differ by 2e-8 of the largest), 1e-8 on the
+    # disc.
     for args, what, tol in ((disc, "block on a disc, E x 1e-6", 1e-8),
                             (wall, "block between floor and wall, load x 1e-4", 1e-6)):
         r = runner.run(args, what)
         runner.expect_true("%s: pivoted (%d)" % (what, r.get("iterations.pivoted_sets")),
                            r.get("iterations.pivoted_sets") >= 1)
         ref = runner.run(args + ["-contact_reuse_factorization", "false"], what + ", no kept factorisation")
-        expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=tol)
+        for key in ("contact.active_pairs", "contact.active_nodes"):
+            runner.expect_equal("%s: %s" % (what, key), r.get(key), ref.get(key))
+        a, b = ref.nodes(), r.nodes()
+        runner.expect_true("%s: the same active nodes" % what, np.array_equal(a["active"], b["active"]))
+        (move_a, strain_a), (move_b, strain_b) = rigid_and_deformation(a), rigid_and_deformation(b)
+        runner.expect_close("%s: rigid motion (translation, rotation)" % what, move_b, move_a, 0,
+                            1e-10 * np.abs(move_a).max())
+        runner.expect_close("%s: deformation (displacement less its rigid part)" % what, strain_b, strain_a, 0,
+                            tol * np.abs(strain_a).max())
+        runner.expect_close("%s: lambda" % what, b["lambda"], a["lambda"], 0, tol * np.abs(a["lambda"]).max())
     free = ["-mesh_file", "meshes/block.msh", "-material_E", "130.924", "-material_nu", "0.093", "-contact_groups",
             "bottom,left,right", "-bc_traction", "top:1.67226e-05:-8.9568e-05", "-obstacle_segments",
             "-0.5,-0.026905,2.5,-0.026905,0,2,0,-0.5"]
-    status, out, _ = runner.run_any(free, "block pushed away from its wall, load x 1e-4", timeout=60)
+    status, out, _ = runner.run_any(free, "block pushed away from its wall, load x 1e-4")
     errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
-    runner.expect_true("one error line, DIVERGED_NOT_HELD by the complementarity problem, 0.18 unbalanced (exit %d): %s"
-                       % (status, errors), status != 0 and len(errors) == 1 and "DIVERGED_NOT_HELD" in errors[0] and
-                       "leaves 0.18 of it" in errors[0])
+    # The frictionless floor balances the load's normal part; the tangential part |t_x| / |t| is left along the free
+    # rigid motion (the sliding), whatever the units.
+    tx, ty = (float(v) for v in free[free.index("-bc_traction") + 1].split(":")[1:])
+    left = "leaves %.2g of it" % (abs(tx) / np.hypot(tx, ty))
+    runner.expect_true("one error line, DIVERGED_NOT_HELD by the complementarity problem, '%s' (exit %d): %s"
+                       % (left, status, errors), status != 0 and len(errors) == 1 and "DIVERGED_NOT_HELD" in errors[0]
+                       and left in errors[0])
 
 
 @test("search_radius_widened")
@@ -1859,7 +1943,7 @@ def singular_narrow_radius(runner):
             expect_same_state(runner, ref, narrow, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
     loose = ["-mesh_file", "meshes/beam.msh", "-material_E", "1000", "-bc_pressure", "top:0.2", "-bc_point_force",
              "top:0:1", "-obstacle_segments", "-10,-0.5,10,-0.5"]
-    status, out, _ = runner.run_any(loose, "beam pulled up off a floor", timeout=60)
+    status, out, _ = runner.run_any(loose, "beam pulled up off a floor")
     errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
     runner.expect_true("one error line, not held within the diagonal (exit %d): %s" % (status, errors),
                        status != 0 and len(errors) == 1 and "DIVERGED_SINGULAR" in errors[0] and
@@ -1896,27 +1980,24 @@ def held_beyond_radius(runner):
                                              (what, radius)), r, keys=("contact.active_pairs", "contact.active_nodes"),
                           tol=1e-8)
     rolling = cases[2][0][:-4] + ["-obstacle_discs", "0.40798,-1.02783,1"]
-    status, out, _ = runner.run_any(rolling, "block rolling off a disc", timeout=60)
+    status, out, _ = runner.run_any(rolling, "block rolling off a disc")
     errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
     runner.expect_true("rolling off the disc: one error line, not held (exit %d): %s" % (status, errors),
                        status != 0 and len(errors) == 1 and "not held" in errors[0])
     # svk, seed 777 case 136: found free with the default radius's pairs, held by the inclined wall's, and the
     # repeat's deformation becomes non-invertible at every cut (svk's linearised rigid moves on a disc). The report
     # used to be the first finding, "the body is not held"; it is now the deformation, with that finding as context.
+    # A known failure, pinned so that any change shows: the linear material converges on it (3 active pairs) and the
+    # strains are of order load / E = 2e-4, so svk should converge too.
     svk = ["-mesh_file", "meshes/notch_block.msh", "-material_E", "5989.53", "-material_nu", "0.312", "-contact_groups",
            "bottom,left,right", "-material_model", "svk", "-bc_traction", "top:0.190318:-1.10502", "-obstacle_segments",
            "0.829454,-0.0144737,1.82945,0.818844", "-obstacle_discs", "0.448063,-1.01447,1"]
-    status, out, result = runner.run_any(svk, "svk block on a disc beside a wall", timeout=60)
+    status, out, result = runner.run_any(svk, "svk block on a disc beside a wall")
     errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
-    if status == 0:  # a better svk path may converge: then to a state outside the obstacles
-        depth = geometric_penetration(result.nodes(), svk)
-        runner.expect_true("svk block on a disc beside a wall converged outside the obstacles (%g)" % depth,
-                           depth <= result.get("certificate.gap_tol"))
-    else:
-        runner.expect_true("svk block held by the wall's pairs: not reported as not held (exit %d): %s" %
-                           (status, errors), len(errors) == 1 and "DIVERGED_NOT_HELD" not in errors[0] and
-                           "found not held with the pairs of a narrower radius; repeated with those within"
-                           in errors[0])
+    runner.expect_true("svk block held by the wall's pairs: DIVERGED_NONINVERTIBLE_DEFORMATION after the repeat, not "
+                       "reported as not held (exit %d): %s" % (status, errors),
+                       status != 0 and len(errors) == 1 and "DIVERGED_NONINVERTIBLE_DEFORMATION" in errors[0] and
+                       "found not held with the pairs of a narrower radius; repeated with those within" in errors[0])
 
 
 @test("svk_free_after_lagged_search")
@@ -2003,10 +2084,16 @@ def nearly_incompressible(runner):
     says that the displacement elements lock; plane stress, which does not lock, says nothing."""
     r = runner.run(["-material_nu", "0.499999"], "Hertz, nu = 0.499999")
     runner.expect_true("the locking note", "Note: -material_nu 0.499999 is nearly incompressible" in r.output)
-    runner.expect_true("the certificate holds", r.get("certificate.satisfied"))
-    runner.expect_true("its equilibrium residual within the tolerance (%g <= %g)" % (
-        r.get("certificate.equilibrium"), r.get("certificate.equilibrium_tol")),
-        r.get("certificate.equilibrium") <= r.get("certificate.equilibrium_tol"))
+    # Independently of the certificate: the load P = |t_y| 2R of options/hertz.yml, applied exactly (a straight edge),
+    # and balanced by the flat. The round-off of K u grows with the stiffness's largest entries, (lambda + 2 mu)
+    # against mu = 2 (1 - nu) / (1 - 2 nu), 5e5 here: 1e-12 of the load per unit of that ratio (nu = 0.3: 3.5).
+    options = dict(yaml_options(runner.path("options/hertz.yml")))
+    P = -float(options["bc_traction"].split(":")[2]) * 2 * float(options["report_hertz"].split(",")[0])
+    runner.expect_close("applied load", r.get("contact.applied_force"), [0, -P], 0, 1e-12 * P)
+    nu = 0.499999
+    expect_balance(runner, r, r.label, 1e-12 * P * 2 * (1 - nu) / (1 - 2 * nu))
+    runner.expect_close("the flat carries the load", r.get("contact.contact_force"), [0, P], 0,
+                        1e-12 * P * 2 * (1 - nu) / (1 - 2 * nu))
     for extra, what in ((["-material_nu", "0.49"], "nu = 0.49"),
                         (["-material_nu", "0.499999", "-material_plane", "stress"], "plane stress")):
         q = runner.run(extra, "Hertz, " + what)
@@ -2132,24 +2219,71 @@ def geometric_penetration(nodes, args):
     return deepest
 
 
+def held_by_construction(args):
+    """Whether a random_case's block is held whatever the load's size, so that it must converge: supported on its left
+    side (u_x = 0, which also stops its rotation) over a floor or a disc, or on a floor against the left wall and pushed
+    towards it; in both without the inclined wall (which may start deep inside the block's corner)."""
+    values = lambda name: [float(v) for v in args[args.index(name) + 1].split(",")] if name in args else []
+    segments = values("-obstacle_segments")
+    pieces = [segments[k:k + 4] for k in range(0, len(segments), 4)]
+    floor = any(p[1] == p[3] for p in pieces)
+    wall = [0, 2, 0, -0.5] in pieces
+    inclined = any(p[1] != p[3] and p[0] != p[2] for p in pieces)
+    tx = float(args[args.index("-bc_traction") + 1].split(":")[1])
+    if inclined:
+        return False
+    if "-bc_dirichlet" in args:
+        return floor or "-obstacle_discs" in args
+    return floor and wall and tx <= 0
+
+
+def outcome(status, out, result):
+    """A run's outcome as pinned: ("converged", active-set iterations), or (the final DIVERGED_ reason,)."""
+    if result is not None:
+        return ("converged", result.get("iterations.active_set"))
+    m = re.search(r"signorini: error: .*?(DIVERGED_\w+)", out)
+    return (m.group(1) if m else "no reason (exit %d)" % status,)
+
+
+# The outcome of each random case of random_cases (seed 20261123), the same on 1 and 2 ranks: the fixed seed makes
+# them deterministic, so a change of outcome or of iteration count is a change of the solver's path to be looked at
+# (and pinned again, with the reason in the commit message). Read case by case, every refusal is a block that nothing
+# holds against its load (pushed along a frictionless floor away from any wall, or rolling off a disc), but case 47:
+# an svk block whose corner starts deep inside an inclined wall (DIVERGED_NONINVERTIBLE_DEFORMATION).
+RANDOM_CASES_SEED = 20261123
+RANDOM_CASES_OUTCOMES = {
+    0: ('DIVERGED_NOT_HELD',), 1: ('converged', 3), 2: ('converged', 11), 3: ('DIVERGED_NOT_HELD',),
+    4: ('converged', 3), 5: ('converged', 15), 6: ('converged', 2), 7: ('DIVERGED_NOT_HELD',), 8: ('converged', 7),
+    9: ('DIVERGED_NOT_HELD',), 10: ('converged', 23), 11: ('converged', 3), 12: ('DIVERGED_SINGULAR',),
+    13: ('converged', 17), 14: ('converged', 2), 15: ('converged', 4), 16: ('converged', 7),
+    17: ('DIVERGED_SINGULAR',), 18: ('converged', 12), 19: ('converged', 3), 20: ('DIVERGED_SINGULAR',),
+    21: ('DIVERGED_NOT_HELD',), 22: ('converged', 10), 23: ('converged', 8), 24: ('converged', 1),
+    25: ('DIVERGED_NOT_HELD',), 26: ('DIVERGED_SINGULAR',), 27: ('converged', 5), 28: ('converged', 6),
+    29: ('DIVERGED_SINGULAR',), 30: ('DIVERGED_NOT_HELD',), 31: ('converged', 6), 32: ('DIVERGED_SINGULAR',),
+    33: ('DIVERGED_SINGULAR',), 34: ('converged', 5), 35: ('DIVERGED_SINGULAR',), 36: ('converged', 4),
+    37: ('converged', 3), 38: ('converged', 1), 39: ('converged', 12), 40: ('converged', 3), 41: ('converged', 8),
+    42: ('converged', 6), 43: ('DIVERGED_NOT_HELD',), 44: ('converged', 6), 45: ('DIVERGED_NOT_HELD',),
+    46: ('converged', 2), 47: ('DIVERGED_NONINVERTIBLE_DEFORMATION',), 48: ('converged', 30), 49: ('converged', 1)}
+
+
 @test("random_cases")
 def random_cases(runner):
-    """Property test over 50 random small cases: every exit 0 is a certified contact state, checked again from the
-    node table; every failure is one clean error line and no output, never a hang."""
-    rng = np.random.default_rng(20261123)
-    outcomes = {"converged": 0, "refused": 0}
+    """Property test over 50 random small cases: each ends as pinned (RANDOM_CASES_OUTCOMES: converged in as many
+    active-set iterations, or refused with the same reason); every exit 0 is a certified contact state, checked again
+    from the node table; every failure is one clean error line and no output (Runner.run_any); a case held by
+    construction (held_by_construction) converges."""
+    rng = np.random.default_rng(RANDOM_CASES_SEED)
+    outcomes = {}
     for seed in range(50):
         args = random_case(rng)
-        status, out, r = runner.run_any(args, "random %d" % seed, timeout=60)
+        status, out, r = runner.run_any(args, "random %d" % seed)
         label = "seed %d (%s)" % (seed, " ".join(args))
+        outcomes[seed] = outcome(status, out, r)
+        runner.expect_equal("%s: outcome" % label, outcomes[seed], RANDOM_CASES_OUTCOMES.get(seed))
+        if held_by_construction(args):
+            runner.expect_equal("%s: held by construction, converges" % label, outcomes[seed][0], "converged")
         if r is None:
-            outcomes["refused"] += 1
-            errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
-            runner.expect_true("%s: exit %d with one error line (%d)" % (label, status, len(errors)),
-                               status != 0 and len(errors) == 1 and "PETSC ERROR" not in out)
             continue
-        outcomes["converged"] += 1
-        runner.expect_certificate(r)
         # Independently of the certificate: no node in a pair's zone behind the obstacle beyond the gap tolerance,
         # no tensile multiplier beyond its tolerance, balance of forces.
         c, nodes = r.get("certificate"), r.nodes()
@@ -2165,11 +2299,7 @@ def random_cases(runner):
             np.array(r.get("contact.applied_force"))
         runner.expect_true("%s: force balance %.2g" % (label, np.linalg.norm(total)),
                            np.linalg.norm(total) <= 1e-8 * np.linalg.norm(r.get("contact.applied_force")))
-    print("  outcomes: %s" % outcomes)
-    # Not a vacuous pass: a good part of the cases converge (many others are refused rightly: a horizontal load on a
-    # frictionless floor without a wall moves the block away for ever).
-    runner.expect_true("at least 15 of 50 random cases converge (%d)" % outcomes["converged"],
-                       outcomes["converged"] >= 15)
+    print("  outcomes: {%s}" % ", ".join("%d: %r" % kv for kv in sorted(outcomes.items())))
 
 
 @test("svk_pairs_kept")
@@ -2215,15 +2345,21 @@ def nonlinear_sliding_repair(runner):
 PARAVIEW_READERS = ("Xdmf3ReaderS", "Xdmf3ReaderT", "XDMFReader")
 
 
-def paraview_dump(runner, results):
-    """What each ParaView XDMF reader shows of each result's solution.xdmf and of its per-block files
-    (paraview_dump.py under pvpython, one call for all): per result, a dict reader -> {class, times, blocks at the last
-    time step} with "files": block name -> the same per reader, or None when pvpython failed (a recorded check). Skips
-    the test when pvpython is not installed."""
+def require_pvpython():
+    """pvpython's path; skips the test when it is not installed. Called before the test's first run, so that a skip
+    never hides a check made before it."""
     pvpython = shutil.which("pvpython")
     if not pvpython:
         from run_case import Skipped
         raise Skipped("pvpython not found (Debian package python3-paraview; scripts/bootstrap.sh installs it)")
+    return pvpython
+
+
+def paraview_dump(runner, results):
+    """What each ParaView XDMF reader shows of each result's solution.xdmf and of its per-block files
+    (paraview_dump.py under pvpython, one call for all): per result, a dict reader -> {class, times, blocks at the last
+    time step} with "files": block name -> the same per reader, or None when pvpython failed (a recorded check)."""
+    pvpython = require_pvpython()
     args = []
     for r in results:
         args += [os.path.join(r.dir, "solution.xdmf"), os.path.join(r.dir, "paraview.json")]
@@ -2299,6 +2435,7 @@ def paraview_view(runner):
     stress and strain under the right component names, the floor as its own grid, the contact fields and the
     displacement on a grid of the contact boundary (finite gap everywhere), node and cell tags that match nodes.csv;
     and each block in a file of its own (check_block_files)."""
+    require_pvpython()
     q = 2.0
     r = runner.run(["-options_file", "options/block_on_floor.yml", "-load_steps", "2"], "block_on_floor")
     check_contact_displacement(runner, r)
@@ -2360,6 +2497,7 @@ def paraview_view_3d(runner):
     obstacle grid, each with the bounds its options give: the plane z = 0 as the rectangle under the body, a cylinder
     over the body's extent along its axis, a whole sphere (placed apart, below the body, so that they do not touch
     it); in two load steps, at the last one; and each block in a file of its own (check_block_files)."""
+    require_pvpython()
     plane, cylinder, sphere = [0, 0, 0, 0, 0, 1], [0, 0.5, -4, 1, 0, 0, 0.5], [1, 0.5, -10, 2]
     r = runner.run(["-options_file", "options/cube_on_plane.yml", "-mesh_file", "meshes/cube_mixed_conforming.msh",
                     "-obstacle_planes", ",".join(map(str, plane)), "-obstacle_cylinders",

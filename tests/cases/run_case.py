@@ -1,9 +1,12 @@
 #!/usr/bin/python3
 """Runs one case or verification test of tests/cases: the signorini executable under mpiexec, then checks.
 
-Every run of the executable fails the test on a non-zero exit, on a PETSc error message, on an option that was set
-but not used, and on PETSc memory still allocated at PetscFinalize (-malloc_debug -malloc_dump); then its
-summary.json (and, where a test asks, nodes.csv or solution.h5) is checked against the test's expectations.
+Every run of the executable fails the test on an option that was set but not used and on PETSc memory still
+allocated at PetscFinalize (-malloc_dump), whether the run succeeds or fails. A run expected to succeed (Runner.run)
+fails the test on a non-zero exit and on a PETSc error message; then its summary.json (and, where a test asks,
+nodes.csv or solution.h5) is checked against the test's expectations. A run allowed to fail (Runner.run_any) fails the
+test unless it either succeeds as above or fails cleanly: one "signorini: error:" line, no PETSc error message, no
+summary.json, after the set-up (whose check of unused options it has then passed).
 
     run_case.py --exe build/signorini --np 2 --source-dir . block_on_floor
     run_case.py --list
@@ -11,7 +14,8 @@ summary.json (and, where a test asks, nodes.csv or solution.h5) is checked again
 The tests themselves are in case_tests.py; a name may carry a parameter after a colon (solver_preset:mumps_lu).
 By hand, set the environment that ctest sets (SIGNORINI_TEST_ENV in tests/CMakeLists.txt: Open MPI as root, one
 thread per rank); `ctest -L cases` runs them all.
-Exit status 0 when every check passed, 1 when one failed, 2 on a usage error.
+Exit status 0 when every check passed, 1 when one failed, 2 on a usage error, 77 when a tool the test needs is
+missing and nothing was checked (a skip after a failed check is a failure).
 """
 import argparse
 import inspect
@@ -30,6 +34,11 @@ UNUSED_OPTION = re.compile(r"WARNING! option .* was set but not used|WARNING! Th
                            r"used|^Option left: ", re.MULTILINE)
 LEAKED_MEMORY = re.compile(r"^\[\s*\d+\]\s*\d+ bytes \S+\(\) at ", re.MULTILINE)
 PETSC_ERROR = re.compile(r"PETSC ERROR|signorini: error:")
+ERROR_LINE = "signorini: error:"
+# The program's own refusal of an option that nothing read (Options::CheckUnusedOptions).
+NEVER_READ = re.compile(r"set but never read")
+# The run's header (PrintHeader), printed once the set-up has checked every option but the saddle-point solver's.
+HEADER = re.compile(r"^\s*unknowns:", re.MULTILINE)
 
 
 class CheckFailed(Exception):
@@ -97,16 +106,16 @@ class Runner:
         self.exe, self.mpiexec, self.np, self.source_dir = exe, mpiexec, np_, source_dir
         self.workdir, self.verbose = workdir, verbose
         self.failures = []
-        self.count = 0
+        self.count = 0  # runs
+        self.checks = 0  # recorded checks
 
     def path(self, relative):
         return os.path.join(self.source_dir, relative)
 
-    def run(self, args, label, np_=None, heap_check=True):
-        """Runs `mpiexec -n NP exe args -output_dir DIR -malloc_debug -malloc_dump` and returns its Result; raises
-        CheckFailed on a failed run (exit status, PETSc error, unused option, leaked memory). heap_check=False drops
-        -malloc_debug (the validation of the whole PETSc heap at every allocation) and keeps the leak check."""
-        np_ = np_ or self.np
+    def launch(self, args, label, np_, heap_check):
+        """Runs `mpiexec -n NP exe args -output_dir DIR [-malloc_debug] -malloc_dump` in a fresh output directory;
+        returns (command, exit status, output, directory). Raises CheckFailed when the output shows an option set but
+        not used or PETSc memory leaked, whatever the exit status."""
         self.count += 1
         directory = os.path.join(self.workdir, "%02d_%s_np%d" % (self.count, re.sub(r"\W+", "_", label), np_))
         cmd = [self.mpiexec, "-n", str(np_), self.exe] + [str(a) for a in args] + [
@@ -119,14 +128,29 @@ class Runner:
         if self.verbose:
             print(out)
         problems = []
-        if proc.returncode != 0:
-            problems.append("exit status %d" % proc.returncode)
-        if PETSC_ERROR.search(out):
-            problems.append("an error message in the output")
-        if UNUSED_OPTION.search(out):
+        if UNUSED_OPTION.search(out) or NEVER_READ.search(out):
             problems.append("an option was set but not used")
         if LEAKED_MEMORY.search(out):
             problems.append("PETSc memory leaked (-malloc_dump)")
+        if problems:
+            raise CheckFailed("run '%s' failed (%s; exit status %d):\n  %s\n%s" % (
+                label, "; ".join(problems), proc.returncode, " ".join(cmd), out))
+        return cmd, proc.returncode, out, directory
+
+    def run(self, args, label, np_=None, heap_check=True):
+        """Runs `mpiexec -n NP exe args -output_dir DIR -malloc_debug -malloc_dump` and returns its Result; raises
+        CheckFailed on a failed run (exit status, PETSc error, unused option, leaked memory). heap_check=False drops
+        -malloc_debug (the validation of the whole PETSc heap at every allocation) and keeps the leak check."""
+        cmd, status, out, directory = self.launch(args, label, np_ or self.np, heap_check)
+        return self.converged(cmd, status, out, directory, label)
+
+    def converged(self, cmd, status, out, directory, label):
+        """The Result of a run that must have succeeded, its certificate checked; CheckFailed otherwise."""
+        problems = []
+        if status != 0:
+            problems.append("exit status %d" % status)
+        if PETSC_ERROR.search(out):
+            problems.append("an error message in the output")
         if not problems and not os.path.exists(os.path.join(directory, "summary.json")):
             problems.append("no summary.json")
         if problems:
@@ -151,24 +175,32 @@ class Runner:
             self.expect_true("%s: certificate %s %.3g <= %.3g" % (label, what, value, bound), value <= bound)
         self.expect_equal("%s: certificate changes" % label, c["changes"], 0)
 
-    def run_any(self, args, label, timeout):
-        """Runs like run() but accepts a failure: returns (exit status, output, Result or None). A run still going
-        after timeout seconds is a hang and fails the test."""
-        self.count += 1
-        directory = os.path.join(self.workdir, "%02d_%s_np%d" % (self.count, re.sub(r"\W+", "_", label), self.np))
-        cmd = [self.mpiexec, "-n", str(self.np), self.exe] + [str(a) for a in args] + ["-output_dir", directory,
-                                                                                       "-malloc_dump"]
-        try:
-            proc = subprocess.run(cmd, cwd=self.source_dir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                  text=True, timeout=timeout)
-        except subprocess.TimeoutExpired:
-            raise CheckFailed("run '%s' hangs (still going after %g s):\n  %s" % (label, timeout, " ".join(cmd)))
-        if self.verbose:
-            print(proc.stdout)
-        ok = proc.returncode == 0 and os.path.exists(os.path.join(directory, "summary.json"))
-        return proc.returncode, proc.stdout, Result(label, directory, proc.stdout) if ok else None
+    def run_any(self, args, label):
+        """Runs like run() but accepts a clean failure: returns (exit status, output, Result or None). A run that exits
+        0 is checked as run() checks it (Result); one that fails must have passed the set-up (its header printed: the
+        program's own check of unused options passed), print exactly one "signorini: error:" line and no PETSc error
+        message, and publish no summary.json; otherwise CheckFailed. Leaks and unused options fail either way. A hang
+        is left to CTest's TIMEOUT."""
+        cmd, status, out, directory = self.launch(args, label, self.np, heap_check=False)
+        if status == 0:
+            return status, out, self.converged(cmd, status, out, directory, label)
+        problems = []
+        # Counted anywhere in a line: with -info, another rank's lines may run into the error line.
+        if out.count(ERROR_LINE) != 1:
+            problems.append("'%s' %d times, expected once" % (ERROR_LINE, out.count(ERROR_LINE)))
+        if "PETSC ERROR" in out:
+            problems.append("a PETSc error message in the output")
+        if not HEADER.search(out):
+            problems.append("it stopped before its header (set-up not passed)")
+        if os.path.exists(os.path.join(directory, "summary.json")):
+            problems.append("summary.json published by a failed run")
+        if problems:
+            raise CheckFailed("run '%s' did not fail cleanly (exit status %d; %s):\n  %s\n%s" % (
+                label, status, "; ".join(problems), " ".join(cmd), out))
+        return status, out, None
 
     def record(self, ok, text):
+        self.checks += 1
         print("  %s %s" % ("ok  " if ok else "FAIL", text))
         if not ok:
             self.failures.append(text)
@@ -199,6 +231,8 @@ class Runner:
 def main():
     sys.dont_write_bytecode = True  # no __pycache__ in the source tree
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    # The tests import this file as run_case (Skipped, CheckFailed): the same module, so that main() catches them.
+    sys.modules.setdefault("run_case", sys.modules[__name__])
     import case_tests
 
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -231,9 +265,13 @@ def main():
     try:
         case_tests.TESTS[name](runner, *([param] if param else []))
     except Skipped as e:
-        print("SKIP %s: %s" % (args.test, e))
-        shutil.rmtree(workdir, ignore_errors=True)
-        return 77
+        if not runner.failures and not runner.checks:
+            print("SKIP %s: %s" % (args.test, e))
+            shutil.rmtree(workdir, ignore_errors=True)
+            return 77
+        # A skip after checks were made would hide them (or hide that the rest went unchecked): a failure.
+        runner.failures.append("skipped after %d check(s) (%d failed): %s" % (runner.checks, len(runner.failures), e))
+        print("FAIL %s" % runner.failures[-1])
     except CheckFailed as e:
         runner.failures.append(str(e))
         print("FAIL %s" % e)

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Command-line behaviour: -help lists every option of the README's tables with its default, a misspelled option is
+"""Command-line behaviour: -help and docs/options.md list the same options with the same defaults, a misspelled option is
 reported, the built-in default case equals options/hertz.yml, a relative path in an options file is read relative to
 that file."""
 import json
@@ -18,8 +18,14 @@ MPIEXEC = sys.argv[4] if len(sys.argv) > 4 else "mpiexec"
 def run(args, cwd=SOURCE, np=0):
     """Runs the executable in cwd, directly (np = 0) or under mpiexec with np ranks."""
     launcher = [MPIEXEC, "-n", str(np)] if np else []
-    proc = subprocess.run(launcher + [EXE] + args, capture_output=True, text=True, timeout=300, cwd=cwd)
+    proc = subprocess.run(launcher + [EXE] + args, capture_output=True, text=True, cwd=cwd)
     return proc.returncode, proc.stdout + proc.stderr
+
+
+def in_order(text, *markers):
+    """Every marker is in text, each after the one before it (a missing marker is not "before" anything)."""
+    at = [text.find(m) for m in markers]
+    return all(i >= 0 for i in at) and at == sorted(at) and len(set(at)) == len(at)
 
 
 def check(cond, message):
@@ -31,17 +37,54 @@ def check(cond, message):
 if TEST == "help":
     rc, out = run(["-help"])
     check(rc == 0, "-help exits 0")
-    with open(os.path.join(SOURCE, "README.md")) as f:
-        readme = f.read()
-    documented = set(re.findall(r"^\| `(-[a-z_]+)", readme, re.M))
-    check(len(documented) >= 30, f"README documents {len(documented)} options")
-    for option in sorted(documented):
-        if option.startswith("-contact_ksp") or option.startswith("-contact_pc") or option.endswith("_"):
+    # docs/options.md against -help, both ways: every option of the program's groups (before PETSc's first group of the
+    # solver) is a row of an options table there with -help's default, and every option documented is in -help.
+    # A default cell matches when a `literal` in it is -help's value (numbers compared as numbers, "×" as "x", a path
+    # by its end), or -help's text says "default: <cell>", or it says none for an empty value, on/off for a flag.
+    with open(os.path.join(SOURCE, "docs", "options.md")) as f:
+        doc_lines = f.read().splitlines()
+    documented, column = {}, None
+    for line in doc_lines:
+        cells = [c.strip() for c in line.strip().strip("|").split("|")] if line.startswith("|") else []
+        if cells and cells[0] == "option":
+            column = cells.index("default") if "default" in cells else None
+        elif cells and not set(cells[0]) <= set("- ") and cells[0].startswith("`-"):
+            if column is None:
+                check(False, f"docs/options.md gives a default column for {cells[0]}")
+            for option in re.findall(r"`(-[A-Za-z_0-9{},<>*]+)", cells[0]):
+                documented[option] = cells[column]
+    check(len(documented) >= 30, f"docs/options.md documents {len(documented)} options")
+    _, gamg_help = run(["-help", "-options_file", "options/solver/fieldsplit_gamg.yml"])
+    ours_end = out.find("Preconditioner (PC) options:")
+    check(ours_end > 0, "-help has the solver's PC group after the program's groups")
+    ours = {m.group(1): m.group(0) for m in re.finditer(r"^  (-[a-z_0-9]+)\b.*$", out[:ours_end], re.M)}
+    check(len(ours) >= 30, f"-help lists {len(ours)} options of the program")
+    for option in sorted(ours):
+        check(option in documented, f"docs/options.md documents {option} of -help")
+
+    def norm(text):
+        text = text.replace("×", "x").strip()
+        return re.sub(r"-?\d+\.?\d*(e[-+]?\d+)?", lambda m: "%g" % float(m.group(0)), text)
+
+    for option, cell in sorted(documented.items()):
+        if re.search(r"[*<{]", option):  # a family: some option of -help starts with its prefix
+            prefix = re.split(r"[*<{]", option)[0]
+            check(prefix in out or prefix in gamg_help, f"-help lists options of {option}")
             continue
         check(re.search(r"^\s+" + re.escape(option) + r"\b", out, re.M) is not None, f"-help lists {option}")
+        if option not in ours:
+            continue
+        line = ours[option]
+        value = re.search(r"<(?:now )?(.*?) : ", line).group(1).strip()
+        literals = [norm(v) for v in re.findall(r"`([^`]*)`", cell)]
+        said = "default: " + cell.split(" (")[0] in line
+        flag = {"TRUE": "on", "FALSE": "off"}.get(value)
+        good = (norm(value) in literals or any(l and norm(value).endswith("/" + l) for l in literals) or said
+                or (value == "" and cell.startswith("none")) or (flag is not None and cell.split()[0] == flag))
+        check(good, f"docs/options.md gives {option} the default of -help ({value!r}): {cell!r}")
     check("-contact_ksp_type <now preonly" in out, "-help shows the default saddle-point KSP (preonly)")
     check("-contact_pc_type <now cholesky" in out, "-help shows the default PC (cholesky)")
-    check(out.find("Mesh options:") < out.find("Options for all PETSc programs"),
+    check(in_order(out, "Mesh options:", "Options for all PETSc programs"),
           "-help lists the program's groups before PETSc's generic options")
     check("-contact_mat_mumps_icntl_24" in out, "-help lists the MUMPS options of the default solver")
     check(re.search(r"^\s+-contact_ksp_rtol, .*-contact_ksp_max_it: not listed: -contact_ksp_type preonly", out, re.M)
@@ -51,11 +94,11 @@ if TEST == "help":
     lines = out.splitlines()
     check(lines[0].startswith("signorini: ") and lines[3:5] == ["-" * 40, "Progress:"],
           "-help starts with the program's description and its first group")
-    check(out.find("Contact options:") < out.find("Preconditioner (PC) options:")
-          < out.find("PETSc's own options") < out.find("Options for SEQAIJ matrix"),
+    check(in_order(out, "Contact options:", "Preconditioner (PC) options:", "PETSc's own options",
+                   "Options for SEQAIJ matrix"),
           "-help lists the program's groups, then the solver's, then PETSc's generic ones (the -mat_* group last)")
     check("-contact_search_radius <now 0.1 x body diagonal" in out, "-help gives a ratio default with its unit")
-    check(out.find("Contact options:") < out.find("Saddle-point system:") < out.find("Preconditioner (PC) options:"),
+    check(in_order(out, "Contact options:", "Saddle-point system:", "Preconditioner (PC) options:"),
           "-help lists the program's saddle-point group with the program's, before PETSc's groups of the solver")
     ours = [l for l in lines if re.match(r"^  -(mesh|material|obstacle|load|newton|output|report|bc|contact|progress)",
                                            l) and not re.match(r"^  -contact_(ksp|pc|mat|fieldsplit)_", l)]
@@ -88,7 +131,7 @@ elif TEST == "misspelled":
               "it stops the run after the set-up, before the output directory is made")
         # The message says where each option was set: PETSC_OPTIONS, an options file, the command line.
         env = dict(os.environ, PETSC_OPTIONS="-materal_E 5")
-        proc = subprocess.run([EXE], capture_output=True, text=True, timeout=300, cwd=SOURCE, env=env)
+        proc = subprocess.run([EXE], capture_output=True, text=True, cwd=SOURCE, env=env)
         check(proc.returncode != 0 and "option -materal_E 5 (in PETSC_OPTIONS) is set but never read" in proc.stderr,
               "an unread option of PETSC_OPTIONS is named with its origin: " + proc.stderr[-300:])
         # A solver option is read at the first factorisation: one that nothing reads is refused after the solve,
@@ -183,7 +226,7 @@ elif TEST.startswith("solver_options_np"):
 elif TEST.startswith("progress_np"):
     np = int(TEST[len("progress_np"):])
     launcher = [MPIEXEC, "-n", str(np)]
-    proc = subprocess.run(launcher + [EXE, "-progress"], capture_output=True, text=True, timeout=300, cwd=SOURCE)
+    proc = subprocess.run(launcher + [EXE, "-progress"], capture_output=True, text=True, cwd=SOURCE)
     lines = [l for l in proc.stderr.splitlines() if l.startswith("signorini: [")]
     check(proc.returncode == 0, "-progress run succeeds")
     for phase in ["reading ", "partition and distribution", "set-up", "stiffness assembly", "factorisation",
@@ -197,7 +240,7 @@ elif TEST.startswith("progress_np"):
     done = re.search(r"after (\d+) active-set iteration", proc.stdout)
     check(done is not None and len(iterations) == int(done.group(1)),
           f"one line per active-set iteration ({done.group(1) if done else '?'} on the Hertz case): {len(iterations)}")
-    proc = subprocess.run(launcher + [EXE], capture_output=True, text=True, timeout=300, cwd=SOURCE)
+    proc = subprocess.run(launcher + [EXE], capture_output=True, text=True, cwd=SOURCE)
     check(proc.returncode == 0 and "signorini: [" not in proc.stderr, "quiet without -progress when stderr is a file")
 elif TEST.startswith("closed_pipe_np"):
     # `signorini ... | head -1` in a batch script: stdout closes after the first line; the run still finishes and
@@ -210,7 +253,7 @@ elif TEST.startswith("closed_pipe_np"):
                                 stderr=subprocess.PIPE, cwd=SOURCE)
         first = proc.stdout.readline()
         proc.stdout.close()
-        _, err = proc.communicate(timeout=300)
+        _, err = proc.communicate()
         check(first.startswith(b"signorini: 2D linear"), "the first line arrives: %r" % first)
         if np == 1:
             check(proc.returncode == 0, "the run exits 0 with its stdout closed: %s" % err.decode()[-500:])
@@ -223,5 +266,33 @@ elif TEST.startswith("closed_pipe_np"):
                   % (proc.returncode, err.decode()[-500:]))
         check(os.path.isfile(os.path.join(out, "summary.json")) and os.path.isfile(os.path.join(out, "nodes.csv")),
               "the output is published: %s" % (os.listdir(out) if os.path.isdir(out) else "no directory"))
+elif TEST.startswith("kept_view_np"):
+    # The kept factorisation is the saddle-point KSP's PC (type kept): -contact_ksp_view shows it once per run of
+    # condensed solves, with who factored, the ordering and the sizes, and the options and presets change what it says.
+    np = int(TEST[len("kept_view_np"):])
+    rc, out = run(["-contact_ksp_view"], np=np)
+    check(rc == 0, "the default case with -contact_ksp_view exits 0: %s" % out[-300:])
+    header = re.search(r"unknowns: (\d+) displacements, (\d+) multipliers", out)
+    check(header is not None, "the run header gives the unknowns")
+    rows, multipliers = int(header.group(1)) + int(header.group(2)), int(header.group(2))
+    check(out.count("KSP Object: (contact_)") == 1, "the saddle-point KSP is viewed once")
+    check(re.search(r"^PC Object: \(contact_\) .*\n  type: kept$", out, re.M) is not None, "its PC is of type kept")
+    check(f"rows: {rows}, of which {multipliers} multipliers in the Schur complement" in out,
+          f"the view gives the {rows} rows and the {multipliers} multipliers of the header")
+    gathered = " (the matrix gathered from every rank)" if np > 1 else ""
+    check("factored by: signorini's supernodal Cholesky on rank 0" + gathered + "\n" in out,
+          "the default factors by the supernodal Cholesky" + gathered)
+    check("ordering: nested dissection of the node graph (coordinates)" in out,
+          "a small 2D matrix is ordered by coordinate cuts")
+    check(re.search(r"factor entries: [0-9.e+]+, elimination flops: [0-9.e+]+, null pivots: 0$", out, re.M)
+          is not None, "the view gives the factor's entries and flops")
+    for extra, who in ((["-contact_kept_solver", "mumps"], "MUMPS LDL^T (SYM = 2)"),
+                       (["-options_file", "options/solver/mumps_lu.yml"], "MUMPS LU (SYM = 0)")):
+        rc, out = run(["-contact_ksp_view"] + extra, np=np)
+        check(rc == 0 and f"factored by: {who}, called directly" in out, f"{' '.join(extra)}: factored by {who}")
+    # svk: the first solve of a load step factors the tangent and solves through the KSP, which shows it then.
+    rc, out = run(["-contact_ksp_view", "-material_model", "svk"], np=np)
+    check(rc == 0 and "type: kept" in out and "kept factorisation of the saddle-point matrix" in out,
+          "svk: the KSP shows the kept factorisation")
 else:
     sys.exit("unknown test " + TEST)

@@ -18,7 +18,7 @@ def main():
     for np_ in (1, 2):
         run = subprocess.run([sys.executable, opts.source_dir + "/scripts/random_outcomes.py", "--exe", opts.exe,
                               "--cases", str(opts.cases), "--seed", str(opts.seed), "--dim", str(opts.dim), "--np",
-                              str(np_)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=600)
+                              str(np_)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         if run.returncode != 0:
             sys.exit("random_outcomes.py --np %d failed (%d):\n%s" % (np_, run.returncode, run.stdout))
         outputs.append(run.stdout.splitlines())

@@ -1,4 +1,4 @@
-// The active-set policy in one place: the activation rule (seed section 4.2.5 written as the primal-dual
+// The active-set policy in one place: the activation rule (docs/theory.md §4: the primal-dual
 // complementarity test lambda - c g > 0, with the sign convention g >= 0, lambda >= 0, lambda g = 0), the zone in
 // which a pair's gap counts, the damping of the first update (-contact_activation_fraction), the first (touching)
 // set, the pruning of parallel pairs of one node, cycle detection, and the convergence certificate.
@@ -17,7 +17,7 @@ namespace signorini {
 struct PairState {
   double lambda = 0;    ///< multiplier (normal contact force, >= 0 compressive)
   double gap = 0;       ///< current gap (< 0 penetration): linearised (linear material) or current (svk)
-  bool inside = false;  ///< svk: the current position projects onto the facet (0 <= alpha <= 1, seed Eq. 27);
+  bool inside = false;  ///< svk: the current position projects onto the facet (0 <= alpha <= 1, docs/theory.md §1);
                         ///< linear: the pair's reference zone (ContactPair::zone0)
   bool entered = false; ///< svk: the straight path X -> x crossed the finite facet from its open side
                         ///< (g0 > touch_tol, g < 0), or the node started behind the facet within its strip

@@ -1,6 +1,6 @@
 // Evaluation of the candidate pairs at a displacement: current gap, normal and projection (the constraint
 // g(u) >= 0 and its gradient, the row of B), for the linear model linearised about the reference configuration
-// (g = g0 + n0 . u, seed Eq. 7) and for large deformation from the current configuration x = X + u.
+// (g = g0 + n0 . u, docs/theory.md §2) and for large deformation from the current configuration x = X + u.
 #pragma once
 
 #include "signorini/contact/active_set.hpp"

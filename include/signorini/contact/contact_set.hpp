@@ -23,10 +23,10 @@ struct ContactOptions {
   double search_radius = -1;       ///< -contact_search_radius: pair a node with facets closer than this
   double touch_tol = -1;           ///< -contact_touch_tol: initial gap counted as touching (first active set)
   double gap_tol = -1;             ///< -contact_gap_tol: penetration tolerance of the active-set rule
-  double alpha_tol = 1e-8;         ///< -contact_alpha_tol: tolerance on the projection parameter (seed Eq. 27)
+  double alpha_tol = 1e-8;         ///< -contact_alpha_tol: tolerance on the projection parameter (docs/theory.md §1)
   double c = -1;                   ///< -contact_complementarity_c: weight of the gap in the active-set rule
   double activation_fraction = 0.2; ///< -contact_activation_fraction: activate only penetrations deeper than this
-                                    ///< fraction of the deepest one (0: every penetration, the seed's rule)
+                                    ///< fraction of the deepest one (0: every penetration, the rule of docs/theory.md §4)
   double activation_gap_factor = 2; ///< -contact_activation_gap_factor: in the first update of a load step, activate
                                     ///< only pairs whose start gap is at most this times the deepest one's (0: off)
   PetscInt max_it = 50;            ///< -contact_max_it: active-set iterations per load step
@@ -35,7 +35,7 @@ struct ContactOptions {
 };
 
 /// Reads and validates the -contact_ options; negative defaults are filled from the body's size and stiffness
-/// (length scale L, stiffness scale k), and the ranges of the tolerances are relative to them (README). Collective.
+/// (length scale L, stiffness scale k), and the ranges of the tolerances are relative to them (docs/options.md). Collective.
 [[nodiscard]] PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOptions &opts);
 
 /// The contact inputs that the option readers cannot judge alone, each an error naming the option: in a case without
@@ -49,7 +49,7 @@ struct ContactPair {
   PetscInt vertex;    ///< local vertex
   PetscInt facet;     ///< index into Obstacle::facets
   double n0[3];       ///< normal where the pair was found
-  double g0;          ///< gap where the pair was found (Eq. 8 with the sign of ARCHITECTURE.md: >= 0 open)
+  double g0;          ///< gap where the pair was found (docs/theory.md §1: >= 0 open)
   bool inside0;       ///< projects inside the facet where the pair was found
   bool zone0;         ///< the facet is one of the node's own in the reference configuration: X projects onto it,
                       ///< or onto none of the node's facets and this one is the nearest (a node over the wedge of a

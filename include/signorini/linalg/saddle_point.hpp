@@ -1,6 +1,6 @@
 // The saddle-point system [K -B^T; -B D] [du; lambda] = [f - F_int; g] in one parallel AIJ matrix with a fixed
 // nonzero pattern, and its KSP (options prefix -contact_). B holds the contact normals of the active pairs
-// (B = -C in the seed's notation, so that lambda >= 0 is a compressive force); an inactive pair has a zero row in B
+// (B = -C in the notation of docs/theory.md §3, so that lambda >= 0 is a compressive force); an inactive pair has a zero row in B
 // and a nonzero D entry, which gives lambda = 0 without changing the pattern. Knows nothing about geometry.
 //
 // Reuse of the factorisation (-contact_reuse_factorization, linear material with a MUMPS LU/Cholesky solver): the

@@ -1,5 +1,5 @@
-// The active-set loop of seed Algorithm 1, merged with Newton-Raphson for the nonlinear material (a semismooth
-// Newton method), inside load steps with step cutting. Options: -load_steps, -load_max_cuts, -newton_*.
+// The active-set loop (docs/theory.md §4), merged with Newton-Raphson for the nonlinear material (a semismooth
+// Newton method, §5), inside load steps (§6) with step cutting. Options: -load_steps, -load_max_cuts, -newton_*.
 #pragma once
 
 #include "signorini/bc/boundary_conditions.hpp"

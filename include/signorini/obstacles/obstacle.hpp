@@ -27,9 +27,9 @@ using TriangleSoup = std::vector<std::array<double, 3>>;
 struct Projection {
   double gap = 0;          ///< signed gap n . (x - P)
   double normal[3] = {};   ///< unit normal at P, pointing into the body
-  double alpha = 0;        ///< position of the projection along the facet (segments: Eq. 24, in [0, 1] inside;
+  double alpha = 0;        ///< position of the projection along the facet (segments: docs/theory.md §1, in [0, 1] inside;
                            ///< triangles: the smallest barycentric coordinate, >= 0 inside)
-  bool inside = false;     ///< the projection falls on the facet (seed Fig. 4), within the tolerance
+  bool inside = false;     ///< the projection falls on the facet (docs/theory.md §1), within the tolerance
 };
 
 /// The largest facet size that the alpha tolerance is relative to, as a fraction of the body's diagonal.
@@ -40,7 +40,7 @@ public:
   virtual ~Facet() = default;
   /// Projects the point x (dim values) on the facet. A bounded facet counts a foot up to alpha_tol times the smaller
   /// of its own size and EDGE_TOL_LENGTH `length` (the body's diagonal) past an edge as on it: relative to the facet
-  /// as in the seed's Eq. 27, but never farther than alpha_tol / 10 body diagonals (at most 1e-3 of them, the bound
+  /// as in docs/theory.md §1, but never farther than alpha_tol / 10 body diagonals (at most 1e-3 of them, the bound
   /// of the gap tolerances), so that a long facet does not hold a node far past its end (a floor 1e9 long held nodes
   /// 10 past its end with alpha_tol 1e-8).
   virtual Projection Project(const double *x, double alpha_tol, double length) const = 0;

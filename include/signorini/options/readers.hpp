@@ -24,7 +24,7 @@ struct RealRange {
   /// The whole numbers in [lo, hi].
   static RealRange Whole(double lo, double hi);
   bool Contains(double value) const;
-  /// "[0, 0.001] x body diagonal", for -help and the README.
+  /// "[0, 0.001] x body diagonal", for -help and docs/options.md.
   std::string Relative() const;
   /// "[0, 0.0179] (1e-3 x body diagonal 17.9)": the bounds in absolute terms, for messages.
   std::string Absolute() const;

@@ -184,6 +184,38 @@ TEST(Certificate, NamesTheFirstViolatedCondition) {
   EXPECT_FALSE(c.Satisfied());
 }
 
+TEST(Certificate, ReportsTheViolationsInTheirOrder) {
+  // Every condition violated at once; each message names the first that still fails once the ones before it hold:
+  // penetration, penetration on an unpaired facet, tensile active multiplier, inactive multiplier, complementarity,
+  // equilibrium, switches of the rule.
+  Certificate c;
+  c.gap_tol = 1e-9, c.lambda_tol = 1e-6, c.complementarity_tol = 1e-9, c.equilibrium_tol = 1e-8;
+  c.max_penetration = 1e-3, c.unpaired_penetration = 2e-3, c.unpaired_node = 7, c.min_active_lambda = -1;
+  c.max_inactive_lambda = 1, c.complementarity = 1, c.equilibrium = 1, c.changes = 2;
+  const char *expected[] = {"a node penetrates the obstacle by 0.001", "node 7 (at 0, 0, 0) penetrates",
+                            "tensile multiplier -1", "an inactive pair carries a multiplier 1",
+                            "complementarity max |lambda g| = 1", "the equilibrium residual 1", "switch 2 pair(s)"};
+  for (const char *phrase : expected) {
+    EXPECT_NE(c.Violation().find(phrase), std::string::npos) << "expected '" << phrase << "' in: " << c.Violation();
+    EXPECT_FALSE(c.Satisfied());
+    if (c.max_penetration > c.gap_tol)
+      c.max_penetration = 0;
+    else if (c.unpaired_penetration > c.gap_tol)
+      c.unpaired_penetration = 0;
+    else if (c.min_active_lambda < -c.lambda_tol)
+      c.min_active_lambda = 0;
+    else if (c.max_inactive_lambda > c.lambda_tol)
+      c.max_inactive_lambda = 0;
+    else if (c.complementarity > c.complementarity_tol)
+      c.complementarity = 0;
+    else if (c.equilibrium > c.equilibrium_tol)
+      c.equilibrium = 0;
+    else
+      c.changes = 0;
+  }
+  EXPECT_TRUE(c.Satisfied()) << c.Violation();
+}
+
 TEST(RigidModes, FloorAloneLeavesTheHorizontalTranslationFree) {
   const double centre[2] = {0.5, 0.5}, up[2] = {0, 1}, right[2] = {1, 0};
   double g[9] = {0}, row[3];
