@@ -3,13 +3,13 @@
 
     scripts/random_outcomes.py [--exe build/signorini] [--cases 300] [--seed 777] [--dim 2] [--np 1]
 
-The problems are those of the property test random_cases (tests/cases/case_tests.py, random_case): a unit block or
+The problems are those of the property test random_cases (tests/cases/robustness.py, random_case): a unit block or
 the 2 x 1 block, linear or svk, on a floor or a disc with optional walls, supported on its left side or held by
 contact alone, under a random top traction; many of them rightly fail (a body that nothing holds). --dim 3: the unit
 cube on a floor plane or a sphere with optional walls and an inclined plane (random_case_3d). Each case prints
 one line: its number, OK with its active-set iterations, load steps, active pairs and max |u|, or FAIL with the reason
 (DIVERGED_..., SINGULAR for an older build's singular-system message without a reason, OTHER). A converged state is also
-checked against the obstacles' geometry from its node table (case_tests.geometric_penetration, independent of the
+checked against the obstacles' geometry from its node table (robustness.geometric_penetration, independent of the
 solver's pairs): one with a candidate inside an obstacle beyond the gap tolerance is counted INSIDE, with its depth.
 Then the counts.
 Two builds run with the same --seed see the same cases, so `diff` of their outputs shows what changed (docs/survey.md,
@@ -28,7 +28,7 @@ import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tests", "cases"))
-from case_tests import geometric_penetration, random_case, random_case_3d  # noqa: E402
+from robustness import geometric_penetration, random_case, random_case_3d  # noqa: E402
 
 
 def main():

@@ -190,5 +190,116 @@ TEST(OptionsFileProblem, AnOptionSetInTwoYamlDocumentsIsSetTwice) {
   std::remove(path.c_str());
 }
 
+
+PetscErrorCode ReadString(std::string &value) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_SELF, nullptr, "test", "");
+  PetscCall(OptionsString(PetscOptionsObject, "-test_groups_file", "file", "a file name", value));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ReadStrings(std::vector<std::string> &items) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_SELF, nullptr, "test", "");
+  PetscCall(OptionsStringList(PetscOptionsObject, "-test_groups", "groups", "no contact", "GROUP,GROUP,...", items));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode RequireValue() {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_SELF, nullptr, "test", "");
+  PetscCall(OptionsRequireValue(PetscOptionsObject, "-test_type", "linear or svk"));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+TEST(OptionsString, ReadsTheValueAndRefusesTheNameAlone) {
+  std::string value = "default";
+  EXPECT_EQ(MessageOf("-test_groups_file", "groups.txt", [&] { return ReadString(value); }), "");
+  EXPECT_EQ(value, "groups.txt");
+  EXPECT_EQ(MessageOf("-test_groups_file", "", [&] { return ReadString(value); }),
+            "-test_groups_file is given without a value; expected a file name");
+  EXPECT_EQ(MessageOf("-test_type", "", RequireValue), "-test_type is given without a value; expected linear or svk");
+  EXPECT_EQ(MessageOf("-test_type", "svk", RequireValue), "");
+}
+
+TEST(OptionsStringList, TrimsBlanksAroundItemsAndRefusesEmptyOnesSayingWhatEmptyWouldLeave) {
+  std::vector<std::string> items;
+  EXPECT_EQ(MessageOf("-test_groups", "bottom, left ,right", [&] { return ReadStrings(items); }), "");
+  EXPECT_EQ(items, (std::vector<std::string>{"bottom", "left", "right"}));
+  EXPECT_EQ(MessageOf("-test_groups", "", [&] { return ReadStrings(items); }),
+            "-test_groups is given without a value, which would leave no contact; expected GROUP,GROUP,...");
+  EXPECT_EQ(MessageOf("-test_groups", "bottom, ,right", [&] { return ReadStrings(items); }),
+            "-test_groups bottom, ,right has an empty item 2 (an empty list would leave no contact); expected "
+            "GROUP,GROUP,...");
+}
+
+/// The error message of CheckRealValue on raw ("" when it passed).
+std::string CheckRealMessage(const char *raw, const RealRange &range, double &value) {
+  ErrorCapture capture;
+  const PetscErrorCode ierr = CheckRealValue(PETSC_COMM_SELF, "-contact_ksp_rtol", raw, range, value);
+  EXPECT_EQ(ierr != 0, !capture.Message().empty()) << capture.Message();
+  return capture.Message();
+}
+
+TEST(CheckRealValue, ChecksTextThatPetscReadsItselfAsOptionsRealDoes) {
+  const RealRange open{0, 1, true, true};
+  double value = 0;
+  EXPECT_EQ(CheckRealMessage("1e-8", open, value), "");
+  EXPECT_EQ(value, 1e-8);
+  EXPECT_EQ(CheckRealMessage("", open, value), "-contact_ksp_rtol is given without a value; expected a number in (0, 1)");
+  for (const char *raw : {"0x1p-3", "nan", "1e-8x"}) {
+    const std::string message = CheckRealMessage(raw, open, value);
+    EXPECT_EQ(message.rfind(std::string("-contact_ksp_rtol ") + raw + " is invalid; expected", 0), 0u) << message;
+    EXPECT_NE(message.find(" in (0, 1)"), std::string::npos) << message;
+  }
+  EXPECT_EQ(CheckRealMessage("1", open, value), "-contact_ksp_rtol 1 is out of range; expected a number in (0, 1)");
+  EXPECT_EQ(CheckRealMessage("2.5", RealRange::Whole(1, 1e9), value),
+            "-contact_ksp_rtol 2.5 is not a whole number; expected a whole number in [1, 1e+09]");
+  EXPECT_EQ(value, 1e-8); // a refused value leaves it
+  EXPECT_EQ(CheckRealMessage("1000000000", RealRange::Whole(1, 1e9), value), "");
+  EXPECT_EQ(value, 1e9);
+}
+
+TEST(IsSolverOption, NamesTheSaddlePointSolversOptionsOnly) {
+  for (const char *name : {"contact_ksp_type", "contact_pc_factor_mat_solver_type", "contact_mat_mumps_icntl_14",
+                           "contact_fieldsplit_0_pc_type", "contact_sub_pc_type", "contact_mg_levels_ksp_type"})
+    EXPECT_TRUE(IsSolverOption(name)) << name;
+  for (const char *name : {"contact_max_it", "contact_monitor", "contact_kept_solver", "ksp_type", "pc_type",
+                           "material_ksp_type", "contact_kspx", "contact_"})
+    EXPECT_FALSE(IsSolverOption(name)) << name;
+}
+
+TEST(CheckCommandLine, AStrayWordOrAMisspeltOptionsFileIsAnErrorNamingIt) {
+  EXPECT_EQ(CommandLineMessage({"options/hertz.yml"}),
+            "unexpected argument 'options/hertz.yml': every input is an option, -name value; to read this case file, "
+            "give -options_file options/hertz.yml");
+  EXPECT_EQ(CommandLineMessage({"-material_E", "3", "extra"}),
+            "unexpected argument 'extra': every input is an option, -name value");
+  EXPECT_EQ(CommandLineMessage({"-option_file", "options/hertz.yml"}),
+            "unknown option -option_file; expected -options_file FILE");
+  EXPECT_EQ(CommandLineMessage({"-options_files", "options/hertz.yml"}),
+            "unknown option -options_files; expected -options_file FILE");
+}
+
+TEST(OptionsFileProblem, AMissingFileOrADirectoryIsNamedWithWhatWasExpected) {
+  const auto problem_of = [](const std::string &path) {
+    std::string files;
+    std::vector<std::string> words = {"signorini", "-options_file", path};
+    std::vector<char *> argv;
+    for (std::string &w : words) argv.push_back(w.data());
+    return OptionsFileProblem((int)argv.size(), argv.data(), files);
+  };
+  const std::string missing = ::testing::TempDir() + "signorini_no_such_options.yml";
+  std::remove(missing.c_str());
+  EXPECT_EQ(problem_of(missing),
+            "-options_file " + missing + ": no such file; expected a readable YAML or PETSc options file");
+  const std::string directory = ::testing::TempDir();
+  EXPECT_EQ(problem_of(directory),
+            "-options_file " + directory + ": it is a directory; expected a readable YAML or PETSc options file");
+}
+
 } // namespace
 } // namespace signorini
