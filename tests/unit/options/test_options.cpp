@@ -2,6 +2,7 @@
 #include "signorini/options/readers.hpp"
 #include "signorini/options/command_line.hpp"
 #include "signorini/options/options_files.hpp"
+#include "signorini/options/unused_options.hpp"
 
 #include "petsc_helpers.hpp"
 
