@@ -49,9 +49,9 @@ std::string InnermostError() {
   return reason;
 }
 
-PetscErrorCode Hdf5File::Agree(bool local_ok) {
+PetscErrorCode Hdf5File::Agree(bool local_ok, const std::string &reason) {
   PetscFunctionBeginUser;
-  if (!local_ok && ok_) failed_here_ = true, reason_ = InnermostError();
+  if (!local_ok && ok_) failed_here_ = true, reason_ = reason.empty() ? InnermostError() : reason;
   ok_ = ok_ && local_ok;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ok_, 1, MPI_C_BOOL, MPI_LAND, comm_));
   PetscFunctionReturn(0);
@@ -94,13 +94,15 @@ PetscErrorCode Hdf5File::WriteRows(const std::string &path, std::int64_t rows, i
   Id space(H5Screate_simple(rank, dims, nullptr), H5Sclose);
   Id set(space.ok() ? H5Dcreate2(file_, path.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1,
          H5Dclose);
+  // Every HDF5 call clears its error stack as it starts: the reason of a failed creation is taken now.
+  const std::string failed_create = set.ok() ? "" : InnermostError();
   Id memory(H5Screate_simple(1, &n, nullptr), H5Sclose);
   Id transfer(H5Pcreate(H5P_DATASET_XFER), H5Pclose);
   bool ok = set.ok() && memory.ok() && transfer.ok() && H5Pset_dxpl_mpio(transfer, H5FD_MPIO_COLLECTIVE) >= 0;
   // A rank without rows still takes part in the collective write, with empty selections.
   if (ok && n > 0) ok = H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr) >= 0;
   if (ok && n == 0) ok = H5Sselect_none(space) >= 0 && H5Sselect_none(memory) >= 0;
-  PetscCall(Agree(ok)); // no rank enters the collective write that another one skips
+  PetscCall(Agree(ok, failed_create)); // no rank enters the collective write that another one skips
   if (!ok_) PetscFunctionReturn(0);
   const T none{};
   PetscCall(Agree(H5Dwrite(set, type, memory, space, transfer, n > 0 ? data.data() : &none) >= 0));

@@ -38,8 +38,8 @@ public:
   const std::string &Reason() const { return reason_; }
 
 private:
-  /// Turns a local success into one shared by every rank.
-  [[nodiscard]] PetscErrorCode Agree(bool local_ok);
+  /// Turns a local success into one shared by every rank; a local failure keeps reason, or HDF5's innermost error.
+  [[nodiscard]] PetscErrorCode Agree(bool local_ok, const std::string &reason = "");
   MPI_Comm comm_ = MPI_COMM_NULL;
   std::string path_, reason_;
   std::int64_t file_ = -1;

@@ -97,6 +97,7 @@ TEST(Hdf5File, AFailureIsSharedByEveryRankAndLaterCallsDoNothing) {
   // A dataset in a group that does not exist fails on every rank; the next dataset is not written.
   ASSERT_EQ(file.WriteRows("/absent/x", 1, 1, 0, std::vector<double>{}), 0);
   EXPECT_FALSE(file.Ok());
+  EXPECT_FALSE(file.Reason().empty()) << "HDF5's reason of the failed creation";
   ASSERT_EQ(file.CreateGroup("/mesh"), 0);
   ASSERT_EQ(file.Close(), 0);
   EXPECT_FALSE(file.Ok());
