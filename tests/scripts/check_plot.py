@@ -43,7 +43,7 @@ def analytic_curve(args, out):
 
     figures = []
     plot.plt.close = lambda fig=None: figures.append(fig)  # keep the figure plot_pressure closes after saving it
-    summary, data = plot.read(out)
+    summary, data = plot.read_summary(out), plot.read(out)
     plot.plot_pressure(summary, data, os.path.join(out, "contact_pressure_check.png"))
     lines = [line for fig in figures if hasattr(fig, "axes") for ax in fig.axes for line in ax.get_lines()
              if line.get_label().startswith("Hertz")]
