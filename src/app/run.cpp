@@ -193,6 +193,117 @@ std::vector<Field> NodeTableFields(ContactSolver &solver, const NodeContact &nod
           {"pressure", 1, false, nodes.pressure}, {"gap", 1, false, nodes.gap}, {"active", 1, false, nodes.active}};
 }
 
+/// -version: the versions of the program and of the libraries that decide its results, and nothing else. Collective.
+PetscErrorCode PrintVersion(MPI_Comm comm) {
+  char petsc[256], mpi[MPI_MAX_LIBRARY_VERSION_STRING];
+  int length;
+  PetscFunctionBeginUser;
+  PetscCall(PetscGetVersion(petsc, sizeof(petsc)));
+  for (size_t n = std::strlen(petsc); n > 0 && petsc[n - 1] == ' '; --n) petsc[n - 1] = '\0';
+  PetscCallMPI(MPI_Get_library_version(mpi, &length));
+  std::string mpi_first(mpi, std::min<size_t>(length, std::strcspn(mpi, ",\n")));
+  PetscCall(PetscPrintf(comm, "signorini %s\n%s\nMUMPS %s\n%s\n", SIGNORINI_VERSION, petsc, MUMPS_VERSION,
+                        mpi_first.c_str()));
+  PetscCall(PetscOptionsSetValue(nullptr, "-options_left", "0"));
+  PetscFunctionReturn(0);
+}
+
+/// A case as its options describe it, before the mesh is read.
+struct Case {
+  bool default_on_user_mesh = false; ///< the default case on the user's -mesh_file (CheckDefaultCaseMesh)
+  MeshOptions mesh_opts;
+  Material material;
+  BoundaryConditions bc;
+  Obstacle obstacle;
+  ContactOptions contact;
+  SolverOptions solver_opts;
+  OutputOptions output_opts;
+  HertzReport hertz;
+};
+
+/// The default case where the run gives none, then each component's options that need no mesh. Collective.
+PetscErrorCode ReadCase(MPI_Comm comm, bool help, Case &c) {
+  PetscFunctionBeginUser;
+  if (help)
+    PetscCall(PetscPrintf(comm, "signorini: frictionless (Signorini) contact of elastic bodies against rigid "
+                          "obstacles.\nEvery input is a PETSc option. The built-in 2D Hertz case (options/hertz.yml) "
+                          "fills in every option not given, unless the run gives a case of its own: -mesh_file with "
+                          "any of -bc_*, -obstacle_*, -contact_groups. -version prints the program's, PETSc's, MUMPS's "
+                          "and MPI's versions.\n\n"));
+  bool hertz_filled;
+  PetscCall(ApplyDefaultCase(c.default_on_user_mesh, hertz_filled));
+  PetscCall(ReadProgressOptions(comm));
+  PetscCall(ReadMeshOptions(comm, "", c.mesh_opts));
+  PetscCall(ReadMaterialOptions(comm, c.material));
+  PetscCall(ReadObstacle(comm, c.obstacle));
+  PetscCall(ReadSolverOptions(comm, c.material.model, c.solver_opts));
+  PetscCall(ReadOutputOptions(comm, c.output_opts));
+  PetscCall(ReadReportOptions(comm, c.hertz));
+  c.hertz.check_load = !hertz_filled;
+  PetscFunctionReturn(0);
+}
+
+/// -help: the groups that need the mesh's dimension or scale (read with stand-in values), the saddle-point solver's,
+/// then PETSc's generic options. Collective.
+PetscErrorCode ListCaseHelp(MPI_Comm comm, Case &c) {
+  PetscFunctionBeginUser;
+  PetscCall(ReadBoundaryConditions(comm, 0, c.bc));
+  PetscCall(ReadContactOptions(comm, 1.0, c.material.E * c.material.thickness, c.contact));
+  PetscCall(HelpKsp(comm));
+  PetscCall(PrintGenericHelp(comm));
+  PetscCall(PetscOptionsSetValue(nullptr, "-options_left", "0"));
+  PetscFunctionReturn(0);
+}
+
+/// What the mesh decides of the case: the default case's groups, the dimension of the material, supports, loads and
+/// shapes, the meshed obstacles, and the problem's scale (body: its bounding box, whose diagonal L is the length scale
+/// of the load and contact checks). Collective.
+PetscErrorCode CheckCaseOnMesh(MPI_Comm comm, const Mesh &mesh, Case &c, Box &body) {
+  PetscFunctionBeginUser;
+  if (c.default_on_user_mesh) PetscCall(CheckDefaultCaseMesh(comm, c.mesh_opts.file, mesh));
+  PetscCall(CheckMaterialDimension(comm, c.material, mesh.Dim()));
+  PetscCall(ReadBoundaryConditions(comm, mesh.Dim(), c.bc));
+  PetscCall(CheckLoadGroups(mesh, c.bc));
+  PetscCall(CheckObstacleDimension(comm, c.obstacle, mesh.Dim()));
+  PetscCall(LoadObstacleMeshes(comm, mesh.Dim(), c.obstacle));
+  PetscCall(mesh.BoundingBox(body.lo, body.hi));
+  const double L = std::sqrt(std::pow(body.hi[0] - body.lo[0], 2) + std::pow(body.hi[1] - body.lo[1], 2) +
+                             std::pow(body.hi[2] - body.lo[2], 2));
+  PetscCall(CheckLoadScale(comm, c.bc, L, c.material.E, c.material.thickness));
+  PetscCall(ReadContactOptions(comm, L, c.material.E * c.material.thickness, c.contact));
+  PetscCall(CheckContactInputs(mesh, c.obstacle, c.contact));
+  PetscFunctionReturn(0);
+}
+
+/// After the solve: the contact results, the summary, the node table, the timings (maximum over the ranks), the
+/// check of unread options and the publication of the output (stage: the Output log stage; t_output: the seconds the
+/// load steps' output took; t_start: when the run started). Collective.
+PetscErrorCode Finish(MPI_Comm comm, ContactSolver &solver, Case &c, OutputWriter &output, PetscLogStage stage,
+                      double t_output, double t_start, RunInfo &info) {
+  NodeContact nodes;
+  ContactSummary summary;
+  PetscFunctionBeginUser;
+  const double t = MPI_Wtime();
+  PetscCall(PetscLogStagePush(stage));
+  ProgressBegin("results and output");
+  PetscCall(ComputeContactResults(solver.State(), c.material, nodes, summary));
+  PetscCall(ComputeHertz(solver.State(), c.material, nodes, summary, c.hertz));
+  PetscCall(PrintSummary(comm, solver.State(), summary, c.hertz));
+  if (output.Enabled()) PetscCall(output.WriteNodeTable(NodeTableFields(solver, nodes)));
+  PetscCall(PetscLogStagePop());
+  info.timings["output"] = t_output + MPI_Wtime() - t;
+  info.timings["total"] = MPI_Wtime() - t_start;
+  for (auto &[k, v] : info.timings) {
+    double m;
+    PetscCallMPI(MPI_Allreduce(&v, &m, 1, MPI_DOUBLE, MPI_MAX, comm));
+    v = m;
+  }
+  PetscCall(CheckUnusedOptions(comm, UnusedOptions::AFTER_SOLVE));
+  PetscCall(output.Publish(SummaryJson(info, c.material, solver.State(), summary, c.hertz)));
+  ProgressEnd();
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode Run() {
@@ -212,79 +323,29 @@ PetscErrorCode Run() {
   PetscBool version;
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-version", &version));
   if (version) {
-    // -version: the versions of the program and of the libraries that decide its results, and nothing else.
-    char petsc[256], mpi[MPI_MAX_LIBRARY_VERSION_STRING];
-    int length;
-    PetscCall(PetscGetVersion(petsc, sizeof(petsc)));
-    for (size_t n = std::strlen(petsc); n > 0 && petsc[n - 1] == ' '; --n) petsc[n - 1] = '\0';
-    PetscCallMPI(MPI_Get_library_version(mpi, &length));
-    std::string mpi_first(mpi, std::min<size_t>(length, std::strcspn(mpi, ",\n")));
-    PetscCall(PetscPrintf(comm, "signorini %s\n%s\nMUMPS %s\n%s\n", SIGNORINI_VERSION, petsc, MUMPS_VERSION,
-                          mpi_first.c_str()));
-    PetscCall(PetscOptionsSetValue(nullptr, "-options_left", "0"));
+    PetscCall(PrintVersion(comm));
     PetscFunctionReturn(0);
   }
   PetscBool help;
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
-  if (help)
-    PetscCall(PetscPrintf(comm, "signorini: frictionless (Signorini) contact of elastic bodies against rigid "
-                          "obstacles.\nEvery input is a PETSc option. The built-in 2D Hertz case (options/hertz.yml) "
-                          "fills in every option not given, unless the run gives a case of its own: -mesh_file with "
-                          "any of -bc_*, -obstacle_*, -contact_groups. -version prints the program's, PETSc's, MUMPS's "
-                          "and MPI's versions.\n\n"));
-  bool default_on_user_mesh, hertz_filled;
-  PetscCall(ApplyDefaultCase(default_on_user_mesh, hertz_filled));
-  PetscCall(ReadProgressOptions(comm));
-
-  MeshOptions mesh_opts;
-  Material material;
-  BoundaryConditions bc;
-  Obstacle obstacle;
-  ContactOptions contact;
-  SolverOptions solver_opts;
-  OutputOptions output_opts;
-  HertzReport hertz;
-  PetscCall(ReadMeshOptions(comm, "", mesh_opts));
-  PetscCall(ReadMaterialOptions(comm, material));
-  PetscCall(ReadObstacle(comm, obstacle));
-  PetscCall(ReadSolverOptions(comm, material.model, solver_opts));
-  PetscCall(ReadOutputOptions(comm, output_opts));
-  PetscCall(ReadReportOptions(comm, hertz));
-  hertz.check_load = !hertz_filled;
+  Case c;
+  PetscCall(ReadCase(comm, help, c));
   if (help) {
-    PetscCall(ReadBoundaryConditions(comm, 0, bc));
-    PetscCall(ReadContactOptions(comm, 1.0, material.E * material.thickness, contact));
-    PetscCall(HelpKsp(comm));
-    PetscCall(PrintGenericHelp(comm));
-    PetscCall(PetscOptionsSetValue(nullptr, "-options_left", "0"));
+    PetscCall(ListCaseHelp(comm, c));
     PetscFunctionReturn(0);
   }
   Mesh mesh;
+  Box body;
   double t = MPI_Wtime();
   PetscCall(PetscLogStagePush(stage_mesh));
-  PetscCall(mesh.Create(comm, mesh_opts));
+  PetscCall(mesh.Create(comm, c.mesh_opts));
   PetscCall(PetscLogStagePop());
   info.mesh_file = mesh.Path();
   info.timings["mesh"] = MPI_Wtime() - t;
-  if (default_on_user_mesh) PetscCall(CheckDefaultCaseMesh(comm, mesh_opts.file, mesh));
-  // What the mesh's dimension decides: the components of loads and supports, the shapes, the 2D-only options.
-  PetscCall(CheckMaterialDimension(comm, material, mesh.Dim()));
-  PetscCall(ReadBoundaryConditions(comm, mesh.Dim(), bc));
-  PetscCall(CheckLoadGroups(mesh, bc));
-  PetscCall(CheckObstacleDimension(comm, obstacle, mesh.Dim()));
-  PetscCall(LoadObstacleMeshes(comm, mesh.Dim(), obstacle));
-
-  // The body's bounding box: its diagonal L is the length scale of the problem's checks and tolerances.
-  Box body;
-  PetscCall(mesh.BoundingBox(body.lo, body.hi));
-  const double L = std::sqrt(std::pow(body.hi[0] - body.lo[0], 2) + std::pow(body.hi[1] - body.lo[1], 2) +
-                             std::pow(body.hi[2] - body.lo[2], 2));
-  PetscCall(CheckLoadScale(comm, bc, L, material.E, material.thickness));
-  PetscCall(ReadContactOptions(comm, L, material.E * material.thickness, contact));
-  PetscCall(CheckContactInputs(mesh, obstacle, contact));
+  PetscCall(CheckCaseOnMesh(comm, mesh, c, body));
 
   t = MPI_Wtime();
-  ContactSolver solver(mesh, material, bc, obstacle, contact, solver_opts);
+  ContactSolver solver(mesh, c.material, c.bc, c.obstacle, c.contact, c.solver_opts);
   PetscCall(PetscLogStagePush(stage_setup));
   ProgressBegin("set-up (supports, contact pairs, numbering, matrix pattern)");
   PetscCall(solver.Setup());
@@ -296,11 +357,11 @@ PetscErrorCode Run() {
   // The output directory is opened once the set-up has checked the inputs it reads (groups, supports), so that
   // these errors leave no directory behind.
   OutputWriter output;
-  PetscCall(output.Open(mesh, output_opts));
+  PetscCall(output.Open(mesh, c.output_opts));
   mesh.ReleaseDM(); // the mesh's own arrays serve from here on
-  output.SetObstacle(obstacle, body);
+  output.SetObstacle(c.obstacle, body);
   PetscCall(output.SetContactBoundary(solver.Candidates()));
-  PetscCall(PrintHeader(comm, info, material, solver.State()));
+  PetscCall(PrintHeader(comm, info, c.material, solver.State()));
 
   double t_output = 0;
   NodeContact nodes;
@@ -311,7 +372,7 @@ PetscErrorCode Run() {
     const double t0 = MPI_Wtime();
     PetscCall(PetscLogStagePush(stage_output));
     ProgressBegin("output of load step");
-    PetscCall(ComputeContactResults(solver.State(), material, nodes, summary));
+    PetscCall(ComputeContactResults(solver.State(), c.material, nodes, summary));
     std::vector<Field> fields; // made one at a time as they are written
     PetscCall(StepFields(solver, nodes, fields));
     PetscCall(output.WriteStep(step, factor, fields));
@@ -331,24 +392,7 @@ PetscErrorCode Run() {
   info.timings["active_set"] = solver.Stats().time_active_set;
   info.timings["linear_solve"] = solver.Stats().time_solve;
 
-  t = MPI_Wtime();
-  PetscCall(PetscLogStagePush(stage_output));
-  ProgressBegin("results and output");
-  PetscCall(ComputeContactResults(solver.State(), material, nodes, summary));
-  PetscCall(ComputeHertz(solver.State(), material, nodes, summary, hertz));
-  PetscCall(PrintSummary(comm, solver.State(), summary, hertz));
-  if (output.Enabled()) PetscCall(output.WriteNodeTable(NodeTableFields(solver, nodes)));
-  PetscCall(PetscLogStagePop());
-  info.timings["output"] = t_output + MPI_Wtime() - t;
-  info.timings["total"] = MPI_Wtime() - t_start;
-  for (auto &[k, v] : info.timings) {
-    double m;
-    PetscCallMPI(MPI_Allreduce(&v, &m, 1, MPI_DOUBLE, MPI_MAX, comm));
-    v = m;
-  }
-  PetscCall(CheckUnusedOptions(comm, UnusedOptions::AFTER_SOLVE));
-  PetscCall(output.Publish(SummaryJson(info, material, solver.State(), summary, hertz)));
-  ProgressEnd();
+  PetscCall(Finish(comm, solver, c, output, stage_output, t_output, t_start, info));
   PetscFunctionReturn(0);
 }
 

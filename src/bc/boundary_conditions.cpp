@@ -1,5 +1,6 @@
 // Parsing of the boundary-condition and load options.
 #include "signorini/bc/boundary_conditions.hpp"
+#include "signorini/core/handle.hpp"
 
 #include "signorini/options/readers.hpp"
 #include "signorini/core/parse.hpp"
@@ -60,6 +61,7 @@ PetscErrorCode ReadBoundaryConditions(MPI_Comm comm, int dim, BoundaryConditions
   const char *nothing = "no condition of this kind";
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Boundary conditions and loads", "signorini");
+  const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
   PetscCall(OptionsStringList(PetscOptionsObject, "-bc_dirichlet", "Prescribed displacements GROUP:x=VALUE:y=VALUE"
                               "[:z=VALUE],... (value defaults to 0)", nothing, "GROUP:COMPONENT[=VALUE] items",
                               dirichlet));

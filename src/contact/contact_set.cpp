@@ -1,5 +1,6 @@
 // Contact options, the spatial search for candidate pairs, initial gaps and tributary lengths.
 #include "signorini/contact/contact_set.hpp"
+#include "signorini/core/handle.hpp"
 
 #include "signorini/options/readers.hpp"
 #include "signorini/fem/element.hpp"
@@ -62,6 +63,7 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
   opts.gap_tol = 1e-9 * L;
   opts.c = k;
   PetscOptionsBegin(comm, nullptr, "Contact options", "signorini");
+  const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
   PetscCall(OptionsStringList(PetscOptionsObject, "-contact_groups", "Physical groups of candidate nodes (default: "
                               "whole boundary)", "no candidate nodes", "physical group names", opts.groups));
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_search_radius", "Pair a node with the facets within this "

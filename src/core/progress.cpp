@@ -1,5 +1,6 @@
 // One line per phase of a long run on stderr (-progress): what the run is doing and how long it has taken.
 #include "signorini/core/progress.hpp"
+#include "signorini/core/handle.hpp"
 
 #include <unistd.h>
 
@@ -40,6 +41,7 @@ PetscErrorCode ReadProgressOptions(MPI_Comm comm) {
   PetscCallMPI(MPI_Bcast(&tty, 1, MPI_INT, 0, comm));
   PetscBool progress = tty ? PETSC_TRUE : PETSC_FALSE;
   PetscOptionsBegin(comm, nullptr, "Progress", "signorini");
+  const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
   PetscCall(PetscOptionsBool("-progress", "One line per phase on stderr (default: on when stderr is a terminal)", "",
                              progress, &progress, nullptr));
   PetscOptionsEnd();

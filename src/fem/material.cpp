@@ -1,5 +1,6 @@
 // Reading and validating the material options.
 #include "signorini/fem/material.hpp"
+#include "signorini/core/handle.hpp"
 
 #include "signorini/options/readers.hpp"
 #include "signorini/core/parse.hpp"
@@ -19,14 +20,14 @@ PetscErrorCode ReadMaterialOptions(MPI_Comm comm, Material &m) {
                             FormatNumber(STIFFNESS_SCALE_MAX) + "]";
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Material options", "signorini");
-  PetscCall(OptionsRequireValue(PetscOptionsObject, "-material_model", "linear or svk"));
-  PetscCall(PetscOptionsEList("-material_model", "linear (small strain) or svk (St. Venant-Kirchhoff, Green-Lagrange)",
-                              "", models, 2, models[model], &model, nullptr));
+  const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
+  PetscCall(OptionsChoice(PetscOptionsObject, "-material_model",
+                          "linear (small strain) or svk (St. Venant-Kirchhoff, Green-Lagrange)", "linear or svk", models,
+                          2, model));
   PetscCall(OptionsReal(PetscOptionsObject, "-material_E", ("Young's modulus" + scale).c_str(), positive, m.E));
   PetscCall(OptionsReal(PetscOptionsObject, "-material_nu", "Poisson's ratio", {-1, 0.5, true, true}, m.nu));
-  PetscCall(OptionsRequireValue(PetscOptionsObject, "-material_plane", "strain or stress"));
-  PetscCall(PetscOptionsEList("-material_plane", "2D assumption: strain or stress (2D meshes only)", "", planes, 2,
-                              planes[plane], &plane, &plane_given));
+  PetscCall(OptionsChoice(PetscOptionsObject, "-material_plane", "2D assumption: strain or stress (2D meshes only)",
+                          "strain or stress", planes, 2, plane, &plane_given));
   PetscCall(OptionsReal(PetscOptionsObject, "-material_thickness",
                         ("Out-of-plane thickness (2D meshes only)" + scale).c_str(), positive, m.thickness));
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-material_thickness", &thickness_given));

@@ -1,5 +1,6 @@
 // HDF5/XDMF, CSV and JSON output through a staging directory: every rank writes its block of the file's order.
 #include "signorini/io/output.hpp"
+#include "signorini/core/handle.hpp"
 
 #include "signorini/core/errors.hpp"
 #include "signorini/options/readers.hpp"
@@ -20,6 +21,7 @@ namespace fs = std::filesystem;
 PetscErrorCode ReadOutputOptions(MPI_Comm comm, OutputOptions &opts) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Output", "signorini");
+  const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
   PetscCall(OptionsString(PetscOptionsObject, "-output_dir", "Directory for solution.h5/.xdmf, an .xdmf per block, "
                           "nodes.csv and summary.json (default: no files)", "a directory path", opts.dir));
   PetscOptionsEnd();

@@ -1,6 +1,7 @@
 // Pattern, constraint rows, KSP set-up and solve of the saddle-point system (the kept factorisation:
 // saddle_point_kept.cpp; the contact problem in the multipliers: saddle_point_lcp.cpp).
 #include "signorini/linalg/saddle_point.hpp"
+#include "signorini/core/handle.hpp"
 
 #include "signorini/linalg/pc_kept.hpp"
 #include "signorini/linalg/solver_options.hpp"
@@ -64,6 +65,7 @@ PetscErrorCode SetDefaultSolver(KSP ksp) {
 PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Saddle-point system", "signorini");
+  const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
   PetscCall(PetscOptionsBool("-contact_reuse_factorization",
                              "Factor once and follow active-set changes through MUMPS's Schur complement on the "
                              "multipliers (with a MUMPS LU/Cholesky solver; default on there, unless a dense "
@@ -85,9 +87,8 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
                                     "axes; auto: METIS in 3D and from " + std::to_string(METIS_MIN_ROWS_2D) +
                                     " rows in 2D, coordinate cuts below, and METIS whenever "
                                     "-contact_nested_dissection_parallel is given (an option of METIS's ordering)";
-  PetscCall(OptionsRequireValue(PetscOptionsObject, "-contact_nested_dissection", "auto, metis or coordinates"));
-  PetscCall(PetscOptionsEList("-contact_nested_dissection", ordering_help.c_str(), "", GRAPH_ORDERING_NAMES, 3,
-                              GRAPH_ORDERING_NAMES[ordering], &ordering, &opts.ordering_set));
+  PetscCall(OptionsChoice(PetscOptionsObject, "-contact_nested_dissection", ordering_help.c_str(),
+                          "auto, metis or coordinates", GRAPH_ORDERING_NAMES, 3, ordering, &opts.ordering_set));
   opts.ordering.graph = (GraphOrdering)ordering;
   PetscBool parallel = opts.ordering.parallel ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PetscOptionsBool("-contact_nested_dissection_parallel",
@@ -109,9 +110,8 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
       " on several. A block that is not safely positive definite (a pivot not above " +
       tolerance + " of the largest diagonal entry: a body that the candidates do not hold, an svk tangent past a "
       "limit point) goes to MUMPS, whose null-pivot detection judges it";
-  PetscCall(OptionsRequireValue(PetscOptionsObject, "-contact_kept_solver", "auto, mumps or cholesky"));
-  PetscCall(PetscOptionsEList("-contact_kept_solver", kept_solver_help.c_str(), "", KEPT_SOLVER_NAMES, 3,
-                              KEPT_SOLVER_NAMES[kept_solver], &kept_solver, &opts.kept_solver_set));
+  PetscCall(OptionsChoice(PetscOptionsObject, "-contact_kept_solver", kept_solver_help.c_str(), "auto, mumps or cholesky",
+                          KEPT_SOLVER_NAMES, 3, kept_solver, &opts.kept_solver_set));
   opts.kept_solver = (KeptSolver)kept_solver;
   PetscOptionsEnd();
   PetscFunctionReturn(0);

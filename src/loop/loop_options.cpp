@@ -1,5 +1,6 @@
 // The options of the loop: load stepping and Newton-Raphson, read and checked in one place.
 #include "signorini/loop/loop_options.hpp"
+#include "signorini/core/handle.hpp"
 
 #include "signorini/options/readers.hpp"
 #include "signorini/linalg/solver_options.hpp"
@@ -13,6 +14,7 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptio
   PetscBool max_cuts_set = PETSC_FALSE, max_it_set = PETSC_FALSE, line_search_set = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Load stepping and Newton-Raphson", "signorini");
+  const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
   PetscCall(OptionsInt(PetscOptionsObject, "-load_steps", "Number of load increments", 1, SolverOptions::LOAD_STEPS_MAX,
                        opts.load_steps));
   PetscCall(OptionsInt(PetscOptionsObject, "-load_max_cuts", "Halvings allowed for a failed load increment (svk)", 0,

@@ -1,5 +1,6 @@
 // Building, labelling, partitioning and distributing the DMPlex, and the per-rank arrays of the element loops.
 #include "signorini/mesh/mesh.hpp"
+#include "signorini/core/handle.hpp"
 
 #include "signorini/core/blocks.hpp"
 #include "signorini/core/errors.hpp"
@@ -214,6 +215,7 @@ PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, M
   opts.file = default_file;
   PetscBool size_factor_set = PETSC_FALSE, max_cells_set = PETSC_FALSE;
   PetscOptionsBegin(comm, nullptr, "Mesh options", "signorini");
+  const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
   PetscCall(OptionsString(PetscOptionsObject, "-mesh_file", "gmsh mesh (.msh 2.2/4.1) or geometry (.geo, meshed by "
                           "gmsh in a child process of rank 0)", "a .msh or .geo path", opts.file));
   PetscCall(OptionsReal(PetscOptionsObject, "-mesh_size_factor", "Mesh size factor applied when meshing a .geo file",

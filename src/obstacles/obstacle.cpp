@@ -1,5 +1,6 @@
 // The registry of obstacle shapes and the reading of the -obstacle_ options.
 #include "signorini/obstacles/obstacle.hpp"
+#include "signorini/core/handle.hpp"
 
 #include "signorini/options/option_paths.hpp"
 #include "signorini/options/readers.hpp"
@@ -56,6 +57,7 @@ PetscErrorCode ReadObstacle(MPI_Comm comm, Obstacle &obstacle) {
   obstacle.meshes.clear();
   std::vector<std::string> meshes;
   PetscOptionsBegin(comm, nullptr, "Rigid obstacle", "signorini");
+  const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
   for (const ShapeType &shape : ShapeRegistry()) {
     PetscBool set = PETSC_FALSE;
     PetscCall(OptionsRealList(PetscOptionsObject, shape.option, shape.help, "no obstacle of this shape",

@@ -181,4 +181,28 @@ PetscErrorCode OptionsRequireValue(PetscOptionItems *PetscOptionsObject, const c
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode OptionsChoice(PetscOptionItems *PetscOptionsObject, const char *name, const char *help,
+                             const char *expected, const char *const *list, PetscInt n, PetscInt &value,
+                             PetscBool *set) {
+  std::string raw;
+  PetscBool found;
+  PetscFunctionBeginUser;
+  PetscCall(OptionsRequireValue(PetscOptionsObject, name, expected));
+  PetscCall(RawValue(PetscOptionsObject, name, raw, found));
+  if (found) {
+    bool known = false;
+    std::string names;
+    for (PetscInt i = 0; i < n; ++i) {
+      PetscBool same;
+      PetscCall(PetscStrcasecmp(raw.c_str(), list[i], &same));
+      known = known || same;
+      names += std::string(i ? " " : "") + list[i];
+    }
+    PetscCheck(known, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "Unknown option %s for %s. Available options: %s",
+               raw.c_str(), name, names.c_str());
+  }
+  PetscCall(PetscOptionsEList(name, help, "", list, n, list[value], &value, set));
+  PetscFunctionReturn(0);
+}
+
 } // namespace signorini

@@ -1,5 +1,6 @@
 // Printed summary, summary.json and the Hertz comparison.
 #include "signorini/post/report.hpp"
+#include "signorini/core/handle.hpp"
 
 #include "signorini/options/readers.hpp"
 #include "signorini/io/json.hpp"
@@ -17,6 +18,7 @@ PetscErrorCode ReadReportOptions(MPI_Comm comm, HertzReport &hertz) {
   PetscBool set = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Report", "signorini");
+  const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
   PetscCall(OptionsRealList(PetscOptionsObject, "-report_hertz", "Compare with Hertz contact: 2D cylinder radius R and "
                             "load P per unit thickness, 3D sphere radius R and total load P (R,P)", "no comparison",
                             "R,P", v, &set));

@@ -22,6 +22,7 @@ cases that need strace, where it is missing).
 import argparse
 import hashlib
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -32,6 +33,8 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 ERROR_PREFIX = "signorini: error:"
+# A block that -malloc_dump lists at PetscFinalize: PETSc memory the failed run did not free.
+LEAKED_MEMORY = re.compile(r"^\[\s*\d+\]\s*\d+ bytes \S+\(\) at ", re.MULTILINE)
 FORBIDDEN = ("PETSC ERROR", "Caught signal", "Segmentation", "AddressSanitizer", "runtime error:", "terminate called",
              "HDF5-DIAG")
 
@@ -747,7 +750,10 @@ def check_case(name, exe, mpiexec, np_, work, env, verbose):
     if "signal" in opts:
         status, out, err, seconds = run_interrupted(cmd, env, opts["signal"])
     else:
-        status, out, err, seconds = run_failing(cmd, env)
+        # The error paths free what they made: -malloc_dump (through PETSC_OPTIONS, which no case sets, so that the
+        # command line each case tests stays as it is) lists at PetscFinalize whatever they did not.
+        leak_env = dict(env, PETSC_OPTIONS=(env.get("PETSC_OPTIONS", "") + " -malloc_dump").strip())
+        status, out, err, seconds = run_failing(cmd, leak_env)
     if verbose:
         print(f"$ {' '.join(cmd)}\n--- status {status} after {seconds:.2f} s\n--- stdout\n{out}--- stderr\n{err}")
 
@@ -758,6 +764,8 @@ def check_case(name, exe, mpiexec, np_, work, env, verbose):
         for bad in FORBIDDEN:
             if bad in text:
                 problems.append(f"{stream} holds '{bad}'")
+    if LEAKED_MEMORY.search(out) or LEAKED_MEMORY.search(err):
+        problems.append("PETSc memory leaked on the error path (-malloc_dump)")
     error_lines = [line for line in err.splitlines() if line.startswith(ERROR_PREFIX)]
     if "signal" not in opts:
         if any(line.startswith(ERROR_PREFIX) for line in out.splitlines()):

@@ -59,4 +59,21 @@ using SFH = Handle<PetscSF, PetscSFDestroy>;
 using ViewerH = Handle<PetscViewer, PetscViewerDestroy>;
 using NullSpaceH = Handle<MatNullSpace, MatNullSpaceDestroy>;
 
+/// The block of options between PetscOptionsBegin and PetscOptionsEnd, ended on an early return: declared right after
+/// PetscOptionsBegin, it ends the block as PetscOptionsEnd would when a reader leaves it on an error (a PetscCall that
+/// returns), so that the error path frees the block's strings; after PetscOptionsEnd (which frees the title) it does
+/// nothing.
+class OptionsBlockGuard {
+public:
+  explicit OptionsBlockGuard(PetscOptionItems *items) : items_(items) {}
+  OptionsBlockGuard(const OptionsBlockGuard &) = delete;
+  OptionsBlockGuard &operator=(const OptionsBlockGuard &) = delete;
+  ~OptionsBlockGuard() {
+    if (items_->title) (void)PetscOptionsEnd_Private(items_);
+  }
+
+private:
+  PetscOptionItems *items_;
+};
+
 } // namespace signorini

@@ -65,4 +65,12 @@ struct RealRange {
 [[nodiscard]] PetscErrorCode OptionsRequireValue(PetscOptionItems *PetscOptionsObject, const char *name,
                                                  const char *expected);
 
+/// Reads the choice option name into value (the index of one of the n names of list, case-insensitive; left as it is
+/// when the option is not set), as PetscOptionsEList lists and reads it, after refusing what it would refuse: a name
+/// given without a value (expected says what it takes), and a value that is none of the names ("Unknown option V for
+/// NAME. Available options: ..."), which PETSc 3.18's reader raises without freeing what it allocated.
+[[nodiscard]] PetscErrorCode OptionsChoice(PetscOptionItems *PetscOptionsObject, const char *name, const char *help,
+                                           const char *expected, const char *const *list, PetscInt n,
+                                           PetscInt &value, PetscBool *set = nullptr);
+
 } // namespace signorini
