@@ -1,4 +1,6 @@
-"""The table of scripts/bench_cholmod/RESULTS.md from run.sh's results.txt: median [min-max] per case and solver."""
+"""The tables of scripts/bench_cholmod/RESULTS.md from run.sh's results.txt: median [min-max] per case and route, and
+each CHOLMOD route's time over ours run by run (the runs alternate: the ratio of neighbours is steadier on a loaded
+machine than either time)."""
 import statistics
 import sys
 from collections import defaultdict
@@ -48,3 +50,14 @@ for (name, solver), rows in sorted(runs.items(), key=lambda kv: (kv[0][0], kv[0]
 print()
 for name, values in sorted(loads.items()):
     print(f"{name}: load average {min(values):.2f}-{max(values):.2f} (median {statistics.median(values):.2f})")
+print()
+print("| case | route | factor + Schur, route / ours, paired runs: median [min-max] | pairs |")
+print("|---|---|---|---|")
+for (name, solver), rows in sorted(runs.items()):
+    ours = runs.get((name, "ours"))
+    if solver == "ours" or not ours:
+        continue
+    n = min(len(rows), len(ours))
+    ratios = sorted((float(rows[i]["factor"]) + float(rows[i]["schur"])) /
+                    (float(ours[i]["factor"]) + float(ours[i]["schur"])) for i in range(n))
+    print(f"| {name} | {solver} | {statistics.median(ratios):.2f} [{ratios[0]:.2f}-{ratios[-1]:.2f}] | {n} |")
