@@ -22,6 +22,14 @@ namespace signorini {
 /// postorder, its dense front (entries of A, the children's update matrices added), potrf of the pivot block, trsm
 /// of the rows below, syrk of the update matrix, which goes on a stack for the parent; the update matrices left for
 /// the rows of A22 sum to A22 - S.
+///
+/// Why our own and not CHOLMOD (SuiteSparse, which Debian's PETSc has): CHOLMOD gives no Schur complement, and its
+/// two routes to one, measured on the Hertz matrices with the same METIS order (docs/performance.md, *The Schur
+/// Cholesky against CHOLMOD*), lose where the kept factorisation runs by default: factoring A11 and forming
+/// W = L^-1 P A12 is 3 to 9 times slower at every size; factoring the whole matrix with a shifted multiplier block
+/// is 3.4 times slower at 20k rows in 2D and 1.5 times at 16k in 3D, 1.1 to 1.3 times at 195k and 1M in 2D, and
+/// 1.15 times faster from about 40k rows in 3D (where it would need a shift chosen in advance and CHOLMOD's internal
+/// factor arrays).
 class SchurCholesky {
 public:
   /// An array of doubles (contents undefined after Resize); from LARGE_BYTES on in a mapping of its own, advised to
