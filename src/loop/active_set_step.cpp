@@ -214,18 +214,47 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
 }
 
 PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &changes, Outcome &outcome) {
+  bool done;
   PetscFunctionBeginUser;
   outcome = Outcome::SOLVE;
+  const bool deferred = DeferSwitch(st, changes); // svk: not a state to judge the body by
+  PetscCall(ActiveSetCameBack(st, it, changes, outcome, done));
+  if (done) PetscFunctionReturn(0);
+  if (changes > 0) st.candidate_rnorm = -1, st.stalled_corrections = 0; // a new active set: not a correction's
+  if (it > 0) {
+    PetscCall(RecordIteration(st.step, it, st.factor, st.next, changes, st.krylov, st.rnorm, st.last_solve_time));
+    // A state that may be the solution: certified, or the loop goes on (svk: Newton; linear: one more solve corrects
+    // an equilibrium residual left by an inexact solver) or stops with the violated condition.
+    if (changes == 0 && !st.moving && !st.stabilised) {
+      PetscCall(JudgeCandidate(st, it, outcome, done));
+      if (done) PetscFunctionReturn(0);
+    }
+    if (st.stabilised && changes == 0 && !deferred && st.measured) {
+      PetscCall(ExtendAlongFreeMotion(st, outcome));
+      PetscFunctionReturn(0);
+    }
+  }
+  PetscCall(StopAtLimits(st, it, changes, outcome));
+  PetscFunctionReturn(0);
+}
+
+bool ContactSolver::DeferSwitch(StepState &st, PetscInt &changes) const {
   // Once the set has cycled (one switch per update), svk switches a pair only at an equilibrium of the current set:
   // the multipliers and gaps that choose it are then those of the set's solution, not of a Newton iterate on its way
   // there (svk's block in the notch toggled one pair between a tensile multiplier and a penetration while the
   // residual stayed at 4e-4).
-  bool deferred = false; // svk: a switch put off until an equilibrium (below): not a state to judge the body by
   if (st.large && changes > 0 && active_set_.OneAtATime() && !(st.rnorm <= EquilibriumTol(st.rscale, st.rroundoff))) {
     st.next = active_set_.Flags();
     changes = 0;
-    deferred = true;
+    return true;
   }
+  return false;
+}
+
+PetscErrorCode ContactSolver::ActiveSetCameBack(StepState &st, PetscInt it, PetscInt &changes, Outcome &outcome,
+                                               bool &done) {
+  PetscFunctionBeginUser;
+  done = false;
   // An active set that comes back would cycle. svk with lagged searches first drops them for the rest of the step
   // (their stale tangent can lead the set round); then, as the linear material does at once, the updates switch one
   // pair at a time (ActiveSet::SwitchOneAtATime). A set that comes back after that ends the step (DIVERGED_CYCLING).
@@ -246,12 +275,14 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
         PetscCall(PivotedActiveSet(st, it, "the active set came back", pivot));
         if (st.singular) {
           outcome = Outcome::STOP;
+          done = true;
           PetscFunctionReturn(0);
         }
         if (pivot == Pivot::UNHELD) {
           // No contact forces on these pairs hold the body (the step may then be repeated with wider pairs).
           stats_.reason = Reason::DIVERGED_NOT_HELD;
           outcome = Outcome::STOP;
+          done = true;
           PetscFunctionReturn(0);
         }
         found = pivot == Pivot::SET;
@@ -270,109 +301,117 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
       }
     }
   }
-  if (changes > 0) st.candidate_rnorm = -1, st.stalled_corrections = 0; // a new active set: not a correction's
-  if (it > 0) {
-    PetscCall(RecordIteration(st.step, it, st.factor, st.next, changes, st.krylov, st.rnorm, st.last_solve_time));
-    // A state that may be the solution: certified, or the loop goes on (svk: Newton; linear: one more solve corrects
-    // an equilibrium residual left by an inexact solver) or stops with the violated condition.
-    if (changes == 0 && !st.moving && !st.stabilised) {
-      if (st.condensed) PetscCall(Materialise(st, it));
-      if (!st.large) PetscCall(Residual(lambda_, st.rnorm, st.rscale, nullptr, nullptr, &st.rroundoff));
-      const double tol = EquilibriumTol(st.rscale, st.rroundoff);
-      PetscCall(PetscInfo(nullptr, "candidate state: equilibrium residual %.6g (tolerance %.6g, of which round-off %.6g)\n",
-                          st.rnorm, tol, st.rroundoff));
-      if (st.rnorm <= tol || !st.large) {
-        Certificate cert;
-        PetscCall(Certify(st.u_eval, st.rnorm, tol, cert));
-        if (cert.Satisfied()) {
-          certificate_ = cert;
-          stats_.reason = st.large ? Reason::CONVERGED_ACTIVE_SET_AND_RESIDUAL : Reason::CONVERGED_ACTIVE_SET_UNCHANGED;
-          outcome = Outcome::CONVERGED;
-          PetscFunctionReturn(0);
-        }
-        if (cert.equilibrium <= cert.equilibrium_tol) {
-          stats_.reason = Reason::DIVERGED_CERTIFICATE;
-          stats_.violation = cert.Violation();
-          outcome = Outcome::STOP;
-          PetscFunctionReturn(0);
-        }
-      }
-      // Linear material, the state certified but for its equilibrium residual (an iterative solver's): the next
-      // solve keeps the active set and only has to bring the residual below the tolerance. It starts from this
-      // state's multipliers, so its start's residual is about this one, and it may stop at a tenth of the tolerance
-      // instead of -contact_ksp_rtol relative to that start (the certificate checks the result again). 2D Hertz,
-      // fieldsplit_gamg, 1M dofs: 46 Krylov iterations of the correction solve before. A correction that did not
-      // reach the tolerance (its start's residual was not this one) is followed by a solve to the KSP's tolerance.
-      if (!st.large && st.rnorm > tol) {
-        // Corrections that no longer halve the residual cannot reach the tolerance: the solves are as accurate as
-        // the system's conditioning lets them be (e.g. a nearly incompressible material). A correction that started
-        // from another residual is followed by a solve to the KSP's tolerance (below), so the loop stops only when
-        // that one does not halve the residual either.
-        const bool halved = st.candidate_rnorm <= 0 || st.rnorm <= 0.5 * st.candidate_rnorm;
-        st.stalled_corrections = halved ? 0 : st.stalled_corrections + 1;
-        if (st.stalled_corrections >= 2) {
-          stats_.reason = Reason::DIVERGED_EQUILIBRIUM_STALLED;
-          char text[256];
-          std::snprintf(text, sizeof(text), "%.6g after two correction solves, %.6g before them, tolerance %.6g", st.rnorm,
-                        st.candidate_rnorm, tol);
-          stats_.violation = text;
-          outcome = Outcome::STOP;
-          PetscFunctionReturn(0);
-        }
-        if (halved) st.candidate_rnorm = st.rnorm;
-        st.correction_rtol = st.corrected ? 0.0 : 0.1 * tol / st.rnorm;
-      }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::JudgeCandidate(StepState &st, PetscInt it, Outcome &outcome, bool &done) {
+  PetscFunctionBeginUser;
+  done = false;
+  if (st.condensed) PetscCall(Materialise(st, it));
+  if (!st.large) PetscCall(Residual(lambda_, st.rnorm, st.rscale, nullptr, nullptr, &st.rroundoff));
+  const double tol = EquilibriumTol(st.rscale, st.rroundoff);
+  PetscCall(PetscInfo(nullptr, "candidate state: equilibrium residual %.6g (tolerance %.6g, of which round-off %.6g)\n",
+                      st.rnorm, tol, st.rroundoff));
+  if (st.rnorm <= tol || !st.large) {
+    Certificate cert;
+    PetscCall(Certify(st.u_eval, st.rnorm, tol, cert));
+    if (cert.Satisfied()) {
+      certificate_ = cert;
+      stats_.reason = st.large ? Reason::CONVERGED_ACTIVE_SET_AND_RESIDUAL : Reason::CONVERGED_ACTIVE_SET_UNCHANGED;
+      outcome = Outcome::CONVERGED;
+      done = true;
+      PetscFunctionReturn(0);
     }
-    if (st.stabilised && changes == 0 && !deferred && st.measured) {
-      // The springs let the body move along the rigid motions its active set leaves free, and no pair closed. Where
-      // the body goes is the free rigid part of the solve's displacement (RigidModes::FreeMotion), not the whole of
-      // it: the elastic deformation of the step moves nodes by amounts unrelated to that, and a pair it brought a
-      // little nearer would stretch the step by a huge factor (a block pushed away from its only wall along a
-      // frictionless floor would cycle instead of being reported free). If that motion brings some pair to close on
-      // its facet, the body is moved along it past the point where the nearest such pair closes (once more the
-      // motion beyond it), so that the next update activates it; if none, the load moves the body away from every
-      // obstacle (a block on a disc held at two nodes rolls about the disc's centre, which closes no pair on it). A
-      // pair closes on its facet: linear material, in its zone (fixed); svk, where the node's path meets the facet's
-      // plane projects onto the facet (a node beside the foot of an inclined wall enters its zone as it slides
-      // towards it). A touching pair (gap 0) that the motion drives in closes at once.
-      const int dim = mesh_.Dim();
-      std::vector<double> du(u_local_.size());
-      for (std::size_t i = 0; i < du.size(); ++i) du[i] = u_local_[i] - st.u_before[i];
-      std::array<double, 6> motion;
-      PetscCall(rigid_.FreeMotion(keys_, normals_, active_set_.Flags(), du.data(), motion));
-      const double size = rigid_.Magnitude(motion);
-      double reach = INFINITY;
-      for (std::size_t p = 0; p < pairs_.size(); ++p) {
-        const double *X = mesh_.X(keys_[p].vertex);
-        const double closing = -rigid_.Along(X, normals_[p].data(), motion);
-        if (!(closing > CLOSING * size && states_[p].gap >= 0)) continue;
-        const double t = states_[p].gap / closing;
-        bool on_facet = states_[p].InZone();
-        if (st.large) {
-          double x[3] = {0, 0, 0};
-          rigid_.Motion(X, motion, x);
-          for (int k = 0; k < dim; ++k) x[k] = X[k] + u_local_[keys_[p].vertex * dim + k] + t * x[k];
-          on_facet = obstacle_.facets[pairs_[p].facet]->Project(x, contact_.alpha_tol, contact_.length).inside;
-        }
-        if (on_facet) reach = std::min(reach, t);
-      }
-      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &reach, 1, MPI_DOUBLE, MPI_MIN, mesh_.Comm()));
-      PetscCall(PetscInfo(nullptr, "stabilised state: free rigid motion of size %.6g, nearest pair closes at %.6g of it\n",
-                          size, reach));
-      if (!std::isfinite(reach) || reach > 1e12) {
-        stats_.reason = Reason::DIVERGED_NOT_HELD;
-        outcome = Outcome::STOP;
-      } else {
-        // The next check, when the move closes no pair, is made without a solve in between: it must see the same
-        // solve's motion, so the move shifts the displacement it is measured from (u_before) as well.
-        const std::vector<double> before = u_local_;
-        PetscCall(MoveRigidly(motion, 1 + 2 * reach));
-        for (std::size_t i = 0; i < u_local_.size(); ++i) st.u_before[i] += u_local_[i] - before[i];
-        outcome = Outcome::EXTENDED;
-      }
+    if (cert.equilibrium <= cert.equilibrium_tol) {
+      stats_.reason = Reason::DIVERGED_CERTIFICATE;
+      stats_.violation = cert.Violation();
+      outcome = Outcome::STOP;
+      done = true;
       PetscFunctionReturn(0);
     }
   }
+  // Linear material, the state certified but for its equilibrium residual (an iterative solver's): the next
+  // solve keeps the active set and only has to bring the residual below the tolerance. It starts from this
+  // state's multipliers, so its start's residual is about this one, and it may stop at a tenth of the tolerance
+  // instead of -contact_ksp_rtol relative to that start (the certificate checks the result again). 2D Hertz,
+  // fieldsplit_gamg, 1M dofs: 46 Krylov iterations of the correction solve before. A correction that did not
+  // reach the tolerance (its start's residual was not this one) is followed by a solve to the KSP's tolerance.
+  if (!st.large && st.rnorm > tol) {
+    // Corrections that no longer halve the residual cannot reach the tolerance: the solves are as accurate as
+    // the system's conditioning lets them be (e.g. a nearly incompressible material). A correction that started
+    // from another residual is followed by a solve to the KSP's tolerance (below), so the loop stops only when
+    // that one does not halve the residual either.
+    const bool halved = st.candidate_rnorm <= 0 || st.rnorm <= 0.5 * st.candidate_rnorm;
+    st.stalled_corrections = halved ? 0 : st.stalled_corrections + 1;
+    if (st.stalled_corrections >= 2) {
+      stats_.reason = Reason::DIVERGED_EQUILIBRIUM_STALLED;
+      char text[256];
+      std::snprintf(text, sizeof(text), "%.6g after two correction solves, %.6g before them, tolerance %.6g", st.rnorm,
+                    st.candidate_rnorm, tol);
+      stats_.violation = text;
+      outcome = Outcome::STOP;
+      done = true;
+      PetscFunctionReturn(0);
+    }
+    if (halved) st.candidate_rnorm = st.rnorm;
+    st.correction_rtol = st.corrected ? 0.0 : 0.1 * tol / st.rnorm;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::ExtendAlongFreeMotion(StepState &st, Outcome &outcome) {
+  PetscFunctionBeginUser;
+  // The springs let the body move along the rigid motions its active set leaves free, and no pair closed. Where
+  // the body goes is the free rigid part of the solve's displacement (RigidModes::FreeMotion), not the whole of
+  // it: the elastic deformation of the step moves nodes by amounts unrelated to that, and a pair it brought a
+  // little nearer would stretch the step by a huge factor (a block pushed away from its only wall along a
+  // frictionless floor would cycle instead of being reported free). If that motion brings some pair to close on
+  // its facet, the body is moved along it past the point where the nearest such pair closes (once more the
+  // motion beyond it), so that the next update activates it; if none, the load moves the body away from every
+  // obstacle (a block on a disc held at two nodes rolls about the disc's centre, which closes no pair on it). A
+  // pair closes on its facet: linear material, in its zone (fixed); svk, where the node's path meets the facet's
+  // plane projects onto the facet (a node beside the foot of an inclined wall enters its zone as it slides
+  // towards it). A touching pair (gap 0) that the motion drives in closes at once.
+  const int dim = mesh_.Dim();
+  std::vector<double> du(u_local_.size());
+  for (std::size_t i = 0; i < du.size(); ++i) du[i] = u_local_[i] - st.u_before[i];
+  std::array<double, 6> motion;
+  PetscCall(rigid_.FreeMotion(keys_, normals_, active_set_.Flags(), du.data(), motion));
+  const double size = rigid_.Magnitude(motion);
+  double reach = INFINITY;
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const double *X = mesh_.X(keys_[p].vertex);
+    const double closing = -rigid_.Along(X, normals_[p].data(), motion);
+    if (!(closing > CLOSING * size && states_[p].gap >= 0)) continue;
+    const double t = states_[p].gap / closing;
+    bool on_facet = states_[p].InZone();
+    if (st.large) {
+      double x[3] = {0, 0, 0};
+      rigid_.Motion(X, motion, x);
+      for (int k = 0; k < dim; ++k) x[k] = X[k] + u_local_[keys_[p].vertex * dim + k] + t * x[k];
+      on_facet = obstacle_.facets[pairs_[p].facet]->Project(x, contact_.alpha_tol, contact_.length).inside;
+    }
+    if (on_facet) reach = std::min(reach, t);
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &reach, 1, MPI_DOUBLE, MPI_MIN, mesh_.Comm()));
+  PetscCall(PetscInfo(nullptr, "stabilised state: free rigid motion of size %.6g, nearest pair closes at %.6g of it\n",
+                      size, reach));
+  if (!std::isfinite(reach) || reach > 1e12) {
+    stats_.reason = Reason::DIVERGED_NOT_HELD;
+    outcome = Outcome::STOP;
+  } else {
+    // The next check, when the move closes no pair, is made without a solve in between: it must see the same
+    // solve's motion, so the move shifts the displacement it is measured from (u_before) as well.
+    const std::vector<double> before = u_local_;
+    PetscCall(MoveRigidly(motion, 1 + 2 * reach));
+    for (std::size_t i = 0; i < u_local_.size(); ++i) st.u_before[i] += u_local_[i] - before[i];
+    outcome = Outcome::EXTENDED;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::StopAtLimits(StepState &st, PetscInt it, PetscInt changes, Outcome &outcome) {
+  PetscFunctionBeginUser;
   // Linear material: every iteration is an active-set iteration. svk: every iteration is a Newton step, at most
   // -newton_max_it of them, and at most -contact_max_it of them may change the active set.
   if (changes > 0) ++st.set_changes;

@@ -204,6 +204,21 @@ private:
                                            const std::vector<char> &active);
   [[nodiscard]] PetscErrorCode EvaluateIterate(StepState &st, PetscInt it);
   [[nodiscard]] PetscErrorCode StepControl(StepState &st, PetscInt it, PetscInt &changes, Outcome &outcome);
+  /// StepControl's parts, in its order. svk, once the set cycled: a switch away from an equilibrium of the current set
+  /// is put off (st.next back to the current set); returns whether it was.
+  bool DeferSwitch(StepState &st, PetscInt &changes) const;
+  /// An active set that comes back: svk drops the lagged searches, the linear material pivots once
+  /// (PivotedActiveSet), then the updates switch one pair at a time; done: the step stops (outcome). Collective.
+  [[nodiscard]] PetscErrorCode ActiveSetCameBack(StepState &st, PetscInt it, PetscInt &changes, Outcome &outcome,
+                                                 bool &done);
+  /// A state whose active set did not change: certified (CONVERGED), refused (STOP with the violated condition), or
+  /// the next solve corrects its equilibrium residual (linear material); done: outcome decided. Collective.
+  [[nodiscard]] PetscErrorCode JudgeCandidate(StepState &st, PetscInt it, Outcome &outcome, bool &done);
+  /// A stabilised solve that closed no pair: the body moved along its free rigid motion past the nearest pair that
+  /// closes (EXTENDED), or not held (STOP). Collective.
+  [[nodiscard]] PetscErrorCode ExtendAlongFreeMotion(StepState &st, Outcome &outcome);
+  /// The stop of a step that goes on no further: non-invertible, out of iterations, or cycling (STOP). Collective.
+  [[nodiscard]] PetscErrorCode StopAtLimits(StepState &st, PetscInt it, PetscInt changes, Outcome &outcome);
   [[nodiscard]] PetscErrorCode AssembleSystem(StepState &st);
   [[nodiscard]] PetscErrorCode SolveAndUpdate(StepState &st);
   /// The relative tolerance of an svk solve that is not lagged: an inexact Newton step (0: the KSP's).
