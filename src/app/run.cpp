@@ -30,8 +30,8 @@ namespace {
 const std::vector<std::string> DEFAULT_CASE_GROUPS = {"top_centre", "contact_point", "top", "contact"};
 
 /// The built-in default case (2D Hertz: half cylinder R = 8 on a rigid flat, P = 10 per unit thickness). Its options
-/// fill in whatever the run does not set (docs/cases.md: any option given overrides the default case's value), unless the
-/// run gives a case of its own: a -mesh_file together with any support, load, obstacle or candidate group. A
+/// fill in whatever the run does not set (docs/cases.md: any option given overrides the default case's value), unless
+/// the run gives a case of its own: a -mesh_file together with any support, load, obstacle or candidate group. A
 /// -mesh_file alone (a finer Hertz mesh, meshes/hertz.geo with -mesh_size_factor) keeps the rest of the default case
 /// instead of running a body that nothing loads or holds; on_user_mesh then tells CheckDefaultCaseMesh to check it.
 /// hertz_filled: the default case filled in -report_hertz (its P then need not be the load the run gives).

@@ -48,9 +48,9 @@ PetscErrorCode CheckContactInputs(const Mesh &mesh, const Obstacle &obstacle, co
 }
 
 PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOptions &opts) {
-  // Ranges (docs/options.md): a penetration or touching gap beyond 1e-3 of the body's size is a visibly wrong state, alpha
-  // beyond 1e-2 projects a node off its facet, a radius beyond 1e5 diagonals pairs everything anyway (and keeps the
-  // bin search finite), a gap factor beyond 1e6 holds nothing back, and c far from E t makes lambda - c g compare
+  // Ranges (docs/options.md): a penetration or touching gap beyond 1e-3 of the body's size is a visibly wrong state,
+  // alpha beyond 1e-2 projects a node off its facet, a radius beyond 1e5 diagonals pairs everything anyway (and keeps
+  // the bin search finite), a gap factor beyond 1e6 holds nothing back, and c far from E t makes lambda - c g compare
   // numbers of unrelated magnitudes.
   const RealRange radius{0, SEARCH_RADIUS_MAX, true, false, L, "body diagonal"};
   const RealRange gap{0, 1e-3, false, false, L, "body diagonal"};

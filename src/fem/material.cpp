@@ -22,8 +22,8 @@ PetscErrorCode ReadMaterialOptions(MPI_Comm comm, Material &m) {
   PetscOptionsBegin(comm, nullptr, "Material options", "signorini");
   const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
   PetscCall(OptionsChoice(PetscOptionsObject, "-material_model",
-                          "linear (small strain) or svk (St. Venant-Kirchhoff, Green-Lagrange)", "linear or svk", models,
-                          2, model));
+                          "linear (small strain) or svk (St. Venant-Kirchhoff, Green-Lagrange)", "linear or svk",
+                          models, 2, model));
   PetscCall(OptionsReal(PetscOptionsObject, "-material_E", ("Young's modulus" + scale).c_str(), positive, m.E));
   PetscCall(OptionsReal(PetscOptionsObject, "-material_nu", "Poisson's ratio", {-1, 0.5, true, true}, m.nu));
   PetscCall(OptionsChoice(PetscOptionsObject, "-material_plane", "2D assumption: strain or stress (2D meshes only)",

@@ -107,11 +107,11 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
       "(multifrontal, without pivoting, serial: on several ranks rank 0 factors the gathered matrix; the Cholesky "
       "preset, the given ordering, no -contact_mat_mumps_ controls); auto: the Cholesky where it applies, up to " +
       std::to_string(CHOLESKY_MAX_ROWS) + " rows on one rank and " + std::to_string(CHOLESKY_MAX_ROWS_GATHERED) +
-      " on several. A block that is not safely positive definite (a pivot not above " +
-      tolerance + " of the largest diagonal entry: a body that the candidates do not hold, an svk tangent past a "
+      " on several. A block that is not safely positive definite (a pivot not above " + tolerance +
+      " of the largest diagonal entry: a body that the candidates do not hold, an svk tangent past a "
       "limit point) goes to MUMPS, whose null-pivot detection judges it";
-  PetscCall(OptionsChoice(PetscOptionsObject, "-contact_kept_solver", kept_solver_help.c_str(), "auto, mumps or cholesky",
-                          KEPT_SOLVER_NAMES, 3, kept_solver, &opts.kept_solver_set));
+  PetscCall(OptionsChoice(PetscOptionsObject, "-contact_kept_solver", kept_solver_help.c_str(),
+                          "auto, mumps or cholesky", KEPT_SOLVER_NAMES, 3, kept_solver, &opts.kept_solver_set));
   opts.kept_solver = (KeptSolver)kept_solver;
   PetscOptionsEnd();
   PetscFunctionReturn(0);

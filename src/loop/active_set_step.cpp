@@ -94,7 +94,8 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   // svk cuts the load step first (a smaller increment is the usual cure of a cycle, and its pairs within the whole
   // diagonal would be many and slow).
   const bool can_cut = large && stats_.cuts < opts_.max_cuts && stats_.reason != Reason::DIVERGED_NOT_HELD;
-  const bool unheld = (stats_.reason == Reason::DIVERGED_CYCLING || stats_.reason == Reason::DIVERGED_NOT_HELD) && !can_cut;
+  const bool unheld =
+      (stats_.reason == Reason::DIVERGED_CYCLING || stats_.reason == Reason::DIVERGED_NOT_HELD) && !can_cut;
   const bool penetrates = unpaired.depth > contact_.gap_tol;
   // A singular system (null pivots) with pairs found within less than the body's diagonal: the facets that would
   // hold the body may be beyond the radius (a block 0.05 above the floor of its notch, searched within 0.01, had

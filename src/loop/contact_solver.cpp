@@ -419,8 +419,10 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     case Retry::EXACT_NEWTON:
       exact_tried = true;
       repeated = stats_.reason;
-      PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s) after lagged Newton searches: repeating it with "
-                            "exact Newton steps\n", t_try, ReasonName(stats_.reason)));
+      PetscCall(PetscPrintf(comm,
+                            "Load step at factor %.6g failed (%s) after lagged Newton searches: repeating it with "
+                            "exact Newton steps\n",
+                            t_try, ReasonName(stats_.reason)));
       PetscCall(SetOwnedDisplacement(saved.u));
       k_assembled_ = false;
       PetscCall(AdoptPairs(saved.pairs, saved.lambda, saved.mult, saved.active));
@@ -453,14 +455,17 @@ PetscErrorCode ContactSolver::PrintWidening(double t_try) const {
   // A candidate went into a facet it has no pair with: the step is repeated, from the last converged state, with
   // pairs found within a wider radius (linear material: and that pair; not a cut: the increment stays).
   if (widen_node_ >= 0)
-    PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s) with node %" PetscInt_FMT " %.6g inside the "
+    PetscCall(PetscPrintf(comm,
+                          "Load step at factor %.6g failed (%s) with node %" PetscInt_FMT " %.6g inside the "
                           "obstacle, on a facet it has no contact pair with: searching the pairs again within %.6g "
-                          "(was %.6g)\n", t_try, ReasonName(stats_.reason), widen_node_, widen_depth_, widen_to_,
+                          "(was %.6g)\n",
+                          t_try, ReasonName(stats_.reason), widen_node_, widen_depth_, widen_to_,
                           contact_.search_radius));
   else
-    PetscCall(PetscPrintf(comm, "Load step at factor %.6g failed (%s): searching the pairs again within %.6g (was %.6g), "
-                          "for facets beyond the radius that may hold the body\n", t_try, ReasonName(stats_.reason),
-                          widen_to_, contact_.search_radius));
+    PetscCall(PetscPrintf(comm,
+                          "Load step at factor %.6g failed (%s): searching the pairs again within %.6g (was %.6g), "
+                          "for facets beyond the radius that may hold the body\n",
+                          t_try, ReasonName(stats_.reason), widen_to_, contact_.search_radius));
   PetscFunctionReturn(0);
 }
 

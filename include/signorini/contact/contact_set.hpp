@@ -26,7 +26,7 @@ struct ContactOptions {
   double alpha_tol = 1e-8;         ///< -contact_alpha_tol: tolerance on the projection parameter (docs/theory.md §1)
   double c = -1;                   ///< -contact_complementarity_c: weight of the gap in the active-set rule
   double activation_fraction = 0.2; ///< -contact_activation_fraction: activate only penetrations deeper than this
-                                    ///< fraction of the deepest one (0: every penetration, the rule of docs/theory.md §4)
+                                    ///< fraction of the deepest one (0: every one, the rule of docs/theory.md §4)
   double activation_gap_factor = 2; ///< -contact_activation_gap_factor: in the first update of a load step, activate
                                     ///< only pairs whose start gap is at most this times the deepest one's (0: off)
   PetscInt max_it = 50;            ///< -contact_max_it: active-set iterations per load step
@@ -35,7 +35,8 @@ struct ContactOptions {
 };
 
 /// Reads and validates the -contact_ options; negative defaults are filled from the body's size and stiffness
-/// (length scale L, stiffness scale k), and the ranges of the tolerances are relative to them (docs/options.md). Collective.
+/// (length scale L, stiffness scale k), and the ranges of the tolerances are relative to them (docs/options.md).
+/// Collective.
 [[nodiscard]] PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOptions &opts);
 
 /// The contact inputs that the option readers cannot judge alone, each an error naming the option: in a case without

@@ -1,16 +1,17 @@
 // The saddle-point system [K -B^T; -B D] [du; lambda] = [f - F_int; g] in one parallel AIJ matrix with a fixed
 // nonzero pattern, and its KSP (options prefix -contact_). B holds the contact normals of the active pairs
-// (B = -C in the notation of docs/theory.md §3, so that lambda >= 0 is a compressive force); an inactive pair has a zero row in B
-// and a nonzero D entry, which gives lambda = 0 without changing the pattern. Knows nothing about geometry.
+// (B = -C in the notation of docs/theory.md §3, so that lambda >= 0 is a compressive force); an inactive pair has a
+// zero row in B and a nonzero D entry, which gives lambda = 0 without changing the pattern. Knows nothing about
+// geometry.
 //
 // Reuse of the factorisation (-contact_reuse_factorization, linear material with a MUMPS LU/Cholesky solver): the
 // augmented form [K + r B_C^T B_C, -B_C^T; -B_C, D] keeps every candidate row C in B, with D = 0 on active rows and
 // 1/r on inactive ones. Eliminating the inactive multipliers (mu_I = r B_I du) gives back K on the displacement
 // block, and the active multipliers come out as lambda_A - r g_A; Solve() returns lambda_A. Only D changes with
 // the active set, so MUMPS factors the matrix once with the Schur complement S = D - B_C (K + r B_C^T B_C)^-1
-// B_C^T on the multipliers (MumpsSchur), and an active-set change costs a dense m x m factorisation of S
-// (m candidates) and one pair of triangular solves. K + r B_C^T B_C is regular when the candidates hold the body,
-// even if K alone is not (a body held only by contact).
+// B_C^T on the multipliers (MumpsSchur, applied by the KSP's PC of type PCKEPT), and an active-set change costs a
+// dense m x m factorisation of S (m candidates) and one pair of triangular solves. K + r B_C^T B_C is regular when the
+// candidates hold the body, even if K alone is not (a body held only by contact).
 //
 // A nonlinear material (svk: the tangent K changes at every Newton iteration) keeps the factorisation too: the
 // factorisation of an earlier tangent, with the Schur complement over every candidate, follows the active set exactly

@@ -8,7 +8,8 @@
 namespace signorini {
 
 struct SolverOptions {
-  /// Upper bounds of the counts and tolerances (docs/options.md): no typo starts a run that never ends or accepts a wrong state.
+  /// Upper bounds of the counts and tolerances (docs/options.md): no typo starts a run that never ends or accepts a
+  /// wrong state.
   static constexpr PetscInt LOAD_STEPS_MAX = 10000, LOAD_MAX_CUTS_MAX = 30, NEWTON_MAX_IT_MAX = 1000;
   static constexpr double NEWTON_RTOL_MAX = 1e-4, NEWTON_ATOL_MAX = 1e-6;
 

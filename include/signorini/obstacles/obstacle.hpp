@@ -27,8 +27,8 @@ using TriangleSoup = std::vector<std::array<double, 3>>;
 struct Projection {
   double gap = 0;          ///< signed gap n . (x - P)
   double normal[3] = {};   ///< unit normal at P, pointing into the body
-  double alpha = 0;        ///< position of the projection along the facet (segments: docs/theory.md §1, in [0, 1] inside;
-                           ///< triangles: the smallest barycentric coordinate, >= 0 inside)
+  double alpha = 0;        ///< position of the projection along the facet (segments, docs/theory.md §1: in [0, 1]
+                           ///< inside; triangles: the smallest barycentric coordinate, >= 0 inside)
   bool inside = false;     ///< the projection falls on the facet (docs/theory.md §1), within the tolerance
 };
 
