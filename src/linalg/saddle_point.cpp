@@ -50,9 +50,13 @@ PetscErrorCode SaddlePointSystem::CreatePattern(const std::vector<SparseRow> &ro
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SetDefaultSolver(KSP ksp) {
+PetscErrorCode SetDefaultSolver(KSP ksp, SolverPath path) {
   PC pc;
   PetscFunctionBeginUser;
+  // The iterative path: its settings become the options' defaults, which KSPSetFromOptions and the fieldsplit's
+  // blocks read.
+  std::vector<std::string> set;
+  if (path == SolverPath::ITERATIVE) PetscCall(SetIterativeDefaults(set));
   PetscCall(KSPSetOptionsPrefix(ksp, "contact_"));
   PetscCall(KSPSetType(ksp, KSPPREONLY));
   PetscCall(KSPGetPC(ksp, &pc));
@@ -113,6 +117,26 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
   PetscCall(OptionsChoice(PetscOptionsObject, "-contact_kept_solver", kept_solver_help.c_str(),
                           "auto, mumps or cholesky", KEPT_SOLVER_NAMES, 3, kept_solver, &opts.kept_solver_set));
   opts.kept_solver = (KeptSolver)kept_solver;
+  PetscInt path = (PetscInt)opts.path.path;
+  PetscCall(OptionsChoice(PetscOptionsObject, "-contact_solver",
+                          "The path that solves the saddle-point systems: direct (the kept factorisation: MUMPS or the "
+                          "supernodal Cholesky), iterative (options/solver/fieldsplit_gamg.yml: a Schur fieldsplit, "
+                          "GAMG on the displacement block), or auto: direct where its factorisation fits in "
+                          "-contact_memory_budget and is estimated faster, else iterative. A run's own "
+                          "-contact_ksp_type, -contact_pc_type or kept-factorisation options decide instead; "
+                          "-contact_* options refine either path",
+                          "auto, direct or iterative", SOLVER_PATH_NAMES, 3, path, &opts.path.path_set));
+  opts.path.path = (SolverPath)path;
+  std::string budget;
+  PetscCall(OptionsString(PetscOptionsObject, "-contact_memory_budget",
+                          "Memory per rank that -contact_solver auto lets a factorisation use (bytes, or with a unit "
+                          "k, M, G, T: 512M, 1.5G); default: the memory available at the start, shared by the node's "
+                          "ranks, less a tenth",
+                          "a memory size such as 512M or 1.5G", budget, &opts.path.budget_set));
+  PetscCheck(!opts.path.budget_set || ParseMemorySize(budget, opts.path.budget), comm, PETSC_ERR_USER_INPUT,
+             "-contact_memory_budget %s: expected a memory size: a positive number of bytes with an optional unit "
+             "k, M, G or T (powers of 1024), such as 512M or 1.5G",
+             budget.c_str());
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -135,8 +159,12 @@ PetscErrorCode SaddlePointSystem::Create(const DofMap &dofs, const std::vector<S
     PetscCall(MatCreate(comm, A_.out()));
     PetscCall(MatSetType(A_, MATAIJ));
     PetscCall(MatSetSizes(A_, dofs.OwnedRows(), dofs.OwnedRows(), dofs.GlobalRows(), dofs.GlobalRows()));
-    // Block size 1 even without multipliers: GAMG with the rigid-body near-null space on the node blocks (bs = dim)
-    // left a true residual of 1e-6 on the 2-rank cantilever (tests: elastic_gamg), against 1e-10 unblocked.
+    // Without multipliers a fieldsplit's displacement block is this whole matrix: its node blocks (bs = dim) let
+    // GAMG coarsen it as elasticity (as the nested matrix's block has them; without, a 108k-dof cube's first coarse
+    // level was 4 times larger and its solve 9 times slower; test elastic_fieldsplit_block_size). Other solvers get
+    // block size 1: GAMG on the whole matrix with node blocks left a true residual of 1e-6 on the 2-rank cantilever
+    // (test elastic_gamg), against 1e-10 unblocked.
+    if (fieldsplit) PetscCall(MatSetBlockSizes(A_, dofs.Dim(), dofs.Dim()));
     std::vector<PetscInt> d_nnz, o_nnz;
     RowCounts(rows, d_nnz_k, o_nnz_k, d_nnz, o_nnz);
     PetscCall(MatSeqAIJSetPreallocation(A_, 0, d_nnz.data()));
@@ -235,7 +263,7 @@ PetscErrorCode SaddlePointSystem::CreateKsp(MPI_Comm comm, bool &fieldsplit) {
   PetscBool is_fieldsplit;
   PetscFunctionBeginUser;
   PetscCall(KSPCreate(comm, ksp_.out()));
-  PetscCall(SetDefaultSolver(ksp_));
+  PetscCall(SetDefaultSolver(ksp_, path_));
   PetscCall(KSPSetFromOptions(ksp_));
   // Every solve must end within ACCEPTED_RESIDUAL (CheckAndConvert): a looser Krylov tolerance would only fail after
   // the solve. The iterative presets take 1e-10 (PETSc reads no tolerance for KSPPREONLY, the direct presets).

@@ -62,6 +62,9 @@ PetscErrorCode ContactSolver::CreateSystem() {
   std::vector<PetscInt> d_nnz, o_nnz;
   PetscCall(assembler_->PatternCounts(d_nnz, o_nnz));
   system_ = std::make_unique<SaddlePointSystem>();
+  if (!stats_.solver_chosen) PetscCall(ChooseSolver());
+  // A path chosen by the run's own solver options takes no defaults of a path.
+  system_->UsePath(stats_.solver.by == "solver options" ? SolverPath::DIRECT : stats_.solver.path);
   PetscCall(system_->Create(dofs_, rows_, coords, material_.model != MaterialModel::SVK, kscale_, d_nnz, o_nnz,
                             [&](Mat A) { return assembler_->InsertPattern(A); }));
   if (opts_.lagged_search_set && opts_.lagged_search) system_->KeepFactorization();
@@ -84,6 +87,37 @@ PetscErrorCode ContactSolver::CreateSystem() {
   keys_.resize(pairs_.size());
   for (std::size_t p = 0; p < pairs_.size(); ++p)
     keys_[p] = {pairs_[p].vertex, mesh_.VertexOriginal(pairs_[p].vertex), pairs_[p].facet};
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::ChooseSolver() {
+  MPI_Comm comm = mesh_.Comm();
+  const int dim = mesh_.Dim();
+  PetscFunctionBeginUser;
+  SaddlePointOptions opts;
+  PetscCall(ReadSaddlePointOptions(comm, opts));
+  bool given, factor_pc;
+  PetscCall(SolverOptionsGiven(given, factor_pc));
+  SolverProblem problem;
+  problem.u_dofs = dofs_.GlobalU(), problem.multipliers = dofs_.GlobalLambda(), problem.dim = dim;
+  // The graph of the mesh nodes, numbered by displacement block row: two nodes of a cell are neighbours.
+  problem.node_graph = [&](PetscInt &num_nodes, std::vector<idx_t> &edges) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    num_nodes = dofs_.GlobalU() / dim;
+    for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
+      PetscInt n;
+      const PetscInt *v = mesh_.CellVertices(c, n);
+      for (PetscInt a = 0; a < n; ++a)
+        if (mesh_.Owned(v[a]))
+          for (PetscInt b = 0; b < n; ++b)
+            if (b != a) edges.push_back((idx_t)(dofs_.URow(v[a], 0) / dim)), edges.push_back((idx_t)(dofs_.URow(v[b], 0) / dim));
+    }
+    PetscFunctionReturn(0);
+  };
+  PetscCall(ChooseSolverPath(comm, opts.path, given, factor_pc, problem, stats_.solver));
+  stats_.solver_chosen = true;
+  ProgressNote("solver: %s (%s: %s)", SOLVER_PATH_NAMES[(int)stats_.solver.path], stats_.solver.by.c_str(),
+               stats_.solver.why.c_str());
   PetscFunctionReturn(0);
 }
 

@@ -176,6 +176,9 @@ PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m
                         info.mesh_file.c_str(), mesh.NumGlobalNodes(), mesh.NumGlobalCells(), info.ranks));
   PetscCall(PetscPrintf(comm, "  unknowns: %" PetscInt_FMT " displacements, %" PetscInt_FMT " multipliers (%"
                         PetscInt_FMT " candidate nodes)\n", dofs.GlobalU(), dofs.GlobalLambda(), candidates));
+  const SolverChoice &sc = state.stats.solver;
+  PetscCall(PetscPrintf(comm, "  solver: %s (%s: %s)\n", SOLVER_PATH_NAMES[(int)sc.path], sc.by.c_str(),
+                        sc.why.c_str()));
   PetscFunctionReturn(0);
 }
 
@@ -264,6 +267,20 @@ std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedStat
       .Integer("multipliers", dofs.GlobalLambda())
       .Integer("candidate_nodes", s.candidates)
       .EndObject();
+  const SolverChoice &sc = st.solver;
+  j.BeginObject("solver")
+      .String("path", SOLVER_PATH_NAMES[(int)sc.path])
+      .String("chosen_by", sc.by)
+      .String("why", sc.why);
+  if (sc.by == "auto")
+    j.Number("budget_bytes", sc.budget_bytes)
+        .Number("direct_bytes", sc.direct_bytes)
+        .Number("direct_seconds", sc.direct_seconds)
+        .Number("iterative_seconds", sc.iterative_seconds)
+        .Number("factor_entries", sc.factor.entries)
+        .Number("factor_flops", sc.factor.flops)
+        .String("factor_estimate", sc.factor.exact ? "node graph" : "model");
+  j.EndObject();
   j.BeginObject("iterations")
       .Integer("active_set", st.active_set_iterations)
       .Integer("solves", st.solves)

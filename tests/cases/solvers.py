@@ -225,6 +225,59 @@ def iterative_on_contact_3d(runner, preset):
     iterative_on_contact(runner, preset, "hertz3d")
 
 
+@test("solver_choice")
+def solver_choice(runner):
+    """The automatic solver choice (-contact_solver auto, the default) on the 3D octant: its factorisation fits the
+    machine, so the direct path runs; under a memory budget it does not fit, the iterative path runs and gives the
+    direct path's state to 1e-8. The header and summary.json name the path, who chose it and why;
+    -contact_solver and a preset file override the choice."""
+    base = ["-options_file", "options/hertz3d.yml"]
+    ref = runner.run(base, "auto, machine's memory")
+    runner.expect_equal("auto picks direct", (ref.get("solver.path"), ref.get("solver.chosen_by")), ("direct", "auto"))
+    runner.expect_true("the header says why", "solver: direct (auto: the factorisation fits" in ref.output)
+    runner.expect_true("the budget is the machine's", ref.get("solver.budget_bytes") > 1e8)
+    for budget, estimate in (("20M", "model"), ("100M", "node graph")):
+        r = runner.run(base + ["-contact_memory_budget", budget], "auto, budget %s" % budget)
+        runner.expect_equal("budget %s: iterative" % budget, r.get("solver.path"), "iterative")
+        runner.expect_true("budget %s: the header says the budget" % budget,
+                           "solver: iterative (auto: a factorisation would need about" in r.output and
+                           "of -contact_memory_budget" in r.output)
+        # Within a factor 4 of the budget the model does not decide alone: the node graph's symbolic factorisation
+        # does.
+        runner.expect_equal("budget %s: the estimate by the %s" % (budget, estimate), r.get("solver.factor_estimate"),
+                            estimate)
+        runner.expect_true("budget %s: the estimate exceeds it" % budget,
+                           r.get("solver.direct_bytes") > r.get("solver.budget_bytes"))
+        expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+    forced = runner.run(base + ["-contact_solver", "iterative"], "-contact_solver iterative")
+    runner.expect_equal("-contact_solver iterative", (forced.get("solver.path"), forced.get("solver.chosen_by")),
+                        ("iterative", "-contact_solver"))
+    expect_same_state(runner, ref, forced, keys=("contact.active_pairs",), tol=1e-8)
+    direct = runner.run(base + ["-contact_solver", "direct", "-contact_memory_budget", "1M"], "-contact_solver direct")
+    runner.expect_equal("-contact_solver direct over the budget", direct.get("solver.path"), "direct")
+    preset = runner.run(base + ["-options_file", "options/solver/mumps_lu.yml", "-contact_memory_budget", "1M"],
+                        "a preset decides")
+    runner.expect_equal("a preset decides", (preset.get("solver.path"), preset.get("solver.chosen_by")),
+                        ("direct", "solver options"))
+
+
+@test("elastic_fieldsplit_block_size")
+def elastic_fieldsplit_block_size(runner):
+    """The iterative path on a case with no multiplier (the octant on a plane out of reach of the search, held by
+    supports): GAMG gets the displacement block with its node blocks (bs = 3) as with multipliers, so it coarsens it
+    as elasticity, not as a scalar problem (a first coarse level about 4 times larger, and at 824k dofs no end in 12
+    minutes); the state is the direct solver's."""
+    base = ["-options_file", "options/cube_on_plane.yml", "-obstacle_planes", "0,0,-1,0,0,1",
+            "-bc_dirichlet", "left:x,front:y,bottom:z", "-contact_search_radius", "0.5"]
+    ref = runner.run(base, "direct")
+    runner.expect_equal("no multiplier", ref.get("problem.multipliers"), 0)
+    r = runner.run(base + ["-contact_solver", "iterative", "-contact_ksp_view"], "iterative")
+    n = r.get("problem.displacement_dofs")
+    runner.expect_true("the u block (%d rows) reaches GAMG with bs=3" % n,
+                       "rows=%d, cols=%d, bs=3" % (n, n) in r.output)
+    expect_same_state(runner, ref, r, keys=("contact.active_pairs",), tol=1e-8)
+
+
 @test("elastic_gamg")
 def elastic_gamg(runner):
     """Linear elasticity without contact by CG + GAMG with the rigid-body near-null space: the direct solution, and

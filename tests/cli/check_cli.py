@@ -229,6 +229,10 @@ elif TEST.startswith("progress_np"):
     proc = subprocess.run(launcher + [EXE, "-progress"], capture_output=True, text=True, cwd=SOURCE)
     lines = [l for l in proc.stderr.splitlines() if l.startswith("signorini: [")]
     check(proc.returncode == 0, "-progress run succeeds")
+    # The solver path chosen, with why (whose words may name phases: it is not one).
+    chosen = [l for l in lines if re.match(r"signorini: \[ *[0-9.]+ s\] solver: direct \(auto: ", l)]
+    check(len(chosen) == 1, f"-progress says the solver path and why once: {chosen}")
+    lines = [l for l in lines if l not in chosen]
     for phase in ["reading ", "partition and distribution", "set-up", "stiffness assembly", "factorisation",
                   "step 1 iteration 1:", "contact solve", "results and output"]:
         begun = [l for l in lines if phase in l and not l.endswith("s)")]

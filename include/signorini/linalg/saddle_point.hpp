@@ -40,6 +40,7 @@
 #include "signorini/linalg/lcp.hpp"
 #include "signorini/linalg/mumps_schur.hpp"
 #include "signorini/linalg/sparse_row.hpp"
+#include "signorini/linalg/solver_choice.hpp"
 
 #include <functional>
 #include <string>
@@ -47,9 +48,10 @@
 
 namespace signorini {
 
-/// The default saddle-point solver (MUMPS LDL^T of the whole matrix, options prefix -contact_, iterative
-/// tolerances rtol 1e-10); options given by the user override it at KSPSetFromOptions.
-[[nodiscard]] PetscErrorCode SetDefaultSolver(KSP ksp);
+/// The default saddle-point solver of a path (direct: MUMPS LDL^T of the whole matrix; iterative: the settings of
+/// options/solver/fieldsplit_gamg.yml, SetIterativeDefaults), options prefix -contact_, iterative tolerances rtol
+/// 1e-10; options given by the user override it at KSPSetFromOptions.
+[[nodiscard]] PetscErrorCode SetDefaultSolver(KSP ksp, SolverPath path = SolverPath::DIRECT);
 
 /// Options of the saddle-point system: -contact_reuse_factorization (set tells whether the user gave it),
 /// -contact_reuse_max_it (the FGMRES iterations on a kept factorisation of an earlier tangent before a refactorisation,
@@ -65,6 +67,7 @@ struct SaddlePointOptions {
   PetscBool ordering_set = PETSC_FALSE, parallel_set = PETSC_FALSE; ///< the user gave them
   KeptSolver kept_solver = KeptSolver::AUTO; ///< -contact_kept_solver
   PetscBool kept_solver_set = PETSC_FALSE;
+  SolverPathOptions path; ///< -contact_solver, -contact_memory_budget
 };
 [[nodiscard]] PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts);
 
@@ -77,6 +80,8 @@ public:
   /// changed matrix, see above); kscale: the stiffness scale, the weight of the augmentation. insert_k gets
   /// Stiffness().
   /// Collective.
+  /// The path (SolverChoice) whose default solver Create sets up: direct unless told otherwise before Create.
+  void UsePath(SolverPath path) { path_ = path; }
   [[nodiscard]] PetscErrorCode Create(const DofMap &dofs, const std::vector<SparseRow> &rows,
                                       const std::vector<double> &coords, bool constant_k, double kscale,
                                       const std::vector<PetscInt> &d_nnz_k, const std::vector<PetscInt> &o_nnz_k,
@@ -281,6 +286,7 @@ private:
   KSPH ksp_kept_;                      ///< changing K: FGMRES preconditioned by the kept factorisation
   PetscBool lu_ = PETSC_FALSE; ///< the PC is LU (the mumps_lu preset): the reuse mode factors with LU too
   double aug_ = 1;  ///< augmentation weight r (the stiffness scale)
+  SolverPath path_ = SolverPath::DIRECT; ///< UsePath
   double aug_inactive_ = 1; ///< augmentation weight r_I of an inactive row (r, or INACTIVE_WEIGHT r: iterative)
   std::vector<double> weight_; ///< owned multiplier rows: the augmentation weight A holds now (AddAugmentation)
   double stab_ = 0; ///< stabilisation spring s of the current system (0: none)

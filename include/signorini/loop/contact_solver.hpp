@@ -87,6 +87,8 @@ public:
 private:
   /// The saddle-point system, its vectors and the pair keys for the current pairs. Collective.
   [[nodiscard]] PetscErrorCode CreateSystem();
+  /// The solver path of the run (ChooseSolverPath), once, before the first system is created.
+  [[nodiscard]] PetscErrorCode ChooseSolver();
   /// The certificate of the current state (states_ and the displacement u_eval, dim values per local vertex): the
   /// active-set conditions over the pairs, and no candidate node without a pair inside the obstacle. Collective.
   [[nodiscard]] PetscErrorCode Certify(const std::vector<double> &u_eval, double rnorm, double tol, Certificate &cert);

@@ -5,6 +5,8 @@
 
 #include <petscsys.h>
 
+#include "signorini/linalg/solver_choice.hpp"
+
 #include <string>
 #include <vector>
 
@@ -29,6 +31,8 @@ struct SolveStats {
   std::vector<IterationRecord> history;
   Reason reason = Reason::NONE;
   std::string violation; ///< the certificate's failed condition, with reason DIVERGED_CERTIFICATE
+  SolverChoice solver;   ///< the solver path and why (chosen at the first set-up of the system)
+  bool solver_chosen = false;
 };
 
 } // namespace signorini

@@ -1,0 +1,78 @@
+// Which path solves the saddle-point systems of a run: the direct one (the kept factorisation, MUMPS) or the
+// iterative one (a Schur fieldsplit with GAMG on the displacement block), chosen by -contact_solver or, by default,
+// from the factorisation's memory and time against the machine's memory and the iterative path's time.
+#pragma once
+
+#include <metis.h>
+#include <petscsys.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace signorini {
+
+enum class SolverPath { AUTO, DIRECT, ITERATIVE };
+extern const char *const SOLVER_PATH_NAMES[]; ///< "auto", "direct", "iterative"
+
+/// -contact_solver and -contact_memory_budget (read by ReadSaddlePointOptions).
+struct SolverPathOptions {
+  SolverPath path = SolverPath::AUTO;
+  PetscBool path_set = PETSC_FALSE;
+  double budget = 0; ///< bytes per rank; 0: the machine's (MemoryBudget)
+  PetscBool budget_set = PETSC_FALSE;
+};
+
+/// A memory size as people write it: a number of bytes with an optional unit k, M, G or T (powers of 1024, an
+/// optional trailing B: "512M", "1.5GB", "2e9"). Returns false when text is not one.
+bool ParseMemorySize(const std::string &text, double &bytes);
+
+/// The elimination cost of factoring the displacement block in the kept factorisation's order: factor entries and
+/// flops (from the node graph, times dim^2 and dim^3), or from the measured model (exact false).
+struct FactorEstimate {
+  double entries = 0, flops = 0;
+  bool exact = false;
+};
+
+/// What the choice needs from the problem. node_graph: this rank's edges of the graph of the mesh nodes (pairs of
+/// global node numbers, each rank's nodes numbered after the lower ranks', in displacement row order) and the number
+/// of nodes; called only when the measured model cannot decide.
+struct SolverProblem {
+  PetscInt u_dofs = 0, multipliers = 0;
+  int dim = 2;
+  std::function<PetscErrorCode(PetscInt &num_nodes, std::vector<idx_t> &edges)> node_graph;
+};
+
+/// The path and why (for the run's header, -progress and summary.json).
+struct SolverChoice {
+  SolverPath path = SolverPath::DIRECT; ///< DIRECT or ITERATIVE
+  std::string by;                       ///< "auto", "-contact_solver" or "solver options"
+  std::string why;                      ///< one sentence
+  double direct_bytes = -1, budget_bytes = -1;         ///< per rank (auto only)
+  double direct_seconds = -1, iterative_seconds = -1;  ///< the models' estimates (auto only)
+  FactorEstimate factor;
+};
+
+/// Memory a run may use per rank: the node's available memory (MemAvailable of /proc/meminfo) shared by the ranks on
+/// the node, the least over the nodes. Collective.
+[[nodiscard]] PetscErrorCode MemoryBudget(MPI_Comm comm, double &bytes);
+
+/// The kept factorisation's cost from the node graph: METIS's nested dissection of the graph (on rank 0) and the
+/// symbolic Cholesky factorisation of the node pattern (SchurCholesky::Analyse). Collective.
+[[nodiscard]] PetscErrorCode EstimateFactorization(MPI_Comm comm, const SolverProblem &problem, FactorEstimate &est);
+
+/// The path of a run. given: the run gave a solver of its own (-contact_ksp_type, -contact_pc_type or the kept
+/// factorisation's options), which then decides, direct when its PC factors (factor_pc). Collective.
+[[nodiscard]] PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bool given, bool factor_pc,
+                                              const SolverProblem &problem, SolverChoice &choice);
+
+/// Whether the run gave a solver of its own: -contact_ksp_type, -contact_pc_type, a factor's solver type, the kept
+/// factorisation's options or MUMPS controls (-contact_mat_mumps_*); factor_pc: its PC factors (LU or Cholesky, the
+/// default when only the Krylov method is given).
+[[nodiscard]] PetscErrorCode SolverOptionsGiven(bool &given, bool &factor_pc);
+
+/// The iterative path's settings (options/solver/fieldsplit_gamg.yml) as defaults of the options database under the
+/// prefix contact_: each one that the run did not give. Returns the names set, so that they can be taken out again.
+[[nodiscard]] PetscErrorCode SetIterativeDefaults(std::vector<std::string> &set);
+
+} // namespace signorini

@@ -1,0 +1,262 @@
+#include "signorini/linalg/solver_choice.hpp"
+
+#include "signorini/linalg/mumps_schur.hpp"
+#include "signorini/linalg/parallel_dissection.hpp"
+#include "signorini/linalg/schur_cholesky.hpp"
+
+#include <petscpc.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+namespace signorini {
+
+const char *const SOLVER_PATH_NAMES[] = {"auto", "direct", "iterative"};
+
+namespace {
+
+// The measured models (docs/performance.md, *The automatic solver choice*). The run's memory besides the factors
+// (mesh, matrices, vectors; the iterative path's whole need) per displacement dof.
+constexpr double BASE_BYTES_PER_DOF = 2600;
+// Elimination flops per second of one rank in the kept factorisation (the supernodal Cholesky and MUMPS, 3D).
+constexpr double FLOP_RATE = 2e10;
+// The iterative path's contact solve, seconds per displacement dof on one rank (3D fieldsplit_gamg).
+constexpr double ITERATIVE_SECONDS_PER_DOF = 1e-4;
+// Active-set changes a kept dense Schur complement is factored for (its m^3/3 flops each).
+constexpr double DENSE_FACTORISATIONS = 4;
+// The measured model of the factor (nested dissection: n^(4/3) entries and n^2 flops in 3D, n log n and n^1.5 in
+// 2D); it decides alone when its memory is this factor or more above the budget, or below it with its time this
+// factor or more away from the iterative path's; else the node graph's symbolic factorisation
+// (EstimateFactorization) decides.
+constexpr double MODEL_MARGIN = 4;
+
+FactorEstimate ModelEstimate(const SolverProblem &p) {
+  const double n = (double)p.u_dofs;
+  FactorEstimate e;
+  if (p.dim == 3) e.entries = 30 * std::pow(n, 4.0 / 3), e.flops = 30 * n * n;
+  else e.entries = 8 * n * std::log2(std::max(n, 2.0)), e.flops = 85 * std::pow(n, 1.5);
+  return e;
+}
+
+/// Bytes per rank and seconds of the direct path with factor estimate e on size ranks.
+void DirectCost(const SolverProblem &p, const FactorEstimate &e, PetscMPIInt size, double &bytes, double &seconds) {
+  const double m = (double)p.multipliers, rows = (double)(p.u_dofs + p.multipliers);
+  const bool cholesky = rows <= (size == 1 ? CHOLESKY_MAX_ROWS : CHOLESKY_MAX_ROWS_GATHERED);
+  // The Cholesky's factor with its update stack and the gathered entries, on rank 0; MUMPS's with its 50 % workspace (ICNTL(14)), shared
+  // unevenly by the ranks.
+  const double factor = cholesky ? 8 * 1.45 * e.entries : 8 * 1.5 * e.entries / size * 1.2;
+  const bool dense = !MumpsSchur::DenseCostsMore(m, e.flops);
+  bytes = BASE_BYTES_PER_DOF * (double)p.u_dofs / size + factor + (dense ? 8 * m * m : 0);
+  seconds = (e.flops + (dense ? DENSE_FACTORISATIONS * m * m * m / 3 : 0)) / (FLOP_RATE * (cholesky ? 1 : size));
+}
+
+std::string Bytes(double b) {
+  char text[32];
+  if (b >= 1 << 30) std::snprintf(text, sizeof(text), "%.3g GB", b / (1 << 30));
+  else std::snprintf(text, sizeof(text), "%.3g MB", b / (1 << 20));
+  return text;
+}
+
+} // namespace
+
+bool ParseMemorySize(const std::string &text, double &bytes) {
+  std::size_t end = 0;
+  double v;
+  try {
+    v = std::stod(text, &end);
+  } catch (...) {
+    return false;
+  }
+  std::string unit = text.substr(end);
+  if (!unit.empty() && (unit.back() == 'B' || unit.back() == 'b')) unit.pop_back();
+  double scale = 1;
+  if (unit == "k" || unit == "K") scale = 1024.0;
+  else if (unit == "M" || unit == "m") scale = 1024.0 * 1024;
+  else if (unit == "G" || unit == "g") scale = 1024.0 * 1024 * 1024;
+  else if (unit == "T" || unit == "t") scale = 1024.0 * 1024 * 1024 * 1024;
+  else if (!unit.empty()) return false;
+  if (!std::isfinite(v) || v <= 0 || text.find_first_of("xXpP") != std::string::npos) return false;
+  bytes = v * scale;
+  return true;
+}
+
+PetscErrorCode MemoryBudget(MPI_Comm comm, double &bytes) {
+  MPI_Comm node;
+  PetscMPIInt on_node;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node));
+  PetscCallMPI(MPI_Comm_size(node, &on_node));
+  PetscCallMPI(MPI_Comm_free(&node));
+  double available = 0;
+  std::ifstream meminfo("/proc/meminfo");
+  std::string line;
+  while (std::getline(meminfo, line)) {
+    std::istringstream in(line);
+    std::string key;
+    double kb;
+    if (in >> key >> kb && key == "MemAvailable:") available = kb * 1024;
+  }
+  if (available <= 0) {
+    // Not Linux: the physical memory's free pages.
+    const double pages = (double)sysconf(_SC_AVPHYS_PAGES), page = (double)sysconf(_SC_PAGESIZE);
+    available = pages > 0 && page > 0 ? pages * page : 0;
+  }
+  // A tenth stays for the system and whatever else the estimates leave out.
+  bytes = 0.9 * available / on_node;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bytes, 1, MPI_DOUBLE, MPI_MIN, comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode EstimateFactorization(MPI_Comm comm, const SolverProblem &problem, FactorEstimate &est) {
+  PetscMPIInt rank;
+  PetscInt num_nodes = 0;
+  std::vector<idx_t> edges, all;
+  std::vector<PetscMPIInt> displs;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(problem.node_graph(num_nodes, edges));
+  PetscCall(GatherOnRoot(comm, edges, all, displs));
+  std::vector<idx_t>().swap(edges);
+  double cost[3] = {0, 0, 0};
+  if (rank == 0) {
+    Graph g = BuildGraph((idx_t)num_nodes, all);
+    std::vector<idx_t>().swap(all);
+    std::vector<idx_t> order;
+    const int status = MetisOrder(g, order);
+    cost[2] = status == METIS_OK && (PetscInt)order.size() == num_nodes;
+    if (cost[2] != 0) {
+      // The lower triangle of the node pattern with its diagonal, and each node's pivot position.
+      std::vector<int> row, col, position(num_nodes);
+      for (idx_t k = 0; k < (idx_t)order.size(); ++k) position[order[k]] = (int)k;
+      for (idx_t v = 0; v < g.Size(); ++v) {
+        row.push_back((int)v), col.push_back((int)v);
+        for (idx_t e = g.xadj[v]; e < g.xadj[v + 1]; ++e)
+          if (g.adjncy[e] > v) row.push_back((int)g.adjncy[e]), col.push_back((int)v);
+      }
+      Graph().xadj.swap(g.xadj);
+      SchurCholesky symbolic;
+      PetscCall(symbolic.Analyse(num_nodes, 0, row, col, position, 0));
+      // A node column of c node rows holds about dim^2 c entries and costs dim^3 times its flops.
+      const double d = problem.dim;
+      cost[0] = d * d * symbolic.Entries(), cost[1] = d * d * d * symbolic.Flops();
+    }
+  }
+  PetscCallMPI(MPI_Bcast(cost, 3, MPI_DOUBLE, 0, comm));
+  PetscCheck(cost[2] != 0, comm, PETSC_ERR_LIB, "the nested dissection of the node graph failed (METIS)");
+  est.entries = cost[0], est.flops = cost[1], est.exact = true;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bool given, bool factor_pc,
+                                const SolverProblem &problem, SolverChoice &choice) {
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  choice = SolverChoice();
+  if (given) {
+    choice.path = factor_pc ? SolverPath::DIRECT : SolverPath::ITERATIVE;
+    choice.by = "solver options";
+    choice.why = "the run's own solver options";
+    PetscFunctionReturn(0);
+  }
+  if (opts.path != SolverPath::AUTO) {
+    choice.path = opts.path;
+    choice.by = "-contact_solver";
+    choice.why = std::string("-contact_solver ") + SOLVER_PATH_NAMES[(int)opts.path];
+    PetscFunctionReturn(0);
+  }
+  choice.by = "auto";
+  if (opts.budget_set) choice.budget_bytes = opts.budget;
+  else PetscCall(MemoryBudget(comm, choice.budget_bytes));
+  choice.iterative_seconds = ITERATIVE_SECONDS_PER_DOF * (double)problem.u_dofs / size;
+  // The model first; where it is near a limit, the node graph's symbolic factorisation.
+  choice.factor = ModelEstimate(problem);
+  DirectCost(problem, choice.factor, size, choice.direct_bytes, choice.direct_seconds);
+  const auto near = [](double a, double b) { return a < MODEL_MARGIN * b && b < MODEL_MARGIN * a; };
+  const bool too_large = choice.direct_bytes >= MODEL_MARGIN * choice.budget_bytes;
+  const bool fits = MODEL_MARGIN * choice.direct_bytes <= choice.budget_bytes;
+  if (!too_large && !(fits && !near(choice.direct_seconds, choice.iterative_seconds))) {
+    PetscCall(EstimateFactorization(comm, problem, choice.factor));
+    DirectCost(problem, choice.factor, size, choice.direct_bytes, choice.direct_seconds);
+  }
+  const std::string estimate = choice.factor.exact ? "" : " by the measured model";
+  char text[512];
+  if (choice.direct_bytes > choice.budget_bytes) {
+    choice.path = SolverPath::ITERATIVE;
+    std::snprintf(text, sizeof(text), "a factorisation would need about %s per rank%s, more than the %s %s",
+                  Bytes(choice.direct_bytes).c_str(), estimate.c_str(), Bytes(choice.budget_bytes).c_str(),
+                  opts.budget_set ? "of -contact_memory_budget" : "this machine has per rank");
+  } else if (choice.direct_seconds > choice.iterative_seconds) {
+    choice.path = SolverPath::ITERATIVE;
+    std::snprintf(text, sizeof(text),
+                  "a factorisation (about %s per rank) fits, but would take about %.3g s%s against %.3g s iterative",
+                  Bytes(choice.direct_bytes).c_str(), choice.direct_seconds, estimate.c_str(),
+                  choice.iterative_seconds);
+  } else {
+    choice.path = SolverPath::DIRECT;
+    // The budget stays out of this sentence (summary.json has it): the machine's free memory varies from run to run.
+    std::snprintf(text, sizeof(text), "the factorisation fits (about %s per rank%s) and is the faster path",
+                  Bytes(choice.direct_bytes).c_str(), estimate.c_str());
+  }
+  choice.why = text;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SolverOptionsGiven(bool &given, bool &factor_pc) {
+  static const char *const NAMES[] = {"-contact_ksp_type",
+                                      "-contact_pc_type",
+                                      "-contact_pc_factor_mat_solver_type",
+                                      "-contact_reuse_factorization",
+                                      "-contact_reuse_max_it",
+                                      "-contact_kept_solver",
+                                      "-contact_nested_dissection",
+                                      "-contact_nested_dissection_parallel"};
+  PetscFunctionBeginUser;
+  given = false;
+  for (const char *name : NAMES) {
+    PetscBool has;
+    PetscCall(PetscOptionsHasName(nullptr, nullptr, name, &has));
+    given = given || has;
+  }
+  char *all = nullptr;
+  PetscCall(PetscOptionsGetAll(nullptr, &all));
+  given = given || std::string(all ? all : "").find("-contact_mat_mumps_") != std::string::npos;
+  PetscCall(PetscFree(all));
+  char pc[64] = "";
+  PetscBool has;
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-contact_pc_type", pc, sizeof(pc), &has));
+  factor_pc = !has || std::string(pc) == PCLU || std::string(pc) == PCCHOLESKY;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SetIterativeDefaults(std::vector<std::string> &set) {
+  // options/solver/fieldsplit_gamg.yml (why each: there).
+  static const char *const DEFAULTS[][2] = {{"-contact_ksp_type", "bcgs"},
+                                            {"-contact_ksp_pc_side", "right"},
+                                            {"-contact_ksp_rtol", "1e-10"},
+                                            {"-contact_ksp_max_it", "2000"},
+                                            {"-contact_pc_type", "fieldsplit"},
+                                            {"-contact_pc_fieldsplit_type", "schur"},
+                                            {"-contact_pc_fieldsplit_schur_fact_type", "upper"},
+                                            {"-contact_pc_fieldsplit_schur_precondition", "selfp"},
+                                            {"-contact_fieldsplit_u_ksp_type", "preonly"},
+                                            {"-contact_fieldsplit_u_pc_type", "gamg"},
+                                            {"-contact_fieldsplit_u_pc_gamg_threshold", "0.01"},
+                                            {"-contact_fieldsplit_lambda_ksp_type", "preonly"},
+                                            {"-contact_fieldsplit_lambda_pc_type", "jacobi"}};
+  PetscFunctionBeginUser;
+  set.clear();
+  for (const auto &d : DEFAULTS) {
+    PetscBool has;
+    PetscCall(PetscOptionsHasName(nullptr, nullptr, d[0], &has));
+    if (has) continue;
+    PetscCall(PetscOptionsSetValue(nullptr, d[0], d[1]));
+    set.push_back(d[0]);
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini
