@@ -650,14 +650,16 @@ PetscErrorCode SaddlePointSystem::InitialGuess() {
 }
 
 PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &residual, bool &singular,
-                                        double rtol) {
+                                        double rtol, bool loose) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   KSPConvergedReason reason;
   PetscFunctionBeginUser;
   PetscCheck(!released_, comm, PETSC_ERR_ORDER, "a saddle-point solve after Release()");
   PetscCall(InitialGuess());
   singular = false;
-  double check_tol = ACCEPTED_RESIDUAL; // the relative residual above which a solve is an error (CheckAndConvert)
+  loose = loose && Iterative();
+  // The relative residual above which a solve is an error (CheckAndConvert); a loose solve only has to be finite.
+  double check_tol = loose ? INFINITY : ACCEPTED_RESIDUAL;
   PetscReal known_residual[2] = {-1, -1}; // ||b - A x||, ||b|| of the final x_ when the restart loop computed them
   // The first solve of the reuse mode factors the current matrix (or declines the Schur complement: Factor).
   const bool fresh = reuse_ && !factored_;
@@ -707,7 +709,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
     // one (CG with GAMG on 2 ranks: 1e-10 against 3e-6). The solve restarts from where it stopped while that helps;
     // the true residual is what CheckAndConvert accepts or refuses.
     double last = INFINITY;
-    for (int restart = 0; !preonly_ && reason > 0 && restart < MAX_KRYLOV_RESTARTS; ++restart) {
+    for (int restart = 0; !preonly_ && !loose && reason > 0 && restart < MAX_KRYLOV_RESTARTS; ++restart) {
       PetscReal rnorm, bnorm;
       PetscCall(TrueResidual(rnorm, bnorm));
       if (!(rnorm > ACCEPTED_RESIDUAL * bnorm) || !(rnorm < 0.1 * last)) {

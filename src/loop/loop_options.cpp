@@ -38,6 +38,11 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptio
                              "after lagged searches (not singular) is repeated with exact Newton steps before a cut; "
                              "false: exact Newton at every iteration",
                              "", opts.lagged_search, &opts.lagged_search, &opts.lagged_search_set));
+  PetscCall(OptionsReal(PetscOptionsObject, "-contact_active_set_rtol",
+                        "Iterative solvers, linear material: the relative tolerance (to the start's residual) of the "
+                        "saddle-point solves of the active-set iterations; the solve after which the set stays is "
+                        "corrected to the certificate's tolerance. 0: every solve to -contact_ksp_rtol",
+                        {0, SolverOptions::ACTIVE_SET_RTOL_MAX}, opts.active_set_rtol));
   PetscOptionsEnd();
   // The linear material solves a load step by the active-set loop alone (-contact_max_it) and never cuts one: these
   // would be ignored.

@@ -128,9 +128,14 @@ public:
   /// the KSP's own (a correction solve, see ContactSolver::StepControl); it does not apply to direct solves.
   /// singular: a MUMPS factorisation found null pivots (ICNTL(24)): nothing is solved, and SingularReport() says so;
   /// the caller decides what the singularity means (a body that the supports and the candidate pairs do not hold).
+  /// loose (an iterative solver, Iterative()): the solve stops at rtol relative to its start's residual, without the
+  /// restarts and the accepted residual of other solves (an active-set iteration whose set is still changing: the
+  /// caller solves again, to its tolerance, once the set stays).
   /// Collective.
   [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual, bool &singular,
-                                     double rtol = 0);
+                                     double rtol = 0, bool loose = false);
+  /// An iterative solver (a Krylov method with no kept factorisation).
+  bool Iterative() const { return !reuse_ && !preonly_; }
   /// "the saddle-point system is singular (MUMPS found N null pivot(s)): " and cause (the caller's: what leaves the
   /// body free), with the MUMPS controls given that decide which pivots are null (-contact_mat_mumps_cntl_<k>, ...)
   /// named first as another possible cause.
