@@ -705,6 +705,7 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
     PetscCall(KSPSolve(ksp_, b_, x_));
     PetscCall(KSPGetConvergedReason(ksp_, &reason));
     PetscCall(KSPGetIterationNumber(ksp_, &krylov_iterations));
+    if (reason < 0 && !preonly_) PetscCall(RetryKrylov(reason, krylov_iterations));
     // A Krylov method stops on its own (preconditioned) residual, which can sit orders of magnitude below the true
     // one (CG with GAMG on 2 ranks: 1e-10 against 3e-6). The solve restarts from where it stopped while that helps;
     // the true residual is what CheckAndConvert accepts or refuses.
@@ -749,6 +750,51 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
   }
   const PetscReal *known = known_residual[0] >= 0 ? known_residual : nullptr;
   PetscCall(CheckAndConvert(reason, krylov_iterations, residual, check_tol, known));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::RetryKrylov(KSPConvergedReason &reason, PetscInt &krylov_iterations) {
+  KSPType type;
+  PetscFunctionBeginUser;
+  // A breakdown (BiCGStab's, or CG's on this indefinite system), a divergence or a stagnation of the Krylov method
+  // is not the answer to a system that some method solves: the preconditioner is set up again from the current
+  // matrix (the displacement block's too), and GMRES (restart 100, right-preconditioned: it tests the true residual)
+  // solves again from the start's guess, and stays for the rest of the run. Its own failure is the solve's.
+  PetscCall(KSPGetType(ksp_, &type));
+  const std::string failed = type;
+  PetscCall(PetscInfo(nullptr, "%s stopped with %s after %" PetscInt_FMT " iterations: set up again, solved by GMRES\n",
+                      failed.c_str(), KSPConvergedReasons[reason], krylov_iterations));
+  krylov_fallbacks_++;
+  PetscCall(KSPSetReusePreconditioner(ksp_, PETSC_FALSE));
+  PC pc;
+  PetscBool fieldsplit;
+  PetscCall(KSPGetPC(ksp_, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
+  if (fieldsplit) {
+    KSP *sub;
+    PetscInt n;
+    PetscCall(PCFieldSplitGetSubKSP(pc, &n, &sub));
+    for (PetscInt i = 0; i < n; ++i) PetscCall(KSPSetReusePreconditioner(sub[i], PETSC_FALSE));
+    PetscCall(PetscFree(sub));
+  }
+  u_pc_valid_ = false;
+  // A set-up of the same matrix would be skipped: an assembly (of no new values) moves the matrices' states on.
+  for (Mat M : {Stiffness(), A_.get()}) {
+    PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
+  }
+  if (failed != KSPGMRES && failed != KSPFGMRES) {
+    PetscCall(KSPSetType(ksp_, KSPGMRES));
+    PetscCall(KSPGMRESSetRestart(ksp_, 100));
+    PetscCall(KSPSetPCSide(ksp_, PC_RIGHT));
+  }
+  PetscCall(InitialGuess());
+  PetscCall(KSPSetUp(ksp_));
+  PetscCall(KSPSolve(ksp_, b_, x_));
+  PetscCall(KSPGetConvergedReason(ksp_, &reason));
+  PetscInt its;
+  PetscCall(KSPGetIterationNumber(ksp_, &its));
+  krylov_iterations += its;
   PetscFunctionReturn(0);
 }
 

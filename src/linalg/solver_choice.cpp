@@ -156,16 +156,16 @@ PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bo
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
   choice = SolverChoice();
-  if (given) {
-    choice.path = factor_pc ? SolverPath::DIRECT : SolverPath::ITERATIVE;
-    choice.by = "solver options";
-    choice.why = "the run's own solver options";
-    PetscFunctionReturn(0);
-  }
   if (opts.path != SolverPath::AUTO) {
     choice.path = opts.path;
     choice.by = "-contact_solver";
     choice.why = std::string("-contact_solver ") + SOLVER_PATH_NAMES[(int)opts.path];
+    PetscFunctionReturn(0);
+  }
+  if (given) {
+    choice.path = factor_pc ? SolverPath::DIRECT : SolverPath::ITERATIVE;
+    choice.by = "solver options";
+    choice.why = "the run's own solver options";
     PetscFunctionReturn(0);
   }
   choice.by = "auto";

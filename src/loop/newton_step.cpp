@@ -188,7 +188,9 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
       // where it goes; the solve after which it stays is corrected to the certificate's tolerance (JudgeCandidate).
       const bool loose = !st.large && st.correction_rtol == 0 && opts_.active_set_rtol > 0 && system_->Iterative();
       if (loose) rtol = opts_.active_set_rtol;
+      const PetscInt fallbacks = system_->KrylovFallbacks();
       PetscCall(system_->Solve(st.krylov, st.solve_residual, st.singular, rtol, loose));
+      stats_.krylov_fallbacks += system_->KrylovFallbacks() - fallbacks;
       st.corrected = st.correction_rtol > 0;
       st.correction_rtol = 0;
     }

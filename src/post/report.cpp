@@ -291,6 +291,7 @@ std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedStat
       .Integer("repairings", st.repairings)
       .Integer("search_widenings", st.search_widenings)
       .Integer("pivoted_sets", st.pivoted_sets)
+      .Integer("krylov_fallbacks", st.krylov_fallbacks)
       .Number("search_radius", st.search_radius);
   j.BeginArray("history");
   for (const auto &r : st.history)

@@ -269,6 +269,23 @@ def solver_choice(runner):
                         ("direct", "solver options"))
 
 
+@test("krylov_fallback")
+def krylov_fallback(runner):
+    """A Krylov method that fails on the saddle-point system (CG on the indefinite system stops with
+    DIVERGED_INDEFINITE_PC) is not the end of the run: the preconditioner is set up again and GMRES solves from the
+    same start, for the rest of the run; the state is the direct solver's and summary.json counts the fallbacks."""
+    base = ["-options_file", "options/hertz3d.yml"]
+    ref = runner.run(base, "direct")
+    r = runner.run(base + ["-contact_solver", "iterative", "-contact_ksp_type", "cg", "-contact_ksp_pc_side", "left",
+                           "-info", ":sys"], "CG, then GMRES")
+    runner.expect_true("CG stopped and GMRES took over",
+                       re.search(r"RetryKrylov\(\): cg stopped with DIVERGED_\w+ after \d+ iterations", r.output)
+                       is not None)
+    runner.expect_equal("one fallback (GMRES stays)", r.get("iterations.krylov_fallbacks"), 1)
+    runner.expect_equal("no fallback on the direct path", ref.get("iterations.krylov_fallbacks"), 0)
+    expect_same_state(runner, ref, r, keys=("contact.active_pairs",), tol=1e-8)
+
+
 @test("elastic_fieldsplit_block_size")
 def elastic_fieldsplit_block_size(runner):
     """The iterative path on a case with no multiplier (the octant on a plane out of reach of the search, held by

@@ -134,6 +134,8 @@ public:
   /// Collective.
   [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual, bool &singular,
                                      double rtol = 0, bool loose = false);
+  /// Solves that failed in the Krylov method and were solved again by GMRES (RetryKrylov).
+  PetscInt KrylovFallbacks() const { return krylov_fallbacks_; }
   /// An iterative solver (a Krylov method with no kept factorisation).
   bool Iterative() const { return !reuse_ && !preonly_; }
   /// "the saddle-point system is singular (MUMPS found N null pivot(s)): " and cause (the caller's: what leaves the
@@ -270,6 +272,9 @@ private:
   /// rows changed weight since its set-up (and K did not change): KeepDisplacementPreconditioner.
   static constexpr double KEEP_U_PC_FRACTION = 0.1;
   [[nodiscard]] PetscErrorCode KeepDisplacementPreconditioner();
+  /// After a Krylov failure (reason < 0): the preconditioner set up again and GMRES from the start's guess; reason and
+  /// krylov_iterations become the retry's (iterations added).
+  [[nodiscard]] PetscErrorCode RetryKrylov(KSPConvergedReason &reason, PetscInt &krylov_iterations);
   /// The start of the next solve in x_: zero for a direct solver; the last multipliers for an iterative one.
   [[nodiscard]] PetscErrorCode InitialGuess();
   /// What to use instead after a failed KSP solve (": ...; expected ..."), from the preconditioner that failed.
@@ -284,6 +289,7 @@ private:
   bool refactor_next_ = false;         ///< the last FGMRES solve on the kept factorisation needed many iterations
   bool pc_current_ = false; ///< iterative solver: A is the matrix of the last preconditioner set-up (a correction)
   bool preonly_ = false;            ///< the KSP is KSPPREONLY (a direct solve; set once, in SetupKsp)
+  PetscInt krylov_fallbacks_ = 0;    ///< RetryKrylov's count
   bool ksp_set_up_ = false;         ///< iterative solver: the KSP has been set up (a fieldsplit's sub-KSPs exist)
   bool u_pc_valid_ = false;         ///< K is the one the displacement block's preconditioner was set up with
   std::vector<double> u_pc_weight_; ///< the augmentation weights at that set-up

@@ -61,8 +61,9 @@ struct SolverChoice {
 /// symbolic Cholesky factorisation of the node pattern (SchurCholesky::Analyse). Collective.
 [[nodiscard]] PetscErrorCode EstimateFactorization(MPI_Comm comm, const SolverProblem &problem, FactorEstimate &est);
 
-/// The path of a run. given: the run gave a solver of its own (-contact_ksp_type, -contact_pc_type or the kept
-/// factorisation's options), which then decides, direct when its PC factors (factor_pc). Collective.
+/// The path of a run: -contact_solver's when given; else, given: the run gave a solver of its own (-contact_ksp_type,
+/// -contact_pc_type or the kept factorisation's options), which then decides, direct when its PC factors
+/// (factor_pc); else the automatic choice. Collective.
 [[nodiscard]] PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bool given, bool factor_pc,
                                               const SolverProblem &problem, SolverChoice &choice);
 

@@ -26,6 +26,7 @@ struct SolveStats {
   PetscInt repairings = 0;        ///< svk: pair searches that changed the pairs (each rebuilds the pattern)
   PetscInt search_widenings = 0;  ///< load steps repeated with a wider search radius (WidenSearch)
   PetscInt pivoted_sets = 0;      ///< complementarity problems solved by Lemke's method (PivotedActiveSet)
+  PetscInt krylov_fallbacks = 0;  ///< iterative solves that failed and were solved again by GMRES (RetryKrylov)
   double search_radius = 0;       ///< the search radius of the final pairs
   PetscInt stabilised_solves = 0; ///< solves with the stabilisation springs (the active set did not hold the body)
   std::vector<IterationRecord> history;
