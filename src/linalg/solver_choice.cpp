@@ -28,9 +28,9 @@ constexpr double ITERATIVE_SECONDS_PER_DOF = 1e-4;
 // Active-set changes a kept dense Schur complement is factored for (its m^3/3 flops each).
 constexpr double DENSE_FACTORISATIONS = 4;
 // The measured model of the factor (nested dissection: n^(4/3) entries and n^2 flops in 3D, n log n and n^1.5 in
-// 2D); it decides alone when its memory is this factor or more above the budget, or below it with its time this
-// factor or more away from the iterative path's; else the node graph's symbolic factorisation
-// (EstimateFactorization) decides.
+// 2D); it decides alone when its memory is this factor or more above the budget, its time this factor or more above
+// the iterative path's, or its memory this factor below the budget with the times this factor apart; else the node
+// graph's symbolic factorisation (EstimateFactorization) decides (METIS on the node graph: about 10 s at 275k nodes).
 constexpr double MODEL_MARGIN = 4;
 
 FactorEstimate ModelEstimate(const SolverProblem &p) {
@@ -177,8 +177,9 @@ PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bo
   DirectCost(problem, choice.factor, size, choice.direct_bytes, choice.direct_seconds);
   const auto near = [](double a, double b) { return a < MODEL_MARGIN * b && b < MODEL_MARGIN * a; };
   const bool too_large = choice.direct_bytes >= MODEL_MARGIN * choice.budget_bytes;
+  const bool too_slow = choice.direct_seconds >= MODEL_MARGIN * choice.iterative_seconds;
   const bool fits = MODEL_MARGIN * choice.direct_bytes <= choice.budget_bytes;
-  if (!too_large && !(fits && !near(choice.direct_seconds, choice.iterative_seconds))) {
+  if (!too_large && !too_slow && !(fits && !near(choice.direct_seconds, choice.iterative_seconds))) {
     PetscCall(EstimateFactorization(comm, problem, choice.factor));
     DirectCost(problem, choice.factor, size, choice.direct_bytes, choice.direct_seconds);
   }
