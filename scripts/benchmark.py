@@ -11,7 +11,11 @@ Families (each run is the executable with a case options file, a solver preset a
   svk    the nonlinear line: hertz with -material_model svk -load_steps 3 and the default solver (mumps_cholesky)
   hertz3d  options/hertz3d.yml on meshes/hertz3d.geo (3D Hertz: an octant of a ball on a plane, graded towards the
          contact; K is singular as in 2D). Levels up to 556k displacement dofs (F = 0.4: 14.7 GB on one rank) fit
-         in 24 GiB with the default solver; the largest, F = 0.35 (822k dofs), does not (MUMPS asks for 31 GB).
+         in 24 GiB with the direct solver; the largest, F = 0.35 (822k dofs), does not (MUMPS asks for 31 GB).
+  cube   options/cube_under_sphere.yml on meshes/cube_bench.geo (a unit cube of (16/F)^3 hexahedra, bottom clamped,
+         sides on rollers, indented by a rigid sphere; its elastic reference: a pressure on the top, the sphere out of
+         reach, so no multiplier). Levels 14.7k, 108k, 824k and 3.06M dofs.
+The preset `auto` is no preset file: the automatic solver choice (-contact_solver auto, the program's default).
 
 Per run it records: displacement dofs, multipliers, active-set iterations, Krylov iterations, the time per phase,
 the peak memory, the Hertz errors and the ratio (contact solve) / (one elastic solve).
@@ -82,6 +86,7 @@ import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEFAULT_PRESET = "mumps_cholesky"
+AUTO_PRESET = "auto"  # no preset: the automatic solver choice (-contact_solver auto)
 
 # Mesh size factors per family, with the displacement dofs they give (measured; the estimate only filters --max-dofs).
 HERTZ_LEVELS = [1.0, 0.5, 0.25, 0.16, 0.1103, 0.0765]  # 12.6k, 49k, 195k, 472k, 992k, 2.06M dofs
@@ -92,6 +97,8 @@ SVK_LEVELS = [1.0, 0.25]
 SVK_QUICK = [1.0]
 HERTZ3D_LEVELS = [2.0, 1.4, 1.0, 0.7, 0.5, 0.4, 0.35]  # 6.2k, 16k, 40k, 110k, 290k, 556k, 823k dofs (the last does not fit in 24 GiB)
 HERTZ3D_QUICK = [2.0]
+CUBE_LEVELS = [1.0, 0.5, 0.25, 0.16]  # 14.7k, 108k, 824k, 3.06M dofs
+CUBE_QUICK = [1.0]
 
 
 def hertz_dofs(f):
@@ -106,6 +113,11 @@ def beam_dofs(f):
     return 2.0 * (round(40 / f) + 1) * (round(4 / f) + 1)
 
 
+def cube_dofs(f):
+    n = round(16 / f)
+    return 3.0 * (n + 1) ** 3
+
+
 FAMILIES = {
     "hertz": dict(case="options/hertz.yml", geo="meshes/hertz.geo", dofs=hertz_dofs, extra=[],
                   elastic=["-bc_dirichlet", "top:x:y", "-bc_body_force", "0,0.1",
@@ -117,6 +129,10 @@ FAMILIES = {
     "hertz3d": dict(case="options/hertz3d.yml", geo="meshes/hertz3d.geo", dofs=hertz3d_dofs, extra=[],
                     elastic=["-bc_dirichlet", "symmetry_x:x,symmetry_y:y,top:x:y:z", "-bc_body_force", "0,0,0.00716",
                              "-obstacle_planes", "0,0,-10.0001,0,0,1"]),
+    # The hexahedral cube indented by a sphere (options/cube_under_sphere.yml); elastic reference: a pressure on the
+    # top, the sphere out of reach (no pair: no multiplier).
+    "cube": dict(case="options/cube_under_sphere.yml", geo="meshes/cube_bench.geo", dofs=cube_dofs, extra=[],
+                 elastic=["-bc_pressure", "top:1", "-obstacle_spheres", "0.5,0.5,3,0.5"]),
     "svk": dict(case="options/hertz.yml", geo="meshes/hertz.geo", dofs=hertz_dofs,
                 extra=["-material_model", "svk", "-load_steps", "3"], elastic=None),
 }
@@ -202,7 +218,8 @@ def command(args, fam, level, preset, ranks, outdir, elastic):
     if ranks > (os.cpu_count() or 1):
         cmd.append("--oversubscribe")
     cmd += ["/usr/bin/time", "-v", args.exe,
-            "-options_file", f["case"], "-options_file", "options/solver/%s.yml" % preset,
+            "-options_file", f["case"]] + ([] if preset == AUTO_PRESET else
+                                           ["-options_file", "options/solver/%s.yml" % preset]) + [
             "-mesh_file", f["geo"], "-mesh_size_factor", repr(level)] + f["extra"]
     if elastic:
         cmd += f["elastic"]
@@ -381,7 +398,7 @@ def markdown(rows, meta):
              "`ratio` = contact / elastic, `ratio1` = contact / first solve.", ""]
     head = ("| preset | np | F | dofs | mult | AS its | Krylov | mesh | setup | assembly | factor | solve | "
             "output | contact | elastic | ratio | ratio1 | RSS | a err % | p0 err % | status |")
-    for fam in ["hertz", "hertz3d", "beam", "svk"]:
+    for fam in ["hertz", "hertz3d", "cube", "beam", "svk"]:
         fr = [r for r in rows if r["family"] == fam]
         if not fr:
             continue
@@ -457,7 +474,7 @@ def plots(rows, outdir):
         plt.close(fig)
         return path
 
-    fams = [f for f in ["hertz", "hertz3d", "beam", "svk"]
+    fams = [f for f in ["hertz", "hertz3d", "cube", "beam", "svk"]
             if any(r["family"] == f and r["status"] == "ok" for r in rows)]
     if not fams:
         return []
@@ -489,7 +506,8 @@ def plots(rows, outdir):
             if ref:
                 y0 = min(ref)
                 ax.loglog([x0, x1], [y0, y0 * (x1 / x0)], color="0.7", lw=0.8, label="O(n)")
-        style_axes(ax, {"hertz": "2D Hertz", "hertz3d": "3D Hertz (octant)", "beam": "beam on floor (regular K)",
+        style_axes(ax, {"hertz": "2D Hertz", "hertz3d": "3D Hertz (octant)",
+                        "cube": "3D cube under a sphere", "beam": "beam on floor (regular K)",
                         "svk": "Hertz, svk, 3 load steps"}[fam], "contact solve time [s]")
     written.append(save_figure(fig, outdir, "bench_time.png"))
 
@@ -504,7 +522,8 @@ def plots(rows, outdir):
         if fam not in ("svk", "hertz3d"):
             ax.axhline(10, color="r", lw=0.8, ls=":", label="target 10")
         ax.set_ylim(bottom=0)
-        style_axes(ax, {"hertz": "2D Hertz", "hertz3d": "3D Hertz (octant)", "beam": "beam on floor",
+        style_axes(ax, {"hertz": "2D Hertz", "hertz3d": "3D Hertz (octant)",
+                        "cube": "3D cube under a sphere", "beam": "beam on floor",
                         "svk": "Hertz, svk, 3 load steps"}[fam],
                    "active-set iterations")
     written.append(save_figure(fig, outdir, "bench_iterations.png"))
@@ -564,7 +583,7 @@ def main():
     ap.add_argument("--max-dofs", type=float, default=2.1e6, help="largest mesh (estimated displacement dofs)")
     ap.add_argument("--presets", default="", help="comma list of options/solver/*.yml names (default: all)")
     ap.add_argument("--ranks", default="1,2", help="comma list of MPI rank counts (default 1,2)")
-    ap.add_argument("--families", default="hertz,beam,svk,hertz3d", help="comma list of hertz, beam, svk, hertz3d")
+    ap.add_argument("--families", default="hertz,beam,svk,hertz3d", help="comma list of hertz, beam, svk, hertz3d, cube")
     ap.add_argument("--out", default=os.path.join(REPO, "scripts", "bench_out"), help="output folder")
     ap.add_argument("--exe", default=os.environ.get("SIGNORINI_EXE", os.path.join(REPO, "build", "signorini")))
     ap.add_argument("--timeout", type=float, default=None, help="seconds per run at most (default 1800, --quick 15)")
@@ -586,7 +605,7 @@ def main():
         sys.exit("benchmark: no executable %s (build it, or pass --exe / SIGNORINI_EXE)" % args.exe)
     all_presets = sorted(os.path.basename(p)[:-4] for p in os.listdir(os.path.join(REPO, "options", "solver"))
                          if p.endswith(".yml"))
-    all_presets = sorted(all_presets, key=lambda p: (p != DEFAULT_PRESET, p))
+    all_presets = sorted(all_presets, key=lambda p: (p != DEFAULT_PRESET, p)) + [AUTO_PRESET]
     presets = [p for p in args.presets.split(",") if p] or all_presets
     for p in presets:
         if p not in all_presets:
@@ -595,13 +614,14 @@ def main():
     families = [f for f in args.families.split(",") if f]
     for f in families:
         if f not in FAMILIES:
-            sys.exit("benchmark: unknown family %s; expected hertz, beam, svk, hertz3d" % f)
+            sys.exit("benchmark: unknown family %s; expected hertz, beam, svk, hertz3d, cube" % f)
     os.makedirs(os.path.join(args.out, "runs"), exist_ok=True)
 
     levels = {"hertz": HERTZ_QUICK if args.quick else HERTZ_LEVELS,
               "beam": BEAM_QUICK if args.quick else BEAM_LEVELS,
               "svk": SVK_QUICK if args.quick else SVK_LEVELS,
-              "hertz3d": HERTZ3D_QUICK if args.quick else HERTZ3D_LEVELS}
+              "hertz3d": HERTZ3D_QUICK if args.quick else HERTZ3D_LEVELS,
+              "cube": CUBE_QUICK if args.quick else CUBE_LEVELS}
     plan = []
     for fam in families:
         fam_presets = [DEFAULT_PRESET] if fam == "svk" else presets

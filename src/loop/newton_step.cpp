@@ -186,7 +186,9 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
       if (st.large && !st.lagged) PetscCall(NewtonForcing(st, rtol));
       // Inexact active set (linear material, iterative solver): while the set changes a solve only has to show
       // where it goes; the solve after which it stays is corrected to the certificate's tolerance (JudgeCandidate).
-      const bool loose = !st.large && st.correction_rtol == 0 && opts_.active_set_rtol > 0 && system_->Iterative();
+      // Without multipliers nothing can change: one solve to the KSP's tolerance.
+      const bool loose = !st.large && st.correction_rtol == 0 && opts_.active_set_rtol > 0 && system_->Iterative() &&
+                         dofs_.GlobalLambda() > 0;
       if (loose) rtol = opts_.active_set_rtol;
       const PetscInt fallbacks = system_->KrylovFallbacks();
       PetscCall(system_->Solve(st.krylov, st.solve_residual, st.singular, rtol, loose));
