@@ -19,8 +19,8 @@ const char *const SOLVER_PATH_NAMES[] = {"auto", "direct", "iterative"};
 namespace {
 
 // The measured models (docs/performance.md, *The automatic solver choice*). The run's memory besides the factors
-// (mesh, matrices, vectors; the iterative path's whole need) per displacement dof.
-constexpr double BASE_BYTES_PER_DOF = 2600;
+// (mesh, matrices, vectors; about the iterative path's whole need) per displacement dof, in 2D and 3D.
+constexpr double BASE_BYTES_PER_DOF_2D = 1000, BASE_BYTES_PER_DOF_3D = 2600;
 // Elimination flops per second of one rank in the kept factorisation (the supernodal Cholesky and MUMPS, 3D).
 constexpr double FLOP_RATE = 2e10;
 // The iterative path's contact solve, seconds per displacement dof on one rank (3D fieldsplit_gamg).
@@ -45,11 +45,13 @@ FactorEstimate ModelEstimate(const SolverProblem &p) {
 void DirectCost(const SolverProblem &p, const FactorEstimate &e, PetscMPIInt size, double &bytes, double &seconds) {
   const double m = (double)p.multipliers, rows = (double)(p.u_dofs + p.multipliers);
   const bool cholesky = rows <= (size == 1 ? CHOLESKY_MAX_ROWS : CHOLESKY_MAX_ROWS_GATHERED);
-  // The Cholesky's factor with its update stack and the gathered entries, on rank 0; MUMPS's with its 50 % workspace (ICNTL(14)), shared
-  // unevenly by the ranks.
-  const double factor = cholesky ? 8 * 1.45 * e.entries : 8 * 1.5 * e.entries / size * 1.2;
+  // The Cholesky's factor with its update stack and the gathered entries, on rank 0 (the 108k-dof cube: 1.62 GB peak
+  // against 1.61 estimated); MUMPS's with its workspace, shared unevenly by the ranks (2D Hertz at 600k dofs: the
+  // estimate 1.35 times MUMPS's factor entries, the peak 0.8 times the estimated memory).
+  const double factor = cholesky ? 8 * 1.45 * e.entries : 8 * 1.2 * e.entries / size * (size > 1 ? 1.2 : 1.0);
   const bool dense = !MumpsSchur::DenseCostsMore(m, e.flops);
-  bytes = BASE_BYTES_PER_DOF * (double)p.u_dofs / size + factor + (dense ? 8 * m * m : 0);
+  const double base = p.dim == 3 ? BASE_BYTES_PER_DOF_3D : BASE_BYTES_PER_DOF_2D;
+  bytes = base * (double)p.u_dofs / size + factor + (dense ? 8 * m * m : 0);
   seconds = (e.flops + (dense ? DENSE_FACTORISATIONS * m * m * m / 3 : 0)) / (FLOP_RATE * (cholesky ? 1 : size));
 }
 
@@ -183,6 +185,10 @@ PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bo
     PetscCall(EstimateFactorization(comm, problem, choice.factor));
     DirectCost(problem, choice.factor, size, choice.direct_bytes, choice.direct_seconds);
   }
+  PetscCall(PetscInfo(nullptr, "factor %.4g entries, %.4g flops (%s); direct %.4g bytes per rank, %.4g s; iterative "
+                      "%.4g s; budget %.4g bytes per rank\n", choice.factor.entries, choice.factor.flops,
+                      choice.factor.exact ? "node graph" : "model", choice.direct_bytes, choice.direct_seconds,
+                      choice.iterative_seconds, choice.budget_bytes));
   const std::string estimate = choice.factor.exact ? "" : " by the measured model";
   char text[512];
   if (choice.direct_bytes > choice.budget_bytes) {
