@@ -312,8 +312,10 @@ double TangentAndForceFixed(const Material &m, const double (&D)[6][6], const El
         for (int w = 0; w < nv; ++w) d += D[v][w] * B[w][c];
         DB[v][c] = wq * d;
       }
+    // The tangent is symmetric (D and S are): its upper triangle here, mirrored after the last point (half the work
+    // of the element's dominant loop).
     for (int r = 0; r < n; ++r)
-      for (int c = 0; c < n; ++c) {
+      for (int c = r; c < n; ++c) {
         double kij = 0;
         for (int v = 0; v < nv; ++v) kij += B[v][r] * DB[v][c];
         K[r * n + c] += kij;
@@ -331,7 +333,7 @@ double TangentAndForceFixed(const Material &m, const double (&D)[6][6], const El
           SdN[i] = 0;
           for (int j = 0; j < DIM; ++j) SdN[i] += Sm[i][j] * dN[a][j];
         }
-        for (int b = 0; b < NODES; ++b) {
+        for (int b = a; b < NODES; ++b) {
           double gab = 0;
           for (int i = 0; i < DIM; ++i) gab += SdN[i] * dN[b][i];
           for (int k = 0; k < DIM; ++k) K[(a * DIM + k) * n + b * DIM + k] += gab;
@@ -339,6 +341,9 @@ double TangentAndForceFixed(const Material &m, const double (&D)[6][6], const El
       }
     }
   }
+  if (K)
+    for (int r = 0; r < n; ++r)
+      for (int c = r + 1; c < n; ++c) K[c * n + r] = K[r * n + c];
   return large ? jmin : 1.0;
 }
 } // namespace
