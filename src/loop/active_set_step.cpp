@@ -17,7 +17,7 @@ using namespace detail;
 PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const char *why, Pivot &pivot) {
   PetscFunctionBeginUser;
   pivot = Pivot::NONE;
-  if (st.large || st.moving || !system_->ExactFactorization() || dofs_.GlobalLambda() > LCP_MAX_ROWS)
+  if (!model_->Pivots() || st.moving || !system_->ExactFactorization() || dofs_.GlobalLambda() > LCP_MAX_ROWS)
     PetscFunctionReturn(0);
   st.pivoted++;
   // The problem from the current iterate: the gaps and F_int there (a condensed iterate is expanded first), the
@@ -74,7 +74,6 @@ PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const
 }
 
 PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
-  const bool large = material_.model == MaterialModel::SVK;
   PetscFunctionBeginUser;
   widen_to_ = 0;
   if (stats_.reason == Reason::DIVERGED_NONINVERTIBLE_DEFORMATION || stats_.search_widenings >= MAX_WIDENINGS)
@@ -93,7 +92,8 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   // DIVERGED_NOT_HELD, instead of cycling).
   // svk cuts the load step first (a smaller increment is the usual cure of a cycle, and its pairs within the whole
   // diagonal would be many and slow).
-  const bool can_cut = large && stats_.cuts < opts_.max_cuts && stats_.reason != Reason::DIVERGED_NOT_HELD;
+  const bool can_cut =
+      model_->Nonlinear() && stats_.cuts < opts_.max_cuts && stats_.reason != Reason::DIVERGED_NOT_HELD;
   const bool unheld =
       (stats_.reason == Reason::DIVERGED_CYCLING || stats_.reason == Reason::DIVERGED_NOT_HELD) && !can_cut;
   const bool penetrates = unpaired.depth > contact_.gap_tol;
@@ -113,10 +113,10 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
       std::min(penetrates ? std::max({2 * contact_.search_radius, 2 * reach, 2 * unpaired.depth})
                           : std::max(2 * contact_.search_radius, contact_.length),
                SEARCH_RADIUS_MAX * contact_.length);
-  bool more = !large && !found.empty();
+  bool more = !model_->CurrentConfiguration() && !found.empty();
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &more, 1, MPI_CXX_BOOL, MPI_LOR, mesh_.Comm()));
   if (radius <= contact_.search_radius && !more) PetscFunctionReturn(0);
-  if (!large) extra_pairs_.insert(found.begin(), found.end());
+  if (!model_->CurrentConfiguration()) extra_pairs_.insert(found.begin(), found.end());
   widen_to_ = std::max(radius, contact_.search_radius);
   widen_node_ = penetrates ? unpaired.node : -1;
   widen_depth_ = unpaired.depth;
@@ -131,7 +131,7 @@ PetscErrorCode ContactSolver::WidenSearch(const std::vector<double> &lambda, con
   PetscFunctionBeginUser;
   contact_.search_radius = widen_to_;
   stats_.search_widenings++;
-  if (material_.model == MaterialModel::SVK) {
+  if (model_->CurrentConfiguration()) {
     // svk searches its pairs again at the start of every load step (Repair), now with the wider radius.
     PetscCall(AdoptPairs(pairs_, lambda, mult, active));
     PetscFunctionReturn(0);
@@ -175,7 +175,7 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
     PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
     PetscFunctionReturn(0);
   }
-  if (st.large) {
+  if (model_->CurrentConfiguration()) {
     // svk: pairs from the current configuration (new pairs mean a new pattern and a new analysis).
     bool rebuilt;
     PetscCall(Repair(st.u_eval, it == 0, rebuilt));
@@ -189,9 +189,9 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
       PetscCall(assembler_->AssembleLoads(bc_, st.factor, fext_));
     }
   }
-  EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, st.large, st.u_eval.data(), states_,
-                rows_, normals_);
-  if (st.large || it == 0 || st.stabilised) {
+  EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, model_->CurrentConfiguration(),
+                st.u_eval.data(), states_, rows_, normals_);
+  if (model_->Nonlinear() || it == 0 || st.stabilised) {
     PetscCall(Residual(lambda_, st.rnorm, st.rscale, nullptr, nullptr, &st.rroundoff));
   } else {
     // Linear material after a solve: K du was solved for exactly (to the solve's residual), so F_int = f + B^T x on
@@ -244,7 +244,8 @@ bool ContactSolver::DeferSwitch(StepState &st, PetscInt &changes) const {
   // the multipliers and gaps that choose it are then those of the set's solution, not of a Newton iterate on its way
   // there (svk's block in the notch toggled one pair between a tensile multiplier and a penetration while the
   // residual stayed at 4e-4).
-  if (st.large && changes > 0 && active_set_.OneAtATime() && !(st.rnorm <= EquilibriumTol(st.rscale, st.rroundoff))) {
+  if (model_->Nonlinear() && changes > 0 && active_set_.OneAtATime() &&
+      !(st.rnorm <= EquilibriumTol(st.rscale, st.rroundoff))) {
     st.next = active_set_.Flags();
     changes = 0;
     return true;
@@ -259,10 +260,10 @@ PetscErrorCode ContactSolver::ActiveSetCameBack(StepState &st, PetscInt it, Pets
   // An active set that comes back would cycle. svk with lagged searches first drops them for the rest of the step
   // (their stale tangent can lead the set round); then, as the linear material does at once, the updates switch one
   // pair at a time (ActiveSet::SwitchOneAtATime). A set that comes back after that ends the step (DIVERGED_CYCLING).
-  const bool lagging = st.large && opts_.lagged_search && system_->ReusesFactorization() && !st.exact_newton;
+  const bool lagging = model_->Nonlinear() && opts_.lagged_search && system_->ReusesFactorization() && !st.exact_newton;
   if (it > 0 && changes > 0 && std::isfinite(st.rnorm) && (lagging || !active_set_.OneAtATime())) {
     bool back;
-    PetscCall(active_set_.Seen(st.next, keys_, st.large ? 3 : 1, back, false));
+    PetscCall(active_set_.Seen(st.next, keys_, model_->CycleRepeats(), back, false));
     if (back && lagging) {
       st.exact_newton = true;
       active_set_.Forget();
@@ -270,7 +271,7 @@ PetscErrorCode ContactSolver::ActiveSetCameBack(StepState &st, PetscInt it, Pets
     } else if (back) {
       // The linear material solves its complementarity problem first (PivotedActiveSet, finite), the first time.
       bool found = false;
-      if (!st.large && st.pivoted == 0) {
+      if (model_->Pivots() && st.pivoted == 0) {
         const std::vector<char> current = active_set_.Flags(), next = st.next;
         Pivot pivot;
         PetscCall(PivotedActiveSet(st, it, "the active set came back", pivot));
@@ -309,16 +310,16 @@ PetscErrorCode ContactSolver::JudgeCandidate(StepState &st, PetscInt it, Outcome
   PetscFunctionBeginUser;
   done = false;
   if (st.condensed) PetscCall(Materialise(st, it));
-  if (!st.large) PetscCall(Residual(lambda_, st.rnorm, st.rscale, nullptr, nullptr, &st.rroundoff));
+  if (!model_->Nonlinear()) PetscCall(Residual(lambda_, st.rnorm, st.rscale, nullptr, nullptr, &st.rroundoff));
   const double tol = EquilibriumTol(st.rscale, st.rroundoff);
   PetscCall(PetscInfo(nullptr, "candidate state: equilibrium residual %.6g (tolerance %.6g, of which round-off %.6g)\n",
                       st.rnorm, tol, st.rroundoff));
-  if (st.rnorm <= tol || !st.large) {
+  if (st.rnorm <= tol || !model_->Nonlinear()) {
     Certificate cert;
     PetscCall(Certify(st.u_eval, st.rnorm, tol, cert));
     if (cert.Satisfied()) {
       certificate_ = cert;
-      stats_.reason = st.large ? Reason::CONVERGED_ACTIVE_SET_AND_RESIDUAL : Reason::CONVERGED_ACTIVE_SET_UNCHANGED;
+      stats_.reason = model_->ConvergedReason();
       outcome = Outcome::CONVERGED;
       done = true;
       PetscFunctionReturn(0);
@@ -337,7 +338,7 @@ PetscErrorCode ContactSolver::JudgeCandidate(StepState &st, PetscInt it, Outcome
   // instead of -contact_ksp_rtol relative to that start (the certificate checks the result again). 2D Hertz,
   // fieldsplit_gamg, 1M dofs: 46 Krylov iterations of the correction solve before. A correction that did not
   // reach the tolerance (its start's residual was not this one) is followed by a solve to the KSP's tolerance.
-  if (!st.large && st.rnorm > tol) {
+  if (!model_->Nonlinear() && st.rnorm > tol) {
     // Corrections that no longer halve the residual cannot reach the tolerance: the solves are as accurate as
     // the system's conditioning lets them be (e.g. a nearly incompressible material). A correction that started
     // from another residual is followed by a solve to the KSP's tolerance (below), so the loop stops only when
@@ -386,7 +387,7 @@ PetscErrorCode ContactSolver::ExtendAlongFreeMotion(StepState &st, Outcome &outc
     if (!(closing > CLOSING * size && states_[p].gap >= 0)) continue;
     const double t = states_[p].gap / closing;
     bool on_facet = states_[p].InZone();
-    if (st.large) {
+    if (model_->CurrentConfiguration()) {
       double x[3] = {0, 0, 0};
       rigid_.Motion(X, motion, x);
       for (int k = 0; k < dim; ++k) x[k] = X[k] + u_local_[keys_[p].vertex * dim + k] + t * x[k];
@@ -416,9 +417,10 @@ PetscErrorCode ContactSolver::StopAtLimits(StepState &st, PetscInt it, PetscInt 
   // Linear material: every iteration is an active-set iteration. svk: every iteration is a Newton step, at most
   // -newton_max_it of them, and at most -contact_max_it of them may change the active set.
   if (changes > 0) ++st.set_changes;
-  const bool limit = st.large ? it >= opts_.newton_max_it || st.set_changes > contact_.max_it : it >= contact_.max_it;
+  const bool limit =
+      model_->Nonlinear() ? it >= opts_.newton_max_it || st.set_changes > contact_.max_it : it >= contact_.max_it;
   bool cycling = false;
-  if (std::isfinite(st.rnorm) && !limit) PetscCall(active_set_.Seen(st.next, keys_, st.large ? 3 : 1, cycling));
+  if (std::isfinite(st.rnorm) && !limit) PetscCall(active_set_.Seen(st.next, keys_, model_->CycleRepeats(), cycling));
   if (!std::isfinite(st.rnorm)) stats_.reason = Reason::DIVERGED_NONINVERTIBLE_DEFORMATION;
   else if (limit) stats_.reason = Reason::DIVERGED_MAX_IT;
   else if (cycling && changes > 0 && it > 0) stats_.reason = Reason::DIVERGED_CYCLING;

@@ -30,7 +30,7 @@ PetscErrorCode ContactSolver::Setup() {
   }
   PetscCall(BuildDirichlet(mesh_, bc_, dirichlet_));
   PetscCall(FindContactPairs(mesh_, obstacle_, contact_, dirichlet_.fixed, pairs_, candidate_, nullptr, &held_));
-  if (material_.model != MaterialModel::SVK) DropOutOfZone(pairs_);
+  if (!model_->CurrentConfiguration()) DropOutOfZone(pairs_);
   PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size()));
   assembler_ = std::make_unique<Assembler>(mesh_, material_, dofs_, dirichlet_);
   PetscCall(assembler_->CheckCells());
@@ -62,7 +62,7 @@ PetscErrorCode ContactSolver::CreateSystem() {
   std::vector<PetscInt> d_nnz, o_nnz;
   PetscCall(assembler_->PatternCounts(d_nnz, o_nnz));
   system_ = std::make_unique<SaddlePointSystem>();
-  PetscCall(system_->Create(dofs_, rows_, coords, material_.model != MaterialModel::SVK, kscale_, d_nnz, o_nnz,
+  PetscCall(system_->Create(dofs_, rows_, coords, !model_->Nonlinear(), kscale_, d_nnz, o_nnz,
                             [&](Mat A) { return assembler_->InsertPattern(A); }));
   if (opts_.lagged_search_set && opts_.lagged_search) system_->KeepFactorization();
   k_assembled_ = false;
@@ -230,8 +230,7 @@ PetscErrorCode ContactSolver::Monitor(const IterationRecord &r) const {
 }
 
 PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first, bool &ok) {
-  const bool large = material_.model == MaterialModel::SVK;
-  StepState st{step, factor, first, large};
+  StepState st{step, factor, first};
   PetscFunctionBeginUser;
   st.exact_newton = exact_newton_;
   ok = false;
@@ -371,7 +370,6 @@ PetscErrorCode ContactSolver::RestoreConverged(const Converged &c) {
 
 PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt, double)> &step_done) {
   MPI_Comm comm = mesh_.Comm();
-  const bool large = material_.model == MaterialModel::SVK;
   PetscFunctionBeginUser;
   Converged saved;
   PetscCall(SaveConverged(saved));
@@ -395,9 +393,9 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
       PetscCall(step_done(step, t));
       continue;
     }
-    const RetryHistory history{large,         opts_.lagged_search && system_->ReusesFactorization(),
-                               exact_newton_, exact_tried,
-                               stats_.cuts,   opts_.max_cuts,
+    const RetryHistory history{model_->Nonlinear(), opts_.lagged_search && system_->ReusesFactorization(),
+                               exact_newton_,       exact_tried,
+                               stats_.cuts,         opts_.max_cuts,
                                first_unheld_};
     const RetryDecision d = DecideRetry({stats_.reason, widen_to_ > 0, repeated}, history);
     stats_.reason = d.reason;
@@ -470,19 +468,18 @@ PetscErrorCode ContactSolver::PrintWidening(double t_try) const {
 }
 
 PetscErrorCode ContactSolver::Failure(double t_try, const RetryDecision &d, std::string &message) {
-  const bool large = material_.model == MaterialModel::SVK;
   PetscFunctionBeginUser;
   FailureReport r;
   r.reason = d.reason;
   r.load_factor = t_try;
-  r.svk = large;
+  r.svk = model_->Nonlinear();
   r.deformed_after_unheld = d.deformed_after_unheld;
   r.has_obstacle = !obstacle_.facets.empty();
   r.search_radius = contact_.search_radius;
   if (d.reason == Reason::DIVERGED_SINGULAR) r.singular_prefix = system_->SingularReport("");
   r.unheld_detail = unheld_detail_;
   r.violation = stats_.violation;
-  if (large && d.reason == Reason::DIVERGED_MAX_IT) {
+  if (model_->Nonlinear() && d.reason == Reason::DIVERGED_MAX_IT) {
     bool held_by_supports;
     PetscCall(rigid_.Held(keys_, normals_, std::vector<char>(active_set_.Flags().size(), 0), held_by_supports));
     r.free_without_contact = !held_by_supports;

@@ -2,8 +2,9 @@
 #include "signorini/loop/loop_options.hpp"
 #include "signorini/core/handle.hpp"
 
-#include "signorini/options/readers.hpp"
 #include "signorini/linalg/solver_options.hpp"
+#include "signorini/loop/material_policy.hpp"
+#include "signorini/options/readers.hpp"
 
 namespace signorini {
 
@@ -39,9 +40,9 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptio
                              "false: exact Newton at every iteration",
                              "", opts.lagged_search, &opts.lagged_search, &opts.lagged_search_set));
   PetscOptionsEnd();
-  // The linear material solves a load step by the active-set loop alone (-contact_max_it) and never cuts one: these
+  // A linear material solves a load step by the active-set loop alone (-contact_max_it) and never cuts one: these
   // would be ignored.
-  if (model != MaterialModel::SVK) {
+  if (!MakeMaterialPolicy(model)->Nonlinear()) {
     PetscCheck(!max_cuts_set, comm, PETSC_ERR_USER_INPUT,
                "-load_max_cuts %" PetscInt_FMT " applies to -material_model svk only (the linear material never cuts a "
                "load step)", opts.max_cuts);

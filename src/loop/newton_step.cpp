@@ -72,10 +72,10 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   // assembly stays (a modified Newton step), solved to SEARCH_RTOL, as long as the residual contracts by
   // LAGGED_CONTRACTION per step; the exact tangent once the active set settles.
   // A lagged step is a condensed search (SolveAndUpdate): its later iterations (st.base) keep it.
-  if (!(st.large && st.base)) {
+  if (!(model_->Nonlinear() && st.base)) {
     const bool contracting = st.lag_rnorm < 0 || st.rnorm <= LAGGED_CONTRACTION * st.lag_rnorm;
-    const bool lag = st.large && opts_.lagged_search && st.searching && !st.stabilised &&
-                     !st.exact_newton && !active_set_.OneAtATime() && system_->ReusesFactorization();
+    const bool lag = model_->Nonlinear() && opts_.lagged_search && st.searching && !st.stabilised && !st.exact_newton &&
+                     !active_set_.OneAtATime() && system_->ReusesFactorization();
     st.lagged = lag && contracting;
     st.lag_rnorm = st.rnorm;
     // A lagged step that did not contract: the factored tangent has drifted too far to precondition the current one.
@@ -83,7 +83,7 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   } else if (st.stabilised || st.exact_newton) {
     st.lagged = false; // the search is left (Condensable): a full solve from the base with the current tangent
   }
-  if ((st.large && !st.lagged) || !k_assembled_) {
+  if ((model_->Nonlinear() && !st.lagged) || !k_assembled_) {
     ProgressBegin("stiffness assembly");
     PetscCall(MatZeroEntries(system_->Stiffness()));
     PetscCall(assembler_->Assemble(u_local_.data(), system_->Stiffness(), kscale_, nullptr, nullptr));
@@ -155,7 +155,7 @@ PetscErrorCode ContactSolver::NewtonForcing(const StepState &st, double &rtol) c
 
 bool ContactSolver::Condensable(const StepState &st) const {
   if (!st.base || st.stabilised || !system_->ReusesFactorization()) return false;
-  return st.large ? st.lagged : system_->ExactFactorization();
+  return model_->Nonlinear() ? st.lagged : system_->ExactFactorization();
 }
 
 PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
@@ -165,7 +165,8 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
     ScopedTimer t(stats_.time_solve);
     const double t0 = MPI_Wtime();
     PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
-    const bool search = st.large ? st.lagged && system_->ReusesFactorization() : system_->ExactFactorization();
+    const bool search =
+        model_->Nonlinear() ? st.lagged && system_->ReusesFactorization() : system_->ExactFactorization();
     // Linear material, kept factorisation, no stabilisation and no prescribed displacement still to apply: the
     // right-hand side assembled now is the base of the solves after it, which run in the multiplier space (condensed)
     // until Materialise.
@@ -183,7 +184,7 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
       // A full solve moves the displacement away from any base.
       st.base = false;
       double rtol = st.lagged ? SEARCH_RTOL : st.correction_rtol;
-      if (st.large && !st.lagged) PetscCall(NewtonForcing(st, rtol));
+      if (model_->Nonlinear() && !st.lagged) PetscCall(NewtonForcing(st, rtol));
       PetscCall(system_->Solve(st.krylov, st.solve_residual, st.singular, rtol));
       st.corrected = st.correction_rtol > 0;
       st.correction_rtol = 0;
@@ -246,7 +247,7 @@ PetscErrorCode ContactSolver::Materialise(StepState &st, PetscInt it) {
 }
 
 PetscErrorCode ContactSolver::UpdateSolution(double r0, bool stabilised, double &step) {
-  const bool large = material_.model == MaterialModel::SVK;
+  const bool newton = model_->Nonlinear(), current = model_->CurrentConfiguration();
   const PetscInt nu = dofs_.OwnedU();
   std::vector<double> new_lambda(pairs_.size());
   const std::vector<char> &active = active_set_.Flags();
@@ -265,14 +266,14 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0, bool stabilised, double 
   std::vector<double> dir(dx, dx + nu);
   PetscCall(VecRestoreArrayRead(system_->Solution(), &dx));
   double g0 = 0;
-  if (large && opts_.line_search) {
+  if (newton && opts_.line_search) {
     double r, scale;
-    EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_local_.data(), states_, rows_,
+    EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, current, u_local_.data(), states_, rows_,
                   normals_);
     PetscCall(Residual(new_lambda, r, scale, dir.data(), &g0));
   }
   double s = 1.0;
-  if (large && stabilised) {
+  if (newton && stabilised) {
     // svk: a stabilised step moves the body along its free motions; it is cut to a quarter of the search radius,
     // so that the pairs searched again at the new position still see the obstacle it approaches (StepControl then
     // moves the body along its free rigid motion from there).
@@ -291,9 +292,9 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0, bool stabilised, double 
     PetscCall(VecRestoreArrayRead(du_, &u_old));
     PetscCall(VecRestoreArray(u_, &u));
     PetscCall(UpdateLocal());
-    if (!large || k == 8) break;
+    if (!newton || k == 8) break;
     double r, scale, g;
-    EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_local_.data(), states_, rows_,
+    EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, current, u_local_.data(), states_, rows_,
                   normals_);
     PetscCall(Residual(new_lambda, r, scale, dir.data(), &g));
     PetscCall(PetscInfo(nullptr, "line search: step %.6g g(s)/g(0) %.6g residual %.6g (before %.6g)\n", s, g / g0, r, r0));

@@ -10,6 +10,7 @@
 #include "signorini/fem/assembly.hpp"
 #include "signorini/linalg/saddle_point.hpp"
 #include "signorini/loop/loop_options.hpp"
+#include "signorini/loop/material_policy.hpp"
 #include "signorini/loop/retry_policy.hpp"
 #include "signorini/loop/solved_state.hpp"
 
@@ -29,10 +30,10 @@ class ContactSolver {
 public:
   ContactSolver(const Mesh &mesh, const Material &material, const BoundaryConditions &bc, const Obstacle &obstacle,
                 const ContactOptions &contact, const SolverOptions &solver)
-      : mesh_(mesh), material_(material), bc_(bc), obstacle_(obstacle), contact_(contact), opts_(solver),
-        active_set_(mesh.Comm(),
-                    {contact.c, contact.gap_tol, contact.touch_tol, contact.activation_fraction, contact.length,
-                     contact.activation_gap_factor}) {}
+      : mesh_(mesh), material_(material), model_(MakeMaterialPolicy(material.model)), bc_(bc), obstacle_(obstacle),
+        contact_(contact), opts_(solver),
+        active_set_(mesh.Comm(), {contact.c, contact.gap_tol, contact.touch_tol, contact.activation_fraction,
+                                  contact.length, contact.activation_gap_factor}) {}
 
   /// Initial weight of the springs on the normals of the inactive pairs, relative to the stiffness scale, in the
   /// solves whose active set leaves a rigid-body motion free (RigidModes). They pull the increment towards the
@@ -139,7 +140,7 @@ private:
   struct StepState {
     PetscInt step;
     double factor;
-    bool first, large;
+    bool first;
     std::vector<double> delta{}, u_eval{}; ///< prescribed-displacement increment still to apply; u + delta
     std::vector<char> next{};          ///< the active set of the next solve
     PetscInt krylov = 0;
@@ -237,6 +238,7 @@ private:
 
   const Mesh &mesh_;
   const Material &material_;
+  std::unique_ptr<const MaterialPolicy> model_; ///< how the loop iterates on the material
   const BoundaryConditions &bc_;
   const Obstacle &obstacle_;
   ContactOptions contact_; ///< a copy: a failed load step may widen its search radius (WidenSearch)
