@@ -635,68 +635,11 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
   const bool fresh = reuse_ && !factored_;
   if (fresh) PetscCall(Factor());
   if (reuse_) {
-    // Later solves are exact for a constant K (only D changed), else the kept factorisation preconditions the current
-    // matrix (and may refactor it).
-    std::vector<PetscScalar> d;
-    PetscCall(MultiplierDiagonal(d));
-    krylov_iterations = 1;
-    singular = null_pivots_ > 0;
-    if (singular) PetscFunctionReturn(0);
-    if (fresh || constant_k_) {
-      // The KSP's PC is the kept factorisation (PCKEPT, UseKeptPc): an exact solve with the current D.
-      PC pc;
-      PetscCall(KSPGetPC(ksp_, &pc));
-      PetscCall(PCKeptSetDiagonal(pc, d));
-      PetscCall(KSPSolve(ksp_, b_, x_));
-      kept_viewed_ = true; // KSPSolve shows the KSP with -contact_ksp_view
-
-    } else PetscCall(SolveWithKeptFactor(d, rtol, krylov_iterations, check_tol));
-    singular = null_pivots_ > 0;
+    PetscCall(SolveKept(fresh, rtol, krylov_iterations, check_tol, singular));
     if (singular) PetscFunctionReturn(0);
     reason = KSP_CONVERGED_ITS;
   } else {
-    // KSPSetUp sets the preconditioner up (a factorisation, for the direct presets) before KSPSolve would.
-    // An iterative solver's preconditioner stays for a solve with the matrix it was set up for (a correction solve:
-    // the same active set, K not reassembled; the values SetConstraints wrote are the same): one set-up less.
-    // The active set may have changed on another rank only: all ranks must agree.
-    PetscBool same = augmented_ && !reuse_ && pc_current_ ? PETSC_TRUE : PETSC_FALSE;
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_BOOL, MPI_LAND, comm));
-    PetscCall(KSPSetReusePreconditioner(ksp_, same));
-    PetscCall(KeepDisplacementPreconditioner());
-    ProgressBegin("preconditioner set-up (analysis and factorisation)");
-    PetscCall(KSPSetUp(ksp_));
-    ProgressEnd();
-    pc_current_ = augmented_ && !reuse_;
-    ksp_set_up_ = true;
-    PetscReal ksp_rtol, abstol, dtol;
-    PetscInt max_it;
-    PetscCall(KSPGetTolerances(ksp_, &ksp_rtol, &abstol, &dtol, &max_it));
-    if (rtol > ksp_rtol) PetscCall(KSPSetTolerances(ksp_, rtol, abstol, dtol, max_it));
-    PetscCall(KSPSolve(ksp_, b_, x_));
-    PetscCall(KSPGetConvergedReason(ksp_, &reason));
-    PetscCall(KSPGetIterationNumber(ksp_, &krylov_iterations));
-    // A Krylov method stops on its own (preconditioned) residual, which can sit orders of magnitude below the true
-    // one (CG with GAMG on 2 ranks: 1e-10 against 3e-6). The solve restarts from where it stopped while that helps;
-    // the true residual is what CheckAndConvert accepts or refuses.
-    double last = INFINITY;
-    for (int restart = 0; !preonly_ && reason > 0 && restart < MAX_KRYLOV_RESTARTS; ++restart) {
-      PetscReal rnorm, bnorm;
-      PetscCall(TrueResidual(rnorm, bnorm));
-      if (!(rnorm > ACCEPTED_RESIDUAL * bnorm) || !(rnorm < 0.1 * last)) {
-        known_residual[0] = rnorm, known_residual[1] = bnorm; // x_ stays as it is: CheckAndConvert reuses them
-        break;
-      }
-      last = rnorm;
-      PetscInt its;
-      PetscCall(PetscInfo(nullptr, "Krylov restart %d: true relative residual %.6g\n", restart + 1,
-                          (double)(rnorm / bnorm)));
-      PetscCall(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
-      PetscCall(KSPSolve(ksp_, b_, x_));
-      PetscCall(KSPGetConvergedReason(ksp_, &reason));
-      PetscCall(KSPGetIterationNumber(ksp_, &its));
-      krylov_iterations += its;
-    }
-    if (rtol > ksp_rtol) PetscCall(KSPSetTolerances(ksp_, ksp_rtol, abstol, dtol, max_it));
+    PetscCall(SolveKsp(rtol, reason, krylov_iterations, known_residual));
   }
   if (mumps_factor_ && !reuse_) {
     PetscCall(MatMumpsGetInfog(mumps_factor_, 28, &null_pivots_));
@@ -719,6 +662,78 @@ PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &res
   }
   const PetscReal *known = known_residual[0] >= 0 ? known_residual : nullptr;
   PetscCall(CheckAndConvert(reason, krylov_iterations, residual, check_tol, known));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::SolveKept(bool fresh, double rtol, PetscInt &krylov_iterations, double &check_tol,
+                                            bool &singular) {
+  PetscFunctionBeginUser;
+  // Later solves are exact for a constant K (only D changed), else the kept factorisation preconditions the current
+  // matrix (and may refactor it).
+  std::vector<PetscScalar> d;
+  PetscCall(MultiplierDiagonal(d));
+  krylov_iterations = 1;
+  singular = null_pivots_ > 0;
+  if (singular) PetscFunctionReturn(0);
+  if (fresh || constant_k_) {
+    // The KSP's PC is the kept factorisation (PCKEPT, UseKeptPc): an exact solve with the current D.
+    PC pc;
+    PetscCall(KSPGetPC(ksp_, &pc));
+    PetscCall(PCKeptSetDiagonal(pc, d));
+    PetscCall(KSPSolve(ksp_, b_, x_));
+    kept_viewed_ = true; // KSPSolve shows the KSP with -contact_ksp_view
+  } else
+    PetscCall(SolveWithKeptFactor(d, rtol, krylov_iterations, check_tol));
+  singular = null_pivots_ > 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::SolveKsp(double rtol, KSPConvergedReason &reason, PetscInt &krylov_iterations,
+                                           PetscReal known_residual[2]) {
+  MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
+  PetscFunctionBeginUser;
+  // KSPSetUp sets the preconditioner up (a factorisation, for the direct presets) before KSPSolve would.
+  // An iterative solver's preconditioner stays for a solve with the matrix it was set up for (a correction solve:
+  // the same active set, K not reassembled; the values SetConstraints wrote are the same): one set-up less.
+  // The active set may have changed on another rank only: all ranks must agree.
+  PetscBool same = augmented_ && !reuse_ && pc_current_ ? PETSC_TRUE : PETSC_FALSE;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_BOOL, MPI_LAND, comm));
+  PetscCall(KSPSetReusePreconditioner(ksp_, same));
+  PetscCall(KeepDisplacementPreconditioner());
+  ProgressBegin("preconditioner set-up (analysis and factorisation)");
+  PetscCall(KSPSetUp(ksp_));
+  ProgressEnd();
+  pc_current_ = augmented_ && !reuse_;
+  ksp_set_up_ = true;
+  PetscReal ksp_rtol, abstol, dtol;
+  PetscInt max_it;
+  PetscCall(KSPGetTolerances(ksp_, &ksp_rtol, &abstol, &dtol, &max_it));
+  if (rtol > ksp_rtol) PetscCall(KSPSetTolerances(ksp_, rtol, abstol, dtol, max_it));
+  PetscCall(KSPSolve(ksp_, b_, x_));
+  PetscCall(KSPGetConvergedReason(ksp_, &reason));
+  PetscCall(KSPGetIterationNumber(ksp_, &krylov_iterations));
+  // A Krylov method stops on its own (preconditioned) residual, which can sit orders of magnitude below the true
+  // one (CG with GAMG on 2 ranks: 1e-10 against 3e-6). The solve restarts from where it stopped while that helps;
+  // the true residual is what CheckAndConvert accepts or refuses.
+  double last = INFINITY;
+  for (int restart = 0; !preonly_ && reason > 0 && restart < MAX_KRYLOV_RESTARTS; ++restart) {
+    PetscReal rnorm, bnorm;
+    PetscCall(TrueResidual(rnorm, bnorm));
+    if (!(rnorm > ACCEPTED_RESIDUAL * bnorm) || !(rnorm < 0.1 * last)) {
+      known_residual[0] = rnorm, known_residual[1] = bnorm; // x_ stays as it is: CheckAndConvert reuses them
+      break;
+    }
+    last = rnorm;
+    PetscInt its;
+    PetscCall(
+        PetscInfo(nullptr, "Krylov restart %d: true relative residual %.6g\n", restart + 1, (double)(rnorm / bnorm)));
+    PetscCall(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
+    PetscCall(KSPSolve(ksp_, b_, x_));
+    PetscCall(KSPGetConvergedReason(ksp_, &reason));
+    PetscCall(KSPGetIterationNumber(ksp_, &its));
+    krylov_iterations += its;
+  }
+  if (rtol > ksp_rtol) PetscCall(KSPSetTolerances(ksp_, ksp_rtol, abstol, dtol, max_it));
   PetscFunctionReturn(0);
 }
 

@@ -222,6 +222,15 @@ private:
   /// Reuse mode, changing K: the numerical refactorisation of the current matrix (the analysis of Factor); a singular
   /// A11 sets null_pivots_. Collective.
   [[nodiscard]] PetscErrorCode Refactor();
+  /// Solve's two paths. The kept factorisation (factored first when fresh): an exact solve of a constant K, else
+  /// SolveWithKeptFactor; singular: null pivots. Collective.
+  [[nodiscard]] PetscErrorCode SolveKept(bool fresh, double rtol, PetscInt &krylov_iterations, double &check_tol,
+                                         bool &singular);
+  /// The KSP: its set-up, the solve to the relative tolerance rtol (when above the KSP's) and the restarts from
+  /// where it stopped while they reduce the true residual (known_residual: ||b - A x||, ||b|| when computed).
+  /// Collective.
+  [[nodiscard]] PetscErrorCode SolveKsp(double rtol, KSPConvergedReason &reason, PetscInt &krylov_iterations,
+                                        PetscReal known_residual[2]);
   /// Reuse mode, changing K: x_ from FGMRES on the current matrix preconditioned by the kept factorisation, or, when
   /// it does not converge within -contact_reuse_max_it iterations (or the last solve contracted too slowly),
   /// after a refactorisation. d: the current multiplier diagonal (rank 0); rtol: see Solve. iterations: FGMRES's, plus
