@@ -70,7 +70,7 @@ PetscErrorCode ContactSolver::CreateSystem() {
   PetscCall(VecDuplicate(u_, du_.out()));
   PetscCall(VecDuplicate(u_, fext_.out()));
   PetscCall(VecDuplicate(u_, fint_.out()));
-  fint_at_.clear();
+  fint_at_.u.clear();
   fdir_.Reset(); // made by the first step that moves a Dirichlet value
   PetscCall(PetscObjectSetName((PetscObject)u_.get(), "displacement"));
   std::vector<PetscInt> from(mesh_.NumLocalVertices() * dim);
@@ -232,7 +232,7 @@ PetscErrorCode ContactSolver::Monitor(const IterationRecord &r) const {
 PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first, bool &ok) {
   StepState st{step, factor, first};
   PetscFunctionBeginUser;
-  st.exact_newton = exact_newton_;
+  st.newton.exact = retry_.exact_newton;
   ok = false;
   // The increment of the prescribed displacements enters through the first solve of the step (its Dirichlet rows
   // and the coupling K_fd du_d of the free rows), not by moving the boundary nodes alone, which could invert the
@@ -247,8 +247,8 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
   PetscReal load_scale;
   PetscCall(VecNorm(fext_, NORM_INFINITY, &load_scale));
   active_set_.BeginStep(load_scale);
-  widen_to_ = 0;
-  unheld_detail_.clear();
+  retry_.widen_to = 0;
+  retry_.unheld_detail.clear();
   PetscInt it = 0;
   for (;; ++it) {
     PetscInt changes = 0;
@@ -394,13 +394,13 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
       continue;
     }
     const RetryHistory history{model_->Nonlinear(), opts_.lagged_search && system_->ReusesFactorization(),
-                               exact_newton_,       exact_tried,
+                               retry_.exact_newton, exact_tried,
                                stats_.cuts,         opts_.max_cuts,
-                               first_unheld_};
-    const RetryDecision d = DecideRetry({stats_.reason, widen_to_ > 0, repeated}, history);
+                               retry_.first_unheld};
+    const RetryDecision d = DecideRetry({stats_.reason, retry_.widen_to > 0, repeated}, history);
     stats_.reason = d.reason;
-    exact_newton_ = d.exact_newton;
-    if (!d.wider_search) widen_to_ = 0;
+    retry_.exact_newton = d.exact_newton;
+    if (!d.wider_search) retry_.widen_to = 0;
     repeated = Reason::NONE;
     switch (d.action) {
     case Retry::WIDEN:
@@ -452,18 +452,18 @@ PetscErrorCode ContactSolver::PrintWidening(double t_try) const {
   PetscFunctionBeginUser;
   // A candidate went into a facet it has no pair with: the step is repeated, from the last converged state, with
   // pairs found within a wider radius (linear material: and that pair; not a cut: the increment stays).
-  if (widen_node_ >= 0)
+  if (retry_.widen_node >= 0)
     PetscCall(PetscPrintf(comm,
                           "Load step at factor %.6g failed (%s) with node %" PetscInt_FMT " %.6g inside the "
                           "obstacle, on a facet it has no contact pair with: searching the pairs again within %.6g "
                           "(was %.6g)\n",
-                          t_try, ReasonName(stats_.reason), widen_node_, widen_depth_, widen_to_,
+                          t_try, ReasonName(stats_.reason), retry_.widen_node, retry_.widen_depth, retry_.widen_to,
                           contact_.search_radius));
   else
     PetscCall(PetscPrintf(comm,
                           "Load step at factor %.6g failed (%s): searching the pairs again within %.6g (was %.6g), "
                           "for facets beyond the radius that may hold the body\n",
-                          t_try, ReasonName(stats_.reason), widen_to_, contact_.search_radius));
+                          t_try, ReasonName(stats_.reason), retry_.widen_to, contact_.search_radius));
   PetscFunctionReturn(0);
 }
 
@@ -477,7 +477,7 @@ PetscErrorCode ContactSolver::Failure(double t_try, const RetryDecision &d, std:
   r.has_obstacle = !obstacle_.facets.empty();
   r.search_radius = contact_.search_radius;
   if (d.reason == Reason::DIVERGED_SINGULAR) r.singular_prefix = system_->SingularReport("");
-  r.unheld_detail = unheld_detail_;
+  r.unheld_detail = retry_.unheld_detail;
   r.violation = stats_.violation;
   if (model_->Nonlinear() && d.reason == Reason::DIVERGED_MAX_IT) {
     bool held_by_supports;
