@@ -387,6 +387,7 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     if (ok) {
       t = t_try;
       stats_.steps = ++step;
+      repeated = Reason::NONE; // a repeat that converged is over: a later failure is its own step's
       PetscCall(SaveConverged(saved));
       // After the last solve the factorisation or preconditioner goes before the last step's output.
       if (t >= 1.0 - 1e-12) PetscCall(system_->Release());
