@@ -304,11 +304,81 @@ PetscErrorCode Finish(MPI_Comm comm, ContactSolver &solver, Case &c, OutputWrite
   PetscFunctionReturn(0);
 }
 
+/// The log stages of a run, as -log_view shows them.
+struct Stages {
+  PetscLogStage mesh, setup, solve, output;
+};
+
+/// The solver's set-up (supports, pairs, numbering, pattern) in its log stage, timed. Collective.
+PetscErrorCode SetupSolver(ContactSolver &solver, PetscLogStage stage, RunInfo &info) {
+  PetscFunctionBeginUser;
+  const double t = MPI_Wtime();
+  PetscCall(PetscLogStagePush(stage));
+  ProgressBegin("set-up (supports, contact pairs, numbering, matrix pattern)");
+  PetscCall(solver.Setup());
+  ProgressEnd();
+  PetscCall(PetscLogStagePop());
+  info.timings["setup"] = MPI_Wtime() - t;
+  PetscFunctionReturn(0);
+}
+
+/// Opens the output directory once every input but the saddle-point solver's options has been checked, and prints
+/// the run's header. Collective.
+PetscErrorCode OpenOutput(MPI_Comm comm, Mesh &mesh, const Case &c, const Box &body, ContactSolver &solver,
+                          const RunInfo &info, OutputWriter &output) {
+  PetscFunctionBeginUser;
+  // Every option but the saddle-point solver's has been read by now: a misspelt one stops the run here.
+  PetscCall(CheckUnusedOptions(comm, UnusedOptions::AFTER_SETUP));
+  // The output directory is opened once the set-up has checked the inputs it reads (groups, supports), so that
+  // these errors leave no directory behind.
+  PetscCall(output.Open(mesh, c.output_opts));
+  mesh.ReleaseDM(); // the mesh's own arrays serve from here on
+  output.SetObstacle(c.obstacle, body);
+  PetscCall(output.SetContactBoundary(solver.Candidates()));
+  PetscCall(PrintHeader(comm, info, c.material, solver.State()));
+  PetscFunctionReturn(0);
+}
+
+/// The load steps, each converged one written (output's stage; t_output: the time that took), timed. Collective.
+PetscErrorCode SolveSteps(ContactSolver &solver, const Case &c, OutputWriter &output, const Stages &stages,
+                          double &t_output, RunInfo &info) {
+  PetscFunctionBeginUser;
+  t_output = 0;
+  NodeContact nodes;
+  ContactSummary summary;
+  auto step_done = [&](PetscInt step, double factor) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    if (!output.Enabled()) PetscFunctionReturn(0);
+    const double t0 = MPI_Wtime();
+    PetscCall(PetscLogStagePush(stages.output));
+    ProgressBegin("output of load step");
+    PetscCall(ComputeContactResults(solver.State(), c.material, nodes, summary));
+    std::vector<Field> fields; // made one at a time as they are written
+    PetscCall(StepFields(solver, nodes, fields));
+    PetscCall(output.WriteStep(step, factor, fields));
+    ProgressEnd();
+    PetscCall(PetscLogStagePop());
+    t_output += MPI_Wtime() - t0;
+    PetscFunctionReturn(0);
+  };
+  const double t = MPI_Wtime();
+  PetscCall(PetscLogStagePush(stages.solve));
+  ProgressBegin("contact solve");
+  PetscCall(solver.Solve(step_done));
+  ProgressEnd();
+  PetscCall(PetscLogStagePop());
+  info.timings["contact_solve"] = MPI_Wtime() - t - t_output;
+  info.timings["assembly"] = solver.Stats().time_assembly;
+  info.timings["active_set"] = solver.Stats().time_active_set;
+  info.timings["linear_solve"] = solver.Stats().time_solve;
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode Run() {
   MPI_Comm comm = PETSC_COMM_WORLD;
-  PetscLogStage stage_mesh, stage_setup, stage_solve, stage_output;
+  Stages stages;
   PetscMPIInt size;
   RunInfo info;
   const double t_start = MPI_Wtime();
@@ -316,10 +386,10 @@ PetscErrorCode Run() {
   ListProgramHelp();
   PetscCallMPI(MPI_Comm_size(comm, &size));
   info.ranks = size;
-  PetscCall(PetscLogStageRegister("Mesh", &stage_mesh));
-  PetscCall(PetscLogStageRegister("Setup", &stage_setup));
-  PetscCall(PetscLogStageRegister("ContactSolve", &stage_solve));
-  PetscCall(PetscLogStageRegister("Output", &stage_output));
+  PetscCall(PetscLogStageRegister("Mesh", &stages.mesh));
+  PetscCall(PetscLogStageRegister("Setup", &stages.setup));
+  PetscCall(PetscLogStageRegister("ContactSolve", &stages.solve));
+  PetscCall(PetscLogStageRegister("Output", &stages.output));
   PetscBool version;
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-version", &version));
   if (version) {
@@ -336,63 +406,20 @@ PetscErrorCode Run() {
   }
   Mesh mesh;
   Box body;
-  double t = MPI_Wtime();
-  PetscCall(PetscLogStagePush(stage_mesh));
+  const double t = MPI_Wtime();
+  PetscCall(PetscLogStagePush(stages.mesh));
   PetscCall(mesh.Create(comm, c.mesh_opts));
   PetscCall(PetscLogStagePop());
   info.mesh_file = mesh.Path();
   info.timings["mesh"] = MPI_Wtime() - t;
   PetscCall(CheckCaseOnMesh(comm, mesh, c, body));
-
-  t = MPI_Wtime();
   ContactSolver solver(mesh, c.material, c.bc, c.obstacle, c.contact, c.solver_opts);
-  PetscCall(PetscLogStagePush(stage_setup));
-  ProgressBegin("set-up (supports, contact pairs, numbering, matrix pattern)");
-  PetscCall(solver.Setup());
-  ProgressEnd();
-  PetscCall(PetscLogStagePop());
-  info.timings["setup"] = MPI_Wtime() - t;
-  // Every option but the saddle-point solver's has been read by now: a misspelt one stops the run here.
-  PetscCall(CheckUnusedOptions(comm, UnusedOptions::AFTER_SETUP));
-  // The output directory is opened once the set-up has checked the inputs it reads (groups, supports), so that
-  // these errors leave no directory behind.
+  PetscCall(SetupSolver(solver, stages.setup, info));
   OutputWriter output;
-  PetscCall(output.Open(mesh, c.output_opts));
-  mesh.ReleaseDM(); // the mesh's own arrays serve from here on
-  output.SetObstacle(c.obstacle, body);
-  PetscCall(output.SetContactBoundary(solver.Candidates()));
-  PetscCall(PrintHeader(comm, info, c.material, solver.State()));
-
-  double t_output = 0;
-  NodeContact nodes;
-  ContactSummary summary;
-  auto step_done = [&](PetscInt step, double factor) -> PetscErrorCode {
-    PetscFunctionBeginUser;
-    if (!output.Enabled()) PetscFunctionReturn(0);
-    const double t0 = MPI_Wtime();
-    PetscCall(PetscLogStagePush(stage_output));
-    ProgressBegin("output of load step");
-    PetscCall(ComputeContactResults(solver.State(), c.material, nodes, summary));
-    std::vector<Field> fields; // made one at a time as they are written
-    PetscCall(StepFields(solver, nodes, fields));
-    PetscCall(output.WriteStep(step, factor, fields));
-    ProgressEnd();
-    PetscCall(PetscLogStagePop());
-    t_output += MPI_Wtime() - t0;
-    PetscFunctionReturn(0);
-  };
-  t = MPI_Wtime();
-  PetscCall(PetscLogStagePush(stage_solve));
-  ProgressBegin("contact solve");
-  PetscCall(solver.Solve(step_done));
-  ProgressEnd();
-  PetscCall(PetscLogStagePop());
-  info.timings["contact_solve"] = MPI_Wtime() - t - t_output;
-  info.timings["assembly"] = solver.Stats().time_assembly;
-  info.timings["active_set"] = solver.Stats().time_active_set;
-  info.timings["linear_solve"] = solver.Stats().time_solve;
-
-  PetscCall(Finish(comm, solver, c, output, stage_output, t_output, t_start, info));
+  PetscCall(OpenOutput(comm, mesh, c, body, solver, info, output));
+  double t_output;
+  PetscCall(SolveSteps(solver, c, output, stages, t_output, info));
+  PetscCall(Finish(comm, solver, c, output, stages.output, t_output, t_start, info));
   PetscFunctionReturn(0);
 }
 

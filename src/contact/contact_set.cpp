@@ -184,9 +184,12 @@ bool ConvexJoint(const Obstacle &obstacle, const FacetSide &a, const FacetSide &
   return behind_a < -tol && behind_b < -tol;
 }
 
-PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
-                                const std::vector<char> &fixed, std::vector<ContactPair> &pairs,
-                                std::vector<char> &candidate, const double *u_local, std::vector<char> *held) {
+namespace {
+
+/// The candidate nodes (the boundary, or the -contact_groups) but those whose every component is fixed (seed section
+/// 4.2.1), which held marks, when given. Collective.
+PetscErrorCode MarkCandidates(const Mesh &mesh, const ContactOptions &opts, const std::vector<char> &fixed,
+                              std::vector<char> &candidate, std::vector<char> *held) {
   const int dim = mesh.Dim();
   const PetscInt nv = mesh.NumLocalVertices();
   PetscFunctionBeginUser;
@@ -209,6 +212,93 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
     if (all_fixed && held) (*held)[v] = candidate[v];
     if (all_fixed) candidate[v] = 0;
   }
+  PetscFunctionReturn(0);
+}
+
+/// Appends the pairs of node v at x with the facets near (bins) within the search radius, and their distances.
+void AddNodePairs(const Obstacle &obstacle, const ContactOptions &opts, const std::vector<char> &fixed, int dim,
+                  PetscInt v, const double x[3], const std::vector<PetscInt> &near, std::vector<ContactPair> &pairs,
+                  std::vector<double> &distance) {
+  for (PetscInt f : near) {
+    const Facet &facet = *obstacle.facets[f];
+    if (facet.Distance(x) > opts.search_radius) continue;
+    const Projection p = facet.Project(x, opts.alpha_tol, opts.length);
+    // A pair whose normal lies in the node's fixed components has an empty constraint row: the supports already
+    // hold the node in that direction.
+    double free2 = 0;
+    for (int k = 0; k < dim; ++k)
+      if (!fixed[v * dim + k]) free2 += p.normal[k] * p.normal[k];
+    if (free2 < 1e-12) continue;
+    ContactPair pair{v, f, {p.normal[0], p.normal[1], p.normal[2]}, p.gap, p.inside, p.inside, {x[0], x[1], x[2]}};
+    pairs.push_back(pair);
+    distance.push_back(facet.Distance(x));
+  }
+}
+
+/// The zones (zone0) of the pairs of node v at x, pairs[first] on: where the node projects onto no facet, or onto
+/// two at a convex joint, which facet is its own.
+void AssignZones(const Obstacle &obstacle, const ContactOptions &opts, const std::vector<char> &fixed, int dim,
+                 PetscInt v, const double x[3], std::size_t first, std::vector<ContactPair> &pairs,
+                 const std::vector<double> &distance) {
+  // A node over the wedge of a convex joint projects onto none of its facets: the nearest one (the first at a
+  // tie, both meeting at the joint) is its own.
+  const auto nearer = [&](std::size_t p, std::size_t q) {
+    return NearerFacet(distance[p], pairs[p].facet, distance[q], pairs[q].facet, opts.search_radius);
+  };
+  bool any = false;
+  for (std::size_t p = first; p < pairs.size(); ++p)
+    any = any || pairs[p].inside0;
+  std::size_t nearest = first;
+  for (std::size_t p = first; p < pairs.size(); ++p)
+    if (nearer(p, nearest)) nearest = p;
+  // Only there, or on a symmetry plane where a quarter of a meshed surface ends (the punch): the node's support
+  // fixes a component k, the facet reaches the node's plane x_k = X_k from one side (its mirror image continues it
+  // beyond), and the node is nearly over the facet's edge (past it by at most its height over the facet's plane).
+  // Beyond the free end of a facet (a floor that ends under a beam) the obstacle is not below the node: the
+  // nearest-facet zone held the nodes there on the floor's extended line as far as -contact_search_radius reached,
+  // so that the result depended on it (the beam beyond a floor's end: 1, 1 and 13 active nodes, max |u| 0.241,
+  // 0.202 and 0.053 for radii 0.08, 0.3 and 3); and the nearly-over-the-edge rule alone, without the symmetry
+  // plane, held a block's corner 0.1 past a floor's end on its extended line (test floor_end_beside_block). A node
+  // that goes into a facet without a pair is found by the certificate, and its load step repeated with the pair.
+  if (!any && nearest < pairs.size()) {
+    const ContactPair &n = pairs[nearest];
+    bool own = false;
+    if (distance[nearest] * distance[nearest] <= 2 * n.g0 * n.g0) {
+      double lo[3], hi[3];
+      obstacle.facets[n.facet]->Bounds(lo, hi);
+      const double tol = 1e-9 * opts.length;
+      for (int k = 0; k < dim && !own; ++k)
+        own = fixed[v * dim + k] && (std::abs(lo[k] - x[k]) <= tol || std::abs(hi[k] - x[k]) <= tol);
+    }
+    for (std::size_t q = first; q < pairs.size() && !own; ++q)
+      own = q != nearest &&
+            std::abs(distance[q] - distance[nearest]) <= 1e-9 * distance[nearest] + 1e-12 * opts.search_radius &&
+            ConvexJoint(obstacle, {n.facet, n.n0, n.g0}, {pairs[q].facet, pairs[q].n0, pairs[q].g0}, x, dim,
+                        opts.search_radius);
+    pairs[nearest].zone0 = own;
+  }
+  // A node on the apex of a convex joint projects onto both facets only by the tolerance of the projection (the
+  // edge of both), and the obstacle is outside it when it is outside either facet: the nearer facet alone is its
+  // own, as over the wedge. Both zones would hold the node in the valley of the two extended facets, whose second
+  // gap turns negative as soon as the node slides along the first one (a finely faceted arc with a vertex under a
+  // node failed its certificate so). At a concave joint the node must clear both facets and keeps both zones.
+  for (std::size_t p = first; p < pairs.size(); ++p)
+    for (std::size_t q = p + 1; q < pairs.size(); ++q)
+      if (pairs[p].zone0 && pairs[q].zone0 &&
+          ConvexJoint(obstacle, {pairs[p].facet, pairs[p].n0, pairs[p].g0}, {pairs[q].facet, pairs[q].n0, pairs[q].g0},
+                      x, dim, opts.search_radius))
+        (nearer(p, q) ? pairs[q] : pairs[p]).zone0 = false;
+}
+
+} // namespace
+
+PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOptions &opts,
+                                const std::vector<char> &fixed, std::vector<ContactPair> &pairs,
+                                std::vector<char> &candidate, const double *u_local, std::vector<char> *held) {
+  const int dim = mesh.Dim();
+  const PetscInt nv = mesh.NumLocalVertices();
+  PetscFunctionBeginUser;
+  PetscCall(MarkCandidates(mesh, opts, fixed, candidate, held));
   pairs.clear();
   std::vector<double> distance;
   const FacetBins bins(obstacle, dim, opts.search_radius);
@@ -219,67 +309,8 @@ PetscErrorCode FindContactPairs(const Mesh &mesh, const Obstacle &obstacle, cons
     for (int k = 0; k < dim; ++k) x[k] = mesh.X(v)[k] + (u_local ? u_local[v * dim + k] : 0.0);
     bins.Find(x, near);
     const std::size_t first = pairs.size();
-    for (PetscInt f : near) {
-      const Facet &facet = *obstacle.facets[f];
-      if (facet.Distance(x) > opts.search_radius) continue;
-      const Projection p = facet.Project(x, opts.alpha_tol, opts.length);
-      // A pair whose normal lies in the node's fixed components has an empty constraint row: the supports already
-      // hold the node in that direction.
-      double free2 = 0;
-      for (int k = 0; k < dim; ++k)
-        if (!fixed[v * dim + k]) free2 += p.normal[k] * p.normal[k];
-      if (free2 < 1e-12) continue;
-      ContactPair pair{v, f, {p.normal[0], p.normal[1], p.normal[2]}, p.gap, p.inside, p.inside, {x[0], x[1], x[2]}};
-      pairs.push_back(pair);
-      distance.push_back(facet.Distance(x));
-    }
-    // A node over the wedge of a convex joint projects onto none of its facets: the nearest one (the first at a
-    // tie, both meeting at the joint) is its own.
-    const auto nearer = [&](std::size_t p, std::size_t q) {
-      return NearerFacet(distance[p], pairs[p].facet, distance[q], pairs[q].facet, opts.search_radius);
-    };
-    bool any = false;
-    for (std::size_t p = first; p < pairs.size(); ++p) any = any || pairs[p].inside0;
-    std::size_t nearest = first;
-    for (std::size_t p = first; p < pairs.size(); ++p)
-      if (nearer(p, nearest)) nearest = p;
-    // Only there, or on a symmetry plane where a quarter of a meshed surface ends (the punch): the node's support
-    // fixes a component k, the facet reaches the node's plane x_k = X_k from one side (its mirror image continues it
-    // beyond), and the node is nearly over the facet's edge (past it by at most its height over the facet's plane).
-    // Beyond the free end of a facet (a floor that ends under a beam) the obstacle is not below the node: the
-    // nearest-facet zone held the nodes there on the floor's extended line as far as -contact_search_radius reached,
-    // so that the result depended on it (the beam beyond a floor's end: 1, 1 and 13 active nodes, max |u| 0.241,
-    // 0.202 and 0.053 for radii 0.08, 0.3 and 3); and the nearly-over-the-edge rule alone, without the symmetry
-    // plane, held a block's corner 0.1 past a floor's end on its extended line (test floor_end_beside_block). A node
-    // that goes into a facet without a pair is found by the certificate, and its load step repeated with the pair.
-    if (!any && nearest < pairs.size()) {
-      const ContactPair &n = pairs[nearest];
-      bool own = false;
-      if (distance[nearest] * distance[nearest] <= 2 * n.g0 * n.g0) {
-        double lo[3], hi[3];
-        obstacle.facets[n.facet]->Bounds(lo, hi);
-        const double tol = 1e-9 * opts.length;
-        for (int k = 0; k < dim && !own; ++k)
-          own = fixed[v * dim + k] && (std::abs(lo[k] - x[k]) <= tol || std::abs(hi[k] - x[k]) <= tol);
-      }
-      for (std::size_t q = first; q < pairs.size() && !own; ++q)
-        own = q != nearest &&
-              std::abs(distance[q] - distance[nearest]) <= 1e-9 * distance[nearest] + 1e-12 * opts.search_radius &&
-              ConvexJoint(obstacle, {n.facet, n.n0, n.g0}, {pairs[q].facet, pairs[q].n0, pairs[q].g0}, x, dim,
-                          opts.search_radius);
-      pairs[nearest].zone0 = own;
-    }
-    // A node on the apex of a convex joint projects onto both facets only by the tolerance of the projection (the
-    // edge of both), and the obstacle is outside it when it is outside either facet: the nearer facet alone is its
-    // own, as over the wedge. Both zones would hold the node in the valley of the two extended facets, whose second
-    // gap turns negative as soon as the node slides along the first one (a finely faceted arc with a vertex under a
-    // node failed its certificate so). At a concave joint the node must clear both facets and keeps both zones.
-    for (std::size_t p = first; p < pairs.size(); ++p)
-      for (std::size_t q = p + 1; q < pairs.size(); ++q)
-        if (pairs[p].zone0 && pairs[q].zone0 &&
-            ConvexJoint(obstacle, {pairs[p].facet, pairs[p].n0, pairs[p].g0},
-                        {pairs[q].facet, pairs[q].n0, pairs[q].g0}, x, dim, opts.search_radius))
-          (nearer(p, q) ? pairs[q] : pairs[p]).zone0 = false;
+    AddNodePairs(obstacle, opts, fixed, dim, v, x, near, pairs, distance);
+    AssignZones(obstacle, opts, fixed, dim, v, x, first, pairs, distance);
   }
   SortPairs(mesh, pairs);
   PetscFunctionReturn(0);

@@ -28,6 +28,81 @@ bool IsSolution(int m, const std::vector<double> &M, const std::vector<double> &
   return ok;
 }
 
+/// The units of a run of Lemke's method (see Lemke): each row's largest |M_ij| (rowmax), the smallest and largest of
+/// them (mref, mmax) and the largest |q_i| (qmax).
+struct LcpUnits {
+  double mref = INFINITY, mmax = 0, qmax = 0;
+  std::vector<double> rowmax;
+};
+
+/// The tableau of w - M z - e z0 = q in a run's units: columns w (0..m-1), z (m..2m-1), z0 (2m), the right-hand side
+/// (2m+1); row i holds basic variable Basis(i). equilibrate: each row divided by its largest M entry (at least 1).
+class Tableau {
+public:
+  Tableau(int m, const std::vector<double> &M, const std::vector<double> &q, const LcpUnits &u, bool equilibrate)
+      : m_(m), nc_(2 * m + 2), t_((std::size_t)m * nc_, 0.0), basis_(m) {
+    for (int i = 0; i < m; ++i) {
+      const double scale = equilibrate ? std::max(1.0, u.rowmax[i] / u.mref) : 1.0;
+      At(i, i) = 1 / scale;
+      for (int j = 0; j < m; ++j)
+        At(i, m + j) = -M[i + (std::size_t)j * m] / u.mref / scale;
+      At(i, Z0()) = -1 / scale;
+      At(i, Rhs()) = q[i] / u.qmax / scale;
+      basis_[i] = i;
+    }
+  }
+  int Z0() const { return 2 * m_; }
+  int Rhs() const { return 2 * m_ + 1; }
+  double &At(int i, int j) { return t_[(std::size_t)i * nc_ + j]; }
+  int Basis(int i) const { return basis_[i]; }
+  /// Column c enters the basis at row r.
+  void Pivot(int r, int c) {
+    const double p = At(r, c);
+    for (int j = 0; j < nc_; ++j)
+      At(r, j) /= p;
+    for (int i = 0; i < m_; ++i) {
+      if (i == r) continue;
+      const double f = At(i, c);
+      if (f == 0) continue;
+      for (int j = 0; j < nc_; ++j)
+        At(i, j) -= f * At(r, j);
+      At(i, c) = 0;
+    }
+    basis_[r] = c;
+  }
+  /// The row whose variable leaves when column entering enters (-1: none, a ray): the minimum ratio; at a tie z0
+  /// leaves first (the solution), then the smallest variable index (no cycling in practice on these problems; the
+  /// pivot limit bounds a degenerate one).
+  int LeavingRow(int entering, bool equilibrate) {
+    double column = 0;
+    for (int i = 0; i < m_; ++i)
+      column = std::max(column, std::abs(At(i, entering)));
+    int r = -1;
+    double best = INFINITY;
+    for (int i = 0; i < m_; ++i) {
+      const double d = At(i, entering);
+      double row = column;
+      if (!equilibrate) {
+        row = 0;
+        for (int j = 0; j < Rhs(); ++j)
+          row = std::max(row, std::abs(At(i, j)));
+      }
+      if (d <= 1e-12 * row) continue;
+      const double ratio = std::max(At(i, Rhs()), 0.0) / d;
+      const bool tie = r >= 0 && std::abs(ratio - best) <= 1e-12 * std::max(equilibrate ? 1.0 : 0.0, std::abs(best));
+      if (r < 0 || (!tie && ratio < best) ||
+          (tie && (basis_[i] == Z0() || (basis_[r] != Z0() && basis_[i] < basis_[r]))))
+        r = i, best = ratio;
+    }
+    return r;
+  }
+
+private:
+  int m_, nc_;
+  std::vector<double> t_;
+  std::vector<int> basis_;
+};
+
 /// One run of Lemke's method (SolveLcp). equilibrate: in the units described there, with tolerances relative to a
 /// column's largest entry; else M over its largest entry, rows as they are, pivots and ties relative to the row's
 /// largest entry and to the larger ratio.
@@ -42,78 +117,38 @@ LcpStatus Lemke(int m, const std::vector<double> &M, const std::vector<double> &
   // the same numbers, so the same pivots, in any units. Then an entry is round-off when it is within 1e-12 of the
   // largest in its column, and ratios tie within 1e-12 of the larger or of 1 (a right-hand side of order 1). M = 0:
   // w = q < 0 for every z.
-  double mref = INFINITY, mmax = 0, qmax = 0;
-  std::vector<double> rowmax(m, 0.0);
+  LcpUnits u;
+  u.rowmax.assign(m, 0.0);
   for (int i = 0; i < m; ++i) {
-    for (int j = 0; j < m; ++j) rowmax[i] = std::max(rowmax[i], std::abs(M[i + (std::size_t)j * m]));
-    if (rowmax[i] > 0) mref = std::min(mref, rowmax[i]);
-    mmax = std::max(mmax, rowmax[i]);
+    for (int j = 0; j < m; ++j)
+      u.rowmax[i] = std::max(u.rowmax[i], std::abs(M[i + (std::size_t)j * m]));
+    if (u.rowmax[i] > 0) u.mref = std::min(u.mref, u.rowmax[i]);
+    u.mmax = std::max(u.mmax, u.rowmax[i]);
   }
-  for (double v : q) qmax = std::max(qmax, std::abs(v));
-  if (!std::isfinite(mref)) return LcpStatus::RAY;
-  if (!equilibrate) mref = mmax;
-  // The tableau of w - M z - e z0 = q: columns w (0..m-1), z (m..2m-1), z0 (2m), the right-hand side (2m+1); row i
-  // holds basic variable basis[i].
-  const int nc = 2 * m + 2, z0 = 2 * m, rhs = 2 * m + 1;
-  std::vector<double> t((std::size_t)m * nc, 0.0);
-  auto at = [&](int i, int j) -> double & { return t[(std::size_t)i * nc + j]; };
-  std::vector<int> basis(m);
-  for (int i = 0; i < m; ++i) {
-    const double scale = equilibrate ? std::max(1.0, rowmax[i] / mref) : 1.0;
-    at(i, i) = 1 / scale;
-    for (int j = 0; j < m; ++j) at(i, m + j) = -M[i + (std::size_t)j * m] / mref / scale;
-    at(i, z0) = -1 / scale;
-    at(i, rhs) = q[i] / qmax / scale;
-    basis[i] = i;
-  }
-  auto pivot = [&](int r, int c) {
-    const double p = at(r, c);
-    for (int j = 0; j < nc; ++j) at(r, j) /= p;
-    for (int i = 0; i < m; ++i) {
-      if (i == r) continue;
-      const double f = at(i, c);
-      if (f == 0) continue;
-      for (int j = 0; j < nc; ++j) at(i, j) -= f * at(r, j);
-      at(i, c) = 0;
-    }
-    basis[r] = c;
-  };
+  for (double v : q)
+    u.qmax = std::max(u.qmax, std::abs(v));
+  if (!std::isfinite(u.mref)) return LcpStatus::RAY;
+  if (!equilibrate) u.mref = u.mmax;
+  Tableau tab(m, M, q, u, equilibrate);
+  const int z0 = tab.Z0(), rhs = tab.Rhs();
   if (max_pivots <= 0) max_pivots = 10 * m + 100;
   // z0 enters where q is most negative.
   int r = 0;
   for (int i = 1; i < m; ++i)
-    if (at(i, rhs) / -at(i, z0) < at(r, rhs) / -at(r, z0)) r = i;
-  int leaving = basis[r];
-  pivot(r, z0);
+    if (tab.At(i, rhs) / -tab.At(i, z0) < tab.At(r, rhs) / -tab.At(r, z0)) r = i;
+  int leaving = tab.Basis(r);
+  tab.Pivot(r, z0);
   int count = 1;
   LcpStatus status = LcpStatus::PIVOT_LIMIT;
   for (; count < max_pivots; ++count) {
     const int entering = leaving < m ? leaving + m : leaving - m; // the complement of the variable that left
-    double column = 0;
-    for (int i = 0; i < m; ++i) column = std::max(column, std::abs(at(i, entering)));
-    // Minimum ratio; at a tie z0 leaves first (the solution), then the smallest variable index (no cycling in
-    // practice on these problems; the pivot limit bounds a degenerate one).
-    r = -1;
-    double best = INFINITY;
-    for (int i = 0; i < m; ++i) {
-      const double d = at(i, entering);
-      double row = column;
-      if (!equilibrate) {
-        row = 0;
-        for (int j = 0; j < rhs; ++j) row = std::max(row, std::abs(at(i, j)));
-      }
-      if (d <= 1e-12 * row) continue;
-      const double ratio = std::max(at(i, rhs), 0.0) / d;
-      const bool tie = r >= 0 && std::abs(ratio - best) <= 1e-12 * std::max(equilibrate ? 1.0 : 0.0, std::abs(best));
-      if (r < 0 || (!tie && ratio < best) || (tie && (basis[i] == z0 || (basis[r] != z0 && basis[i] < basis[r]))))
-        r = i, best = ratio;
-    }
+    r = tab.LeavingRow(entering, equilibrate);
     if (r < 0) {
       status = LcpStatus::RAY;
       break;
     }
-    leaving = basis[r];
-    pivot(r, entering);
+    leaving = tab.Basis(r);
+    tab.Pivot(r, entering);
     if (leaving == z0) {
       status = LcpStatus::SOLVED;
       ++count;
@@ -123,7 +158,7 @@ LcpStatus Lemke(int m, const std::vector<double> &M, const std::vector<double> &
   if (pivots) *pivots = count;
   if (status != LcpStatus::SOLVED) return status;
   for (int i = 0; i < m; ++i)
-    if (basis[i] >= m && basis[i] < z0) z[basis[i] - m] = std::max(at(i, rhs), 0.0) * (qmax / mref);
+    if (tab.Basis(i) >= m && tab.Basis(i) < z0) z[tab.Basis(i) - m] = std::max(tab.At(i, rhs), 0.0) * (u.qmax / u.mref);
   // A solution only if it is one: round-off in a degenerate or ill-conditioned tableau can end on a basis that is not
   // (INACCURATE, no verdict; z and w are what was found).
   if (!IsSolution(m, M, q, z, w, LCP_TOL)) return LcpStatus::INACCURATE;

@@ -336,16 +336,12 @@ PetscErrorCode MumpsSchur::ReadValues(Mat A, bool pattern) {
 
 PetscErrorCode MumpsSchur::Factor(Mat A, const SchurLayout &layout, const FactorChoices &how) {
   const std::vector<PetscInt> &schur_rows = layout.schur_rows;
-  const PetscInt owned_u = layout.owned_u, node_size = layout.node_size;
-  const bool symmetric = how.symmetric;
-  const MumpsControls &controls = how.controls;
-  OrderingOptions ordering = how.ordering;
   PetscInt rstart, rend, N;
   PetscFunctionBeginUser;
   Release(); // an earlier factorisation (one that found null pivots) goes first
   declined_ = false;
   PetscCall(RegisterEvents());
-  symmetric_ = symmetric;
+  symmetric_ = how.symmetric;
   PetscCall(PetscObjectGetComm((PetscObject)A, &comm_));
   PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
   PetscCall(MatGetOwnershipRange(A, &rstart, &rend));
@@ -356,10 +352,51 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const SchurLayout &layout, const Factor
   PetscCallMPI(MPI_Bcast(&m_all, 1, MPIU_INT, 0, comm_));
   listvar_.resize(m);
   for (PetscInt i = 0; i < m; ++i) listvar_[i] = (MUMPS_INT)(schur_rows[i] + 1);
+  PetscCall(InitialiseMumps());
+  OrderingOptions ordering = how.ordering;
+  PetscCall(ApplyControls(how.controls, N, layout.node_size, ordering));
+  id_.n = (MUMPS_INT)N;
+  id_.nnz_loc = (MUMPS_INT8)val_.size();
+  id_.irn_loc = irn_.data();
+  id_.jcn_loc = jcn_.data();
+  id_.a_loc = val_.data();
+  id_.size_schur = (MUMPS_INT)m_all;
+  id_.listvar_schur = listvar_.data();
+  id_.schur_lld = (MUMPS_INT)m_all;
+  if (id_.ICNTL(7) == 1) {
+    PetscCall(NestedDissection(N, rstart, layout.owned_u, layout.node_size, layout.coords, ordering));
+    if (rank_ == 0) id_.perm_in = perm_in_.data();
+  }
+  double flops, entries;
+  PetscCall(Analyse(how, N, m_all, flops, entries));
+  if (how.may_decline && DenseCostsMore((double)m_all, flops)) {
+    PetscCall(
+        PetscInfo(nullptr,
+                  "dense Schur complement of %" PetscInt_FMT " candidates: %.6g flops per active-set "
+                  "change and %.6g entries, against %.6g flops and %.6g entries of the sparse factors: declined\n",
+                  m_all, (double)m_all * m_all * m_all / 3, 2.0 * m_all * m_all, flops, entries));
+    Release();
+    declined_ = true;
+    PetscFunctionReturn(0);
+  }
+  {
+    VecH layout;
+    PetscCall(MatCreateVecs(A, layout.out(), nullptr));
+    PetscCall(VecScatterCreateToZero(layout, &to_root_, root_.out()));
+  }
+  redrhs_.assign(m, 0.0);
+  ordering_name_ = id_.ICNTL(7) == 1 ? GRAPH_ORDERING_NAMES[(int)ordering.graph] : "MUMPS's";
+  PetscCall(FactorNumeric(layout.d0));
+  keep_values_ = how.keep_values;
+  if (!how.keep_values) FreeValues();
+  PetscFunctionReturn(0);
+}
 
+PetscErrorCode MumpsSchur::InitialiseMumps() {
+  PetscFunctionBeginUser;
   id_.comm_fortran = (MUMPS_INT)MPI_Comm_c2f(comm_);
   id_.par = 1;
-  id_.sym = symmetric ? 2 : 0; // general symmetric: the saddle-point matrix is indefinite
+  id_.sym = symmetric_ ? 2 : 0; // general symmetric: the saddle-point matrix is indefinite
   id_.job = -1;
   dmumps_c(&id_);
   initialised_ = true;
@@ -377,6 +414,12 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const SchurLayout &layout, const Factor
   id_.ICNTL(24) = 1; // null-pivot detection
   id_.CNTL(3) = 1e-12;
   id_.ICNTL(14) = MUMPS_WORKSPACE_INCREASE; // see saddle_point.cpp
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::ApplyControls(const MumpsControls &controls, PetscInt N, PetscInt node_size,
+                                         OrderingOptions &ordering) {
+  PetscFunctionBeginUser;
   // The user's MUMPS controls (ReadMumpsControls), as PETSc's interface takes them, except the ones this class relies
   // on (input/Schur/right-hand-side layout).
   // Ordering: a nested dissection of the node graph, given to MUMPS (ICNTL(7) = 1; Debian's MUMPS has only AMD, AMF,
@@ -393,26 +436,20 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const SchurLayout &layout, const Factor
     id_.ICNTL(k) = (MUMPS_INT)v;
   }
   for (const auto &[k, v] : controls.cntl) id_.CNTL(k) = v;
-  id_.n = (MUMPS_INT)N;
-  id_.nnz_loc = (MUMPS_INT8)val_.size();
-  id_.irn_loc = irn_.data();
-  id_.jcn_loc = jcn_.data();
-  id_.a_loc = val_.data();
-  id_.size_schur = (MUMPS_INT)m_all;
-  id_.listvar_schur = listvar_.data();
-  id_.schur_lld = (MUMPS_INT)m_all;
-  if (id_.ICNTL(7) == 1) {
-    PetscCall(NestedDissection(N, rstart, owned_u, node_size, layout.coords, ordering));
-    if (rank_ == 0) id_.perm_in = perm_in_.data();
-  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::Analyse(const FactorChoices &how, PetscInt N, PetscInt m_all, double &flops,
+                                   double &entries) {
   PetscMPIInt size;
+  PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm_, &size));
+  const MumpsControls &controls = how.controls;
   cholesky_in_use_ = how.solver == KeptSolver::CHOLESKY ||
-                     (how.solver == KeptSolver::AUTO && symmetric && id_.ICNTL(7) == 1 && controls.icntl.empty() &&
+                     (how.solver == KeptSolver::AUTO && how.symmetric && id_.ICNTL(7) == 1 && controls.icntl.empty() &&
                       controls.cntl.empty() && N <= (size == 1 ? CHOLESKY_MAX_ROWS : CHOLESKY_MAX_ROWS_GATHERED));
-  double flops, entries;
   if (cholesky_in_use_) {
-    PetscCheck(symmetric && id_.ICNTL(7) == 1, comm_, PETSC_ERR_PLIB,
+    PetscCheck(how.symmetric && id_.ICNTL(7) == 1, comm_, PETSC_ERR_PLIB,
                "the supernodal Cholesky factorisation needs LDL^T and the given ordering");
     PetscCall(CholeskyAnalysis(N, m_all));
     flops = cholesky_flops_, entries = cholesky_entries_;
@@ -422,32 +459,16 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const SchurLayout &layout, const Factor
     // (negative: in millions).
     flops = id_.rinfog[0], entries = id_.INFOG(20) >= 0 ? id_.INFOG(20) : -1e6 * id_.INFOG(20);
   }
-  if (how.may_decline && DenseCostsMore((double)m_all, flops)) {
-    PetscCall(PetscInfo(nullptr, "dense Schur complement of %" PetscInt_FMT " candidates: %.6g flops per active-set "
-                        "change and %.6g entries, against %.6g flops and %.6g entries of the sparse factors: declined\n",
-                        m_all, (double)m_all * m_all * m_all / 3, 2.0 * m_all * m_all, flops, entries));
-    Release();
-    declined_ = true;
-    PetscFunctionReturn(0);
-  }
-  {
-    VecH layout;
-    PetscCall(MatCreateVecs(A, layout.out(), nullptr));
-    PetscCall(VecScatterCreateToZero(layout, &to_root_, root_.out()));
-  }
-  redrhs_.assign(m, 0.0);
-  ordering_name_ = id_.ICNTL(7) == 1 ? GRAPH_ORDERING_NAMES[(int)ordering.graph] : "MUMPS's";
-  PetscCall(FactorNumeric(layout.d0));
-  keep_values_ = how.keep_values;
-  if (!how.keep_values) {
-    // The matrix values are no longer needed (no refactorisation).
-    irn_.clear(), jcn_.clear(), val_.clear();
-    irn_.shrink_to_fit(), jcn_.shrink_to_fit(), val_.shrink_to_fit();
-    for (auto *v : {&root_irn_, &root_jcn_})
-      std::vector<MUMPS_INT>().swap(*v);
-    std::vector<double>().swap(root_val_);
-  }
   PetscFunctionReturn(0);
+}
+
+void MumpsSchur::FreeValues() {
+  // The matrix values are no longer needed (no refactorisation).
+  irn_.clear(), jcn_.clear(), val_.clear();
+  irn_.shrink_to_fit(), jcn_.shrink_to_fit(), val_.shrink_to_fit();
+  for (auto *v : {&root_irn_, &root_jcn_})
+    std::vector<MUMPS_INT>().swap(*v);
+  std::vector<double>().swap(root_val_);
 }
 
 PetscErrorCode MumpsSchur::CholeskyAnalysis(PetscInt N, PetscInt m) {

@@ -20,12 +20,12 @@ PetscErrorCode SaddlePointSystem::Factor() {
   ProgressBegin("analysis and factorisation (the Schur complement on the candidates)");
   FactorChoices how;
   how.symmetric = !lu_;
-  how.ordering = ordering_;
+  how.ordering = kept_.ordering;
   how.controls = mumps_controls_;
   how.keep_values = !constant_k_;
-  how.may_decline = !reuse_forced_;
-  how.solver = kept_solver_;
-  PetscCall(mumps_schur_.Factor(A_, {schur_rows_, d, dofs_->OwnedU(), dofs_->Dim(), coords_}, how));
+  how.may_decline = !kept_.forced;
+  how.solver = kept_.solver;
+  PetscCall(mumps_schur_.Factor(A_, {schur_rows_, d, dofs_->OwnedU(), dofs_->Dim(), kept_.coords}, how));
   ProgressEnd();
   if (mumps_schur_.Declined()) {
     // The dense Schur complement would cost more than it saves (many candidates on a body that factors cheaply, such
@@ -37,20 +37,21 @@ PetscErrorCode SaddlePointSystem::Factor() {
                "declined its dense Schur complement on the %" PetscInt_FMT " candidates, and PETSc's MUMPS, which "
                "refactorises instead, takes no given ordering; expected -contact_mat_mumps_icntl_7 0, 2, 4, 6 or 7",
                dofs_->GlobalLambda());
-    if (!ordering_given_.empty())
+    if (!kept_.ordering_given.empty())
       PetscCall(PetscPrintf(PetscObjectComm((PetscObject)A_.get()),
                             "Note: %s does not apply: the kept factorisation declined its dense Schur complement on "
                             "the %" PetscInt_FMT " candidates (it would cost more than a refactorisation per "
                             "active-set change), and PETSc's MUMPS, which refactorises instead, orders by its own "
                             "choice (-contact_mat_mumps_icntl_7); -contact_reuse_factorization keeps the Schur "
-                            "complement and the ordering\n", ordering_given_.c_str(), dofs_->GlobalLambda()));
-    if (kept_solver_set_)
+                            "complement and the ordering\n",
+                            kept_.ordering_given.c_str(), dofs_->GlobalLambda()));
+    if (kept_.solver_set)
       PetscCall(PetscPrintf(PetscObjectComm((PetscObject)A_.get()),
                             "Note: -contact_kept_solver %s does not apply: the kept factorisation declined its dense "
                             "Schur complement on the %" PetscInt_FMT " candidates (it would cost more than a "
                             "refactorisation per active-set change), and PETSc's MUMPS refactorises instead; "
                             "-contact_reuse_factorization keeps the Schur complement\n",
-                            KEPT_SOLVER_NAMES[(int)kept_solver_], dofs_->GlobalLambda()));
+                            KEPT_SOLVER_NAMES[(int)kept_.solver], dofs_->GlobalLambda()));
     PetscFunctionReturn(0);
   }
   null_pivots_ = mumps_schur_.NullPivots();
@@ -109,12 +110,12 @@ PetscErrorCode SaddlePointSystem::SolveWithKeptFactor(const std::vector<PetscSca
   PetscFunctionBeginUser;
   iterations = 0;
   check_tol = ACCEPTED_RESIDUAL;
-  if (reuse_max_it_ > 0 && !refactor_next_) {
+  if (kept_.max_it > 0 && !refactor_next_) {
     KSPConvergedReason reason;
     PetscReal default_rtol, abstol, dtol;
     PetscInt max_it;
     PetscCall(KSPGetTolerances(ksp_, &default_rtol, &abstol, &dtol, &max_it));
-    PetscCall(KSPSetTolerances(ksp_kept_, rtol > 0 ? rtol : default_rtol, abstol, PETSC_DEFAULT, reuse_max_it_));
+    PetscCall(KSPSetTolerances(ksp_kept_, rtol > 0 ? rtol : default_rtol, abstol, PETSC_DEFAULT, kept_.max_it));
     PC kept;
     PetscCall(KSPGetPC(ksp_kept_, &kept));
     PetscCall(PCKeptSetDiagonal(kept, d));

@@ -17,17 +17,17 @@ using namespace detail;
 PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const char *why, Pivot &pivot) {
   PetscFunctionBeginUser;
   pivot = Pivot::NONE;
-  if (st.large || st.moving || !system_->ExactFactorization() || dofs_.GlobalLambda() > LCP_MAX_ROWS)
+  if (!model_->Pivots() || st.moving || !system_->ExactFactorization() || dofs_.GlobalLambda() > LCP_MAX_ROWS)
     PetscFunctionReturn(0);
   st.pivoted++;
   // The problem from the current iterate: the gaps and F_int there (a condensed iterate is expanded first), the
   // right-hand side f - F_int with no active row, condensed onto the multipliers: the base of the condensed solves
   // that follow (the next solve's active set only changes the multiplier rows).
-  if (st.condensed) PetscCall(Materialise(st, it));
-  PetscCall(Residual(lambda_, st.rnorm, st.rscale, nullptr, nullptr, &st.rroundoff));
+  if (st.base.condensed) PetscCall(Materialise(st, it));
+  PetscCall(Residual(lambda_, st.r.norm, st.r.scale, nullptr, nullptr, &st.r.roundoff));
   st.next.assign(pairs_.size(), 0);
   st.stabilised = false;
-  st.base = false;
+  st.base.ready = false;
   PetscCall(AssembleSystem(st));
   LcpStatus status = LcpStatus::PIVOT_LIMIT;
   int pivots = 0;
@@ -64,7 +64,7 @@ PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const
                   "no contact forces on its %" PetscInt_FMT " candidate pairs balance the load (the complementarity "
                   "problem leaves %.2g of it along rigid-body motions unbalanced)",
                   dofs_.GlobalLambda(), unbalanced);
-    unheld_detail_ = text;
+    retry_.unheld_detail = text;
     PetscFunctionReturn(0);
   }
   // The step goes on from that set with the usual rule, its earlier sets forgotten.
@@ -74,14 +74,13 @@ PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const
 }
 
 PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
-  const bool large = material_.model == MaterialModel::SVK;
   PetscFunctionBeginUser;
-  widen_to_ = 0;
+  retry_.widen_to = 0;
   if (stats_.reason == Reason::DIVERGED_NONINVERTIBLE_DEFORMATION || stats_.search_widenings >= MAX_WIDENINGS)
     PetscFunctionReturn(0);
   // The displacement of the step's last iterate (a condensed search keeps it at its base until it is expanded; a
   // singular refactorisation left nothing to expand).
-  if (st.condensed && !st.singular) PetscCall(Materialise(st, it));
+  if (st.base.condensed && !st.singular) PetscCall(Materialise(st, it));
   Penetration unpaired, prescribed;
   std::vector<std::array<PetscInt, 2>> found;
   double reach;
@@ -93,7 +92,8 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   // DIVERGED_NOT_HELD, instead of cycling).
   // svk cuts the load step first (a smaller increment is the usual cure of a cycle, and its pairs within the whole
   // diagonal would be many and slow).
-  const bool can_cut = large && stats_.cuts < opts_.max_cuts && stats_.reason != Reason::DIVERGED_NOT_HELD;
+  const bool can_cut =
+      model_->Nonlinear() && stats_.cuts < opts_.max_cuts && stats_.reason != Reason::DIVERGED_NOT_HELD;
   const bool unheld =
       (stats_.reason == Reason::DIVERGED_CYCLING || stats_.reason == Reason::DIVERGED_NOT_HELD) && !can_cut;
   const bool penetrates = unpaired.depth > contact_.gap_tol;
@@ -102,7 +102,7 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   // pairs with its side wall alone). Only pairs within the whole diagonal that leave it singular say it is not held.
   const bool singular = stats_.reason == Reason::DIVERGED_SINGULAR && contact_.search_radius < contact_.length &&
                         !obstacle_.facets.empty();
-  if (!penetrates && !(unheld && !widened_unheld_) && !singular) PetscFunctionReturn(0);
+  if (!penetrates && !(unheld && !retry_.widened_unheld) && !singular) PetscFunctionReturn(0);
   // A node that went into the obstacle farther than the radius reaches, or started there deeper than it: the radius
   // must cover the candidates' displacements, with room for the repeated step to move them on. The linear material
   // also gets the pairs of the facets its nodes went into: a facet within the radius whose zone did not hold the
@@ -113,15 +113,15 @@ PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
       std::min(penetrates ? std::max({2 * contact_.search_radius, 2 * reach, 2 * unpaired.depth})
                           : std::max(2 * contact_.search_radius, contact_.length),
                SEARCH_RADIUS_MAX * contact_.length);
-  bool more = !large && !found.empty();
+  bool more = !model_->CurrentConfiguration() && !found.empty();
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &more, 1, MPI_CXX_BOOL, MPI_LOR, mesh_.Comm()));
   if (radius <= contact_.search_radius && !more) PetscFunctionReturn(0);
-  if (!large) extra_pairs_.insert(found.begin(), found.end());
-  widen_to_ = std::max(radius, contact_.search_radius);
-  widen_node_ = penetrates ? unpaired.node : -1;
-  widen_depth_ = unpaired.depth;
+  if (!model_->CurrentConfiguration()) retry_.extra_pairs.insert(found.begin(), found.end());
+  retry_.widen_to = std::max(radius, contact_.search_radius);
+  retry_.widen_node = penetrates ? unpaired.node : -1;
+  retry_.widen_depth = unpaired.depth;
   // A repeat for a free or singular body is made once: the pairs within the diagonal that still leave it free say so.
-  if (!penetrates && (unheld || singular)) widened_unheld_ = true, first_unheld_ = stats_.reason;
+  if (!penetrates && (unheld || singular)) retry_.widened_unheld = true, retry_.first_unheld = stats_.reason;
   PetscFunctionReturn(0);
 }
 
@@ -129,9 +129,9 @@ PetscErrorCode ContactSolver::WidenSearch(const std::vector<double> &lambda, con
                                           const std::vector<char> &active) {
   const int dim = mesh_.Dim();
   PetscFunctionBeginUser;
-  contact_.search_radius = widen_to_;
+  contact_.search_radius = retry_.widen_to;
   stats_.search_widenings++;
-  if (material_.model == MaterialModel::SVK) {
+  if (model_->CurrentConfiguration()) {
     // svk searches its pairs again at the start of every load step (Repair), now with the wider radius.
     PetscCall(AdoptPairs(pairs_, lambda, mult, active));
     PetscFunctionReturn(0);
@@ -143,7 +143,7 @@ PetscErrorCode ContactSolver::WidenSearch(const std::vector<double> &lambda, con
   // The facets the nodes went into count in their zone from now on (the gap g0 + n0 u of the reference
   // configuration, exact for a flat facet).
   const PairIndex found = IndexPairs(pairs);
-  for (const auto &[v, f] : extra_pairs_) {
+  for (const auto &[v, f] : retry_.extra_pairs) {
     if (found.count({v, f})) continue;
     const double *X = mesh_.X(v);
     const Projection pr = obstacle_.facets[f]->Project(X, contact_.alpha_tol, contact_.length);
@@ -166,40 +166,41 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &st.moving, 1, MPI_CXX_BOOL, MPI_LOR, mesh_.Comm()));
   // Gaps with the prescribed displacements in place (the constraint rows hold only the free components).
   for (std::size_t i = 0; i < st.u_eval.size(); ++i) st.u_eval[i] = u_local_[i] + st.delta[i];
-  if (st.condensed) {
+  if (st.base.condensed) {
     // The gaps after a condensed solve: the base's plus the normal displacement of the increment (the zone, the
     // normals and the constraint rows of the linear material do not move).
-    for (std::size_t p = 0; p < pairs_.size(); ++p) states_[p].gap = st.g_base[p] + st.shift[p];
-    st.rnorm = st.solve_residual;
-    st.rscale = 0, st.rroundoff = 0;
+    for (std::size_t p = 0; p < pairs_.size(); ++p)
+      states_[p].gap = st.base.g[p] + st.base.shift[p];
+    st.r.norm = st.solve_residual;
+    st.r.scale = 0, st.r.roundoff = 0;
     PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
     PetscFunctionReturn(0);
   }
-  if (st.large) {
+  if (model_->CurrentConfiguration()) {
     // svk: pairs from the current configuration (new pairs mean a new pattern and a new analysis).
     bool rebuilt;
     PetscCall(Repair(st.u_eval, it == 0, rebuilt));
     if (rebuilt) {
       // A new layout: no base of a condensed search survives it.
-      st.base = false;
-      st.u_base.Reset();
+      st.base.ready = false;
+      st.base.u.Reset();
       st.next.assign(pairs_.size(), 0);
       st.measured = false;
       PetscCall(VecZeroEntries(fext_));
       PetscCall(assembler_->AssembleLoads(bc_, st.factor, fext_));
     }
   }
-  EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, st.large, st.u_eval.data(), states_,
-                rows_, normals_);
-  if (st.large || it == 0 || st.stabilised) {
-    PetscCall(Residual(lambda_, st.rnorm, st.rscale, nullptr, nullptr, &st.rroundoff));
+  EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, model_->CurrentConfiguration(),
+                st.u_eval.data(), states_, rows_, normals_);
+  if (model_->Nonlinear() || it == 0 || st.stabilised) {
+    PetscCall(Residual(lambda_, st.r.norm, st.r.scale, nullptr, nullptr, &st.r.roundoff));
   } else {
     // Linear material after a solve: K du was solved for exactly (to the solve's residual), so F_int = f + B^T x on
     // the free rows (x: the solved multipliers), without a pass over the cells; the monitor shows the solve's
     // residual. A state that may be the solution gets a full residual evaluation (StepControl).
     PetscScalar *fi;
     const PetscScalar *fe;
-    fint_at_.clear();
+    fint_at_.u.clear();
     PetscCall(VecGetArray(fint_, &fi));
     PetscCall(VecGetArrayRead(fext_, &fe));
     for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) fi[i] = fe[i];
@@ -207,8 +208,8 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
       for (int k = 0; k < dim; ++k) fi[dofs_.LocalOffset(pairs_[p].vertex, k)] += mult_[p] * normals_[p][k];
     PetscCall(VecRestoreArrayRead(fext_, &fe));
     PetscCall(VecRestoreArray(fint_, &fi));
-    st.rnorm = st.solve_residual;
-    st.rscale = 0, st.rroundoff = 0;
+    st.r.norm = st.solve_residual;
+    st.r.scale = 0, st.r.roundoff = 0;
   }
   PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -221,9 +222,10 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
   const bool deferred = DeferSwitch(st, changes); // svk: not a state to judge the body by
   PetscCall(ActiveSetCameBack(st, it, changes, outcome, done));
   if (done) PetscFunctionReturn(0);
-  if (changes > 0) st.candidate_rnorm = -1, st.stalled_corrections = 0; // a new active set: not a correction's
+  if (changes > 0)
+    st.correction.candidate_rnorm = -1, st.correction.stalled = 0; // a new active set: not a correction's
   if (it > 0) {
-    PetscCall(RecordIteration(st.step, it, st.factor, st.next, changes, st.krylov, st.rnorm, st.last_solve_time));
+    PetscCall(RecordIteration(st.step, it, st.factor, st.next, changes, st.krylov, st.r.norm, st.last_solve_time));
     // A state that may be the solution: certified, or the loop goes on (svk: Newton; linear: one more solve corrects
     // an equilibrium residual left by an inexact solver) or stops with the violated condition.
     if (changes == 0 && !st.moving && !st.stabilised) {
@@ -244,7 +246,8 @@ bool ContactSolver::DeferSwitch(StepState &st, PetscInt &changes) const {
   // the multipliers and gaps that choose it are then those of the set's solution, not of a Newton iterate on its way
   // there (svk's block in the notch toggled one pair between a tensile multiplier and a penetration while the
   // residual stayed at 4e-4).
-  if (st.large && changes > 0 && active_set_.OneAtATime() && !(st.rnorm <= EquilibriumTol(st.rscale, st.rroundoff))) {
+  if (model_->Nonlinear() && changes > 0 && active_set_.OneAtATime() &&
+      !(st.r.norm <= EquilibriumTol(st.r.scale, st.r.roundoff))) {
     st.next = active_set_.Flags();
     changes = 0;
     return true;
@@ -259,18 +262,18 @@ PetscErrorCode ContactSolver::ActiveSetCameBack(StepState &st, PetscInt it, Pets
   // An active set that comes back would cycle. svk with lagged searches first drops them for the rest of the step
   // (their stale tangent can lead the set round); then, as the linear material does at once, the updates switch one
   // pair at a time (ActiveSet::SwitchOneAtATime). A set that comes back after that ends the step (DIVERGED_CYCLING).
-  const bool lagging = st.large && opts_.lagged_search && system_->ReusesFactorization() && !st.exact_newton;
-  if (it > 0 && changes > 0 && std::isfinite(st.rnorm) && (lagging || !active_set_.OneAtATime())) {
+  const bool lagging = model_->Nonlinear() && opts_.lagged_search && system_->ReusesFactorization() && !st.newton.exact;
+  if (it > 0 && changes > 0 && std::isfinite(st.r.norm) && (lagging || !active_set_.OneAtATime())) {
     bool back;
-    PetscCall(active_set_.Seen(st.next, keys_, st.large ? 3 : 1, back, false));
+    PetscCall(active_set_.Seen(st.next, keys_, model_->CycleRepeats(), back, false));
     if (back && lagging) {
-      st.exact_newton = true;
+      st.newton.exact = true;
       active_set_.Forget();
       PetscCall(PetscInfo(nullptr, "the active set came back: exact Newton steps from now on in this load step\n"));
     } else if (back) {
       // The linear material solves its complementarity problem first (PivotedActiveSet, finite), the first time.
       bool found = false;
-      if (!st.large && st.pivoted == 0) {
+      if (model_->Pivots() && st.pivoted == 0) {
         const std::vector<char> current = active_set_.Flags(), next = st.next;
         Pivot pivot;
         PetscCall(PivotedActiveSet(st, it, "the active set came back", pivot));
@@ -308,17 +311,17 @@ PetscErrorCode ContactSolver::ActiveSetCameBack(StepState &st, PetscInt it, Pets
 PetscErrorCode ContactSolver::JudgeCandidate(StepState &st, PetscInt it, Outcome &outcome, bool &done) {
   PetscFunctionBeginUser;
   done = false;
-  if (st.condensed) PetscCall(Materialise(st, it));
-  if (!st.large) PetscCall(Residual(lambda_, st.rnorm, st.rscale, nullptr, nullptr, &st.rroundoff));
-  const double tol = EquilibriumTol(st.rscale, st.rroundoff);
+  if (st.base.condensed) PetscCall(Materialise(st, it));
+  if (!model_->Nonlinear()) PetscCall(Residual(lambda_, st.r.norm, st.r.scale, nullptr, nullptr, &st.r.roundoff));
+  const double tol = EquilibriumTol(st.r.scale, st.r.roundoff);
   PetscCall(PetscInfo(nullptr, "candidate state: equilibrium residual %.6g (tolerance %.6g, of which round-off %.6g)\n",
-                      st.rnorm, tol, st.rroundoff));
-  if (st.rnorm <= tol || !st.large) {
+                      st.r.norm, tol, st.r.roundoff));
+  if (st.r.norm <= tol || !model_->Nonlinear()) {
     Certificate cert;
-    PetscCall(Certify(st.u_eval, st.rnorm, tol, cert));
+    PetscCall(Certify(st.u_eval, st.r.norm, tol, cert));
     if (cert.Satisfied()) {
       certificate_ = cert;
-      stats_.reason = st.large ? Reason::CONVERGED_ACTIVE_SET_AND_RESIDUAL : Reason::CONVERGED_ACTIVE_SET_UNCHANGED;
+      stats_.reason = model_->ConvergedReason();
       outcome = Outcome::CONVERGED;
       done = true;
       PetscFunctionReturn(0);
@@ -337,25 +340,25 @@ PetscErrorCode ContactSolver::JudgeCandidate(StepState &st, PetscInt it, Outcome
   // instead of -contact_ksp_rtol relative to that start (the certificate checks the result again). 2D Hertz,
   // fieldsplit_gamg, 1M dofs: 46 Krylov iterations of the correction solve before. A correction that did not
   // reach the tolerance (its start's residual was not this one) is followed by a solve to the KSP's tolerance.
-  if (!st.large && st.rnorm > tol) {
+  if (!model_->Nonlinear() && st.r.norm > tol) {
     // Corrections that no longer halve the residual cannot reach the tolerance: the solves are as accurate as
     // the system's conditioning lets them be (e.g. a nearly incompressible material). A correction that started
     // from another residual is followed by a solve to the KSP's tolerance (below), so the loop stops only when
     // that one does not halve the residual either.
-    const bool halved = st.candidate_rnorm <= 0 || st.rnorm <= 0.5 * st.candidate_rnorm;
-    st.stalled_corrections = halved ? 0 : st.stalled_corrections + 1;
-    if (st.stalled_corrections >= 2) {
+    const bool halved = st.correction.candidate_rnorm <= 0 || st.r.norm <= 0.5 * st.correction.candidate_rnorm;
+    st.correction.stalled = halved ? 0 : st.correction.stalled + 1;
+    if (st.correction.stalled >= 2) {
       stats_.reason = Reason::DIVERGED_EQUILIBRIUM_STALLED;
       char text[256];
-      std::snprintf(text, sizeof(text), "%.6g after two correction solves, %.6g before them, tolerance %.6g", st.rnorm,
-                    st.candidate_rnorm, tol);
+      std::snprintf(text, sizeof(text), "%.6g after two correction solves, %.6g before them, tolerance %.6g", st.r.norm,
+                    st.correction.candidate_rnorm, tol);
       stats_.violation = text;
       outcome = Outcome::STOP;
       done = true;
       PetscFunctionReturn(0);
     }
-    if (halved) st.candidate_rnorm = st.rnorm;
-    st.correction_rtol = st.corrected ? 0.0 : 0.1 * tol / st.rnorm;
+    if (halved) st.correction.candidate_rnorm = st.r.norm;
+    st.correction.rtol = st.correction.made ? 0.0 : 0.1 * tol / st.r.norm;
   }
   PetscFunctionReturn(0);
 }
@@ -386,7 +389,7 @@ PetscErrorCode ContactSolver::ExtendAlongFreeMotion(StepState &st, Outcome &outc
     if (!(closing > CLOSING * size && states_[p].gap >= 0)) continue;
     const double t = states_[p].gap / closing;
     bool on_facet = states_[p].InZone();
-    if (st.large) {
+    if (model_->CurrentConfiguration()) {
       double x[3] = {0, 0, 0};
       rigid_.Motion(X, motion, x);
       for (int k = 0; k < dim; ++k) x[k] = X[k] + u_local_[keys_[p].vertex * dim + k] + t * x[k];
@@ -416,10 +419,12 @@ PetscErrorCode ContactSolver::StopAtLimits(StepState &st, PetscInt it, PetscInt 
   // Linear material: every iteration is an active-set iteration. svk: every iteration is a Newton step, at most
   // -newton_max_it of them, and at most -contact_max_it of them may change the active set.
   if (changes > 0) ++st.set_changes;
-  const bool limit = st.large ? it >= opts_.newton_max_it || st.set_changes > contact_.max_it : it >= contact_.max_it;
+  const bool limit =
+      model_->Nonlinear() ? it >= opts_.newton_max_it || st.set_changes > contact_.max_it : it >= contact_.max_it;
   bool cycling = false;
-  if (std::isfinite(st.rnorm) && !limit) PetscCall(active_set_.Seen(st.next, keys_, st.large ? 3 : 1, cycling));
-  if (!std::isfinite(st.rnorm)) stats_.reason = Reason::DIVERGED_NONINVERTIBLE_DEFORMATION;
+  if (std::isfinite(st.r.norm) && !limit) PetscCall(active_set_.Seen(st.next, keys_, model_->CycleRepeats(), cycling));
+  if (!std::isfinite(st.r.norm))
+    stats_.reason = Reason::DIVERGED_NONINVERTIBLE_DEFORMATION;
   else if (limit) stats_.reason = Reason::DIVERGED_MAX_IT;
   else if (cycling && changes > 0 && it > 0) stats_.reason = Reason::DIVERGED_CYCLING;
   else PetscFunctionReturn(0);

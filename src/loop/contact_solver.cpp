@@ -30,7 +30,7 @@ PetscErrorCode ContactSolver::Setup() {
   }
   PetscCall(BuildDirichlet(mesh_, bc_, dirichlet_));
   PetscCall(FindContactPairs(mesh_, obstacle_, contact_, dirichlet_.fixed, pairs_, candidate_, nullptr, &held_));
-  if (material_.model != MaterialModel::SVK) DropOutOfZone(pairs_);
+  if (!model_->CurrentConfiguration()) DropOutOfZone(pairs_);
   PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size()));
   assembler_ = std::make_unique<Assembler>(mesh_, material_, dofs_, dirichlet_);
   PetscCall(assembler_->CheckCells());
@@ -65,7 +65,7 @@ PetscErrorCode ContactSolver::CreateSystem() {
   if (!stats_.solver_chosen) PetscCall(ChooseSolver());
   // A path chosen by the run's own solver options takes no defaults of a path.
   system_->UsePath(stats_.solver.by == "solver options" ? SolverPath::DIRECT : stats_.solver.path);
-  PetscCall(system_->Create(dofs_, rows_, coords, material_.model != MaterialModel::SVK, kscale_, d_nnz, o_nnz,
+  PetscCall(system_->Create(dofs_, rows_, coords, !model_->Nonlinear(), kscale_, d_nnz, o_nnz,
                             [&](Mat A) { return assembler_->InsertPattern(A); }));
   if (opts_.lagged_search_set && opts_.lagged_search) system_->KeepFactorization();
   k_assembled_ = false;
@@ -73,7 +73,7 @@ PetscErrorCode ContactSolver::CreateSystem() {
   PetscCall(VecDuplicate(u_, du_.out()));
   PetscCall(VecDuplicate(u_, fext_.out()));
   PetscCall(VecDuplicate(u_, fint_.out()));
-  fint_at_.clear();
+  fint_at_.u.clear();
   fdir_.Reset(); // made by the first step that moves a Dirichlet value
   PetscCall(PetscObjectSetName((PetscObject)u_.get(), "displacement"));
   std::vector<PetscInt> from(mesh_.NumLocalVertices() * dim);
@@ -264,10 +264,9 @@ PetscErrorCode ContactSolver::Monitor(const IterationRecord &r) const {
 }
 
 PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first, bool &ok) {
-  const bool large = material_.model == MaterialModel::SVK;
-  StepState st{step, factor, first, large};
+  StepState st{step, factor, first};
   PetscFunctionBeginUser;
-  st.exact_newton = exact_newton_;
+  st.newton.exact = retry_.exact_newton;
   ok = false;
   // The increment of the prescribed displacements enters through the first solve of the step (its Dirichlet rows
   // and the coupling K_fd du_d of the free rows), not by moving the boundary nodes alone, which could invert the
@@ -282,8 +281,8 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
   PetscReal load_scale;
   PetscCall(VecNorm(fext_, NORM_INFINITY, &load_scale));
   active_set_.BeginStep(load_scale);
-  widen_to_ = 0;
-  unheld_detail_.clear();
+  retry_.widen_to = 0;
+  retry_.unheld_detail.clear();
   PetscInt it = 0;
   for (;; ++it) {
     PetscInt changes = 0;
@@ -405,7 +404,6 @@ PetscErrorCode ContactSolver::RestoreConverged(const Converged &c) {
 
 PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt, double)> &step_done) {
   MPI_Comm comm = mesh_.Comm();
-  const bool large = material_.model == MaterialModel::SVK;
   PetscFunctionBeginUser;
   Converged saved;
   PetscCall(SaveConverged(saved));
@@ -423,20 +421,21 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     if (ok) {
       t = t_try;
       stats_.steps = ++step;
+      repeated = Reason::NONE; // a repeat that converged is over: a later failure is its own step's
       PetscCall(SaveConverged(saved));
       // After the last solve the factorisation or preconditioner goes before the last step's output.
       if (t >= 1.0 - 1e-12) PetscCall(system_->Release());
       PetscCall(step_done(step, t));
       continue;
     }
-    const RetryHistory history{large,         opts_.lagged_search && system_->ReusesFactorization(),
-                               exact_newton_, exact_tried,
-                               stats_.cuts,   opts_.max_cuts,
-                               first_unheld_};
-    const RetryDecision d = DecideRetry({stats_.reason, widen_to_ > 0, repeated}, history);
+    const RetryHistory history{model_->Nonlinear(), opts_.lagged_search && system_->ReusesFactorization(),
+                               retry_.exact_newton, exact_tried,
+                               stats_.cuts,         opts_.max_cuts,
+                               retry_.first_unheld};
+    const RetryDecision d = DecideRetry({stats_.reason, retry_.widen_to > 0, repeated}, history);
     stats_.reason = d.reason;
-    exact_newton_ = d.exact_newton;
-    if (!d.wider_search) widen_to_ = 0;
+    retry_.exact_newton = d.exact_newton;
+    if (!d.wider_search) retry_.widen_to = 0;
     repeated = Reason::NONE;
     switch (d.action) {
     case Retry::WIDEN:
@@ -488,35 +487,34 @@ PetscErrorCode ContactSolver::PrintWidening(double t_try) const {
   PetscFunctionBeginUser;
   // A candidate went into a facet it has no pair with: the step is repeated, from the last converged state, with
   // pairs found within a wider radius (linear material: and that pair; not a cut: the increment stays).
-  if (widen_node_ >= 0)
+  if (retry_.widen_node >= 0)
     PetscCall(PetscPrintf(comm,
                           "Load step at factor %.6g failed (%s) with node %" PetscInt_FMT " %.6g inside the "
                           "obstacle, on a facet it has no contact pair with: searching the pairs again within %.6g "
                           "(was %.6g)\n",
-                          t_try, ReasonName(stats_.reason), widen_node_, widen_depth_, widen_to_,
+                          t_try, ReasonName(stats_.reason), retry_.widen_node, retry_.widen_depth, retry_.widen_to,
                           contact_.search_radius));
   else
     PetscCall(PetscPrintf(comm,
                           "Load step at factor %.6g failed (%s): searching the pairs again within %.6g (was %.6g), "
                           "for facets beyond the radius that may hold the body\n",
-                          t_try, ReasonName(stats_.reason), widen_to_, contact_.search_radius));
+                          t_try, ReasonName(stats_.reason), retry_.widen_to, contact_.search_radius));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode ContactSolver::Failure(double t_try, const RetryDecision &d, std::string &message) {
-  const bool large = material_.model == MaterialModel::SVK;
   PetscFunctionBeginUser;
   FailureReport r;
   r.reason = d.reason;
   r.load_factor = t_try;
-  r.svk = large;
+  r.svk = model_->Nonlinear();
   r.deformed_after_unheld = d.deformed_after_unheld;
   r.has_obstacle = !obstacle_.facets.empty();
   r.search_radius = contact_.search_radius;
   if (d.reason == Reason::DIVERGED_SINGULAR) r.singular_prefix = system_->SingularReport("");
-  r.unheld_detail = unheld_detail_;
+  r.unheld_detail = retry_.unheld_detail;
   r.violation = stats_.violation;
-  if (large && d.reason == Reason::DIVERGED_MAX_IT) {
+  if (model_->Nonlinear() && d.reason == Reason::DIVERGED_MAX_IT) {
     bool held_by_supports;
     PetscCall(rigid_.Held(keys_, normals_, std::vector<char>(active_set_.Flags().size(), 0), held_by_supports));
     r.free_without_contact = !held_by_supports;

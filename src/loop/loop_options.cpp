@@ -2,8 +2,9 @@
 #include "signorini/loop/loop_options.hpp"
 #include "signorini/core/handle.hpp"
 
-#include "signorini/options/readers.hpp"
 #include "signorini/linalg/solver_options.hpp"
+#include "signorini/loop/material_policy.hpp"
+#include "signorini/options/readers.hpp"
 
 namespace signorini {
 
@@ -44,9 +45,9 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptio
                         "corrected to the certificate's tolerance. 0: every solve to -contact_ksp_rtol",
                         {0, SolverOptions::ACTIVE_SET_RTOL_MAX}, opts.active_set_rtol));
   PetscOptionsEnd();
-  // The linear material solves a load step by the active-set loop alone (-contact_max_it) and never cuts one: these
+  // A linear material solves a load step by the active-set loop alone (-contact_max_it) and never cuts one: these
   // would be ignored.
-  if (model != MaterialModel::SVK) {
+  if (!MakeMaterialPolicy(model)->Nonlinear()) {
     PetscCheck(!max_cuts_set, comm, PETSC_ERR_USER_INPUT,
                "-load_max_cuts %" PetscInt_FMT " applies to -material_model svk only (the linear material never cuts a "
                "load step)", opts.max_cuts);

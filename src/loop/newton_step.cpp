@@ -21,15 +21,15 @@ PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double
   PetscFunctionBeginUser;
   // F_int is assembled again only when the displacement changed since the last assembly (svk: the step length check
   // of UpdateSolution evaluates the residual at the new iterate, which the next iteration starts from).
-  bool same = fint_at_ == u_local_;
+  bool same = fint_at_.u == u_local_;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_CXX_BOOL, MPI_LAND, mesh_.Comm()));
   if (same) {
-    min_J = fint_min_J_;
+    min_J = fint_at_.min_J;
   } else {
     PetscCall(VecZeroEntries(fint_));
     PetscCall(assembler_->Assemble(u_local_.data(), nullptr, 0, fint_, &min_J));
-    fint_at_ = u_local_;
-    fint_min_J_ = min_J;
+    fint_at_.u = u_local_;
+    fint_at_.min_J = min_J;
   }
   const PetscScalar *fi, *fe;
   PetscCall(VecGetArrayRead(fint_, &fi));
@@ -71,19 +71,19 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   // svk with the kept factorisation, while the active set changes (-newton_lagged_search): the tangent of the last
   // assembly stays (a modified Newton step), solved to SEARCH_RTOL, as long as the residual contracts by
   // LAGGED_CONTRACTION per step; the exact tangent once the active set settles.
-  // A lagged step is a condensed search (SolveAndUpdate): its later iterations (st.base) keep it.
-  if (!(st.large && st.base)) {
-    const bool contracting = st.lag_rnorm < 0 || st.rnorm <= LAGGED_CONTRACTION * st.lag_rnorm;
-    const bool lag = st.large && opts_.lagged_search && st.searching && !st.stabilised &&
-                     !st.exact_newton && !active_set_.OneAtATime() && system_->ReusesFactorization();
-    st.lagged = lag && contracting;
-    st.lag_rnorm = st.rnorm;
+  // A lagged step is a condensed search (SolveAndUpdate): its later iterations (st.base.ready) keep it.
+  if (!(model_->Nonlinear() && st.base.ready)) {
+    const bool contracting = st.newton.lag_rnorm < 0 || st.r.norm <= LAGGED_CONTRACTION * st.newton.lag_rnorm;
+    const bool lag = model_->Nonlinear() && opts_.lagged_search && st.searching && !st.stabilised && !st.newton.exact &&
+                     !active_set_.OneAtATime() && system_->ReusesFactorization();
+    st.newton.lagged = lag && contracting;
+    st.newton.lag_rnorm = st.r.norm;
     // A lagged step that did not contract: the factored tangent has drifted too far to precondition the current one.
     if (lag && !contracting) system_->RefactorNext();
-  } else if (st.stabilised || st.exact_newton) {
-    st.lagged = false; // the search is left (Condensable): a full solve from the base with the current tangent
+  } else if (st.stabilised || st.newton.exact) {
+    st.newton.lagged = false; // the search is left (Condensable): a full solve from the base with the current tangent
   }
-  if ((st.large && !st.lagged) || !k_assembled_) {
+  if ((model_->Nonlinear() && !st.newton.lagged) || !k_assembled_) {
     ProgressBegin("stiffness assembly");
     PetscCall(MatZeroEntries(system_->Stiffness()));
     PetscCall(assembler_->Assemble(u_local_.data(), system_->Stiffness(), kscale_, nullptr, nullptr));
@@ -98,7 +98,8 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
     // The base's right-hand side with the new active set: its displacement rows stay, the gaps are the base's.
     PetscScalar *b;
     PetscCall(VecGetArray(system_->Rhs(), &b));
-    for (std::size_t p = 0; p < pairs_.size(); ++p) b[dofs_.OwnedU() + p] = st.next[p] ? st.g_base[p] : 0.0;
+    for (std::size_t p = 0; p < pairs_.size(); ++p)
+      b[dofs_.OwnedU() + p] = st.next[p] ? st.base.g[p] : 0.0;
     PetscCall(VecRestoreArray(system_->Rhs(), &b));
     PetscCall(PetscLogEventEnd(EV_ASSEMBLY, 0, 0, 0, 0));
     PetscFunctionReturn(0);
@@ -143,19 +144,20 @@ PetscErrorCode ContactSolver::NewtonForcing(const StepState &st, double &rtol) c
   // Once the active set has cycled (ActiveSet::SwitchOneAtATime), every step is exact: one pair switches per step,
   // and the gaps and multipliers that choose it must be those of the current set's solution.
   rtol = 0;
-  if (!(opts_.lagged_search && system_->ReusesFactorization()) || active_set_.OneAtATime() || !(st.rnorm > 0) ||
-      !(st.rscale > 0))
+  if (!(opts_.lagged_search && system_->ReusesFactorization()) || active_set_.OneAtATime() || !(st.r.norm > 0) ||
+      !(st.r.scale > 0))
     PetscFunctionReturn(0);
-  const double eta = std::min(SEARCH_RTOL, std::max(0.5 * EquilibriumTol(st.rscale, st.rroundoff) / st.rnorm, st.rnorm / st.rscale));
+  const double eta = std::min(
+      SEARCH_RTOL, std::max(0.5 * EquilibriumTol(st.r.scale, st.r.roundoff) / st.r.norm, st.r.norm / st.r.scale));
   PetscReal bnorm;
   PetscCall(VecNorm(system_->Rhs(), NORM_2, &bnorm));
-  if (bnorm > 0) rtol = std::min(SEARCH_RTOL, eta * st.rnorm / bnorm);
+  if (bnorm > 0) rtol = std::min(SEARCH_RTOL, eta * st.r.norm / bnorm);
   PetscFunctionReturn(0);
 }
 
 bool ContactSolver::Condensable(const StepState &st) const {
-  if (!st.base || st.stabilised || !system_->ReusesFactorization()) return false;
-  return st.large ? st.lagged : system_->ExactFactorization();
+  if (!st.base.ready || st.stabilised || !system_->ReusesFactorization()) return false;
+  return model_->Nonlinear() ? st.newton.lagged : system_->ExactFactorization();
 }
 
 PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
@@ -165,36 +167,38 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
     ScopedTimer t(stats_.time_solve);
     const double t0 = MPI_Wtime();
     PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
-    const bool search = st.large ? st.lagged && system_->ReusesFactorization() : system_->ExactFactorization();
+    const bool search =
+        model_->Nonlinear() ? st.newton.lagged && system_->ReusesFactorization() : system_->ExactFactorization();
     // Linear material, kept factorisation, no stabilisation and no prescribed displacement still to apply: the
     // right-hand side assembled now is the base of the solves after it, which run in the multiplier space (condensed)
     // until Materialise.
-    if (!st.base && !st.stabilised && !st.moving && search) PetscCall(CondenseBase(st));
+    if (!st.base.ready && !st.stabilised && !st.moving && search) PetscCall(CondenseBase(st));
     condensed = Condensable(st);
     if (st.singular) {
       // The condensation found null pivots: nothing to solve (LoadStep ends the step).
     } else if (condensed) {
       std::vector<double> bm(pairs_.size());
-      for (std::size_t p = 0; p < pairs_.size(); ++p) bm[p] = st.next[p] ? st.g_base[p] : 0.0;
-      PetscCall(system_->SolveCondensed(bm, lambda_, st.shift, st.solve_residual));
+      for (std::size_t p = 0; p < pairs_.size(); ++p)
+        bm[p] = st.next[p] ? st.base.g[p] : 0.0;
+      PetscCall(system_->SolveCondensed(bm, lambda_, st.base.shift, st.solve_residual));
       mult_ = lambda_;
       st.krylov = 1;
     } else {
       // A full solve moves the displacement away from any base.
-      st.base = false;
-      double rtol = st.lagged ? SEARCH_RTOL : st.correction_rtol;
-      if (st.large && !st.lagged) PetscCall(NewtonForcing(st, rtol));
+      st.base.ready = false;
+      double rtol = st.newton.lagged ? SEARCH_RTOL : st.correction.rtol;
+      if (model_->Nonlinear() && !st.newton.lagged) PetscCall(NewtonForcing(st, rtol));
       // Inexact active set (linear material, iterative solver): while the set changes a solve only has to show
       // where it goes; the solve after which it stays is corrected to the certificate's tolerance (JudgeCandidate).
       // Without multipliers nothing can change: one solve to the KSP's tolerance.
-      const bool loose = !st.large && st.correction_rtol == 0 && opts_.active_set_rtol > 0 && system_->Iterative() &&
-                         dofs_.GlobalLambda() > 0;
+      const bool loose = !model_->Nonlinear() && st.correction.rtol == 0 && opts_.active_set_rtol > 0 &&
+                         system_->Iterative() && dofs_.GlobalLambda() > 0;
       if (loose) rtol = opts_.active_set_rtol;
       const PetscInt fallbacks = system_->KrylovFallbacks();
       PetscCall(system_->Solve(st.krylov, st.solve_residual, st.singular, rtol, loose));
       stats_.krylov_fallbacks += system_->KrylovFallbacks() - fallbacks;
-      st.corrected = st.correction_rtol > 0;
-      st.correction_rtol = 0;
+      st.correction.made = st.correction.rtol > 0;
+      st.correction.rtol = 0;
     }
     PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
     const double dt = MPI_Wtime() - t0;
@@ -205,10 +209,10 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
   stats_.active_set_iterations++;
   stats_.krylov_iterations += st.krylov;
   stats_.stabilised_solves += st.stabilised;
-  st.condensed = condensed;
+  st.base.condensed = condensed;
   if (condensed) PetscFunctionReturn(0);
   double step_length;
-  PetscCall(UpdateSolution(st.rnorm, st.stabilised, step_length));
+  PetscCall(UpdateSolution(st.r.norm, st.stabilised, step_length));
   // What a shortened step left of the prescribed increment comes in the next solve; a full step lands exactly.
   for (double &d : st.delta) d *= 1.0 - step_length;
   if (step_length == 1.0) PetscCall(SetDirichlet(st.factor));
@@ -217,14 +221,15 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
 
 PetscErrorCode ContactSolver::CondenseBase(StepState &st) {
   PetscFunctionBeginUser;
-  if (!st.u_base) PetscCall(VecDuplicate(u_, st.u_base.out()));
-  PetscCall(VecCopy(u_, st.u_base));
-  st.g_base.resize(pairs_.size());
-  for (std::size_t p = 0; p < pairs_.size(); ++p) st.g_base[p] = states_[p].gap;
+  if (!st.base.u) PetscCall(VecDuplicate(u_, st.base.u.out()));
+  PetscCall(VecCopy(u_, st.base.u));
+  st.base.g.resize(pairs_.size());
+  for (std::size_t p = 0; p < pairs_.size(); ++p)
+    st.base.g[p] = states_[p].gap;
   PetscCall(system_->Condense(st.singular));
   if (st.singular) PetscFunctionReturn(0);
-  st.base = true;
-  st.base_rnorm = st.rnorm;
+  st.base.ready = true;
+  st.base.rnorm = st.r.norm;
   PetscFunctionReturn(0);
 }
 
@@ -241,20 +246,20 @@ PetscErrorCode ContactSolver::Materialise(StepState &st, PetscInt it) {
     PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
   }
   stats_.solves++;
-  PetscCall(VecCopy(st.u_base, u_));
+  PetscCall(VecCopy(st.base.u, u_));
   double step_length;
-  PetscCall(UpdateSolution(st.base_rnorm, false, step_length));
-  st.condensed = false;
+  PetscCall(UpdateSolution(st.base.rnorm, false, step_length));
+  st.base.condensed = false;
   // The expansion used up the condensed right-hand side: a solve after it (svk: the next Newton step; linear: a
   // correction of an equilibrium residual the certificate refused) condenses again or solves in full.
-  st.base = false;
+  st.base.ready = false;
   PetscCall(EvaluateIterate(st, it));
   for (std::size_t p = 0; p < pairs_.size(); ++p) states_[p].lambda = lambda_[p];
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode ContactSolver::UpdateSolution(double r0, bool stabilised, double &step) {
-  const bool large = material_.model == MaterialModel::SVK;
+  const bool newton = model_->Nonlinear(), current = model_->CurrentConfiguration();
   const PetscInt nu = dofs_.OwnedU();
   std::vector<double> new_lambda(pairs_.size());
   const std::vector<char> &active = active_set_.Flags();
@@ -273,14 +278,14 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0, bool stabilised, double 
   std::vector<double> dir(dx, dx + nu);
   PetscCall(VecRestoreArrayRead(system_->Solution(), &dx));
   double g0 = 0;
-  if (large && opts_.line_search) {
+  if (newton && opts_.line_search) {
     double r, scale;
-    EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_local_.data(), states_, rows_,
+    EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, current, u_local_.data(), states_, rows_,
                   normals_);
     PetscCall(Residual(new_lambda, r, scale, dir.data(), &g0));
   }
   double s = 1.0;
-  if (large && stabilised) {
+  if (newton && stabilised) {
     // svk: a stabilised step moves the body along its free motions; it is cut to a quarter of the search radius,
     // so that the pairs searched again at the new position still see the obstacle it approaches (StepControl then
     // moves the body along its free rigid motion from there).
@@ -299,9 +304,9 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0, bool stabilised, double 
     PetscCall(VecRestoreArrayRead(du_, &u_old));
     PetscCall(VecRestoreArray(u_, &u));
     PetscCall(UpdateLocal());
-    if (!large || k == 8) break;
+    if (!newton || k == 8) break;
     double r, scale, g;
-    EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, large, u_local_.data(), states_, rows_,
+    EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, current, u_local_.data(), states_, rows_,
                   normals_);
     PetscCall(Residual(new_lambda, r, scale, dir.data(), &g));
     PetscCall(PetscInfo(nullptr, "line search: step %.6g g(s)/g(0) %.6g residual %.6g (before %.6g)\n", s, g / g0, r, r0));

@@ -65,51 +65,68 @@ private:
   std::unordered_map<std::size_t, std::size_t> map_;
 };
 
-std::string ReadModel(const std::string &path, SerialMesh &mesh) {
-  // The mesh's dimension is that of its highest-dimensional elements: 3 when it has any volume element.
+/// Element blocks of a gmsh model (types, and per type the element tags and their nodes), as getElements gives them.
+struct ElementBlocks {
   std::vector<int> types;
-  std::vector<std::vector<std::size_t>> elem_tags, elem_nodes;
-  gmsh::model::mesh::getElements(types, elem_tags, elem_nodes, 3, -1);
+  std::vector<std::vector<std::size_t>> tags, nodes;
+};
+
+/// The nodes used by cells, numbered in the order they appear in the file: a node tag's position among the file's
+/// nodes (positions), and the number of the node at each position (used; -1: no cell uses it).
+struct NodeNumbering {
+  TagIndex positions;
+  std::vector<int> used;
+  /// The number of a node tag among the nodes used by cells, -1 for an unknown tag or an unused node.
+  int Find(std::size_t tag) const {
+    const std::size_t pos = positions.Find(tag);
+    return pos == TagIndex::NONE ? -1 : used[pos];
+  }
+};
+
+/// The cells of the model: the elements of its highest dimension (3 when it has any volume element, which sets
+/// mesh.dim), of the types signorini reads. Returns the first error, or "".
+std::string ReadCellBlocks(const std::string &path, SerialMesh &mesh, ElementBlocks &cells) {
+  gmsh::model::mesh::getElements(cells.types, cells.tags, cells.nodes, 3, -1);
   std::size_t n3 = 0;
-  for (auto &t : elem_tags) n3 += t.size();
+  for (auto &t : cells.tags)
+    n3 += t.size();
   mesh.dim = n3 > 0 ? 3 : 2;
   const int dim = mesh.dim;
-  if (dim == 2) gmsh::model::mesh::getElements(types, elem_tags, elem_nodes, 2, -1);
+  if (dim == 2) gmsh::model::mesh::getElements(cells.types, cells.tags, cells.nodes, 2, -1);
   const char *expected = dim == 2 ? "linear triangles (3 nodes) and quadrilaterals (4 nodes)"
                                   : "linear tetrahedra (4 nodes), pyramids (5 nodes) and hexahedra (8 nodes)";
   std::size_t ncells = 0;
-  for (std::size_t k = 0; k < types.size(); ++k) {
-    if (CellVertices(dim, types[k]) == 0) {
+  for (std::size_t k = 0; k < cells.types.size(); ++k) {
+    if (CellVertices(dim, cells.types[k]) == 0) {
       std::string name;
       int d, order, nn, npr;
       std::vector<double> lc;
-      gmsh::model::mesh::getElementProperties(types[k], name, d, order, nn, lc, npr);
+      gmsh::model::mesh::getElementProperties(cells.types[k], name, d, order, nn, lc, npr);
       return "mesh '" + path + "' has elements of type '" + name + "'; expected " + expected;
     }
-    ncells += elem_tags[k].size();
+    ncells += cells.tags[k].size();
   }
   if (ncells == 0)
     return "mesh '" + path + "' has no triangles or quadrilaterals (a 1D-only or empty mesh?); expected a 2D or 3D "
            "mesh";
+  return "";
+}
 
+/// Numbers the nodes that cells use in the order they appear in the file (nodes) and appends their tags and
+/// coordinates to mesh; a 2D mesh must lie in a plane z = const. Returns the first error, or "".
+std::string NumberNodes(const std::string &path, const ElementBlocks &cells, SerialMesh &mesh, NodeNumbering &nodes) {
+  const int dim = mesh.dim;
   std::vector<std::size_t> all_tags;
   std::vector<double> all_coords, params;
   gmsh::model::mesh::getNodes(all_tags, all_coords, params, -1, -1, false, false);
-  TagIndex tag_pos;
   std::size_t duplicate = 0;
-  if (!tag_pos.Build(all_tags, duplicate))
+  if (!nodes.positions.Build(all_tags, duplicate))
     return "mesh '" + path + "' has duplicate node tag " + std::to_string(duplicate) + "; expected unique node tags";
-  // The position of a node tag among the nodes used by cells, -1 for an unknown tag or an unused node.
-  std::vector<int> used(all_tags.size(), -1);
-  const auto used_index = [&](std::size_t tag) {
-    const std::size_t pos = tag_pos.Find(tag);
-    return pos == TagIndex::NONE ? -1 : used[pos];
-  };
-
-  // Nodes used by cells, numbered in the order they appear in the file.
-  for (auto &nodes : elem_nodes)
-    for (std::size_t t : nodes) {
-      const std::size_t pos = tag_pos.Find(t);
+  std::vector<int> &used = nodes.used;
+  used.assign(all_tags.size(), -1);
+  for (auto &cell_nodes : cells.nodes)
+    for (std::size_t t : cell_nodes) {
+      const std::size_t pos = nodes.positions.Find(t);
       if (pos == TagIndex::NONE)
         return "mesh '" + path + "' has an element referring to unknown node " + std::to_string(t);
       used[pos] = 0;
@@ -127,82 +144,126 @@ std::string ReadModel(const std::string &path, SerialMesh &mesh) {
   if (dim == 2 && zmax - zmin > 1e-12 * (1.0 + std::abs(zmax)))
     return "mesh '" + path + "' has no volume cells and is not planar (z varies): a surface mesh cannot be the body; "
            "expected tetrahedra, pyramids or hexahedra (3D) or a 2D mesh in the x-y plane";
+  return "";
+}
 
-  for (std::size_t k = 0; k < types.size(); ++k) {
-    const int nv = CellVertices(dim, types[k]);
-    for (std::size_t e = 0; e < elem_tags[k].size(); ++e) {
-      for (int j = 0; j < nv; ++j) mesh.cell_nodes.push_back(used_index(elem_nodes[k][nv * e + j]));
+/// Appends the cells to mesh (their nodes by number, offsets and tags) and indexes their tags (cell_of_tag). Returns
+/// the first error, or "".
+std::string AddCells(const std::string &path, const ElementBlocks &cells, const NodeNumbering &nodes, SerialMesh &mesh,
+                     TagIndex &cell_of_tag) {
+  for (std::size_t k = 0; k < cells.types.size(); ++k) {
+    const int nv = CellVertices(mesh.dim, cells.types[k]);
+    for (std::size_t e = 0; e < cells.tags[k].size(); ++e) {
+      for (int j = 0; j < nv; ++j)
+        mesh.cell_nodes.push_back(nodes.Find(cells.nodes[k][nv * e + j]));
       mesh.cell_offsets.push_back((int)mesh.cell_nodes.size());
-      mesh.cell_tags.push_back(elem_tags[k][e]);
+      mesh.cell_tags.push_back(cells.tags[k][e]);
     }
   }
-  TagIndex cell_of_tag;
+  std::size_t duplicate = 0;
   if (!cell_of_tag.Build(mesh.cell_tags, duplicate))
     return "mesh '" + path + "' has duplicate element tag " + std::to_string(duplicate);
+  return "";
+}
 
+/// Elements of one type of a physical group g of dimension dim below the mesh's: a curve's lines (edges), a
+/// surface's faces (face_nodes) of a 3D mesh. Returns the first error, or "".
+std::string AddGroupFacets(const NodeNumbering &nodes, int dim, int type, const std::vector<std::size_t> &tags,
+                           const std::vector<std::size_t> &element_nodes, PhysicalGroup &g) {
+  if (dim == 1) {
+    if (type != GMSH_LINE) return "physical curve '" + g.name + "' has non-linear line elements; expected 2-node lines";
+    for (std::size_t t : element_nodes) {
+      const int v = nodes.Find(t);
+      if (v < 0) return "physical curve '" + g.name + "' has a node that belongs to no cell";
+      g.edges.push_back(v);
+    }
+  } else if (dim == 2) {
+    // A physical surface of a 3D mesh: its triangles and quadrilaterals are boundary faces (checked when the DMPlex
+    // is labelled).
+    const int nv = type == GMSH_TRIANGLE ? 3 : type == GMSH_QUADRANGLE ? 4 : 0;
+    if (nv == 0)
+      return "physical surface '" + g.name +
+             "' has non-linear surface elements; expected 3-node triangles and "
+             "4-node quadrilaterals";
+    for (std::size_t e = 0; e < tags.size(); ++e) {
+      for (int j = 0; j < nv; ++j) {
+        const int v = nodes.Find(element_nodes[nv * e + j]);
+        if (v < 0) return "physical surface '" + g.name + "' has a node that belongs to no cell";
+        g.face_nodes.push_back(v);
+      }
+      g.face_offsets.push_back((int)g.face_nodes.size());
+    }
+  }
+  return "";
+}
+
+/// Entity ent of physical group g of dimension dim: its cells (a group of the mesh's dimension), or its facets and
+/// nodes. Returns the first error, or "".
+std::string AddGroupEntity(const SerialMesh &mesh, const NodeNumbering &nodes, const TagIndex &cell_of_tag, int dim,
+                           int ent, PhysicalGroup &g) {
+  std::vector<int> et;
+  std::vector<std::vector<std::size_t>> etags, enodes;
+  gmsh::model::mesh::getElements(et, etags, enodes, dim, ent);
+  for (std::size_t k = 0; k < et.size(); ++k) {
+    if (dim == mesh.dim) {
+      for (std::size_t t : etags[k])
+        g.cells.push_back((int)cell_of_tag.Find(t));
+    } else if (dim == 1 || dim == 2) {
+      if (std::string error = AddGroupFacets(nodes, dim, et[k], etags[k], enodes[k], g); !error.empty()) return error;
+    }
+    // The nodes of the group's elements: a format 2.2 file classifies each node on one entity only, so the entity's
+    // own nodes (below) miss those it shares with neighbouring entities (corners, curve ends). A group of cells has
+    // its nodes through its cells.
+    if (dim < mesh.dim)
+      for (std::size_t t : enodes[k])
+        if (nodes.Find(t) >= 0) g.nodes.push_back(nodes.Find(t));
+  }
+  if (dim == mesh.dim) return "";
+  std::vector<std::size_t> ntags;
+  std::vector<double> nc, np;
+  gmsh::model::mesh::getNodes(ntags, nc, np, dim, ent, true, false);
+  for (std::size_t t : ntags) {
+    const int v = nodes.Find(t);
+    if (v < 0) {
+      if (dim == 0) return "physical point '" + g.name + "' is a node that belongs to no cell";
+      continue;
+    }
+    g.nodes.push_back(v);
+  }
+  return "";
+}
+
+/// Physical group (dim, tag): its name (the tag when it has none), cells, facets and sorted nodes. Returns the first
+/// error, or "".
+std::string ReadPhysicalGroup(const SerialMesh &mesh, const NodeNumbering &nodes, const TagIndex &cell_of_tag, int dim,
+                              int tag, PhysicalGroup &g) {
+  g.dim = dim;
+  g.tag = tag;
+  gmsh::model::getPhysicalName(dim, tag, g.name);
+  if (g.name.empty()) g.name = std::to_string(tag);
+  std::vector<int> ents;
+  gmsh::model::getEntitiesForPhysicalGroup(dim, tag, ents);
+  for (int ent : ents)
+    if (std::string error = AddGroupEntity(mesh, nodes, cell_of_tag, dim, ent, g); !error.empty()) return error;
+  std::sort(g.nodes.begin(), g.nodes.end());
+  g.nodes.erase(std::unique(g.nodes.begin(), g.nodes.end()), g.nodes.end());
+  return "";
+}
+
+/// The loaded gmsh model as a serial mesh: its cells, the nodes they use and its physical groups (those with nodes or
+/// cells). Returns the first error, or "".
+std::string ReadModel(const std::string &path, SerialMesh &mesh) {
+  ElementBlocks cells;
+  if (std::string error = ReadCellBlocks(path, mesh, cells); !error.empty()) return error;
+  NodeNumbering nodes;
+  if (std::string error = NumberNodes(path, cells, mesh, nodes); !error.empty()) return error;
+  TagIndex cell_of_tag;
+  if (std::string error = AddCells(path, cells, nodes, mesh, cell_of_tag); !error.empty()) return error;
   gmsh::vectorpair groups;
   gmsh::model::getPhysicalGroups(groups, -1);
   for (auto [dim, tag] : groups) {
     PhysicalGroup g;
-    g.dim = dim;
-    g.tag = tag;
-    gmsh::model::getPhysicalName(dim, tag, g.name);
-    if (g.name.empty()) g.name = std::to_string(tag);
-    std::vector<int> ents;
-    gmsh::model::getEntitiesForPhysicalGroup(dim, tag, ents);
-    for (int ent : ents) {
-      std::vector<int> et;
-      std::vector<std::vector<std::size_t>> etags, enodes;
-      gmsh::model::mesh::getElements(et, etags, enodes, dim, ent);
-      for (std::size_t k = 0; k < et.size(); ++k) {
-        if (dim == 1) {
-          if (et[k] != GMSH_LINE)
-            return "physical curve '" + g.name + "' has non-linear line elements; expected 2-node lines";
-          for (std::size_t t : enodes[k]) {
-            const int v = used_index(t);
-            if (v < 0) return "physical curve '" + g.name + "' has a node that belongs to no cell";
-            g.edges.push_back(v);
-          }
-        } else if (dim == mesh.dim) {
-          for (std::size_t t : etags[k]) g.cells.push_back((int)cell_of_tag.Find(t));
-        } else if (dim == 2) {
-          // A physical surface of a 3D mesh: its triangles and quadrilaterals are boundary faces (checked when the
-          // DMPlex is labelled).
-          const int nv = et[k] == GMSH_TRIANGLE ? 3 : et[k] == GMSH_QUADRANGLE ? 4 : 0;
-          if (nv == 0)
-            return "physical surface '" + g.name + "' has non-linear surface elements; expected 3-node triangles "
-                   "and 4-node quadrilaterals";
-          for (std::size_t e = 0; e < etags[k].size(); ++e) {
-            for (int j = 0; j < nv; ++j) {
-              const int v = used_index(enodes[k][nv * e + j]);
-              if (v < 0) return "physical surface '" + g.name + "' has a node that belongs to no cell";
-              g.face_nodes.push_back(v);
-            }
-            g.face_offsets.push_back((int)g.face_nodes.size());
-          }
-        }
-        // The nodes of the group's elements: a format 2.2 file classifies each node on one entity only, so the
-        // entity's own nodes (below) miss those it shares with neighbouring entities (corners, curve ends). A group
-        // of cells has its nodes through its cells.
-        if (dim < mesh.dim)
-          for (std::size_t t : enodes[k])
-            if (used_index(t) >= 0) g.nodes.push_back(used_index(t));
-      }
-      if (dim == mesh.dim) continue;
-      std::vector<std::size_t> ntags;
-      std::vector<double> nc, np;
-      gmsh::model::mesh::getNodes(ntags, nc, np, dim, ent, true, false);
-      for (std::size_t t : ntags) {
-        const int v = used_index(t);
-        if (v < 0) {
-          if (dim == 0) return "physical point '" + g.name + "' is a node that belongs to no cell";
-          continue;
-        }
-        g.nodes.push_back(v);
-      }
-    }
-    std::sort(g.nodes.begin(), g.nodes.end());
-    g.nodes.erase(std::unique(g.nodes.begin(), g.nodes.end()), g.nodes.end());
+    if (std::string error = ReadPhysicalGroup(mesh, nodes, cell_of_tag, dim, tag, g); !error.empty()) return error;
     if (g.nodes.empty() && g.cells.empty()) continue;
     mesh.groups.push_back(std::move(g));
   }

@@ -31,21 +31,25 @@ std::size_t EditDistance(const std::string &a, const std::string &b) {
   return row[b.size()];
 }
 
-} // namespace
+/// Where an option is given on the command line.
+struct Given {
+  std::string spelling, value; // as on the command line
+  int position;
+};
 
-PetscErrorCode CheckCommandLine(int argc, char **argv) {
+/// The options given on the command line: option (lower case, as PETSc compares names) -> where it is given.
+using GivenOptions = std::map<std::string, Given>;
+
+/// Reads the arguments as PETSc does (PetscOptionsInsertArgs) into given; last_file: the position of the last
+/// -options_file (0: none). Refuses a stray argument, a misspelt -options_file and an option given twice.
+[[nodiscard]] PetscErrorCode ReadGiven(int argc, char **argv, GivenOptions &given, int &last_file) {
   PetscFunctionBeginUser;
-  // PETSc's reading of the arguments (PetscOptionsInsertArgs): these take the next argument whatever it is, and
-  // -prefix_pop none; any other key takes the next argument when that is not a key.
+  // These take the next argument whatever it is, and -prefix_pop none; any other key takes the next argument when
+  // that is not a key.
   static const char *const WITH_OPERAND[] = {"-options_file", "-options_file_yaml", "-options_string_yaml",
                                              "-prefix_push"};
-  struct Given {
-    std::string spelling, value; // as on the command line
-    int position;
-  };
-  std::map<std::string, Given> given; // option (lower case, as PETSc compares names) -> where it is given
-  std::vector<std::string> prefixes;  // -prefix_push / -prefix_pop
-  int last_file = 0;                  // the position of the last -options_file
+  std::vector<std::string> prefixes; // -prefix_push / -prefix_pop
+  last_file = 0;
   for (int i = 1; i < argc; ++i) {
     PetscBool key;
     PetscCall(PetscOptionsValidKey(argv[i], &key));
@@ -84,26 +88,44 @@ PetscErrorCode CheckCommandLine(int argc, char **argv) {
                "-options_file before it or in PETSC_OPTIONS)",
                spelling.c_str(), ValueText(first->second.value), ValueText(value));
   }
+  PetscFunctionReturn(0);
+}
+
+/// The options' final values (lower-case name -> value, "" for none), read without marking them used
+/// (PetscOptionsGetAll).
+[[nodiscard]] PetscErrorCode FinalValues(std::map<std::string, std::string> &final_values) {
+  PetscFunctionBeginUser;
+  char *all;
+  PetscCall(PetscOptionsGetAll(nullptr, &all));
+  std::istringstream words(all);
+  PetscCall(PetscFree(all));
+  std::string word, current;
+  while (words >> word) {
+    PetscBool key;
+    PetscCall(PetscOptionsValidKey(word.c_str(), &key));
+    if (key) {
+      current = LowerCase(word);
+      final_values[current] = "";
+    } else if (!current.empty()) {
+      final_values[current] = word;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode CheckCommandLine(int argc, char **argv) {
+  GivenOptions given;
+  int last_file;
+  PetscFunctionBeginUser;
+  PetscCall(ReadGiven(argc, argv, given, last_file));
   // PETSc reads each -options_file where it stands: a file after an option of the command line that sets it again
   // replaces its value without a word (-bc_traction top:0:-1.25 -options_file options/hertz.yml ran the file's load).
-  // The options' final values, read without marking them used (PetscOptionsGetAll), tell.
+  // The options' final values tell.
   if (last_file > 0) {
-    char *all;
-    PetscCall(PetscOptionsGetAll(nullptr, &all));
     std::map<std::string, std::string> final_values;
-    std::istringstream words(all);
-    PetscCall(PetscFree(all));
-    std::string word, current;
-    while (words >> word) {
-      PetscBool key;
-      PetscCall(PetscOptionsValidKey(word.c_str(), &key));
-      if (key) {
-        current = LowerCase(word);
-        final_values[current] = "";
-      } else if (!current.empty()) {
-        final_values[current] = word;
-      }
-    }
+    PetscCall(FinalValues(final_values));
     for (const auto &[option, g] : given) {
       const auto it = final_values.find(option);
       PetscCheck(g.position > last_file || it == final_values.end() || it->second == g.value, PETSC_COMM_WORLD,

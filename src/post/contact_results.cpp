@@ -6,27 +6,36 @@
 
 namespace signorini {
 
-PetscErrorCode ComputeContactResults(const SolvedState &state, const Material &material, NodeContact &nodes,
-                                     ContactSummary &s) {
+namespace {
+
+/// A rank's share of the summary, reduced over the ranks by Summarise.
+struct Partial {
+  /// Sums: contact force (0-2), contact length or area (3), applied force (4-6), reaction force (8-10), strain energy
+  /// (12).
+  double sum[16] = {0};
+  /// Maxima: pressure, penetration, |lambda g|, -min lambda over the active pairs, |u|.
+  double max[5] = {0, 0, 0, -std::numeric_limits<double>::infinity(), 0};
+  PetscInt count[4] = {0, 0, 0, 0}; ///< candidate nodes, pairs, active pairs, active nodes
+};
+
+/// The multipliers, pressures, gaps and active flags per node (nodes) from the pairs, with the contact force, length
+/// and the maxima of the pairs (w: the tributary lengths or areas).
+void NodeResults(const SolvedState &state, const Material &material, const std::vector<double> &w, NodeContact &nodes,
+                 Partial &part) {
   const Mesh &mesh = state.mesh;
-  const DofMap &dofs = state.dofs;
   const int dim = mesh.Dim();
   const PetscInt nv = mesh.NumLocalVertices();
   const auto &pairs = state.pairs;
   const auto &states = state.states;
   const auto &normals = state.normals;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  MPI_Comm comm = mesh.Comm();
-  PetscFunctionBeginUser;
-  std::vector<double> w;
-  PetscCall(TributaryLengths(mesh, state.candidates, w));
+  double *local = part.sum, *maxes = part.max;
+  PetscInt *counts = part.count;
   nodes.lambda.assign(nv, 0.0);
   nodes.pressure.assign(nv, 0.0);
   nodes.gap.assign(nv, nan);
   nodes.active.assign(nv, 0.0);
-  double local[16] = {0};
-  double maxes[4] = {0, 0, 0, -std::numeric_limits<double>::infinity()}; // pressure, penetration, |lambda g|, -min l
-  PetscInt counts[4] = {0, (PetscInt)pairs.size(), 0, 0};
+  counts[1] = (PetscInt)pairs.size();
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     const PetscInt v = pairs[p].vertex;
     const PairState &st = states[p];
@@ -51,15 +60,25 @@ PetscErrorCode ComputeContactResults(const SolvedState &state, const Material &m
       maxes[0] = std::max(maxes[0], nodes.pressure[v]);
     }
   }
-  // Applied load, reactions R = F_int - f - lambda n on the Dirichlet dofs, largest displacement, strain energy.
+}
+
+/// Applied load, reactions R = F_int - f - lambda n on the Dirichlet dofs, largest displacement, strain energy.
+PetscErrorCode BodyResults(const SolvedState &state, Partial &part) {
+  const Mesh &mesh = state.mesh;
+  const DofMap &dofs = state.dofs;
+  const int dim = mesh.Dim();
+  const auto &pairs = state.pairs;
+  double *local = part.sum;
+  PetscFunctionBeginUser;
   const PetscScalar *fi, *fe;
   PetscCall(VecGetArrayRead(state.fint, &fi));
   PetscCall(VecGetArrayRead(state.fext, &fe));
   std::vector<double> contact_at(dofs.OwnedU(), 0.0);
   for (std::size_t p = 0; p < pairs.size(); ++p)
-    for (int k = 0; k < dim; ++k) contact_at[dofs.LocalOffset(pairs[p].vertex, k)] += states[p].lambda * normals[p][k];
+    for (int k = 0; k < dim; ++k)
+      contact_at[dofs.LocalOffset(pairs[p].vertex, k)] += state.states[p].lambda * state.normals[p][k];
   double umax = 0;
-  for (PetscInt v = 0; v < nv; ++v) {
+  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) {
     if (!mesh.Owned(v)) continue;
     double u2 = 0;
     for (int k = 0; k < dim; ++k) {
@@ -74,12 +93,19 @@ PetscErrorCode ComputeContactResults(const SolvedState &state, const Material &m
   }
   PetscCall(VecRestoreArrayRead(state.fint, &fi));
   PetscCall(VecRestoreArrayRead(state.fext, &fe));
-  maxes[0] = std::max(maxes[0], 0.0);
-  double global[16], gmax[5], lmax[5] = {maxes[0], maxes[1], maxes[2], maxes[3], umax};
+  part.max[4] = umax;
+  PetscFunctionReturn(0);
+}
+
+/// The summary from the ranks' shares. Collective.
+PetscErrorCode Summarise(MPI_Comm comm, Partial &part, ContactSummary &s) {
+  PetscFunctionBeginUser;
+  part.max[0] = std::max(part.max[0], 0.0);
+  double global[16], gmax[5];
   PetscInt gcounts[4];
-  PetscCallMPI(MPI_Allreduce(local, global, 16, MPI_DOUBLE, MPI_SUM, comm));
-  PetscCallMPI(MPI_Allreduce(lmax, gmax, 5, MPI_DOUBLE, MPI_MAX, comm));
-  PetscCallMPI(MPI_Allreduce(counts, gcounts, 4, MPIU_INT, MPI_SUM, comm));
+  PetscCallMPI(MPI_Allreduce(part.sum, global, 16, MPI_DOUBLE, MPI_SUM, comm));
+  PetscCallMPI(MPI_Allreduce(part.max, gmax, 5, MPI_DOUBLE, MPI_MAX, comm));
+  PetscCallMPI(MPI_Allreduce(part.count, gcounts, 4, MPIU_INT, MPI_SUM, comm));
   s.candidates = gcounts[0];
   s.pairs = gcounts[1];
   s.active_pairs = gcounts[2];
@@ -102,6 +128,20 @@ PetscErrorCode ComputeContactResults(const SolvedState &state, const Material &m
   s.complementarity = gmax[2];
   s.min_lambda = s.active_pairs ? -gmax[3] : 0.0;
   s.max_displacement = gmax[4];
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode ComputeContactResults(const SolvedState &state, const Material &material, NodeContact &nodes,
+                                     ContactSummary &s) {
+  PetscFunctionBeginUser;
+  std::vector<double> w;
+  PetscCall(TributaryLengths(state.mesh, state.candidates, w));
+  Partial part;
+  NodeResults(state, material, w, nodes, part);
+  PetscCall(BodyResults(state, part));
+  PetscCall(Summarise(state.mesh.Comm(), part, s));
   PetscFunctionReturn(0);
 }
 

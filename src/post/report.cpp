@@ -66,6 +66,58 @@ PetscErrorCode ContactCentre(const SolvedState &state, double centre[3], double 
   PetscFunctionReturn(0);
 }
 
+/// The computed peak pressure p0_h, with a_fit and fit_nodes, from Hertz's profile fitted to the nodal pressures of
+/// the active nodes (nodes) around the contact centre. Collective.
+PetscErrorCode FitProfile(const SolvedState &state, const NodeContact &nodes, const ContactSummary &s, HertzReport &h) {
+  PetscFunctionBeginUser;
+  // Peak pressure: the nodal pressure lambda / w scatters by a few per cent from node to node on an unstructured
+  // mesh, so its maximum overshoots p0 and the value at the centre undershoots it. Hertz's profile p^2 = p0^2 (1 -
+  // r^2 / a^2) is linear in r^2: p0^2 is the intercept of the least-squares line through (r^2, p^2) of the active
+  // nodes within HERTZ_FIT_RADIUS of the outermost active node's distance r_out from the centre (the nodes of the
+  // outer ring average the pressure over the edge of the contact zone).
+  constexpr double HERTZ_FIT_RADIUS = 0.8;
+  const Mesh &mesh = state.mesh;
+  const int dim = mesh.Dim();
+  MPI_Comm comm = mesh.Comm();
+  double centre[3], normal[3];
+  PetscCall(ContactCentre(state, centre, normal));
+  std::vector<double> r2(mesh.NumLocalVertices(), 0.0);
+  double r2_out_local = 0, r2_out;
+  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) {
+    if (!mesh.Owned(v) || !nodes.active[v]) continue;
+    double d2 = 0, dn = 0;
+    for (int k = 0; k < dim; ++k) {
+      const double d = mesh.X(v)[k] - centre[k];
+      d2 += d * d;
+      dn += d * normal[k];
+    }
+    r2[v] = std::max(0.0, d2 - dn * dn); // squared distance from the centre in the plane of the contact
+    r2_out_local = std::max(r2_out_local, r2[v]);
+  }
+  PetscCallMPI(MPI_Allreduce(&r2_out_local, &r2_out, 1, MPI_DOUBLE, MPI_MAX, comm));
+  double local[5] = {0, 0, 0, 0, 0}, sums[5]; // n, sum r^2, sum r^4, sum p^2, sum p^2 r^2
+  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) {
+    if (!mesh.Owned(v) || !nodes.active[v] || r2[v] > HERTZ_FIT_RADIUS * HERTZ_FIT_RADIUS * r2_out) continue;
+    const double p2 = nodes.pressure[v] * nodes.pressure[v];
+    local[0] += 1;
+    local[1] += r2[v];
+    local[2] += r2[v] * r2[v];
+    local[3] += p2;
+    local[4] += p2 * r2[v];
+  }
+  PetscCallMPI(MPI_Allreduce(local, sums, 5, MPI_DOUBLE, MPI_SUM, comm));
+  const double det = sums[0] * sums[2] - sums[1] * sums[1];
+  const double intercept = det > 0 ? (sums[2] * sums[3] - sums[1] * sums[4]) / det : 0;
+  h.fit_nodes = (PetscInt)sums[0];
+  h.p0_h = intercept > 0 ? std::sqrt(intercept) : s.max_pressure; // fewer than two distinct radii: the largest
+  // The same line's slope is -p0^2 / a^2: a from the profile, which does not move by whole elements as the contact
+  // length or area of the active nodes does (+-h/2: +0.71 % on the Hertz mesh of size factor 0.25, where the fit
+  // gives +0.09 %).
+  const double slope = det > 0 ? (sums[0] * sums[4] - sums[1] * sums[3]) / det : 0;
+  h.a_fit = intercept > 0 && slope < 0 ? std::sqrt(-intercept / slope) : 0;
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 /// Hertz's theory is for contacts small against the radius; a / R beyond this is not a Hertz case (the Hertz meshes
@@ -115,48 +167,7 @@ PetscErrorCode ComputeHertz(const SolvedState &state, const Material &m, const N
              "-report_hertz %.6g,%.6g: Johnson's contact %s for this load is %.6g, not small against R = %.6g; Hertz's theory "
              "holds for a << R (expected the radius R of the cylinder or sphere in contact)", h.R, h.P,
              dim == 2 ? "half-width" : "radius", h.a, h.R);
-  // Peak pressure: the nodal pressure lambda / w scatters by a few per cent from node to node on an unstructured
-  // mesh, so its maximum overshoots p0 and the value at the centre undershoots it. Hertz's profile p^2 = p0^2 (1 -
-  // r^2 / a^2) is linear in r^2: p0^2 is the intercept of the least-squares line through (r^2, p^2) of the active
-  // nodes within HERTZ_FIT_RADIUS of the outermost active node's distance r_out from the centre (the nodes of the
-  // outer ring average the pressure over the edge of the contact zone).
-  constexpr double HERTZ_FIT_RADIUS = 0.8;
-  double centre[3], normal[3];
-  PetscCall(ContactCentre(state, centre, normal));
-  std::vector<double> r2(mesh.NumLocalVertices(), 0.0);
-  double r2_out_local = 0, r2_out;
-  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) {
-    if (!mesh.Owned(v) || !nodes.active[v]) continue;
-    double d2 = 0, dn = 0;
-    for (int k = 0; k < dim; ++k) {
-      const double d = mesh.X(v)[k] - centre[k];
-      d2 += d * d;
-      dn += d * normal[k];
-    }
-    r2[v] = std::max(0.0, d2 - dn * dn); // squared distance from the centre in the plane of the contact
-    r2_out_local = std::max(r2_out_local, r2[v]);
-  }
-  PetscCallMPI(MPI_Allreduce(&r2_out_local, &r2_out, 1, MPI_DOUBLE, MPI_MAX, comm));
-  double local[5] = {0, 0, 0, 0, 0}, sums[5]; // n, sum r^2, sum r^4, sum p^2, sum p^2 r^2
-  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) {
-    if (!mesh.Owned(v) || !nodes.active[v] || r2[v] > HERTZ_FIT_RADIUS * HERTZ_FIT_RADIUS * r2_out) continue;
-    const double p2 = nodes.pressure[v] * nodes.pressure[v];
-    local[0] += 1;
-    local[1] += r2[v];
-    local[2] += r2[v] * r2[v];
-    local[3] += p2;
-    local[4] += p2 * r2[v];
-  }
-  PetscCallMPI(MPI_Allreduce(local, sums, 5, MPI_DOUBLE, MPI_SUM, comm));
-  const double det = sums[0] * sums[2] - sums[1] * sums[1];
-  const double intercept = det > 0 ? (sums[2] * sums[3] - sums[1] * sums[4]) / det : 0;
-  h.fit_nodes = (PetscInt)sums[0];
-  h.p0_h = intercept > 0 ? std::sqrt(intercept) : s.max_pressure; // fewer than two distinct radii: the largest
-  // The same line's slope is -p0^2 / a^2: a from the profile, which does not move by whole elements as the contact
-  // length or area of the active nodes does (+-h/2: +0.71 % on the Hertz mesh of size factor 0.25, where the fit
-  // gives +0.09 %).
-  const double slope = det > 0 ? (sums[0] * sums[4] - sums[1] * sums[3]) / det : 0;
-  h.a_fit = intercept > 0 && slope < 0 ? std::sqrt(-intercept / slope) : 0;
+  PetscCall(FitProfile(state, nodes, s, h));
   PetscFunctionReturn(0);
 }
 
@@ -223,17 +234,10 @@ PetscErrorCode PrintSummary(MPI_Comm comm, const SolvedState &state, const Conta
   PetscFunctionReturn(0);
 }
 
-std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedState &state, const ContactSummary &s,
-                        const HertzReport &h) {
-  const SolveStats &st = state.stats;
-  const DofMap &dofs = state.dofs;
-  const int dim = state.mesh.Dim();
-  const auto vec3 = [dim](const std::array<double, 3> &v) { return std::vector<double>(v.begin(), v.begin() + dim); };
-  JsonWriter j;
-  j.BeginObject();
-  const Certificate &cert = state.certificate;
-  j.String("version", SIGNORINI_VERSION);
-  j.String("status", cert.Satisfied() ? "converged" : "not_converged").String("reason", ReasonName(st.reason));
+namespace {
+
+/// The certificate of the final state (summary.json "certificate").
+void CertificateJson(JsonWriter &j, const Certificate &cert) {
   j.BeginObject("certificate")
       .Bool("satisfied", cert.Satisfied())
       .Number("max_penetration", cert.max_penetration)
@@ -248,26 +252,10 @@ std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedStat
       .Number("equilibrium_tol", cert.equilibrium_tol)
       .Integer("changes", cert.changes)
       .EndObject();
-  j.BeginObject("mesh")
-      .String("file", info.mesh_file)
-      .Integer("dim", dim)
-      .Integer("nodes", state.mesh.NumGlobalNodes())
-      .Integer("cells", state.mesh.NumGlobalCells())
-      .Integer("ranks", info.ranks)
-      .EndObject();
-  j.BeginObject("material")
-      .String("model", m.ModelName())
-      .String("plane", dim == 3 ? "none (3D)" : m.plane_stress ? "stress" : "strain")
-      .Number("E", m.E)
-      .Number("nu", m.nu)
-      .Number("thickness", m.thickness)
-      .EndObject();
-  j.BeginObject("problem")
-      .Integer("displacement_dofs", dofs.GlobalU())
-      .Integer("multipliers", dofs.GlobalLambda())
-      .Integer("candidate_nodes", s.candidates)
-      .EndObject();
-  const SolverChoice &sc = st.solver;
+}
+
+/// The solver path and why it was chosen (summary.json "solver").
+void SolverJson(JsonWriter &j, const SolverChoice &sc) {
   j.BeginObject("solver")
       .String("path", SOLVER_PATH_NAMES[(int)sc.path])
       .String("chosen_by", sc.by)
@@ -281,6 +269,10 @@ std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedStat
         .Number("factor_flops", sc.factor.flops)
         .String("factor_estimate", sc.factor.exact ? "node graph" : "model");
   j.EndObject();
+}
+
+/// The loop's counts and its iteration history (summary.json "iterations").
+void IterationsJson(JsonWriter &j, const SolveStats &st) {
   j.BeginObject("iterations")
       .Integer("active_set", st.active_set_iterations)
       .Integer("solves", st.solves)
@@ -308,9 +300,11 @@ std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedStat
         .Number("solve_time", r.solve_time)
         .EndObject();
   j.EndArray().EndObject();
-  j.BeginObject("timings");
-  for (const auto &[k, v] : info.timings) j.Number(k, v);
-  j.EndObject();
+}
+
+/// The contact results (summary.json "contact"), vectors of dim components.
+void ContactJson(JsonWriter &j, const ContactSummary &s, int dim) {
+  const auto vec3 = [dim](const std::array<double, 3> &v) { return std::vector<double>(v.begin(), v.begin() + dim); };
   j.BeginObject("contact")
       .Integer("pairs", s.pairs)
       .Integer("active_pairs", s.active_pairs)
@@ -325,8 +319,10 @@ std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedStat
       .Number("complementarity", s.complementarity)
       .Number("min_lambda", s.min_lambda)
       .EndObject();
-  j.BeginObject("solution").Number("max_displacement", s.max_displacement).Number("strain_energy", s.strain_energy);
-  j.EndObject();
+}
+
+/// Johnson's values against the computed ones (summary.json "hertz"), when the report applies.
+void HertzJson(JsonWriter &j, const HertzReport &h) {
   if (h.enabled && !h.out_of_range)
     j.BeginObject("hertz")
         .Number("R", h.R)
@@ -340,6 +336,52 @@ std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedStat
         .Integer("fit_nodes", h.fit_nodes)
         .Number("a_fit", h.a_fit)
         .EndObject();
+}
+
+} // namespace
+
+std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedState &state, const ContactSummary &s,
+                        const HertzReport &h) {
+  const SolveStats &st = state.stats;
+  const DofMap &dofs = state.dofs;
+  const int dim = state.mesh.Dim();
+  JsonWriter j;
+  j.BeginObject();
+  const Certificate &cert = state.certificate;
+  j.String("version", SIGNORINI_VERSION);
+  j.String("status", cert.Satisfied() ? "converged" : "not_converged").String("reason", ReasonName(st.reason));
+  CertificateJson(j, cert);
+  j.BeginObject("mesh")
+      .String("file", info.mesh_file)
+      .Integer("dim", dim)
+      .Integer("nodes", state.mesh.NumGlobalNodes())
+      .Integer("cells", state.mesh.NumGlobalCells())
+      .Integer("ranks", info.ranks)
+      .EndObject();
+  j.BeginObject("material")
+      .String("model", m.ModelName())
+      .String("plane", dim == 3         ? "none (3D)"
+                       : m.plane_stress ? "stress"
+                                        : "strain")
+      .Number("E", m.E)
+      .Number("nu", m.nu)
+      .Number("thickness", m.thickness)
+      .EndObject();
+  j.BeginObject("problem")
+      .Integer("displacement_dofs", dofs.GlobalU())
+      .Integer("multipliers", dofs.GlobalLambda())
+      .Integer("candidate_nodes", s.candidates)
+      .EndObject();
+  SolverJson(j, st.solver);
+  IterationsJson(j, st);
+  j.BeginObject("timings");
+  for (const auto &[k, v] : info.timings)
+    j.Number(k, v);
+  j.EndObject();
+  ContactJson(j, s, dim);
+  j.BeginObject("solution").Number("max_displacement", s.max_displacement).Number("strain_energy", s.strain_energy);
+  j.EndObject();
+  HertzJson(j, h);
   j.EndObject();
   return j.Text();
 }

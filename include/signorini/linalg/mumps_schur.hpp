@@ -154,6 +154,17 @@ public:
 
 private:
   [[nodiscard]] PetscErrorCode Call(int job, const char *phase);
+  /// Factor's steps, in its order. MUMPS's instance (job -1) with the controls this class relies on. Collective.
+  [[nodiscard]] PetscErrorCode InitialiseMumps();
+  /// The user's MUMPS controls and the ordering (ordering.graph: AUTO resolved for N rows of node_size). Collective.
+  [[nodiscard]] PetscErrorCode ApplyControls(const MumpsControls &controls, PetscInt N, PetscInt node_size,
+                                             OrderingOptions &ordering);
+  /// The symbolic analysis by the supernodal Cholesky or by MUMPS (cholesky_in_use_), with its estimated elimination
+  /// flops and factor entries. Collective.
+  [[nodiscard]] PetscErrorCode Analyse(const FactorChoices &how, PetscInt N, PetscInt m_all, double &flops,
+                                       double &entries);
+  /// Frees the matrix entries kept for a refactorisation.
+  void FreeValues();
   /// MUMPS's analysis of the entries read (irn_, jcn_) with perm_in_ when ICNTL(7) = 1. Collective.
   [[nodiscard]] PetscErrorCode MumpsAnalysis();
   /// A's owned entries in MUMPS's distributed format (irn_, jcn_, val_): with the pattern, or (pattern false) the

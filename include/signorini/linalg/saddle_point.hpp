@@ -71,6 +71,12 @@ struct SaddlePointOptions {
 };
 [[nodiscard]] PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts);
 
+/// The saddle-point matrix, its vectors and its solvers. Its data members (about 36) stay in one class: the matrix
+/// and its KSP, and the state of the two solve paths that share them, the kept factorisation (condensed solves,
+/// refactorisations, the complementarity problem: saddle_point_kept.cpp, saddle_point_lcp.cpp) and the KSP's
+/// preconditioner set-ups, are read across the three files by the same solves. What belongs to one concern is
+/// grouped: how the kept factorisation is made (KeptChoices), the fieldsplit's blocks (NestBlocks), the kept
+/// displacement preconditioner (DisplacementPc), and the factorisation itself (MumpsSchur, the PC kept).
 class SaddlePointSystem {
 public:
   /// Creates the matrix with the pattern of K (inserted by insert_k; d_nnz_k, o_nnz_k: its counts per displacement
@@ -89,7 +95,7 @@ public:
   Mat A() const { return A_; }
   /// The matrix K is assembled into (Assembler::Assemble; zeroed first): A, or its displacement block when A is
   /// nested (a Schur fieldsplit; the block's rows are DofMap::URow's).
-  Mat Stiffness() const { return nest_ ? K_.get() : A_.get(); }
+  Mat Stiffness() const { return nest_.on ? nest_.K.get() : A_.get(); }
   Vec Solution() const { return x_; }
   Vec Rhs() const { return b_; }
   KSP Ksp() const { return ksp_; }
@@ -101,7 +107,7 @@ public:
   void RefactorNext() { refactor_next_ = true; }
   /// The kept factorisation is asked for (an option that needs it, such as -newton_lagged_search): its Schur
   /// complement is never declined (Factor).
-  void KeepFactorization() { reuse_forced_ = reuse_forced_ || reuse_; }
+  void KeepFactorization() { kept_.forced = kept_.forced || reuse_; }
   /// Whether the kept factorisation is exact for every solve (constant K: the condensed solves below are possible).
   bool ExactFactorization() const { return reuse_ && constant_k_; }
   /// Whether the system is in the augmented form (the reuse mode, and every solver that is not a factorisation).
@@ -188,8 +194,8 @@ private:
   [[nodiscard]] PetscErrorCode CreateKsp(MPI_Comm comm, bool &fieldsplit);
   /// Inserts zeros at the constraint entries and the multiplier diagonal, then assembles A (final). Collective.
   [[nodiscard]] PetscErrorCode CreatePattern(const std::vector<SparseRow> &rows, Mat A) const;
-  /// A as a MATNEST of the blocks K_, Bt_, B_, D_ with their patterns (K's from insert_k, the constraint entries and
-  /// the multiplier diagonal), assembled. Collective.
+  /// A as a MATNEST of the blocks nest_.K, Bt, B, D with their patterns (K's from insert_k, the constraint entries
+  /// and the multiplier diagonal), assembled. Collective.
   [[nodiscard]] PetscErrorCode CreateNest(const std::vector<SparseRow> &rows, const std::vector<PetscInt> &d_nnz_k,
                                           const std::vector<PetscInt> &o_nnz_k,
                                           const std::function<PetscErrorCode(Mat)> &insert_k);
@@ -234,6 +240,15 @@ private:
   /// Reuse mode, changing K: the numerical refactorisation of the current matrix (the analysis of Factor); a singular
   /// A11 sets null_pivots_. Collective.
   [[nodiscard]] PetscErrorCode Refactor();
+  /// Solve's two paths. The kept factorisation (factored first when fresh): an exact solve of a constant K, else
+  /// SolveWithKeptFactor; singular: null pivots. Collective.
+  [[nodiscard]] PetscErrorCode SolveKept(bool fresh, double rtol, PetscInt &krylov_iterations, double &check_tol,
+                                         bool &singular);
+  /// The KSP: its set-up, the solve to the relative tolerance rtol (when above the KSP's), after a Krylov failure
+  /// GMRES (RetryKrylov), and unless loose the restarts from where it stopped while they reduce the true residual
+  /// (known_residual: ||b - A x||, ||b|| when computed). Collective.
+  [[nodiscard]] PetscErrorCode SolveKsp(double rtol, bool loose, KSPConvergedReason &reason,
+                                        PetscInt &krylov_iterations, PetscReal known_residual[2]);
   /// Reuse mode, changing K: x_ from FGMRES on the current matrix preconditioned by the kept factorisation, or, when
   /// it does not converge within -contact_reuse_max_it iterations (or the last solve contracted too slowly),
   /// after a refactorisation. d: the current multiplier diagonal (rank 0); rtol: see Solve. iterations: FGMRES's, plus
@@ -283,16 +298,17 @@ private:
   double InactiveDiagonal(double plain) const;
   const DofMap *dofs_ = nullptr;
   bool reuse_ = false, augmented_ = false, factored_ = false, constant_k_ = true;
-  bool released_ = false; ///< Release() freed the solver
-  bool reuse_forced_ = false; ///< -contact_reuse_factorization given: the Schur complement is never declined (Factor)
-  PetscInt reuse_max_it_ = 0;          ///< -contact_reuse_max_it
+  bool released_ = false;              ///< Release() freed the solver
   bool refactor_next_ = false;         ///< the last FGMRES solve on the kept factorisation needed many iterations
   bool pc_current_ = false; ///< iterative solver: A is the matrix of the last preconditioner set-up (a correction)
   bool preonly_ = false;            ///< the KSP is KSPPREONLY (a direct solve; set once, in SetupKsp)
   PetscInt krylov_fallbacks_ = 0;    ///< RetryKrylov's count
   bool ksp_set_up_ = false;         ///< iterative solver: the KSP has been set up (a fieldsplit's sub-KSPs exist)
-  bool u_pc_valid_ = false;         ///< K is the one the displacement block's preconditioner was set up with
-  std::vector<double> u_pc_weight_; ///< the augmentation weights at that set-up
+  /// The displacement block's preconditioner kept across set-ups (KeepDisplacementPreconditioner).
+  struct DisplacementPc {
+    bool valid = false;         ///< K is the one the displacement block's preconditioner was set up with
+    std::vector<double> weight; ///< the augmentation weights at that set-up
+  } u_pc_;
   bool kept_viewed_ = false; ///< a KSPSolve with the kept PC showed it (-contact_ksp_view); else Release does
   KSPH ksp_kept_;                      ///< changing K: FGMRES preconditioned by the kept factorisation
   PetscBool lu_ = PETSC_FALSE; ///< the PC is LU (the mumps_lu preset): the reuse mode factors with LU too
@@ -304,15 +320,25 @@ private:
   std::vector<char> active_;          ///< owned multiplier rows active in the current system
   std::vector<PetscInt> schur_rows_;  ///< rank 0: every multiplier row, in global order
   MumpsSchur mumps_schur_;
-  OrderingOptions ordering_; ///< -contact_nested_dissection, -contact_nested_dissection_parallel
-  KeptSolver kept_solver_ = KeptSolver::AUTO; ///< -contact_kept_solver
-  bool kept_solver_set_ = false;              ///< the user gave -contact_kept_solver
-  std::vector<double> coords_;                  ///< reuse mode: the coordinates of SetupKsp, for the ordering
+  /// How the kept factorisation is made (SetupKsp, from SaddlePointOptions): its options and the coordinates for its
+  /// ordering.
+  struct KeptChoices {
+    bool forced = false;      ///< -contact_reuse_factorization given: the Schur complement is never declined (Factor)
+    PetscInt max_it = 0;      ///< -contact_reuse_max_it
+    OrderingOptions ordering; ///< -contact_nested_dissection, -contact_nested_dissection_parallel
+    KeptSolver solver = KeptSolver::AUTO; ///< -contact_kept_solver
+    bool solver_set = false;              ///< the user gave -contact_kept_solver
+    std::vector<double> coords;           ///< reuse mode: the coordinates of SetupKsp, for the ordering
+    std::string ordering_given; ///< "-contact_nested_dissection X" and/or "..._parallel Y" as given (else empty)
+  } kept_;
   VecH diag_lambda_, diag_root_;
   VecScatter to_root_ = nullptr;      ///< multiplier diagonal to rank 0
   MatH A_;
-  bool nest_ = false;      ///< A_ is a MATNEST of K_ (displacement block), Bt_ (B^T), B_ and D_
-  MatH K_, Bt_, B_, D_;
+  /// A Schur fieldsplit's blocks: A_ is then a MATNEST of K (displacement block), Bt (B^T), B and D.
+  struct NestBlocks {
+    bool on = false; ///< A_ is a MATNEST
+    MatH K, Bt, B, D;
+  } nest_;
   VecH x_, b_, r_;
   KSPH ksp_;
   NullSpaceH near_null_;
@@ -321,7 +347,6 @@ private:
   PetscInt null_pivots_ = 0;     ///< null pivots of the last MUMPS factorisation (INFOG(28))
   double singular_residual_ = 0; ///< the relative residual of a direct solve that found no null pivot but solved
                                  ///< nothing (a matrix singular to round-off), else 0
-  std::string ordering_given_;   ///< "-contact_nested_dissection X" and/or "..._parallel Y" as given (else empty)
 
 public:
   SaddlePointSystem() = default;

@@ -10,6 +10,7 @@
 #include "signorini/fem/assembly.hpp"
 #include "signorini/linalg/saddle_point.hpp"
 #include "signorini/loop/loop_options.hpp"
+#include "signorini/loop/material_policy.hpp"
 #include "signorini/loop/retry_policy.hpp"
 #include "signorini/loop/solved_state.hpp"
 
@@ -25,14 +26,20 @@ namespace signorini {
 /// Index of pairs by (local vertex, facet).
 using PairIndex = std::map<std::pair<PetscInt, PetscInt>, std::size_t>;
 
+/// The contact loop over one run. Its data members (about 38) stay in one class: they are the run's state that the
+/// steps of every iteration, in three files (contact_solver.cpp, active_set_step.cpp, newton_step.cpp), read and write
+/// together: the problem (references to its inputs and the material policy), the pairs and their evaluation at the
+/// iterate, the displacement and force vectors with their scales, and the saddle-point system. What belongs to one
+/// concern is its own object or struct: the material model (MaterialPolicy), the retry policy (DecideRetry) and what
+/// the failed steps left (Retries), one load step's state (StepState), where F_int was assembled (InternalForceAt).
 class ContactSolver {
 public:
   ContactSolver(const Mesh &mesh, const Material &material, const BoundaryConditions &bc, const Obstacle &obstacle,
                 const ContactOptions &contact, const SolverOptions &solver)
-      : mesh_(mesh), material_(material), bc_(bc), obstacle_(obstacle), contact_(contact), opts_(solver),
-        active_set_(mesh.Comm(),
-                    {contact.c, contact.gap_tol, contact.touch_tol, contact.activation_fraction, contact.length,
-                     contact.activation_gap_factor}) {}
+      : mesh_(mesh), material_(material), model_(MakeMaterialPolicy(material.model)), bc_(bc), obstacle_(obstacle),
+        contact_(contact), opts_(solver),
+        active_set_(mesh.Comm(), {contact.c, contact.gap_tol, contact.touch_tol, contact.activation_fraction,
+                                  contact.length, contact.activation_gap_factor}) {}
 
   /// Initial weight of the springs on the normals of the inactive pairs, relative to the stiffness scale, in the
   /// solves whose active set leaves a rigid-body motion free (RigidModes). They pull the increment towards the
@@ -141,44 +148,56 @@ private:
   struct StepState {
     PetscInt step;
     double factor;
-    bool first, large;
+    bool first;
     std::vector<double> delta{}, u_eval{}; ///< prescribed-displacement increment still to apply; u + delta
-    std::vector<char> next{};          ///< the active set of the next solve
+    std::vector<char> next{};              ///< the active set of the next solve
     PetscInt krylov = 0;
-    double last_solve_time = 0, solve_residual = 0, rnorm = 0, rscale = 0, rroundoff = 0;
+    double last_solve_time = 0, solve_residual = 0;
+    /// The equilibrium residual at the iterate, its force scale and its round-off (Residual).
+    struct ResidualNorms {
+      double norm = 0, scale = 0, roundoff = 0;
+    } r{};
     bool moving = false;     ///< some prescribed displacement is still to apply
     bool stabilised = false; ///< the last solve carried the stabilisation springs
     bool searching = true;   ///< the next solve's active set is a new one (the first, or a change)
-    bool lagged = false;     ///< the next solve is a condensed search with the factored tangent (-newton_lagged_search)
-    double lag_rnorm = -1;   ///< the residual before the last solve (none: -1), for LAGGED_CONTRACTION
-    bool exact_newton = false; ///< svk: the active set came back, no more lagged searches in this load step
-    double correction_rtol = 0; ///< linear: the next solve only corrects the equilibrium residual, to this tolerance
-    bool corrected = false;     ///< the last solve was such a correction
-    PetscInt set_changes = 0;   ///< iterations of this load step that changed the active set
-    double candidate_rnorm = -1; ///< linear: the equilibrium residual of the last candidate state of this active set
-    int stalled_corrections = 0; ///< linear: corrections in a row that did not halve candidate_rnorm
+    /// svk: the lagged searches (-newton_lagged_search) and the exact Newton steps after them.
+    struct Newton {
+      bool lagged = false;   ///< the next solve is a condensed search with the factored tangent
+      double lag_rnorm = -1; ///< the residual before the last solve (none: -1), for LAGGED_CONTRACTION
+      bool exact = false;    ///< the active set came back, no more lagged searches in this load step
+    } newton{};
+    /// Linear material: solves that only correct the equilibrium residual of a candidate state (JudgeCandidate).
+    struct Corrections {
+      double rtol = 0;             ///< the next solve only corrects the equilibrium residual, to this tolerance
+      bool made = false;           ///< the last solve was such a correction
+      double candidate_rnorm = -1; ///< the equilibrium residual of the last candidate state of this active set
+      int stalled = 0;             ///< corrections in a row that did not halve candidate_rnorm
+    } correction{};
+    PetscInt set_changes = 0;       ///< iterations of this load step that changed the active set
     std::vector<double> u_before{}; ///< the displacement (local layout) before the last stabilised solve
     bool measured = false; ///< u_before is that of the current pairs (the same on every rank: a rank may own none)
     int pivoted = 0;       ///< complementarity problems of this step (PivotedActiveSet), at most 2
     bool singular = false; ///< a factorisation found null pivots: nothing was solved, the step ends (DIVERGED_SINGULAR)
     /// Condensed solves (kept factorisation): from the first solve without stabilisation and without a prescribed
     /// displacement still to apply (svk: from each lagged one), the active-set iterations run in the multiplier space
-    /// against that solve's right-hand side, condensed once (its base: u_base, the gaps g_base), the displacement
-    /// staying at the base's until the active set settles (Materialise). svk: the factored matrix is an earlier
-    /// tangent, so the search is a modified Newton step; the Newton steps after it are exact (FGMRES).
-    bool base = false;      ///< the right-hand side of the base is condensed (reuse mode, not stabilised)
-    bool condensed = false; ///< the last solve was condensed: states from g_base + shift, u not updated
-    VecH u_base{};
-    std::vector<double> g_base{}, shift{};
-    double base_rnorm = 0; ///< the equilibrium residual at the base
+    /// against that solve's right-hand side, condensed once (its base: the displacement u, the gaps g), the
+    /// displacement staying at the base's until the active set settles (Materialise). svk: the factored matrix is an
+    /// earlier tangent, so the search is a modified Newton step; the Newton steps after it are exact (FGMRES).
+    struct CondensedBase {
+      bool ready = false;     ///< the right-hand side of the base is condensed (reuse mode, not stabilised)
+      bool condensed = false; ///< the last solve was condensed: states from g + shift, u not updated
+      VecH u{};
+      std::vector<double> g{}, shift{};
+      double rnorm = 0; ///< the equilibrium residual at the base
+    } base{};
   };
   enum class Outcome { SOLVE, EXTENDED, CONVERGED, STOP };
   [[nodiscard]] PetscErrorCode LoadStep(PetscInt step, double factor, bool first, bool &ok);
-  /// After a failed load step: the search radius a repeated step needs (widen_to_; 0: none), when a candidate node
-  /// is inside a facet it has no pair with at the step's last iterate (linear material: that pair goes to
-  /// extra_pairs_), or, once per run, when the step cycled or left the body free (DIVERGED_CYCLING, _NOT_HELD; svk
-  /// only when it can cut the step no more), or when its system was singular (DIVERGED_SINGULAR) with a radius below
-  /// the body's diagonal. Collective.
+  /// After a failed load step: the search radius a repeated step needs (retry_.widen_to; 0: none), when a candidate
+  /// node is inside a facet it has no pair with at the step's last iterate (linear material: that pair goes to
+  /// retry_.extra_pairs), or, once per run, when the step cycled or left the body free (DIVERGED_CYCLING, _NOT_HELD;
+  /// svk only when it can cut the step no more), or when its system was singular (DIVERGED_SINGULAR) with a radius
+  /// below the body's diagonal. Collective.
   [[nodiscard]] PetscErrorCode UnpairedAfterFailure(StepState &st, PetscInt it);
   /// Linear material with the kept factorisation, at most twice per load step: when an active set first comes back
   /// (instead of one switch per update, which follows only when this finds nothing new), and when the step ends with
@@ -200,8 +219,9 @@ private:
   /// PivotedActiveSet's problem size (multipliers) at most: its eigendecomposition and pivots cost O(m^3) on rank 0
   /// (Lemke on a dense m = 1000 problem with 500 pivots: 0.56 s).
   static constexpr PetscInt LCP_MAX_ROWS = 2000;
-  /// Finds the pairs again with the radius widen_to_ (linear material: in the reference configuration, with the pairs
-  /// of extra_pairs_ in their zone), carrying the multipliers and active flags of the pairs that persist. Collective.
+  /// Finds the pairs again with the radius retry_.widen_to (linear material: in the reference configuration, with the
+  /// pairs of retry_.extra_pairs in their zone), carrying the multipliers and active flags of the pairs that persist.
+  /// Collective.
   [[nodiscard]] PetscErrorCode WidenSearch(const std::vector<double> &lambda, const std::vector<double> &mult,
                                            const std::vector<char> &active);
   [[nodiscard]] PetscErrorCode EvaluateIterate(StepState &st, PetscInt it);
@@ -225,13 +245,13 @@ private:
   [[nodiscard]] PetscErrorCode SolveAndUpdate(StepState &st);
   /// The relative tolerance of an svk solve that is not lagged: an inexact Newton step (0: the KSP's).
   [[nodiscard]] PetscErrorCode NewtonForcing(const StepState &st, double &rtol) const;
-  /// Whether the next solve can be condensed (StepState::base).
+  /// Whether the next solve can be condensed (StepState::CondensedBase::ready).
   bool Condensable(const StepState &st) const;
-  /// The right-hand side assembled for the current iterate as the base of the condensed solves (StepState::base):
-  /// u_base, g_base, base_rnorm, and its condensation. Collective.
+  /// The right-hand side assembled for the current iterate as the base of the condensed solves
+  /// (StepState::CondensedBase): its u, g and rnorm, and its condensation. Collective.
   [[nodiscard]] PetscErrorCode CondenseBase(StepState &st);
   /// After condensed solves: the expansion of the last one (the whole solution for the base's right-hand side with the
-  /// current constraints), and the displacement u_base + du; the pairs evaluated there. Collective.
+  /// current constraints), and the displacement base.u + du; the pairs evaluated there. Collective.
   [[nodiscard]] PetscErrorCode Materialise(StepState &st, PetscInt it);
   [[nodiscard]] PetscErrorCode Monitor(const IterationRecord &r) const;
   [[nodiscard]] PetscErrorCode RecordIteration(PetscInt step, PetscInt it, double factor, const std::vector<char> &next,
@@ -239,24 +259,28 @@ private:
 
   const Mesh &mesh_;
   const Material &material_;
+  std::unique_ptr<const MaterialPolicy> model_; ///< how the loop iterates on the material
   const BoundaryConditions &bc_;
   const Obstacle &obstacle_;
   ContactOptions contact_; ///< a copy: a failed load step may widen its search radius (WidenSearch)
   const SolverOptions &opts_;
   DirichletData dirichlet_;
   std::vector<ContactPair> pairs_;
-  double widen_to_ = 0; ///< the search radius a failed load step asks for (UnpairedAfterFailure), 0: none
-  PetscInt widen_node_ = -1; ///< the deepest unpaired node then (file number, 1-based) and its depth
-  /// Linear material: the local vertices and facets found inside each other without a pair after a failed step; the
-  /// pair search adds them from then on (WidenSearch).
-  std::set<std::array<PetscInt, 2>> extra_pairs_;
-  double widen_depth_ = 0;
-  bool widened_unheld_ = false; ///< a step that cycled or left the body free was repeated with a wider radius (once)
-  /// svk: a step found free along the lagged searches' path was repeated with exact Newton steps (once); every load
-  /// step from then on takes them (StepState::exact_newton from its start)
-  bool exact_newton_ = false;
-  Reason first_unheld_ = Reason::NONE; ///< the reason of that step's failure
-  std::string unheld_detail_;    ///< PivotedActiveSet's finding that the pairs cannot hold the body (this load step)
+  /// What the failed load steps of the run asked for and found (UnpairedAfterFailure, the retry policy in Solve).
+  struct Retries {
+    double widen_to = 0;      ///< the search radius a failed load step asks for (UnpairedAfterFailure), 0: none
+    PetscInt widen_node = -1; ///< the deepest unpaired node then (file number, 1-based) and its depth
+    double widen_depth = 0;
+    /// Linear material: the local vertices and facets found inside each other without a pair after a failed step;
+    /// the pair search adds them from then on (WidenSearch).
+    std::set<std::array<PetscInt, 2>> extra_pairs;
+    bool widened_unheld = false; ///< a step that cycled or left the body free was repeated with a wider radius (once)
+    /// svk: a step found free along the lagged searches' path was repeated with exact Newton steps (once); every
+    /// load step from then on takes them (StepState::Newton::exact from its start)
+    bool exact_newton = false;
+    Reason first_unheld = Reason::NONE; ///< the reason of that step's failure
+    std::string unheld_detail; ///< PivotedActiveSet's finding that the pairs cannot hold the body (this load step)
+  } retry_;
   /// Load steps repeated with a wider search radius in a run, at most (each at least doubles it).
   static constexpr PetscInt MAX_WIDENINGS = 8;
   std::vector<char> candidate_;
@@ -278,8 +302,11 @@ private:
   double kscale_ = 1;
   double krow_ = 1; ///< mean sum_j |K_ij| of a global row (Assembler::StiffnessScale): the residual's round-off scale
   bool k_assembled_ = false;
-  std::vector<double> fint_at_; ///< the displacement (u_local_) at which fint_ holds F_int (empty: none)
-  double fint_min_J_ = 1;       ///< min det F there
+  /// Where fint_ holds F_int: the displacement (u_local_; empty: none) and the min det F there.
+  struct InternalForceAt {
+    std::vector<double> u;
+    double min_J = 1;
+  } fint_at_;
   SolveStats stats_;
 
 public:
