@@ -141,7 +141,7 @@ PetscErrorCode Mesh::DualGraph(std::vector<PetscInt> &offsets, std::vector<Petsc
   std::vector<PetscInt> first(size + 1, 0);
   PetscCallMPI(MPI_Allgather(&nc, 1, MPIU_INT, &first[1], 1, MPIU_INT, comm_));
   for (int r = 0; r < size; ++r) first[r + 1] += first[r];
-  // Each face goes to the rank of its smallest vertex's block of file indices, which pairs the two cells around it.
+  // Each face goes to a rank chosen by a hash of its vertices, which pairs the two cells around it.
   std::vector<std::vector<PetscInt>> out(size);
   for (PetscInt c = 0; c < nc; ++c) {
     const PetscInt *cv = &cell_vertices_[cell_offsets_[c]];
@@ -153,7 +153,9 @@ PetscErrorCode Mesh::DualGraph(std::vector<PetscInt> &offsets, std::vector<Petsc
         for (; j > 0 && key[j - 1] > cv[cf.v[f][k]]; --j) key[j] = key[j - 1];
         key[j] = cv[cf.v[f][k]];
       }
-      auto &to = out[(PetscMPIInt)((std::int64_t)key[0] * size / std::max<PetscInt>(num_global_nodes_, 1))];
+      std::uint64_t hash = 1469598103934665603ull; // FNV-1a over the key: faces spread evenly over the ranks
+      for (PetscInt k : key) hash = (hash ^ (std::uint64_t)(std::uint32_t)k) * 1099511628211ull;
+      auto &to = out[(PetscMPIInt)(hash % (std::uint64_t)size)];
       to.insert(to.end(), key.begin(), key.end());
       to.push_back(first[rank] + c);
     }

@@ -131,8 +131,8 @@ private:
   /// opts.partitioner (ptscotch for the default metis, or simple). Collective.
   [[nodiscard]] PetscErrorCode LoadH5(const MeshOptions &opts);
   /// The graph of this rank's cells (before distribution) sharing a face, for a parallel partitioner: CSR over the
-  /// local cells, neighbours numbered globally (rank by rank in rank order). Faces are matched on the rank that holds
-  /// the block of file indices of their smallest vertex. Collective.
+  /// local cells, neighbours numbered globally (rank by rank in rank order). Faces are matched on a rank chosen by a
+  /// hash of their vertices' file indices. Collective.
   [[nodiscard]] PetscErrorCode DualGraph(std::vector<PetscInt> &offsets, std::vector<PetscInt> &adjacency) const;
   /// Sets the partitioner of dm (its cells spread over the ranks, PackPointData's arrays set): PETSc's simple split
   /// for "simple", else PTScotch on DualGraph, as a shell partition. Collective.
