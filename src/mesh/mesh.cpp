@@ -231,8 +231,8 @@ PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, M
              PETSC_ERR_USER_INPUT, "-mesh_partitioner '%s' is unknown; expected metis, ptscotch or simple",
              opts.partitioner.c_str());
   PetscCheck(!(EndsWith(opts.file, ".h5") && opts.partitioner_set && opts.partitioner == "metis"), comm,
-             PETSC_ERR_USER_INPUT, "-mesh_partitioner metis partitions the whole mesh on rank 0, which a .h5 -mesh_file "
-             "('%s') never holds; expected ptscotch or simple", opts.file.c_str());
+             PETSC_ERR_USER_INPUT, "-mesh_partitioner metis partitions the whole mesh on rank 0, which a .h5 "
+             "-mesh_file ('%s') never holds; expected ptscotch or simple", opts.file.c_str());
   PetscCheck(opts.save.empty() || (EndsWith(opts.save, ".h5") && opts.save.size() > 3), comm, PETSC_ERR_USER_INPUT,
              "-mesh_save '%s' is no .h5 file name; expected a path ending in .h5", opts.save.c_str());
   PetscFunctionReturn(0);

@@ -109,7 +109,8 @@ PetscErrorCode LoadBlock(MPI_Comm comm, PetscViewer viewer, const char *name, Pe
 using PartitionerH = Handle<PetscPartitioner, PetscPartitionerDestroy>;
 
 /// Sends each rank its records (rec values each) from out[rank] and returns what every rank sent here. Collective.
-PetscErrorCode Exchange(MPI_Comm comm, int rec, const std::vector<std::vector<PetscInt>> &out, std::vector<PetscInt> &in) {
+PetscErrorCode Exchange(MPI_Comm comm, int rec, const std::vector<std::vector<PetscInt>> &out,
+                        std::vector<PetscInt> &in) {
   PetscMPIInt size;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
@@ -318,6 +319,41 @@ PetscErrorCode Mesh::SaveH5(const std::string &path) const {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Mesh::ReadH5Header(PetscViewer viewer, const std::string &path) {
+  const std::string expected = "; expected a mesh written by -mesh_save";
+  PetscFunctionBeginUser;
+  PetscBool has_format = PETSC_FALSE, has_topology = PETSC_FALSE;
+  std::string format;
+  PetscCall(PetscViewerHDF5HasAttribute(viewer, MESH_H5_GROUP, "format", &has_format));
+  if (has_format) {
+    char *value = nullptr;
+    PetscCall(PetscViewerHDF5ReadAttribute(viewer, MESH_H5_GROUP, "format", PETSC_STRING, nullptr, &value));
+    format = value;
+    PetscCall(PetscFree(value));
+  }
+  const std::string point_data = std::string("/topologies/") + MESH_H5_DM + "/dms/" + MESH_H5_POINT_DM;
+  PetscCall(PetscViewerHDF5HasGroup(viewer, point_data.c_str(), &has_topology));
+  PetscCheck(format == MESH_H5_FORMAT && has_topology, comm_, PETSC_ERR_USER_INPUT,
+             "-mesh_file '%s' is an HDF5 file but no signorini mesh (%s)%s", path.c_str(),
+             !has_format ? "no attribute 'format' in /signorini"
+             : format != MESH_H5_FORMAT ? ("format '" + format + "', not '" + MESH_H5_FORMAT + "'").c_str()
+                                        : "no point data of DMPlex 'signorini_mesh'",
+             expected.c_str());
+  PetscInt dim = 0;
+  char *groups = nullptr;
+  PetscCall(PetscViewerHDF5ReadAttribute(viewer, MESH_H5_GROUP, "dim", PETSC_INT, nullptr, &dim));
+  PetscCall(PetscViewerHDF5ReadAttribute(viewer, MESH_H5_GROUP, "nodes", PETSC_INT, nullptr, &num_global_nodes_));
+  PetscCall(PetscViewerHDF5ReadAttribute(viewer, MESH_H5_GROUP, "cells", PETSC_INT, nullptr, &num_global_cells_));
+  PetscCall(PetscViewerHDF5ReadAttribute(viewer, MESH_H5_GROUP, "groups", PETSC_STRING, nullptr, &groups));
+  const bool groups_ok = UnpackGroups(groups, group_names_, group_dims_);
+  PetscCall(PetscFree(groups));
+  PetscCheck(groups_ok && (dim == 2 || dim == 3), comm_, PETSC_ERR_USER_INPUT,
+             "-mesh_file '%s': its /signorini attributes are damaged (dim %" PetscInt_FMT ")%s", path.c_str(), dim,
+             expected.c_str());
+  dim_ = (int)dim;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Mesh::LoadH5(const MeshOptions &opts) {
   PetscMPIInt rank;
   PetscFunctionBeginUser;
@@ -338,35 +374,7 @@ PetscErrorCode Mesh::LoadH5(const MeshOptions &opts) {
 
   ViewerH viewer;
   PetscCall(PetscViewerHDF5Open(comm_, path.c_str(), FILE_MODE_READ, viewer.out()));
-  PetscBool has_format = PETSC_FALSE, has_topology = PETSC_FALSE;
-  std::string format;
-  PetscCall(PetscViewerHDF5HasAttribute(viewer, MESH_H5_GROUP, "format", &has_format));
-  if (has_format) {
-    char *value = nullptr;
-    PetscCall(PetscViewerHDF5ReadAttribute(viewer, MESH_H5_GROUP, "format", PETSC_STRING, nullptr, &value));
-    format = value;
-    PetscCall(PetscFree(value));
-  }
-  PetscCall(PetscViewerHDF5HasGroup(viewer, (std::string("/topologies/") + MESH_H5_DM + "/dms/" + MESH_H5_POINT_DM).c_str(),
-                                   &has_topology));
-  PetscCheck(format == MESH_H5_FORMAT && has_topology, comm_, PETSC_ERR_USER_INPUT,
-             "-mesh_file '%s' is an HDF5 file but no signorini mesh (%s)%s", path.c_str(),
-             !has_format ? "no attribute 'format' in /signorini"
-             : format != MESH_H5_FORMAT ? ("format '" + format + "', not '" + MESH_H5_FORMAT + "'").c_str()
-                                        : "no point data of DMPlex 'signorini_mesh'",
-             expected.c_str());
-  PetscInt dim = 0;
-  char *groups = nullptr;
-  PetscCall(PetscViewerHDF5ReadAttribute(viewer, MESH_H5_GROUP, "dim", PETSC_INT, nullptr, &dim));
-  PetscCall(PetscViewerHDF5ReadAttribute(viewer, MESH_H5_GROUP, "nodes", PETSC_INT, nullptr, &num_global_nodes_));
-  PetscCall(PetscViewerHDF5ReadAttribute(viewer, MESH_H5_GROUP, "cells", PETSC_INT, nullptr, &num_global_cells_));
-  PetscCall(PetscViewerHDF5ReadAttribute(viewer, MESH_H5_GROUP, "groups", PETSC_STRING, nullptr, &groups));
-  const bool groups_ok = UnpackGroups(groups, group_names_, group_dims_);
-  PetscCall(PetscFree(groups));
-  PetscCheck(groups_ok && (dim == 2 || dim == 3), comm_, PETSC_ERR_USER_INPUT,
-             "-mesh_file '%s': its /signorini attributes are damaged (dim %" PetscInt_FMT ")%s", path.c_str(), dim,
-             expected.c_str());
-  dim_ = (int)dim;
+  PetscCall(ReadH5Header(viewer, path));
 
   // PETSc's parallel load: every rank reads a contiguous part of the points, then the labels and the point data.
   DMH dm, point_dm;
@@ -400,9 +408,9 @@ PetscErrorCode Mesh::LoadH5(const MeshOptions &opts) {
   viewer.Reset();
   PetscInt file_dim;
   PetscCall(DMGetDimension(dm, &file_dim));
-  PetscCheck(file_dim == dim, comm_, PETSC_ERR_USER_INPUT,
-             "-mesh_file '%s': a DMPlex of dimension %" PetscInt_FMT " where /signorini says %" PetscInt_FMT "%s",
-             path.c_str(), file_dim, dim, expected.c_str());
+  PetscCheck(file_dim == dim_, comm_, PETSC_ERR_USER_INPUT,
+             "-mesh_file '%s': a DMPlex of dimension %" PetscInt_FMT " where /signorini says %d%s", path.c_str(),
+             file_dim, dim_, expected.c_str());
   PetscCall(UnpackPointData(dm, sec, data));
   data.Reset();
   point_data_sf.Reset();

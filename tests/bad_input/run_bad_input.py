@@ -352,7 +352,7 @@ CASES = {
     "newton_rtol_huge": (["-newton_rtol", "0.1"], ["-newton_rtol 0.1", "(0, 0.0001]"], {}),
     "newton_atol_huge": (["-newton_atol", "1"], ["-newton_atol 1", "[0, 1e-06]"], {}),
     "output_dir_empty": (["-output_dir", ""], ["-output_dir", "without a value", "a directory path"], {}),
-    "mesh_file_empty": (["-mesh_file", ""], ["-mesh_file", "without a value", ".msh or .geo"], {}),
+    "mesh_file_empty": (["-mesh_file", ""], ["-mesh_file", "without a value", ".msh, .geo or .h5"], {}),
     "report_hertz_empty": (["-report_hertz", ""], ["-report_hertz", "without a value", "R,P"], {}),
     "report_hertz_other_load": (["-report_hertz", "8,1e6"], ["-report_hertz 8", "is 10", "not P, P/2 or P/4"], {}),
     "report_hertz_not_hertz": (["-options_file", "{root}/options/block_on_floor.yml", "-report_hertz", "8,10"],

@@ -25,7 +25,8 @@ def same_summary(runner, what, ref, r, exact):
 
     def flat(value, path=""):
         if isinstance(value, dict):
-            return {k: v for key, item in value.items() for k, v in flat(item, path + "." + key if path else key).items()}
+            return {k: v for key, item in value.items()
+                    for k, v in flat(item, path + "." + key if path else key).items()}
         if isinstance(value, list):
             return {k: v for i, item in enumerate(value) for k, v in flat(item, "%s[%d]" % (path, i)).items()}
         return {path: value}
@@ -42,8 +43,8 @@ def same_summary(runner, what, ref, r, exact):
 
 
 def same_state(runner, what, ref, r, tol=1e-12):
-    """The same mesh (node tags and coordinates), active set, and displacements and multipliers within tol of the largest
-    (a partition of the mesh other than the reference's sums in another order: round-off)."""
+    """The same mesh (node tags and coordinates), active set, and displacements and multipliers within tol of the
+    largest (a partition of the mesh other than the reference's sums in another order: round-off)."""
     a, b = ref.nodes(), r.nodes()
     check_same_mesh(runner, what, a, b)
     runner.expect_true("%s: the same active nodes" % what, np.array_equal(a["active"], b["active"]))
@@ -57,7 +58,8 @@ def mesh_h5(runner, case):
     """The case from its gmsh file on 1 rank and on this test's ranks (np), each writing the mesh with -mesh_save; then
     each file read on np ranks and on the other count. A file written on 1 rank and read on 1 is the same run: the same
     node table byte for byte and the same summary. Otherwise the partition differs (PTScotch's in parallel against
-    METIS's of the whole mesh, or the file's point order), and the state agrees to round-off (H5_CASES' tolerance); the summary's integers and strings are the same."""
+    METIS's of the whole mesh, or the file's point order), and the state agrees to round-off (H5_CASES' tolerance);
+    the summary's integers and strings are the same."""
     options, gmsh_file, tol = H5_CASES[case]
     np_ = runner.np
     other = 1 if np_ == 2 else 2

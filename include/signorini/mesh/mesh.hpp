@@ -137,6 +137,9 @@ private:
   /// Sets the partitioner of dm (its cells spread over the ranks, PackPointData's arrays set): PETSc's simple split
   /// for "simple", else PTScotch on DualGraph, as a shell partition. Collective.
   [[nodiscard]] PetscErrorCode ParallelPartition(DM dm, const std::string &partitioner) const;
+  /// Checks that viewer's file (path, for messages) is a signorini mesh and reads its /signorini attributes (dim_,
+  /// the global counts, the groups). Collective.
+  [[nodiscard]] PetscErrorCode ReadH5Header(PetscViewer viewer, const std::string &path);
   /// Create's path for a gmsh file (.msh, .geo): read on rank 0, labelled, partitioned, distributed. Collective.
   [[nodiscard]] PetscErrorCode ReadGmshMesh(const MeshOptions &opts);
   /// Takes the distributed dm as dm_ and builds the per-rank arrays (local arrays, vertex SF, the labels' vertices).
