@@ -7,7 +7,9 @@
 #include "signorini/options/readers.hpp"
 #include "signorini/core/parse.hpp"
 #include "signorini/core/progress.hpp"
+#include "signorini/mesh/cell_faces.hpp"
 #include "signorini/mesh/geo_mesher.hpp"
+#include "signorini/mesh/mesh_h5.hpp"
 
 #include <metis.h>
 
@@ -47,26 +49,6 @@ PetscErrorCode BroadcastGroups(MPI_Comm comm, const SerialMesh &serial, std::vec
     names.push_back(line.substr(1));
   }
   PetscFunctionReturn(0);
-}
-
-/// The faces (codimension 1) of a cell with n vertices, as positions in gmsh's vertex order, each oriented outwards
-/// for a cell of positive orientation (CheckAndOrientCells) as Face is: the edges of a counter-clockwise triangle or
-/// quadrilateral; the triangles and quadrilaterals of a tetrahedron, pyramid (base 0-3, apex 4) or hexahedron (bottom
-/// 0-3, top 4-7), in cyclic order with their right-hand normal pointing out of the cell.
-struct CellFaceTable {
-  int count;
-  std::array<int, 6> size;
-  std::array<std::array<int, 4>, 6> v;
-};
-const CellFaceTable &CellFaces(int dim, int n) {
-  static const CellFaceTable triangle{3, {2, 2, 2}, {{{0, 1}, {1, 2}, {2, 0}}}};
-  static const CellFaceTable quadrilateral{4, {2, 2, 2, 2}, {{{0, 1}, {1, 2}, {2, 3}, {3, 0}}}};
-  static const CellFaceTable tetrahedron{4, {3, 3, 3, 3}, {{{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}}}};
-  static const CellFaceTable pyramid{5, {4, 3, 3, 3, 3}, {{{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}}}};
-  static const CellFaceTable hexahedron{
-      6, {4, 4, 4, 4, 4, 4}, {{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}};
-  if (dim == 2) return n == 3 ? triangle : quadrilateral;
-  return n == 4 ? tetrahedron : n == 5 ? pyramid : hexahedron;
 }
 
 /// A face of the serial mesh found through one of its cells: its sorted vertices (padded with INT_MAX), the cell and
@@ -216,18 +198,27 @@ PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, M
   PetscBool size_factor_set = PETSC_FALSE, max_cells_set = PETSC_FALSE;
   PetscOptionsBegin(comm, nullptr, "Mesh options", "signorini");
   const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
-  PetscCall(OptionsString(PetscOptionsObject, "-mesh_file", "gmsh mesh (.msh 2.2/4.1) or geometry (.geo, meshed by "
-                          "gmsh in a child process of rank 0)", "a .msh or .geo path", opts.file));
+  PetscCall(OptionsString(PetscOptionsObject, "-mesh_file", "gmsh mesh (.msh 2.2/4.1), geometry (.geo, meshed by "
+                          "gmsh in a child process of rank 0) or a mesh written by -mesh_save (.h5, read in parallel)",
+                          "a .msh, .geo or .h5 path", opts.file));
   PetscCall(OptionsReal(PetscOptionsObject, "-mesh_size_factor", "Mesh size factor applied when meshing a .geo file",
                         {MESH_SIZE_FACTOR_MIN, MESH_SIZE_FACTOR_MAX}, opts.size_factor, &size_factor_set));
   opts.max_cells = DefaultMaxCells();
   PetscCall(OptionsReal(PetscOptionsObject, "-mesh_max_cells", "Refuse a .geo whose mesh is estimated to have more "
                         "cells (default: physical memory / 3.2 kB per cell)", RealRange::Whole(1, 1e12), opts.max_cells,
                         &max_cells_set));
-  PetscCall(OptionsString(PetscOptionsObject, "-mesh_partitioner", "Partitioner: metis, ptscotch or simple",
-                          "metis, ptscotch or simple", opts.partitioner));
+  PetscBool partitioner_set = PETSC_FALSE;
+  PetscCall(OptionsString(PetscOptionsObject, "-mesh_partitioner", "Partitioner: metis, ptscotch or simple (a .h5 "
+                          "-mesh_file: ptscotch, in parallel)", "metis, ptscotch or simple", opts.partitioner,
+                          &partitioner_set));
+  opts.partitioner_set = partitioner_set;
+  opts.save.clear();
+  PetscCall(OptionsString(PetscOptionsObject, "-mesh_save", "Write the distributed mesh to this .h5 file (PETSc's "
+                          "DMPlex HDF5 format), to be read by -mesh_file on any number of ranks", "a .h5 path",
+                          opts.save));
   PetscOptionsEnd();
-  PetscCheck(!opts.file.empty(), comm, PETSC_ERR_USER_INPUT, "-mesh_file is empty; expected a .msh or .geo path");
+  PetscCheck(!opts.file.empty(), comm, PETSC_ERR_USER_INPUT,
+             "-mesh_file is empty; expected a .msh, .geo or .h5 path");
   // Both only steer the meshing of a .geo (the reader decides by the same suffix): with a .msh they would be ignored.
   const bool geo = EndsWith(opts.file, ".geo");
   for (const auto &[set, name, value] : {std::make_tuple(size_factor_set, "-mesh_size_factor", opts.size_factor),
@@ -239,31 +230,51 @@ PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, M
   PetscCheck(opts.partitioner == "metis" || opts.partitioner == "ptscotch" || opts.partitioner == "simple", comm,
              PETSC_ERR_USER_INPUT, "-mesh_partitioner '%s' is unknown; expected metis, ptscotch or simple",
              opts.partitioner.c_str());
+  PetscCheck(!(EndsWith(opts.file, ".h5") && opts.partitioner_set && opts.partitioner == "metis"), comm,
+             PETSC_ERR_USER_INPUT, "-mesh_partitioner metis partitions the whole mesh on rank 0, which a .h5 "
+             "-mesh_file ('%s') never holds; expected ptscotch or simple", opts.file.c_str());
+  PetscCheck(opts.save.empty() || (EndsWith(opts.save, ".h5") && opts.save.size() > 3), comm, PETSC_ERR_USER_INPUT,
+             "-mesh_save '%s' is no .h5 file name; expected a path ending in .h5", opts.save.c_str());
   PetscFunctionReturn(0);
 }
 
+std::string FindMeshFile(const MeshOptions &opts, std::string &absolute_path, std::string &error) {
+  std::string looked;
+  // Options not read by ReadMeshOptions (unit tests) name the file as it is.
+  const PathCandidates as_given{{opts.file}, {"relative to the current directory"}};
+  const std::string path = FirstExisting(opts.file_candidates.paths.empty() ? as_given : opts.file_candidates, looked);
+  if (path.empty()) {
+    error = "cannot open mesh file '" + opts.file + "': not found at " + looked + "; expected a readable " +
+            (EndsWith(opts.file, ".h5") ? "mesh written by -mesh_save" : "gmsh .msh or .geo file");
+    return "";
+  }
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+  absolute_path = ec ? path : absolute.lexically_normal().string();
+  return path;
+}
+
 PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
-  PetscMPIInt rank;
   PetscFunctionBeginUser;
   comm_ = comm;
+  // An unwritable -mesh_save is reported before a large mesh is read.
+  if (!opts.save.empty()) PetscCall(CheckMeshSavePath(comm, opts.save));
+  if (EndsWith(opts.file, ".h5")) PetscCall(LoadH5(opts));
+  else PetscCall(ReadGmshMesh(opts));
+  if (!opts.save.empty()) PetscCall(SaveH5(opts.save));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::ReadGmshMesh(const MeshOptions &opts) {
+  PetscMPIInt rank;
+  MPI_Comm comm = comm_;
+  PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   std::string error;
-  ProgressBegin(("reading " + opts.file + (opts.file.size() > 4 && opts.file.substr(opts.file.size() - 4) == ".geo"
-                                                ? " (meshing with gmsh)" : "")).c_str());
+  ProgressBegin(("reading " + opts.file + (EndsWith(opts.file, ".geo") ? " (meshing with gmsh)" : "")).c_str());
   if (rank == 0) {
-    std::string looked;
-    // Options not read by ReadMeshOptions (unit tests) name the file as it is.
-    const PathCandidates as_given{{opts.file}, {"relative to the current directory"}};
-    const std::string path = FirstExisting(opts.file_candidates.paths.empty() ? as_given : opts.file_candidates, looked);
-    if (path.empty())
-      error = "cannot open mesh file '" + opts.file + "': not found at " + looked +
-              "; expected a readable gmsh .msh or .geo file";
-    else {
-      error = ReadGmsh(path, opts.size_factor, serial_, opts.max_cells);
-      std::error_code ec;
-      const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
-      path_ = ec ? path : absolute.lexically_normal().string();
-    }
+    const std::string path = FindMeshFile(opts, path_, error);
+    if (!path.empty()) error = ReadGmsh(path, opts.size_factor, serial_, opts.max_cells);
   }
   ProgressEnd();
   PetscCall(RaiseFromRoot(comm, error));
@@ -283,10 +294,7 @@ PetscErrorCode Mesh::Create(MPI_Comm comm, const MeshOptions &opts) {
   PetscCall(Partition(dm, opts.partitioner));
   PetscCall(Distribute(dm));
   ProgressEnd();
-  dm_ = std::move(dm);
-  PetscCall(BuildLocalArrays());
-  PetscCall(BuildVertexSF());
-  PetscCall(CacheLabelVertices());
+  PetscCall(KeepDistributed(dm));
   // The file's tags in blocks of file indices (written with the output); nothing needs the serial mesh any more.
   if (rank == 0) {
     serial_.node_tags = InFileOrder(serial_.node_tags, file_node);
@@ -501,45 +509,84 @@ PetscErrorCode Mesh::MetisPartition(std::vector<PetscInt> &sizes, std::vector<Pe
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Mesh::PackPointData(DM dm, bool local_vertices, SectionH &s, VecH &d) const {
+  PetscInt pstart, pend, n;
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetChart(dm, &pstart, &pend));
+  PetscCall(PetscSectionCreate(PetscObjectComm((PetscObject)dm), s.out())); // collective views need dm's comm
+  PetscCall(PetscSectionSetChart(s, pstart, pend));
+  const PetscInt nv = (PetscInt)vertex_orig_.size(), nc = (PetscInt)cell_orig_.size();
+  for (PetscInt c = 0; c < nc; ++c)
+    PetscCall(PetscSectionSetDof(s, cstart_ + c, 2 + cell_offsets_[c + 1] - cell_offsets_[c] +
+                                                     cell_face_offsets_[c + 1] - cell_face_offsets_[c]));
+  for (PetscInt v = 0; v < nv; ++v) PetscCall(PetscSectionSetDof(s, vstart_ + v, 1));
+  PetscCall(PetscSectionSetUp(s));
+  PetscCall(PetscSectionGetStorageSize(s, &n));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, d.out()));
+  PetscCall(PetscObjectSetName((PetscObject)d.get(), "point_data"));
+  PetscScalar *a;
+  PetscCall(VecGetArray(d, &a));
+  for (PetscInt c = 0; c < nc; ++c) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(s, cstart_ + c, &off));
+    a[off++] = cell_orig_[c];
+    a[off++] = cell_offsets_[c + 1] - cell_offsets_[c];
+    for (PetscInt k = cell_offsets_[c]; k < cell_offsets_[c + 1]; ++k)
+      a[off++] = local_vertices ? vertex_orig_[cell_vertices_[k]] : cell_vertices_[k];
+    for (PetscInt k = cell_face_offsets_[c]; k < cell_face_offsets_[c + 1]; ++k) a[off++] = cell_face_codes_[k];
+  }
+  for (PetscInt v = 0; v < nv; ++v) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(s, vstart_ + v, &off));
+    a[off] = vertex_orig_[v];
+  }
+  PetscCall(VecRestoreArray(d, &a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::UnpackPointData(DM dm, PetscSection sec, Vec data) {
+  PetscInt end;
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vstart_, &end));
+  vertex_orig_.assign(end - vstart_, -1);
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cstart_, &end));
+  cell_orig_.assign(end - cstart_, -1);
+  const PetscScalar *b;
+  PetscCall(VecGetArrayRead(data, &b));
+  for (PetscInt v = 0; v < (PetscInt)vertex_orig_.size(); ++v) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(sec, vstart_ + v, &off));
+    vertex_orig_[v] = (PetscInt)PetscRealPart(b[off]);
+  }
+  cell_offsets_.assign(1, 0);
+  cell_vertices_.clear();
+  cell_face_offsets_.assign(1, 0);
+  cell_face_codes_.clear();
+  for (PetscInt c = 0; c < (PetscInt)cell_orig_.size(); ++c) {
+    PetscInt off, ndof;
+    PetscCall(PetscSectionGetOffset(sec, cstart_ + c, &off));
+    PetscCall(PetscSectionGetDof(sec, cstart_ + c, &ndof));
+    PetscCheck(ndof >= 2, PETSC_COMM_SELF, PETSC_ERR_PLIB, "cell %" PetscInt_FMT " carries no point data", c);
+    cell_orig_[c] = (PetscInt)PetscRealPart(b[off]);
+    const PetscInt nvert = (PetscInt)PetscRealPart(b[off + 1]);
+    for (PetscInt k = 2; k < ndof; ++k)
+      (k < 2 + nvert ? cell_vertices_ : cell_face_codes_).push_back((PetscInt)PetscRealPart(b[off + k]));
+    cell_offsets_.push_back((PetscInt)cell_vertices_.size());
+    cell_face_offsets_.push_back((PetscInt)cell_face_codes_.size());
+  }
+  PetscCall(VecRestoreArrayRead(data, &b));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Mesh::Distribute(DMH &dm) {
   PetscMPIInt size;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm_, &size));
   if (size == 1) PetscFunctionReturn(0);
-  // Section holding, on every vertex, its index in the file and, on every cell, its index in the file followed by
-  // those of its vertices in gmsh's order.
-  PetscInt pstart, pend;
-  PetscCall(DMPlexGetChart(dm, &pstart, &pend));
+  // The point data (PackPointData) travels with the points.
   SectionH sec;
-  PetscCall(PetscSectionCreate(PETSC_COMM_SELF, sec.out()));
-  PetscCall(PetscSectionSetChart(sec, pstart, pend));
-  const PetscInt nv = (PetscInt)vertex_orig_.size(), nc = (PetscInt)cell_orig_.size();
-  for (PetscInt c = 0; c < nc; ++c)
-    PetscCall(PetscSectionSetDof(sec, cstart_ + c, 2 + cell_offsets_[c + 1] - cell_offsets_[c] +
-                                                       cell_face_offsets_[c + 1] - cell_face_offsets_[c]));
-  for (PetscInt v = 0; v < nv; ++v) PetscCall(PetscSectionSetDof(sec, vstart_ + v, 1));
-  PetscCall(PetscSectionSetUp(sec));
   VecH orig;
-  PetscInt n;
-  PetscCall(PetscSectionGetStorageSize(sec, &n));
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, orig.out()));
-  PetscScalar *a;
-  PetscCall(VecGetArray(orig, &a));
-  for (PetscInt c = 0; c < nc; ++c) {
-    PetscInt off;
-    PetscCall(PetscSectionGetOffset(sec, cstart_ + c, &off));
-    a[off++] = cell_orig_[c];
-    a[off++] = cell_offsets_[c + 1] - cell_offsets_[c];
-    for (PetscInt k = cell_offsets_[c]; k < cell_offsets_[c + 1]; ++k) a[off++] = cell_vertices_[k];
-    for (PetscInt k = cell_face_offsets_[c]; k < cell_face_offsets_[c + 1]; ++k) a[off++] = cell_face_codes_[k];
-  }
-  for (PetscInt v = 0; v < nv; ++v) {
-    PetscInt off;
-    PetscCall(PetscSectionGetOffset(sec, vstart_ + v, &off));
-    a[off] = vertex_orig_[v];
-  }
-  PetscCall(VecRestoreArray(orig, &a));
-
+  PetscCall(PackPointData(dm, false, sec, orig));
   SFH migration;
   DMH dist;
   PetscCall(DMPlexDistribute(dm, 0, migration.out(), dist.out()));
@@ -549,34 +596,17 @@ PetscErrorCode Mesh::Distribute(DMH &dm) {
   PetscCall(PetscSectionCreate(PETSC_COMM_SELF, new_sec.out()));
   PetscCall(VecCreate(PETSC_COMM_SELF, new_orig.out()));
   PetscCall(DMPlexDistributeField(dm, migration, sec, orig, new_sec, new_orig));
-  PetscCall(DMPlexGetDepthStratum(dist, 0, &vstart_, &pend));
-  vertex_orig_.assign(pend - vstart_, -1);
-  PetscCall(DMPlexGetHeightStratum(dist, 0, &cstart_, &pend));
-  cell_orig_.assign(pend - cstart_, -1);
-  const PetscScalar *b;
-  PetscCall(VecGetArrayRead(new_orig, &b));
-  for (PetscInt v = 0; v < (PetscInt)vertex_orig_.size(); ++v) {
-    PetscInt off;
-    PetscCall(PetscSectionGetOffset(new_sec, vstart_ + v, &off));
-    vertex_orig_[v] = (PetscInt)PetscRealPart(b[off]);
-  }
-  cell_offsets_.assign(1, 0);
-  cell_vertices_.clear();
-  cell_face_offsets_.assign(1, 0);
-  cell_face_codes_.clear();
-  for (PetscInt c = 0; c < (PetscInt)cell_orig_.size(); ++c) {
-    PetscInt off, ndof;
-    PetscCall(PetscSectionGetOffset(new_sec, cstart_ + c, &off));
-    PetscCall(PetscSectionGetDof(new_sec, cstart_ + c, &ndof));
-    cell_orig_[c] = (PetscInt)PetscRealPart(b[off]);
-    const PetscInt nvert = (PetscInt)PetscRealPart(b[off + 1]);
-    for (PetscInt k = 2; k < ndof; ++k)
-      (k < 2 + nvert ? cell_vertices_ : cell_face_codes_).push_back((PetscInt)PetscRealPart(b[off + k]));
-    cell_offsets_.push_back((PetscInt)cell_vertices_.size());
-    cell_face_offsets_.push_back((PetscInt)cell_face_codes_.size());
-  }
-  PetscCall(VecRestoreArrayRead(new_orig, &b));
+  PetscCall(UnpackPointData(dist, new_sec, new_orig));
   dm = std::move(dist);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::KeepDistributed(DMH &dm) {
+  PetscFunctionBeginUser;
+  dm_ = std::move(dm);
+  PetscCall(BuildLocalArrays());
+  PetscCall(BuildVertexSF());
+  PetscCall(CacheLabelVertices());
   PetscFunctionReturn(0);
 }
 

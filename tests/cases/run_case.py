@@ -22,7 +22,8 @@ import tempfile
 import time
 
 # The test modules, by theme; each registers its tests with @test when imported.
-TEST_MODULES = ("cases", "verification", "obstacles", "robustness", "parallel", "solvers", "svk", "output")
+TEST_MODULES = ("cases", "verification", "obstacles", "robustness", "parallel", "solvers", "svk", "output",
+                "mesh_h5")
 
 
 def main():

@@ -26,18 +26,26 @@ struct Face {
 
 /// Mesh options (prefix -mesh_), read by Mesh::Create.
 struct MeshOptions {
-  std::string file;               ///< -mesh_file: gmsh .msh or .geo, as given
+  std::string file;               ///< -mesh_file: gmsh .msh or .geo, or a .h5 written by -mesh_save, as given
   PathCandidates file_candidates; ///< where file is looked for (relative to the options file that set it, then here)
   double size_factor = 1.0;       ///< -mesh_size_factor: scales the mesh size of a .geo
   double max_cells = 0;           ///< -mesh_max_cells: a .geo estimated to mesh into more cells is refused
   std::string partitioner = "metis"; ///< -mesh_partitioner: metis | ptscotch | simple
+  bool partitioner_set = false;      ///< -mesh_partitioner was given (a .h5 replaces the default metis by ptscotch)
+  std::string save;                  ///< -mesh_save: the .h5 file the distributed mesh is written to ("" for none)
 };
 
 [[nodiscard]] PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, MeshOptions &opts);
 
+/// The file opts.file names (looked for in opts.file_candidates), as found, and absolute_path; "" and error set when
+/// there is none. Local.
+std::string FindMeshFile(const MeshOptions &opts, std::string &absolute_path, std::string &error);
+
 class Mesh {
 public:
-  /// Reads the file on rank 0, builds, labels, partitions and distributes the DMPlex. Collective.
+  /// Reads the gmsh file on rank 0, builds, labels, partitions and distributes the DMPlex; or reads a .h5 written by
+  /// -mesh_save, every rank its part (LoadH5), and partitions it in parallel. Then writes -mesh_save if given (SaveH5).
+  /// Collective.
   [[nodiscard]] PetscErrorCode Create(MPI_Comm comm, const MeshOptions &opts);
 
   MPI_Comm Comm() const { return comm_; }
@@ -109,6 +117,34 @@ private:
   /// takes it: sizes (zero on entry) the cells of each part, points the cells part by part. Rank 0 (RunOnRoot).
   [[nodiscard]] PetscErrorCode MetisPartition(std::vector<PetscInt> &sizes, std::vector<PetscInt> &points) const;
   [[nodiscard]] PetscErrorCode Distribute(DMH &dm);
+  /// The data each point of dm carries (the file's index of a vertex; of a cell: its file index, its vertex count, its
+  /// vertices in gmsh's order as file indices, then its face codes), as a section over dm's chart and a sequential
+  /// vector; local_vertices: cell_vertices_ holds local vertex indices (after BuildLocalArrays), else file indices.
+  [[nodiscard]] PetscErrorCode PackPointData(DM dm, bool local_vertices, SectionH &sec, VecH &data) const;
+  /// The point arrays (vstart_, cstart_, vertex_orig_, cell_orig_, cell vertices as file indices, face codes) from
+  /// PackPointData's section and vector over dm.
+  [[nodiscard]] PetscErrorCode UnpackPointData(DM dm, PetscSection sec, Vec data);
+  /// Writes the distributed mesh to path in PETSc's DMPlex HDF5 format with the point data, the groups and the
+  /// file's tags (mesh_h5.cpp), through a temporary file renamed at the end. Collective.
+  [[nodiscard]] PetscErrorCode SaveH5(const std::string &path) const;
+  /// Reads a file written by SaveH5 (opts.file), every rank a part, and partitions and distributes it with
+  /// opts.partitioner (ptscotch for the default metis, or simple). Collective.
+  [[nodiscard]] PetscErrorCode LoadH5(const MeshOptions &opts);
+  /// The graph of this rank's cells (before distribution) sharing a face, for a parallel partitioner: CSR over the
+  /// local cells, neighbours numbered globally (rank by rank in rank order). Faces are matched on a rank chosen by a
+  /// hash of their vertices' file indices. Collective.
+  [[nodiscard]] PetscErrorCode DualGraph(std::vector<PetscInt> &offsets, std::vector<PetscInt> &adjacency) const;
+  /// Sets the partitioner of dm (its cells spread over the ranks, PackPointData's arrays set): PETSc's simple split
+  /// for "simple", else PTScotch on DualGraph, as a shell partition. Collective.
+  [[nodiscard]] PetscErrorCode ParallelPartition(DM dm, const std::string &partitioner) const;
+  /// Checks that viewer's file (path, for messages) is a signorini mesh and reads its /signorini attributes (dim_,
+  /// the global counts, the groups). Collective.
+  [[nodiscard]] PetscErrorCode ReadH5Header(PetscViewer viewer, const std::string &path);
+  /// Create's path for a gmsh file (.msh, .geo): read on rank 0, labelled, partitioned, distributed. Collective.
+  [[nodiscard]] PetscErrorCode ReadGmshMesh(const MeshOptions &opts);
+  /// Takes the distributed dm as dm_ and builds the per-rank arrays (local arrays, vertex SF, the labels' vertices).
+  /// Collective.
+  [[nodiscard]] PetscErrorCode KeepDistributed(DMH &dm);
   [[nodiscard]] PetscErrorCode BuildLocalArrays();
   /// vertex_sf_ from the point SF of dm_. Collective.
   [[nodiscard]] PetscErrorCode BuildVertexSF();
