@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Outcomes of signorini on random small contact problems: a robustness survey, for comparing two builds.
 
-    scripts/random_outcomes.py [--exe build/signorini] [--cases 300] [--seed 777] [--dim 2] [--np 1]
+    scripts/random_outcomes.py [--exe build/signorini] [--cases 300] [--seed 777] [--dim 2] [--np 1] [--options O]
 
 The problems are those of the property test random_cases (tests/cases/robustness.py, random_case): a unit block or
 the 2 x 1 block, linear or svk, on a floor or a disc with optional walls, supported on its left side or held by
@@ -13,7 +13,9 @@ checked against the obstacles' geometry from its node table (robustness.geometri
 solver's pairs): one with a candidate inside an obstacle beyond the gap tolerance is counted INSIDE, with its depth.
 Then the counts.
 Two builds run with the same --seed see the same cases, so `diff` of their outputs shows what changed (docs/survey.md,
-Running the survey); so do two rank counts (--np 2: every case under mpiexec -n 2), whose outputs must be the same.
+Running the survey); so do two rank counts (--np 2: every case under mpiexec -n 2), whose outputs must be the same,
+and two solvers (--options "-contact_solver iterative": options added to every run), whose outcomes, active pairs and
+displacements must be the same (their iteration counts are their own).
 """
 import argparse
 import collections
@@ -38,6 +40,7 @@ def main():
     parser.add_argument("--seed", type=int, default=777)
     parser.add_argument("--dim", type=int, choices=(2, 3), default=2)
     parser.add_argument("--np", type=int, default=1, help="MPI ranks of each run (mpiexec -n NP when above 1)")
+    parser.add_argument("--options", default="", help="options added to every run (split at blanks)")
     opts = parser.parse_args()
     if opts.np < 1:
         parser.error("--np %d: expected a number of ranks of at least 1" % opts.np)
@@ -47,6 +50,7 @@ def main():
     counts = collections.Counter()
     for k in range(opts.cases):
         args = random_case(rng) if opts.dim == 2 else random_case_3d(rng)
+        args = args + opts.options.split()
         with tempfile.TemporaryDirectory() as tmp:
             out = os.path.join(tmp, "out")
             run = subprocess.run(launch + [opts.exe] + args + ["-output_dir", out], cwd=ROOT, stdout=subprocess.PIPE,
