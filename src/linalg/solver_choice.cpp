@@ -1,5 +1,6 @@
 #include "signorini/linalg/solver_choice.hpp"
 
+#include "signorini/core/parse.hpp"
 #include "signorini/linalg/mumps_schur.hpp"
 #include "signorini/linalg/parallel_dissection.hpp"
 #include "signorini/linalg/schur_cholesky.hpp"
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <unistd.h>
 
@@ -65,23 +67,19 @@ std::string Bytes(double b) {
 } // namespace
 
 bool ParseMemorySize(const std::string &text, double &bytes) {
-  std::size_t end = 0;
-  double v;
-  try {
-    v = std::stod(text, &end);
-  } catch (...) {
-    return false;
-  }
-  std::string unit = text.substr(end);
-  if (!unit.empty() && (unit.back() == 'B' || unit.back() == 'b')) unit.pop_back();
+  // A number as ParseFinite reads it, then an optional unit letter and an optional B.
+  std::string number = text;
+  if (!number.empty() && (number.back() == 'B' || number.back() == 'b')) number.pop_back();
   double scale = 1;
-  if (unit == "k" || unit == "K") scale = 1024.0;
-  else if (unit == "M" || unit == "m") scale = 1024.0 * 1024;
-  else if (unit == "G" || unit == "g") scale = 1024.0 * 1024 * 1024;
-  else if (unit == "T" || unit == "t") scale = 1024.0 * 1024 * 1024 * 1024;
-  else if (!unit.empty()) return false;
-  if (!std::isfinite(v) || v <= 0 || text.find_first_of("xXpP") != std::string::npos) return false;
-  bytes = v * scale;
+  const std::string units = "kKmMgGtT";
+  const std::size_t unit = number.empty() ? std::string::npos : units.find(number.back());
+  if (unit != std::string::npos) {
+    scale = std::pow(1024.0, 1 + (double)(unit / 2));
+    number.pop_back();
+  }
+  const std::optional<double> v = ParseFinite(number);
+  if (!v || !(*v > 0) || !std::isfinite(*v * scale)) return false;
+  bytes = *v * scale;
   return true;
 }
 
