@@ -17,6 +17,7 @@
 namespace signorini {
 
 const char *const SOLVER_PATH_NAMES[] = {"auto", "direct", "iterative"};
+const char *const CHOSEN_BY_NAMES[] = {"auto", "-contact_solver", "solver options"};
 
 namespace {
 
@@ -158,17 +159,17 @@ PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bo
   choice = SolverChoice();
   if (opts.path != SolverPath::AUTO) {
     choice.path = opts.path;
-    choice.by = "-contact_solver";
+    choice.by = ChosenBy::CONTACT_SOLVER;
     choice.why = std::string("-contact_solver ") + SOLVER_PATH_NAMES[(int)opts.path];
     PetscFunctionReturn(0);
   }
   if (given) {
     choice.path = factor_pc ? SolverPath::DIRECT : SolverPath::ITERATIVE;
-    choice.by = "solver options";
+    choice.by = ChosenBy::SOLVER_OPTIONS;
     choice.why = "the run's own solver options";
     PetscFunctionReturn(0);
   }
-  choice.by = "auto";
+  choice.by = ChosenBy::AUTO;
   if (opts.budget_set) choice.budget_bytes = opts.budget;
   else PetscCall(MemoryBudget(comm, choice.budget_bytes));
   choice.iterative_seconds = ITERATIVE_SECONDS_PER_DOF * (double)problem.u_dofs / size;

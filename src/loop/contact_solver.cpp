@@ -64,7 +64,7 @@ PetscErrorCode ContactSolver::CreateSystem() {
   system_ = std::make_unique<SaddlePointSystem>();
   if (!stats_.solver_chosen) PetscCall(ChooseSolver());
   // A path chosen by the run's own solver options takes no defaults of a path.
-  system_->UsePath(stats_.solver.by == "solver options" ? SolverPath::DIRECT : stats_.solver.path);
+  system_->UsePath(stats_.solver.by == ChosenBy::SOLVER_OPTIONS ? SolverPath::DIRECT : stats_.solver.path);
   PetscCall(system_->Create(dofs_, rows_, coords, !model_->Nonlinear(), kscale_, d_nnz, o_nnz,
                             [&](Mat A) { return assembler_->InsertPattern(A); }));
   if (opts_.lagged_search_set && opts_.lagged_search) system_->KeepFactorization();
@@ -116,7 +116,7 @@ PetscErrorCode ContactSolver::ChooseSolver() {
   };
   PetscCall(ChooseSolverPath(comm, opts.path, given, factor_pc, problem, stats_.solver));
   stats_.solver_chosen = true;
-  ProgressNote("solver: %s (%s: %s)", SOLVER_PATH_NAMES[(int)stats_.solver.path], stats_.solver.by.c_str(),
+  ProgressNote("solver: %s (%s: %s)", SOLVER_PATH_NAMES[(int)stats_.solver.path], CHOSEN_BY_NAMES[(int)stats_.solver.by],
                stats_.solver.why.c_str());
   PetscFunctionReturn(0);
 }

@@ -188,7 +188,7 @@ PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m
   PetscCall(PetscPrintf(comm, "  unknowns: %" PetscInt_FMT " displacements, %" PetscInt_FMT " multipliers (%"
                         PetscInt_FMT " candidate nodes)\n", dofs.GlobalU(), dofs.GlobalLambda(), candidates));
   const SolverChoice &sc = state.stats.solver;
-  PetscCall(PetscPrintf(comm, "  solver: %s (%s: %s)\n", SOLVER_PATH_NAMES[(int)sc.path], sc.by.c_str(),
+  PetscCall(PetscPrintf(comm, "  solver: %s (%s: %s)\n", SOLVER_PATH_NAMES[(int)sc.path], CHOSEN_BY_NAMES[(int)sc.by],
                         sc.why.c_str()));
   PetscFunctionReturn(0);
 }
@@ -258,9 +258,9 @@ void CertificateJson(JsonWriter &j, const Certificate &cert) {
 void SolverJson(JsonWriter &j, const SolverChoice &sc) {
   j.BeginObject("solver")
       .String("path", SOLVER_PATH_NAMES[(int)sc.path])
-      .String("chosen_by", sc.by)
+      .String("chosen_by", CHOSEN_BY_NAMES[(int)sc.by])
       .String("why", sc.why);
-  if (sc.by == "auto")
+  if (sc.by == ChosenBy::AUTO)
     j.Number("budget_bytes", sc.budget_bytes)
         .Number("direct_bytes", sc.direct_bytes)
         .Number("direct_seconds", sc.direct_seconds)

@@ -43,10 +43,14 @@ struct SolverProblem {
   std::function<PetscErrorCode(PetscInt &num_nodes, std::vector<idx_t> &edges)> node_graph;
 };
 
+/// Who chose the path: the automatic choice, -contact_solver, or the run's own solver options.
+enum class ChosenBy { AUTO, CONTACT_SOLVER, SOLVER_OPTIONS };
+extern const char *const CHOSEN_BY_NAMES[]; ///< "auto", "-contact_solver", "solver options"
+
 /// The path and why (for the run's header, -progress and summary.json).
 struct SolverChoice {
   SolverPath path = SolverPath::DIRECT; ///< DIRECT or ITERATIVE
-  std::string by;                       ///< "auto", "-contact_solver" or "solver options"
+  ChosenBy by = ChosenBy::AUTO;
   std::string why;                      ///< one sentence
   double direct_bytes = -1, budget_bytes = -1;         ///< per rank (auto only)
   double direct_seconds = -1, iterative_seconds = -1;  ///< the models' estimates (auto only)

@@ -97,7 +97,7 @@ TEST(ChooseSolverPath, Decisions) {
   opts.budget = 1e12, opts.budget_set = PETSC_TRUE;
   ASSERT_EQ(ChooseSolverPath(PETSC_COMM_SELF, opts, false, true, problem, c), 0);
   EXPECT_EQ(c.path, SolverPath::DIRECT);
-  EXPECT_EQ(c.by, "auto");
+  EXPECT_EQ(c.by, ChosenBy::AUTO);
   opts.budget = 1e6;
   ASSERT_EQ(ChooseSolverPath(PETSC_COMM_SELF, opts, false, true, problem, c), 0);
   EXPECT_EQ(c.path, SolverPath::ITERATIVE);
@@ -106,13 +106,13 @@ TEST(ChooseSolverPath, Decisions) {
   // The run's own solver decides; -contact_solver before it.
   ASSERT_EQ(ChooseSolverPath(PETSC_COMM_SELF, opts, true, true, problem, c), 0);
   EXPECT_EQ(c.path, SolverPath::DIRECT);
-  EXPECT_EQ(c.by, "solver options");
+  EXPECT_EQ(c.by, ChosenBy::SOLVER_OPTIONS);
   ASSERT_EQ(ChooseSolverPath(PETSC_COMM_SELF, opts, true, false, problem, c), 0);
   EXPECT_EQ(c.path, SolverPath::ITERATIVE);
   opts.path = SolverPath::DIRECT;
   ASSERT_EQ(ChooseSolverPath(PETSC_COMM_SELF, opts, true, false, problem, c), 0);
   EXPECT_EQ(c.path, SolverPath::DIRECT);
-  EXPECT_EQ(c.by, "-contact_solver");
+  EXPECT_EQ(c.by, ChosenBy::CONTACT_SOLVER);
 }
 
 } // namespace
