@@ -361,6 +361,8 @@ CASES = {
     "solver_path_unknown": (["-contact_solver", "fast"], ["-contact_solver", "fast", "auto direct iterative"], {}),
     "memory_budget_not_size": (["-contact_memory_budget", "lots"],
                                ["-contact_memory_budget lots", "expected a memory size"], {}),
+    "active_set_rtol_out_of_range": (["-contact_active_set_rtol", "0.5"],
+                                     ["-contact_active_set_rtol 0.5", "out of range", "[0, 0.1]"], {}),
     "memory_budget_negative": (["-contact_memory_budget", "-1G"],
                                ["-contact_memory_budget -1G", "expected a memory size"], {}),
     "reuse_max_it_linear": (["-contact_reuse_max_it", "3"],
