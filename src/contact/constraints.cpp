@@ -18,6 +18,20 @@ void EvaluatePairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOpti
     const double *X = mesh.X(pair.vertex), *u = &u_local[pair.vertex * dim];
     double x[3] = {0, 0, 0};
     for (int d = 0; d < dim; ++d) x[d] = X[d] + u[d];
+    if (pair.facet >= (PetscInt)obstacle.facets.size()) {
+      // A mortar pair (MortarCoupling): its slave part, g0 + n0 . u in its fixed zone; the caller adds the master's.
+      double g = pair.g0;
+      for (int d = 0; d < dim; ++d) g += pair.n0[d] * u[d];
+      states[p].gap = g;
+      states[p].inside = true;
+      states[p].entered = false;
+      states[p].crossing = 0;
+      for (int d = 0; d < 3; ++d) normals[p][d] = pair.n0[d];
+      rows[p].Clear();
+      for (int k = 0; k < dim; ++k)
+        if (!fixed[pair.vertex * dim + k]) rows[p].Add(dofs.Row(pair.vertex, k), -normals[p][k]);
+      continue;
+    }
     const Facet &facet = *obstacle.facets[pair.facet];
     const Projection proj = facet.Project(x, opts.alpha_tol, opts.length);
     states[p].inside = proj.inside;
@@ -50,13 +64,9 @@ void EvaluatePairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOpti
       states[p].entered = pair.g0 < -opts.touch_tol && pair.inside0 && g < 0;
     }
     ConstraintRow &row = rows[p];
-    row.ncols = 0;
-    for (int k = 0; k < dim; ++k) {
-      if (fixed[pair.vertex * dim + k]) continue;
-      row.cols[row.ncols] = dofs.Row(pair.vertex, k);
-      row.coef[row.ncols] = -normals[p][k];
-      ++row.ncols;
-    }
+    row.Clear();
+    for (int k = 0; k < dim; ++k)
+      if (!fixed[pair.vertex * dim + k]) row.Add(dofs.Row(pair.vertex, k), -normals[p][k]);
   }
   // svk: a node on the apex of a convex joint projects onto both facets only by the projection's tolerance, and it
   // is outside the obstacle when it is outside either: the nearer facet alone is its zone there (the first at a tie),

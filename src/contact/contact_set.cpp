@@ -16,17 +16,34 @@ PetscErrorCode CheckContactInputs(const Mesh &mesh, const Obstacle &obstacle, co
   // -contact_monitor and -contact_converged_reason still print the (single) iteration and its reason; the solver's
   // own -contact_ksp_, -contact_pc_ and -contact_mat_ options solve the elastic problem.
   static const char *const contact_only[] = {
-      "-contact_groups", "-contact_search_radius", "-contact_touch_tol", "-contact_gap_tol", "-contact_alpha_tol",
+      "-contact_search_radius", "-contact_touch_tol", "-contact_gap_tol", "-contact_alpha_tol",
       "-contact_complementarity_c", "-contact_activation_fraction", "-contact_activation_gap_factor",
       "-contact_max_it", "-contact_reuse_factorization", "-contact_reuse_max_it", "-contact_nested_dissection",
       "-contact_nested_dissection_parallel"};
   PetscFunctionBeginUser;
+  const bool contact = !obstacle.facets.empty() || !opts.pairs.empty();
   for (const char *name : contact_only) {
     PetscBool set;
     PetscCall(PetscOptionsHasName(nullptr, nullptr, name, &set));
-    PetscCheck(!set || !obstacle.facets.empty(), comm, PETSC_ERR_USER_INPUT,
-               "%s is given, but the case has no obstacle (no -obstacle_* option), so there is no contact for it to "
-               "act on; expected an obstacle, or no contact options", name);
+    PetscCheck(!set || contact, comm, PETSC_ERR_USER_INPUT,
+               "%s is given, but the case has no obstacle (no -obstacle_* option) and no pair of bodies "
+               "(-contact_pairs), so there is no contact for it to act on; expected an obstacle or a pair, or no "
+               "contact options", name);
+  }
+  PetscBool groups_set;
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-contact_groups", &groups_set));
+  PetscCheck(!groups_set || !obstacle.facets.empty(), comm, PETSC_ERR_USER_INPUT,
+             "-contact_groups is given, but the case has no obstacle (no -obstacle_* option): its groups are the "
+             "candidates of a body against rigid obstacles; expected an obstacle, or -contact_pairs SLAVE:MASTER for "
+             "contact between bodies");
+  for (const auto &[slave, master] : opts.pairs) {
+    const std::string item = "-contact_pairs " + slave + ":" + master;
+    PetscCheck(slave != master, comm, PETSC_ERR_USER_INPUT,
+               "%s: the same group on both sides; expected the facet groups of two different bodies (self-contact is "
+               "not supported)", item.c_str());
+    std::vector<Face> faces;
+    PetscCall(mesh.GroupFaces(slave, faces, item));
+    PetscCall(mesh.GroupFaces(master, faces, item));
   }
   // A candidate is a node of the body's boundary: a group of the body's dimension (or one with interior nodes)
   // would make interior nodes candidates.
@@ -66,6 +83,21 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
   const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
   PetscCall(OptionsStringList(PetscOptionsObject, "-contact_groups", "Physical groups of candidate nodes (default: "
                               "whole boundary)", "no candidate nodes", "physical group names", opts.groups));
+  std::vector<std::string> items;
+  PetscCall(OptionsStringList(PetscOptionsObject, "-contact_pairs", "Pairs of facet groups of two bodies in contact, "
+                              "SLAVE:MASTER,... (the slave side carries the multipliers: make it the finer mesh)",
+                              "no pair of bodies", "SLAVE:MASTER items of physical group names", items));
+  opts.pairs.clear();
+  for (const auto &item : items) {
+    const auto colon = item.find(':');
+    PetscCheck(colon != std::string::npos && colon > 0 && colon + 1 < item.size() &&
+                   item.find(':', colon + 1) == std::string::npos,
+               comm, PETSC_ERR_USER_INPUT,
+               "-contact_pairs: item '%s' is not of the form SLAVE:MASTER; expected two physical group names (curves "
+               "in 2D, surfaces in 3D) joined by a colon, e.g. -contact_pairs top_bottom:base_top",
+               item.c_str());
+    opts.pairs.emplace_back(item.substr(0, colon), item.substr(colon + 1));
+  }
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_search_radius", "Pair a node with the facets within this "
                         "distance (default 0.1 x body diagonal); a load step that ends with a node inside a facet it "
                         "has no pair with, or that cycles or leaves the body free, is repeated with a wider radius",

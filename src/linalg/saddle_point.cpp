@@ -37,12 +37,12 @@ void SaddlePointSystem::RowCounts(const std::vector<SparseRow> &rows, const std:
 }
 
 PetscErrorCode SaddlePointSystem::CreatePattern(const std::vector<SparseRow> &rows, Mat P) const {
-  const PetscScalar zeros[3] = {0, 0, 0};
   PetscFunctionBeginUser;
   for (std::size_t p = 0; p < rows.size(); ++p) {
     const PetscInt r = dofs_->LambdaRow((PetscInt)p);
-    PetscCall(MatSetValues(P, 1, &r, rows[p].ncols, rows[p].cols, zeros, ADD_VALUES));
-    PetscCall(MatSetValues(P, rows[p].ncols, rows[p].cols, 1, &r, zeros, ADD_VALUES));
+    const std::vector<PetscScalar> zeros(rows[p].ncols, 0.0);
+    PetscCall(MatSetValues(P, 1, &r, rows[p].ncols, rows[p].cols.data(), zeros.data(), ADD_VALUES));
+    PetscCall(MatSetValues(P, rows[p].ncols, rows[p].cols.data(), 1, &r, zeros.data(), ADD_VALUES));
     PetscCall(MatSetValue(P, r, r, 0.0, ADD_VALUES));
   }
   PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
@@ -221,8 +221,8 @@ PetscErrorCode SaddlePointSystem::CreateNest(const std::vector<SparseRow> &rows,
   PetscCall(create(nl, nu, gl, gu, b_d, b_o, nest_.B));
   PetscCall(create(nu, nl, gu, gl, bt_d, bt_o, nest_.Bt));
   PetscCall(create(nl, nl, gl, gl, d_d, d_o, nest_.D));
-  const PetscScalar zeros[3] = {0, 0, 0};
-  for (std::size_t p = 0; p < rows.size(); ++p) PetscCall(SetRow(rows[p], (PetscInt)p, zeros, 0.0));
+  for (std::size_t p = 0; p < rows.size(); ++p)
+    PetscCall(SetRow(rows[p], (PetscInt)p, std::vector<PetscScalar>(rows[p].ncols, 0.0).data(), 0.0));
   for (Mat M : {nest_.K.get(), nest_.B.get(), nest_.Bt.get(), nest_.D.get()}) {
     PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
@@ -244,16 +244,16 @@ PetscErrorCode SaddlePointSystem::SetRow(const SparseRow &row, PetscInt p, const
   PetscFunctionBeginUser;
   if (!nest_.on) {
     const PetscInt r = dofs_->LambdaRow(p);
-    PetscCall(MatSetValues(A_, 1, &r, row.ncols, row.cols, coef, INSERT_VALUES));
-    PetscCall(MatSetValues(A_, row.ncols, row.cols, 1, &r, coef, INSERT_VALUES));
+    PetscCall(MatSetValues(A_, 1, &r, row.ncols, row.cols.data(), coef, INSERT_VALUES));
+    PetscCall(MatSetValues(A_, row.ncols, row.cols.data(), 1, &r, coef, INSERT_VALUES));
     PetscCall(MatSetValue(A_, r, r, d, INSERT_VALUES));
     PetscFunctionReturn(0);
   }
   const PetscInt r = dofs_->LambdaBlockRow(p);
-  PetscInt cols[3];
+  std::vector<PetscInt> cols(row.ncols);
   for (PetscInt i = 0; i < row.ncols; ++i) cols[i] = dofs_->UBlockRow(row.cols[i]);
-  PetscCall(MatSetValues(nest_.B, 1, &r, row.ncols, cols, coef, INSERT_VALUES));
-  PetscCall(MatSetValues(nest_.Bt, row.ncols, cols, 1, &r, coef, INSERT_VALUES));
+  PetscCall(MatSetValues(nest_.B, 1, &r, row.ncols, cols.data(), coef, INSERT_VALUES));
+  PetscCall(MatSetValues(nest_.Bt, row.ncols, cols.data(), 1, &r, coef, INSERT_VALUES));
   PetscCall(MatSetValue(nest_.D, r, r, d, INSERT_VALUES));
   PetscFunctionReturn(0);
 }
@@ -506,13 +506,13 @@ PetscErrorCode SaddlePointSystem::Reweight(const std::vector<SparseRow> &rows, c
     const SparseRow &row = rows[p];
     const double dw = weight[p] - weight_[p];
     if (dw == 0) continue;
-    PetscScalar v[9];
-    PetscInt cols[3];
+    std::vector<PetscScalar> v(row.ncols * row.ncols);
+    std::vector<PetscInt> cols(row.ncols);
     for (PetscInt i = 0; i < row.ncols; ++i) {
       cols[i] = nest_.on ? dofs_->UBlockRow(row.cols[i]) : row.cols[i];
       for (PetscInt j = 0; j < row.ncols; ++j) v[i * row.ncols + j] = dw * row.coef[i] * row.coef[j];
     }
-    PetscCall(MatSetValues(Stiffness(), row.ncols, cols, row.ncols, cols, v, ADD_VALUES));
+    PetscCall(MatSetValues(Stiffness(), row.ncols, cols.data(), row.ncols, cols.data(), v.data(), ADD_VALUES));
     weight_[p] = weight[p];
   }
   PetscCall(MatAssemblyBegin(Stiffness(), MAT_FLUSH_ASSEMBLY));
@@ -562,7 +562,7 @@ PetscErrorCode SaddlePointSystem::MultiplierDiagonal(std::vector<PetscScalar> &d
 PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<SparseRow> &rows,
                                                  const std::vector<char> &active, double inactive_diag,
                                                  double stabilisation) {
-  const PetscScalar zeros[3] = {0, 0, 0};
+  std::vector<PetscScalar> zeros;
   PetscFunctionBeginUser;
   PetscCheck(stabilisation >= 0 && stabilisation < aug_inactive_, PetscObjectComm((PetscObject)A_.get()),
              PETSC_ERR_ARG_OUTOFRANGE, "stabilisation weight %.6g outside [0, %.6g)", stabilisation, aug_inactive_);
@@ -575,7 +575,8 @@ PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<SparseRow> &r
   }
   for (std::size_t p = 0; p < rows.size(); ++p) {
     const bool keep = active[p] || augmented_ || stab_ > 0;
-    PetscCall(SetRow(rows[p], (PetscInt)p, keep ? rows[p].coef : zeros,
+    if (!keep) zeros.assign(rows[p].ncols, 0.0);
+    PetscCall(SetRow(rows[p], (PetscInt)p, keep ? rows[p].coef.data() : zeros.data(),
                      active[p] ? 0.0 : InactiveDiagonal(inactive_diag)));
   }
   active_ = active;

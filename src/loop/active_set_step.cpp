@@ -38,7 +38,7 @@ PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const
     PetscCall(CondenseBase(st));
     if (system_->ExactFactorization() && !st.singular) {
       std::vector<double> gap(pairs_.size()), key(pairs_.size());
-      const double nf = (double)obstacle_.facets.size() + 1;
+      const double nf = (double)(obstacle_.facets.size() + mortar_.Interfaces()) + 1;
       for (std::size_t p = 0; p < pairs_.size(); ++p) {
         gap[p] = states_[p].gap;
         key[p] = (double)keys_[p].original * nf + (double)keys_[p].facet;
@@ -138,7 +138,7 @@ PetscErrorCode ContactSolver::WidenSearch(const std::vector<double> &lambda, con
   }
   std::vector<ContactPair> pairs;
   std::vector<char> candidate;
-  PetscCall(FindContactPairs(mesh_, obstacle_, contact_, dirichlet_.fixed, pairs, candidate));
+  PetscCall(FindAllPairs(pairs, candidate));
   DropOutOfZone(pairs);
   // The facets the nodes went into count in their zone from now on (the gap g0 + n0 u of the reference
   // configuration, exact for a flat facet).
@@ -190,8 +190,7 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
       PetscCall(assembler_->AssembleLoads(bc_, st.factor, fext_));
     }
   }
-  EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, model_->CurrentConfiguration(),
-                st.u_eval.data(), states_, rows_, normals_);
+  PetscCall(EvaluateAt(st.u_eval.data(), model_->CurrentConfiguration()));
   if (model_->Nonlinear() || it == 0 || st.stabilised) {
     PetscCall(Residual(lambda_, st.r.norm, st.r.scale, nullptr, nullptr, &st.r.roundoff));
   } else {
@@ -206,6 +205,11 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
     for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) fi[i] = fe[i];
     for (std::size_t p = 0; p < pairs_.size(); ++p)
       for (int k = 0; k < dim; ++k) fi[dofs_.LocalOffset(pairs_[p].vertex, k)] += mult_[p] * normals_[p][k];
+    if (!mortar_.Empty()) {
+      std::vector<double> master(dofs_.OwnedU(), 0.0);
+      PetscCall(mortar_.AddMasterForces(mult_, 1, master));
+      for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) fi[i] += master[i];
+    }
     PetscCall(VecRestoreArrayRead(fext_, &fe));
     PetscCall(VecRestoreArray(fint_, &fi));
     st.r.norm = st.solve_residual;

@@ -29,7 +29,11 @@ PetscErrorCode ContactSolver::Setup() {
     PetscCall(PetscLogEventRegister("SigSolve", id, &EV_SOLVE));
   }
   PetscCall(BuildDirichlet(mesh_, bc_, dirichlet_));
-  PetscCall(FindContactPairs(mesh_, obstacle_, contact_, dirichlet_.fixed, pairs_, candidate_, nullptr, &held_));
+  PetscCheck(contact_.pairs.empty() || !model_->Nonlinear(), comm, PETSC_ERR_SUP,
+             "-contact_pairs with -material_model svk: contact between deformable bodies is implemented for the linear "
+             "material only so far; expected -material_model linear");
+  PetscCall(mortar_.Build(mesh_, contact_, dirichlet_.fixed, (PetscInt)obstacle_.facets.size()));
+  PetscCall(FindAllPairs(pairs_, candidate_, nullptr, &held_));
   if (!model_->CurrentConfiguration()) DropOutOfZone(pairs_);
   PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size()));
   assembler_ = std::make_unique<Assembler>(mesh_, material_, dofs_, dirichlet_);
@@ -57,16 +61,41 @@ PetscErrorCode ContactSolver::CreateSystem() {
   for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
     if (mesh_.Owned(v))
       for (int k = 0; k < dim; ++k) coords[dofs_.LocalOffset(v, k)] = mesh_.X(v)[k];
-  EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, false, u_local_.data(), states_, rows_,
-                normals_);
+  if (!mortar_.Empty()) PetscCall(mortar_.Bind(mesh_, dofs_, dirichlet_.fixed, pairs_));
+  PetscCall(EvaluateAt(u_local_.data(), false));
   std::vector<PetscInt> d_nnz, o_nnz;
   PetscCall(assembler_->PatternCounts(d_nnz, o_nnz));
   system_ = std::make_unique<SaddlePointSystem>();
   if (!stats_.solver_chosen) PetscCall(ChooseSolver());
   // A path chosen by the run's own solver options takes no defaults of a path.
   system_->UsePath(stats_.solver.by == ChosenBy::SOLVER_OPTIONS ? SolverPath::DIRECT : stats_.solver.path);
-  PetscCall(system_->Create(dofs_, rows_, coords, !model_->Nonlinear(), kscale_, d_nnz, o_nnz,
-                            [&](Mat A) { return assembler_->InsertPattern(A); }));
+  // A mortar row couples its slave node with master nodes of another body: the augmented forms add B_p^T B_p to the
+  // displacement block (SaddlePointSystem::Reweight), so its entries join K's fixed pattern.
+  std::vector<const ConstraintRow *> coupling;
+  for (std::size_t p = 0; p < pairs_.size(); ++p)
+    if (mortar_.IsMortar(pairs_[p])) coupling.push_back(&rows_[p]);
+  const PetscInt start = dofs_.RowStart(), end = start + dofs_.OwnedU();
+  for (const ConstraintRow *row : coupling)
+    for (PetscInt i : row->cols)
+      if (i >= start && i < end)
+        for (PetscInt j : row->cols) (j >= start && j < end ? d_nnz : o_nnz)[i - start]++;
+  const auto insert_pattern = [&](Mat A) -> PetscErrorCode {
+    PetscInt rows;
+    PetscFunctionBeginUser;
+    PetscCall(assembler_->InsertPattern(A));
+    PetscCall(MatGetSize(A, &rows, nullptr));
+    const bool block = rows != dofs_.GlobalRows(); // the displacement block of a nested matrix
+    for (const ConstraintRow *row : coupling) {
+      std::vector<PetscInt> cols(row->cols);
+      if (block)
+        for (PetscInt &c : cols) c = dofs_.UBlockRow(c);
+      const std::vector<PetscScalar> zeros(cols.size() * cols.size(), 0.0);
+      PetscCall(MatSetValues(A, (PetscInt)cols.size(), cols.data(), (PetscInt)cols.size(), cols.data(), zeros.data(),
+                             ADD_VALUES));
+    }
+    PetscFunctionReturn(0);
+  };
+  PetscCall(system_->Create(dofs_, rows_, coords, !model_->Nonlinear(), kscale_, d_nnz, o_nnz, insert_pattern));
   if (opts_.lagged_search_set && opts_.lagged_search) system_->KeepFactorization();
   k_assembled_ = false;
   PetscCall(MatCreateVecs(system_->A(), u_.out(), nullptr));
@@ -87,6 +116,27 @@ PetscErrorCode ContactSolver::CreateSystem() {
   keys_.resize(pairs_.size());
   for (std::size_t p = 0; p < pairs_.size(); ++p)
     keys_[p] = {pairs_[p].vertex, mesh_.VertexOriginal(pairs_[p].vertex), pairs_[p].facet};
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::FindAllPairs(std::vector<ContactPair> &pairs, std::vector<char> &candidate,
+                                           const double *u_local, std::vector<char> *held) {
+  PetscFunctionBeginUser;
+  PetscCall(FindContactPairs(mesh_, obstacle_, contact_, dirichlet_.fixed, pairs, candidate, u_local, held));
+  if (mortar_.Empty()) PetscFunctionReturn(0);
+  // Without an obstacle the default candidates (the whole boundary) are no one's.
+  if (obstacle_.facets.empty()) std::fill(candidate.begin(), candidate.end(), 0);
+  mortar_.AppendPairs(mesh_, pairs, candidate);
+  SortPairs(mesh_, pairs);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::EvaluateAt(const double *u, bool current) {
+  PetscFunctionBeginUser;
+  EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, current, u, states_, rows_, normals_);
+  if (mortar_.Empty()) PetscFunctionReturn(0);
+  mortar_.ExtendRows(rows_);
+  PetscCall(mortar_.AddMasterGaps(mesh_, dofs_, u, states_));
   PetscFunctionReturn(0);
 }
 
@@ -138,7 +188,7 @@ PetscErrorCode ContactSolver::Repair(const std::vector<double> &u_eval, bool for
   if (!force && moved <= 0.5 * contact_.search_radius) PetscFunctionReturn(0);
   std::vector<ContactPair> pairs;
   std::vector<char> candidate;
-  PetscCall(FindContactPairs(mesh_, obstacle_, contact_, dirichlet_.fixed, pairs, candidate, u_eval.data()));
+  PetscCall(FindAllPairs(pairs, candidate, u_eval.data()));
   paired_at_ = u_eval;
   bool same = pairs.size() == pairs_.size();
   for (std::size_t p = 0; same && p < pairs.size(); ++p)
@@ -509,7 +559,7 @@ PetscErrorCode ContactSolver::Failure(double t_try, const RetryDecision &d, std:
   r.load_factor = t_try;
   r.svk = model_->Nonlinear();
   r.deformed_after_unheld = d.deformed_after_unheld;
-  r.has_obstacle = !obstacle_.facets.empty();
+  r.has_obstacle = !obstacle_.facets.empty() || !mortar_.Empty();
   r.search_radius = contact_.search_radius;
   if (d.reason == Reason::DIVERGED_SINGULAR) r.singular_prefix = system_->SingularReport("");
   r.unheld_detail = retry_.unheld_detail;

@@ -43,6 +43,8 @@ PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double
   // Contact forces B^T lambda (all rows of the pair's node are local: pairs live with their owned node).
   for (std::size_t p = 0; p < pairs_.size(); ++p)
     for (int k = 0; k < dim; ++k) r[dofs_.LocalOffset(pairs_[p].vertex, k)] -= lambda[p] * normals_[p][k];
+  // The mortar pairs' forces on their master nodes (of any rank).
+  if (!mortar_.Empty()) PetscCall(mortar_.AddMasterForces(lambda, -1, r));
   // s[3]: ||u||^2 over the owned rows (prescribed values included), for the round-off of F_int (roundoff).
   for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
     if (mesh_.Owned(v))
@@ -280,8 +282,7 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0, bool stabilised, double 
   double g0 = 0;
   if (newton && opts_.line_search) {
     double r, scale;
-    EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, current, u_local_.data(), states_, rows_,
-                  normals_);
+    PetscCall(EvaluateAt(u_local_.data(), current));
     PetscCall(Residual(new_lambda, r, scale, dir.data(), &g0));
   }
   double s = 1.0;
@@ -306,8 +307,7 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0, bool stabilised, double 
     PetscCall(UpdateLocal());
     if (!newton || k == 8) break;
     double r, scale, g;
-    EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, current, u_local_.data(), states_, rows_,
-                  normals_);
+    PetscCall(EvaluateAt(u_local_.data(), current));
     PetscCall(Residual(new_lambda, r, scale, dir.data(), &g));
     PetscCall(PetscInfo(nullptr, "line search: step %.6g g(s)/g(0) %.6g residual %.6g (before %.6g)\n", s, g / g0, r, r0));
     if (!std::isfinite(r)) {

@@ -11,7 +11,7 @@ namespace {
 /// A rank's share of the summary, reduced over the ranks by Summarise.
 struct Partial {
   /// Sums: contact force (0-2), contact length or area (3), applied force (4-6), reaction force (8-10), strain energy
-  /// (12).
+  /// (12), contact force on the master sides of pairs of bodies (13-15).
   double sum[16] = {0};
   /// Maxima: pressure, penetration, |lambda g|, -min lambda over the active pairs, |u|.
   double max[5] = {0, 0, 0, -std::numeric_limits<double>::infinity(), 0};
@@ -77,6 +77,15 @@ PetscErrorCode BodyResults(const SolvedState &state, Partial &part) {
   for (std::size_t p = 0; p < pairs.size(); ++p)
     for (int k = 0; k < dim; ++k)
       contact_at[dofs.LocalOffset(pairs[p].vertex, k)] += state.states[p].lambda * state.normals[p][k];
+  if (state.mortar && !state.mortar->Empty()) {
+    std::vector<double> lambda(pairs.size()), master(dofs.OwnedU(), 0.0);
+    for (std::size_t p = 0; p < pairs.size(); ++p) lambda[p] = state.states[p].lambda;
+    PetscCall(state.mortar->AddMasterForces(lambda, 1, master));
+    for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v)
+      if (mesh.Owned(v))
+        for (int k = 0; k < dim; ++k) local[13 + k] += master[dofs.LocalOffset(v, k)];
+    for (PetscInt i = 0; i < dofs.OwnedU(); ++i) contact_at[i] += master[i];
+  }
   double umax = 0;
   for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) {
     if (!mesh.Owned(v)) continue;
@@ -115,7 +124,8 @@ PetscErrorCode Summarise(MPI_Comm comm, Partial &part, ContactSummary &s) {
     s.contact_force[k] = global[k];
     s.applied_force[k] = global[4 + k];
     s.reaction_force[k] = global[8 + k];
-    total[k] = global[k] + global[4 + k] + global[8 + k];
+    s.master_force[k] = global[13 + k];
+    total[k] = global[k] + global[4 + k] + global[8 + k] + global[13 + k];
     na += global[4 + k] * global[4 + k];
     nc += global[k] * global[k];
   }
@@ -142,6 +152,7 @@ PetscErrorCode ComputeContactResults(const SolvedState &state, const Material &m
   NodeResults(state, material, w, nodes, part);
   PetscCall(BodyResults(state, part));
   PetscCall(Summarise(state.mesh.Comm(), part, s));
+  s.bodies = state.mortar && !state.mortar->Empty();
   PetscFunctionReturn(0);
 }
 

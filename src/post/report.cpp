@@ -206,9 +206,16 @@ PetscErrorCode PrintSummary(MPI_Comm comm, const SolvedState &state, const Conta
     else std::snprintf(text, sizeof(text), "(%.6g, %.6g, %.6g)", v[0], v[1], v[2]);
     return std::string(text);
   };
-  PetscCall(PetscPrintf(comm, "  contact force %s, applied load %s, reactions %s, balance %.2e\n",
-                        vec(s.contact_force).c_str(), vec(s.applied_force).c_str(), vec(s.reaction_force).c_str(),
-                        s.force_balance));
+  if (s.bodies)
+    PetscCall(PetscPrintf(comm, "  contact force on the slave side %s, on the master side %s\n",
+                          vec(s.contact_force).c_str(), vec(s.master_force).c_str()));
+  PetscCall(PetscPrintf(comm, "  %s %s, applied load %s, reactions %s, balance %.2e\n",
+                        s.bodies ? "total contact force" : "contact force",
+                        vec(s.bodies ? std::array<double, 3>{s.contact_force[0] + s.master_force[0],
+                                                             s.contact_force[1] + s.master_force[1],
+                                                             s.contact_force[2] + s.master_force[2]}
+                                     : s.contact_force).c_str(),
+                        vec(s.applied_force).c_str(), vec(s.reaction_force).c_str(), s.force_balance));
   PetscCall(PetscPrintf(comm, "  contact %s %.6g, max pressure %.6g, max penetration %.3e, max |lambda g| "
                         "%.3e, max |u| %.6g\n", dim == 2 ? "length" : "area", s.contact_length, s.max_pressure,
                         s.max_penetration, s.complementarity, s.max_displacement));
@@ -309,8 +316,9 @@ void ContactJson(JsonWriter &j, const ContactSummary &s, int dim) {
       .Integer("pairs", s.pairs)
       .Integer("active_pairs", s.active_pairs)
       .Integer("active_nodes", s.active_nodes)
-      .Numbers("contact_force", vec3(s.contact_force))
-      .Numbers("applied_force", vec3(s.applied_force))
+      .Numbers("contact_force", vec3(s.contact_force));
+  if (s.bodies) j.Numbers("master_contact_force", vec3(s.master_force));
+  j.Numbers("applied_force", vec3(s.applied_force))
       .Numbers("reaction_force", vec3(s.reaction_force))
       .Number("force_balance", s.force_balance)
       .Number(dim == 2 ? "contact_length" : "contact_area", s.contact_length)

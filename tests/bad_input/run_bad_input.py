@@ -44,6 +44,8 @@ BEAM = ["-options_file", "{root}/options/beam_on_floor.yml"]
 # The beam without its clamp and with no obstacle: nothing holds it.
 # The unit cube of hexahedra on a rigid plane (3D).
 CUBE = ["-options_file", "{root}/options/cube_on_plane.yml"]
+# Two blocks stacked (the contact patch test), the upper one held by contact with the lower one alone.
+PATCH = ["-options_file", "{root}/options/patch2d.yml"]
 LOOSE_BEAM = ["-mesh_file", "{root}/meshes/beam.msh", "-material_E", "1000", "-material_nu", "0.3",
               "-bc_pressure", "top:0.2"]
 
@@ -275,6 +277,20 @@ CASES = {
                                                               "not in the mesh"], {}),
     "contact_option_without_obstacle": (["-options_file", "{root}/options/lame_cylinder.yml", "-contact_gap_tol",
                                          "1e-3"], ["-contact_gap_tol is given", "no obstacle"], {}),
+    # Pairs of bodies (-contact_pairs).
+    "contact_pairs_malformed": (PATCH + ["-contact_pairs", "upper_bottom"],
+                                ["-contact_pairs: item 'upper_bottom'", "SLAVE:MASTER"], {}),
+    "contact_pairs_same_group": (PATCH + ["-contact_pairs", "lower_top:lower_top"],
+                                 ["-contact_pairs lower_top:lower_top", "same group on both sides",
+                                  "two different bodies"], {}),
+    "contact_pairs_unknown_group": (PATCH + ["-contact_pairs", "upper_bottom:floor"],
+                                    ["-contact_pairs upper_bottom:floor", "'floor'"], {}),
+    "contact_pairs_surface_group": (PATCH + ["-contact_pairs", "upper:lower_top"],
+                                    ["-contact_pairs upper:lower_top", "'upper'"], {}),
+    "contact_pairs_svk": (PATCH + ["-material_model", "svk"], ["-contact_pairs with -material_model svk",
+                                                                 "expected -material_model linear"], {}),
+    "contact_groups_with_pairs_only": (PATCH + ["-contact_groups", "upper_bottom"],
+                                       ["-contact_groups is given", "no obstacle", "-contact_pairs"], {}),
     "contact_group_interior": (["-contact_groups", "body"], ["-contact_groups body", "node(s) inside the body",
                                                              "on the boundary"], {}),
     "contact_groups_empty": (["-contact_groups", ""], ["-contact_groups", "without a value", "no candidate nodes"], {}),

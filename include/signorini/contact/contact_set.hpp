@@ -7,6 +7,7 @@
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace signorini {
@@ -19,6 +20,8 @@ constexpr double SEARCH_RADIUS_MAX = 1e5;
 /// Contact options (prefix -contact_), read by ReadContactOptions.
 struct ContactOptions {
   std::vector<std::string> groups; ///< -contact_groups: physical groups of candidate nodes (default: whole boundary)
+  /// -contact_pairs SLAVE:MASTER,...: facet groups of two bodies in contact (mortar.hpp), slave first
+  std::vector<std::pair<std::string, std::string>> pairs;
   double length = 1;               ///< the body's diagonal (the length scale of the tolerances)
   double search_radius = -1;       ///< -contact_search_radius: pair a node with facets closer than this
   double touch_tol = -1;           ///< -contact_touch_tol: initial gap counted as touching (first active set)

@@ -6,6 +6,7 @@
 #include "signorini/contact/active_set.hpp"
 #include "signorini/contact/constraints.hpp"
 #include "signorini/contact/contact_set.hpp"
+#include "signorini/contact/mortar.hpp"
 #include "signorini/contact/rigid_modes.hpp"
 #include "signorini/fem/assembly.hpp"
 #include "signorini/linalg/saddle_point.hpp"
@@ -83,8 +84,8 @@ public:
   SaddlePointSystem &System() { return *system_; }
   /// A plain view of the final state for post-processing (valid while the solver lives).
   SolvedState State() const {
-    return {mesh_,   dofs_,    dirichlet_, pairs_, states_,       normals_,
-            candidate_, u_local_, fext_,      fint_,  stats_, certificate_};
+    return {mesh_,   dofs_,    dirichlet_, pairs_, states_,       normals_,      candidate_,
+            u_local_, fext_,    fint_,      stats_, certificate_, &mortar_};
   }
   /// External load and internal force at the converged state (displacement rows of the saddle-point layout).
   Vec Fext() const { return fext_; }
@@ -94,6 +95,13 @@ public:
 private:
   /// The saddle-point system, its vectors and the pair keys for the current pairs. Collective.
   [[nodiscard]] PetscErrorCode CreateSystem();
+  /// The pairs of the rigid obstacles (FindContactPairs, with u_local as there) and of the bodies' interfaces
+  /// (mortar_), sorted; a case without an obstacle has no candidates but the slave nodes. Collective.
+  [[nodiscard]] PetscErrorCode FindAllPairs(std::vector<ContactPair> &pairs, std::vector<char> &candidate,
+                                            const double *u_local = nullptr, std::vector<char> *held = nullptr);
+  /// The pairs' gaps, zones, constraint rows and normals at the displacement u (EvaluatePairs), with the master
+  /// terms of the mortar pairs; current: in the current configuration. Collective.
+  [[nodiscard]] PetscErrorCode EvaluateAt(const double *u, bool current);
   /// The solver path of the run (ChooseSolverPath), once, before the first system is created.
   [[nodiscard]] PetscErrorCode ChooseSolver();
   /// The certificate of the current state (states_ and the displacement u_eval, dim values per local vertex): the
@@ -266,6 +274,7 @@ private:
   const SolverOptions &opts_;
   DirichletData dirichlet_;
   std::vector<ContactPair> pairs_;
+  MortarCoupling mortar_; ///< the master terms of the pairs of bodies (-contact_pairs)
   /// What the failed load steps of the run asked for and found (UnpairedAfterFailure, the retry policy in Solve).
   struct Retries {
     double widen_to = 0;      ///< the search radius a failed load step asks for (UnpairedAfterFailure), 0: none

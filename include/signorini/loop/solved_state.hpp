@@ -3,6 +3,7 @@
 
 #include "signorini/contact/active_set.hpp"
 #include "signorini/contact/contact_set.hpp"
+#include "signorini/contact/mortar.hpp"
 #include "signorini/fem/assembly.hpp"
 #include "signorini/fem/dof_map.hpp"
 #include "signorini/loop/solve_stats.hpp"
@@ -28,6 +29,7 @@ struct SolvedState {
   Vec fext, fint; ///< external load and internal force (displacement rows of the saddle-point layout)
   const SolveStats &stats;
   const Certificate &certificate;
+  const MortarCoupling *mortar; ///< the master terms of the pairs of bodies (forces on the master nodes)
 };
 
 } // namespace signorini

@@ -13,7 +13,11 @@ namespace signorini {
 struct ContactSummary {
   PetscInt candidates = 0, pairs = 0, active_pairs = 0, active_nodes = 0;
   std::array<double, 3> contact_force{}, applied_force{}, reaction_force{};
-  double force_balance = 0;   ///< |contact + applied + reaction| / max(|applied|, |contact|)
+  /// Pairs of bodies (-contact_pairs): the contact force on their master sides (contact_force holds the slave sides'
+  /// and the obstacles'); equal and opposite to the slave sides' to round-off
+  std::array<double, 3> master_force{};
+  bool bodies = false; ///< the case has pairs of bodies
+  double force_balance = 0;   ///< |contact + master + applied + reaction| / max(|applied|, |contact|)
   double contact_length = 0;  ///< sum of tributary lengths of the active nodes
   double max_pressure = 0, max_penetration = 0, complementarity = 0, min_lambda = 0;
   double max_displacement = 0, strain_energy = 0;

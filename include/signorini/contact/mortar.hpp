@@ -1,0 +1,84 @@
+// Contact between two deformable bodies (-contact_pairs SLAVE:MASTER): one constraint row per slave node with the
+// dual mortar basis (Wohlmuth 2000; Popp, Gee, Wall 2009), so that the slave block D is diagonal and the rows stay
+// node-based as for a rigid obstacle. The weighted gap of slave node j, divided by D_jj, is
+//   g_j = n_j . (x_j - sum_l w_jl x_l),   w_jl = M_jl / D_jj,
+// with n_j the slave nodal normal pointing from the master into the slave body, D_jj = int psi_j N_j and
+// M_jl = int psi_j N_l^master over the slave facets' overlap with the master facets (segment-based integration:
+// each slave facet is cut where the master facets' projections along its normal begin and end, and each piece is
+// integrated exactly by Gauss points). The dual basis psi is built on each slave facet's overlap (biorthogonal to
+// the slave shape functions there), so a facet that the master covers only in part keeps D diagonal and positive.
+// With this scaling the multiplier is the normal force on the slave node and pressure = lambda / tributary length,
+// as for a rigid obstacle, and the master carries - w_jl lambda_j n_j. Linear material: the integrals and normals of
+// the reference configuration, fixed through the run (docs/theory.md §8).
+#pragma once
+
+#include "signorini/contact/active_set.hpp"
+#include "signorini/contact/constraints.hpp"
+#include "signorini/contact/contact_set.hpp"
+#include "signorini/core/handle.hpp"
+#include "signorini/fem/dof_map.hpp"
+
+#include <map>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace signorini {
+
+/// The mortar rows of the -contact_pairs interfaces and their master terms. A mortar pair is a ContactPair whose
+/// facet is FacetBase() + the interface's index: its slave part (n_j on the slave node, the gap g0 + n_j . u_j) is
+/// evaluated as a rigid obstacle's pair is, and this object adds the master part (Bind, ExtendRows, AddMasterGaps,
+/// AddMasterForces) through a matrix G of the master terms (rows: the owned pairs; columns: the displacement rows).
+class MortarCoupling {
+public:
+  /// Computes the rows of the owned slave nodes of every interface in the reference configuration; facet_base: the
+  /// obstacle's facet count. fixed marks the Dirichlet dofs per local vertex dof. Collective.
+  [[nodiscard]] PetscErrorCode Build(const Mesh &mesh, const ContactOptions &opts, const std::vector<char> &fixed,
+                                     PetscInt facet_base);
+  bool Empty() const { return interfaces_ == 0; }
+  PetscInt Interfaces() const { return interfaces_; }
+  PetscInt FacetBase() const { return facet_base_; }
+  bool IsMortar(const ContactPair &p) const { return p.facet >= facet_base_; }
+  /// Appends the mortar pairs (unsorted) and marks the slave nodes as candidates.
+  void AppendPairs(const Mesh &mesh, std::vector<ContactPair> &pairs, std::vector<char> &candidate) const;
+  /// For the current numbering: the master nodes' global rows and G. Collective.
+  [[nodiscard]] PetscErrorCode Bind(const Mesh &mesh, const DofMap &dofs, const std::vector<char> &fixed,
+                                    const std::vector<ContactPair> &pairs);
+  /// Appends the master nodes' free columns (coefficient w_jl n_j, the row of B being -grad g) to the mortar rows.
+  void ExtendRows(std::vector<ConstraintRow> &rows) const;
+  /// Adds the master part of the gap, - n_j . sum_l w_jl u_l, at the displacement u_local (dim values per local
+  /// vertex, prescribed values included). Collective.
+  [[nodiscard]] PetscErrorCode AddMasterGaps(const Mesh &mesh, const DofMap &dofs, const double *u_local,
+                                             std::vector<PairState> &states) const;
+  /// out[i] += sign (G^T lambda)_i over the owned displacement rows (local offsets, every component): the forces of
+  /// the multipliers on the master nodes, - w_jl lambda_j n_j. Collective.
+  [[nodiscard]] PetscErrorCode AddMasterForces(const std::vector<double> &lambda, double sign,
+                                               std::vector<double> &out) const;
+
+private:
+  struct Term {
+    PetscInt node; ///< master node, file numbering (from 0)
+    double w;      ///< M_jl / D_jj
+  };
+  struct Row {
+    PetscInt vertex, facet; ///< the slave node (local vertex) and the pair's facet index
+    double n[3], g0, D;
+    std::vector<Term> terms;
+  };
+  /// The rows of one interface's owned slave nodes (2D: segments). Collective.
+  [[nodiscard]] PetscErrorCode BuildInterface(const Mesh &mesh, const ContactOptions &opts,
+                                              const std::vector<char> &fixed, PetscInt item);
+
+  PetscInt interfaces_ = 0, facet_base_ = 0;
+  std::vector<Row> rows_;
+  std::vector<char> slave_; ///< local vertices of a slave group
+  /// Bind: per pair the index of its row in rows_ (-1: an obstacle's pair); per master node its first global row and
+  /// its fixed components (bit k).
+  std::vector<PetscInt> pair_row_;
+  std::unordered_map<PetscInt, std::pair<PetscInt, int>> master_;
+  PetscInt dim_ = 2;
+  MatH G_;
+  mutable VecH x_, y_; ///< work vectors of G's columns and rows
+};
+
+} // namespace signorini

@@ -1,0 +1,360 @@
+// The dual mortar rows of the -contact_pairs interfaces (mortar.hpp) and their master terms.
+#include "signorini/contact/mortar.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace signorini {
+
+namespace {
+
+/// One face of a group, as every rank sees it after the gather: its nodes (file numbering) and coordinates.
+struct GatheredFace {
+  int n = 0;
+  std::array<PetscInt, 4> node{};
+  std::array<std::array<double, 3>, 4> x{};
+};
+
+/// Every rank's faces of the group `name` (input: the option item, for messages), gathered on every rank: the
+/// interface is a surface of the mesh, small beside the volume. Collective.
+PetscErrorCode GatherFaces(const Mesh &mesh, const std::string &name, const std::string &input,
+                           std::vector<GatheredFace> &out) {
+  const int dim = mesh.Dim();
+  constexpr int WIDTH = 1 + 4 + 12; // n, nodes, coordinates
+  std::vector<Face> faces;
+  PetscFunctionBeginUser;
+  PetscCall(mesh.GroupFaces(name, faces, input));
+  std::vector<double> mine;
+  for (const Face &f : faces) {
+    std::array<double, WIDTH> rec{};
+    rec[0] = f.n;
+    for (int a = 0; a < f.n; ++a) {
+      rec[1 + a] = (double)mesh.VertexOriginal(f.v[a]);
+      for (int d = 0; d < dim; ++d) rec[5 + 3 * a + d] = mesh.X(f.v[a])[d];
+    }
+    mine.insert(mine.end(), rec.begin(), rec.end());
+  }
+  int size;
+  PetscCallMPI(MPI_Comm_size(mesh.Comm(), &size));
+  std::vector<int> counts(size), displs(size + 1, 0);
+  const int count = (int)mine.size();
+  PetscCallMPI(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, mesh.Comm()));
+  for (int r = 0; r < size; ++r) displs[r + 1] = displs[r] + counts[r];
+  std::vector<double> all(displs[size]);
+  PetscCallMPI(MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE,
+                              mesh.Comm()));
+  out.clear();
+  for (std::size_t i = 0; i < all.size(); i += WIDTH) {
+    GatheredFace g;
+    g.n = (int)all[i];
+    for (int a = 0; a < g.n; ++a) {
+      g.node[a] = (PetscInt)all[i + 1 + a];
+      for (int d = 0; d < 3; ++d) g.x[a][d] = all[i + 5 + 3 * a + d];
+    }
+    out.push_back(g);
+  }
+  PetscFunctionReturn(0);
+}
+
+/// A segment's geometry (2D): length, unit tangent and outward normal (the body on the left of node 0 -> node 1).
+struct SegmentFrame {
+  double length, t[2], n[2];
+  explicit SegmentFrame(const GatheredFace &f) {
+    const double dx = f.x[1][0] - f.x[0][0], dy = f.x[1][1] - f.x[0][1];
+    length = std::hypot(dx, dy);
+    t[0] = dx / length, t[1] = dy / length;
+    n[0] = t[1], n[1] = -t[0];
+  }
+};
+
+/// The part [lo, hi] of a slave segment (parameter xi in [0, 1]) that a master segment covers, projected along the
+/// slave segment's normal; the master segment runs from xi_c (its node 0) to xi_d (its node 1).
+struct Piece {
+  std::size_t master;
+  double lo, hi, xi_c, xi_d;
+};
+
+/// Two-point Gauss rule on [0, 1]: exact for the products of two linear functions that the mortar integrals hold.
+constexpr double GAUSS_X[2] = {0.21132486540518713, 0.78867513459481287};
+constexpr double GAUSS_W[2] = {0.5, 0.5};
+
+/// Accumulates the pieces a slave segment s has with the master segments: opposite normals, an overlap of more
+/// than round-off, within the search radius along the normal.
+void SegmentPieces(const GatheredFace &s, const std::vector<GatheredFace> &masters, double radius,
+                   std::vector<Piece> &pieces) {
+  const SegmentFrame fs(s);
+  pieces.clear();
+  for (std::size_t m = 0; m < masters.size(); ++m) {
+    const GatheredFace &f = masters[m];
+    const SegmentFrame fm(f);
+    if (fs.n[0] * fm.n[0] + fs.n[1] * fm.n[1] >= 0) continue;
+    double xi[2];
+    for (int a = 0; a < 2; ++a)
+      xi[a] = ((f.x[a][0] - s.x[0][0]) * fs.t[0] + (f.x[a][1] - s.x[0][1]) * fs.t[1]) / fs.length;
+    if (std::abs(xi[1] - xi[0]) < 1e-12) continue;
+    const double lo = std::max(0.0, std::min(xi[0], xi[1])), hi = std::min(1.0, std::max(xi[0], xi[1]));
+    if (hi - lo <= 1e-12) continue;
+    // The normal distance at the middle of the overlap.
+    const double mid = 0.5 * (lo + hi), eta = (mid - xi[0]) / (xi[1] - xi[0]);
+    double h = 0;
+    for (int d = 0; d < 2; ++d) {
+      const double xs = s.x[0][d] + mid * (s.x[1][d] - s.x[0][d]), xm = f.x[0][d] + eta * (f.x[1][d] - f.x[0][d]);
+      h += (xs - xm) * fs.n[d];
+    }
+    if (std::abs(h) > radius) continue;
+    pieces.push_back({m, lo, hi, xi[0], xi[1]});
+  }
+}
+
+/// The contribution of slave segment s (its pieces with the master segments) to D (per slave node) and M (per slave
+/// node, per master node), with the dual basis biorthogonal on the pieces: psi_i = sum_k A_ik N_k, A = De Me^-1,
+/// De_i = int N_i, Me_ik = int N_i N_k over the pieces.
+void SegmentIntegrals(const GatheredFace &s, const std::vector<GatheredFace> &masters, const std::vector<Piece> &pieces,
+                      std::map<PetscInt, double> &D, std::map<PetscInt, std::map<PetscInt, double>> &M) {
+  const double L = SegmentFrame(s).length;
+  double Me[2][2] = {{0, 0}, {0, 0}}, De[2] = {0, 0}, covered = 0;
+  for (const Piece &p : pieces) {
+    covered += p.hi - p.lo;
+    for (int q = 0; q < 2; ++q) {
+      const double xi = p.lo + GAUSS_X[q] * (p.hi - p.lo), w = GAUSS_W[q] * (p.hi - p.lo) * L;
+      const double N[2] = {1 - xi, xi};
+      for (int i = 0; i < 2; ++i) {
+        De[i] += w * N[i];
+        for (int k = 0; k < 2; ++k) Me[i][k] += w * N[i] * N[k];
+      }
+    }
+  }
+  // A piece of a few 1e-9 of the segment carries no weight worth its ill-conditioned basis.
+  if (covered < 1e-9) return;
+  const double det = Me[0][0] * Me[1][1] - Me[0][1] * Me[1][0];
+  const double inv[2][2] = {{Me[1][1] / det, -Me[0][1] / det}, {-Me[1][0] / det, Me[0][0] / det}};
+  double A[2][2];
+  for (int i = 0; i < 2; ++i)
+    for (int k = 0; k < 2; ++k) A[i][k] = De[i] * inv[i][k];
+  for (int i = 0; i < 2; ++i) D[s.node[i]] += De[i];
+  for (const Piece &p : pieces) {
+    const GatheredFace &m = masters[p.master];
+    for (int q = 0; q < 2; ++q) {
+      const double xi = p.lo + GAUSS_X[q] * (p.hi - p.lo), w = GAUSS_W[q] * (p.hi - p.lo) * L;
+      const double N[2] = {1 - xi, xi}, eta = (xi - p.xi_c) / (p.xi_d - p.xi_c), Nm[2] = {1 - eta, eta};
+      for (int i = 0; i < 2; ++i) {
+        const double psi = A[i][0] * N[0] + A[i][1] * N[1];
+        for (int l = 0; l < 2; ++l) M[s.node[i]][m.node[l]] += w * psi * Nm[l];
+      }
+    }
+  }
+}
+
+} // namespace
+
+PetscErrorCode MortarCoupling::Build(const Mesh &mesh, const ContactOptions &opts, const std::vector<char> &fixed,
+                                     PetscInt facet_base) {
+  PetscFunctionBeginUser;
+  dim_ = mesh.Dim();
+  interfaces_ = (PetscInt)opts.pairs.size();
+  facet_base_ = facet_base;
+  rows_.clear();
+  slave_.assign(mesh.NumLocalVertices(), 0);
+  PetscCheck(interfaces_ == 0 || dim_ == 2, mesh.Comm(), PETSC_ERR_SUP,
+             "-contact_pairs: contact between deformable bodies is implemented in 2D only so far; the mesh is 3D "
+             "(expected a 2D mesh, or rigid obstacles with -obstacle_* in 3D)");
+  for (PetscInt i = 0; i < interfaces_; ++i) PetscCall(BuildInterface(mesh, opts, fixed, i));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOptions &opts,
+                                              const std::vector<char> &fixed, PetscInt item) {
+  const auto &[slave, master] = opts.pairs[item];
+  const std::string input = "-contact_pairs " + slave + ":" + master;
+  std::vector<GatheredFace> sf, mf;
+  std::vector<PetscInt> vertices;
+  PetscFunctionBeginUser;
+  PetscCall(GatherFaces(mesh, slave, input, sf));
+  PetscCall(GatherFaces(mesh, master, input, mf));
+  PetscCall(mesh.GroupVertices(slave, vertices, input));
+  // The owned slave nodes by file number.
+  std::unordered_map<PetscInt, PetscInt> owned;
+  for (PetscInt v : vertices) {
+    slave_[v] = 1;
+    if (mesh.Owned(v)) owned[mesh.VertexOriginal(v)] = v;
+  }
+  // Nodal normals (the facets' outward normals weighted by their lengths) and the integrals, over the slave segments
+  // that touch an owned node.
+  std::map<PetscInt, std::array<double, 3>> normal;
+  std::map<PetscInt, double> D, tributary;
+  std::map<PetscInt, std::map<PetscInt, double>> M;
+  std::vector<Piece> pieces;
+  for (const GatheredFace &s : sf) {
+    if (!owned.count(s.node[0]) && !owned.count(s.node[1])) continue;
+    const SegmentFrame fs(s);
+    for (int a = 0; a < 2; ++a) {
+      auto &n = normal[s.node[a]];
+      for (int d = 0; d < 2; ++d) n[d] += fs.n[d] * fs.length;
+      tributary[s.node[a]] += 0.5 * fs.length;
+    }
+    SegmentPieces(s, mf, opts.search_radius, pieces);
+    SegmentIntegrals(s, mf, pieces, D, M);
+  }
+  std::vector<std::pair<PetscInt, double>> coords; // master node -> coordinates, for the reference gaps
+  std::unordered_map<PetscInt, const double *> master_x;
+  for (const GatheredFace &f : mf)
+    for (int a = 0; a < f.n; ++a) master_x[f.node[a]] = f.x[a].data();
+  for (const auto &[node, Dj] : D) {
+    const auto it = owned.find(node);
+    // A node whose overlap is a vanishing part of its tributary length has no row worth its conditioning.
+    if (it == owned.end() || !(Dj > 1e-6 * tributary[node])) continue;
+    const PetscInt v = it->second;
+    Row row{v, facet_base_ + item, {0, 0, 0}, 0, Dj, {}};
+    const auto &n = normal[node];
+    const double len = std::hypot(n[0], n[1]);
+    for (int d = 0; d < 2; ++d) row.n[d] = -n[d] / len; // from the master into the slave body
+    double free2 = 0;
+    for (int k = 0; k < dim_; ++k)
+      if (!fixed[v * dim_ + k]) free2 += row.n[k] * row.n[k];
+    if (free2 < 1e-12) continue; // the supports hold the node along its normal (as for a rigid obstacle)
+    row.g0 = 0;
+    for (int d = 0; d < 2; ++d) row.g0 += row.n[d] * mesh.X(v)[d];
+    for (const auto &[l, Mjl] : M[node]) {
+      const double w = Mjl / Dj;
+      row.terms.push_back({l, w});
+      for (int d = 0; d < 2; ++d) row.g0 -= w * row.n[d] * master_x[l][d];
+    }
+    rows_.push_back(std::move(row));
+  }
+  PetscFunctionReturn(0);
+}
+
+void MortarCoupling::AppendPairs(const Mesh &mesh, std::vector<ContactPair> &pairs,
+                                 std::vector<char> &candidate) const {
+  for (const Row &r : rows_) {
+    ContactPair p{r.vertex, r.facet, {r.n[0], r.n[1], r.n[2]}, r.g0, true, true, {0, 0, 0}};
+    for (int k = 0; k < dim_; ++k) p.x0[k] = mesh.X(r.vertex)[k];
+    pairs.push_back(p);
+  }
+  for (std::size_t v = 0; v < slave_.size(); ++v)
+    if (slave_[v]) candidate[v] = 1;
+}
+
+PetscErrorCode MortarCoupling::Bind(const Mesh &mesh, const DofMap &dofs, const std::vector<char> &fixed,
+                                    const std::vector<ContactPair> &pairs) {
+  MPI_Comm comm = mesh.Comm();
+  PetscFunctionBeginUser;
+  // Each pair's row (pairs of one node are adjacent and sorted by facet).
+  std::map<std::pair<PetscInt, PetscInt>, PetscInt> index;
+  for (std::size_t r = 0; r < rows_.size(); ++r) index[{rows_[r].vertex, rows_[r].facet}] = (PetscInt)r;
+  pair_row_.assign(pairs.size(), -1);
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const auto it = index.find({pairs[p].vertex, pairs[p].facet});
+    if (it != index.end()) pair_row_[p] = it->second;
+  }
+  // The master nodes' first rows and fixed components, from their owners to every rank (the interfaces' nodes only).
+  std::vector<PetscInt> needed;
+  for (const Row &r : rows_)
+    for (const Term &t : r.terms) needed.push_back(t.node);
+  std::sort(needed.begin(), needed.end());
+  needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
+  std::vector<PetscInt> all_needed;
+  {
+    int size;
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    std::vector<int> counts(size), displs(size + 1, 0);
+    const int count = (int)needed.size();
+    PetscCallMPI(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm));
+    for (int r = 0; r < size; ++r) displs[r + 1] = displs[r] + counts[r];
+    all_needed.resize(displs[size]);
+    PetscCallMPI(MPI_Allgatherv(needed.data(), count, MPIU_INT, all_needed.data(), counts.data(), displs.data(),
+                                MPIU_INT, comm));
+    std::sort(all_needed.begin(), all_needed.end());
+    all_needed.erase(std::unique(all_needed.begin(), all_needed.end()), all_needed.end());
+  }
+  std::vector<PetscInt> info(2 * all_needed.size(), 0); // first row + 1 (0: not mine), fixed bits
+  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) {
+    if (!mesh.Owned(v)) continue;
+    const auto it = std::lower_bound(all_needed.begin(), all_needed.end(), mesh.VertexOriginal(v));
+    if (it == all_needed.end() || *it != mesh.VertexOriginal(v)) continue;
+    const std::size_t i = it - all_needed.begin();
+    info[2 * i] = dofs.Row(v, 0) + 1;
+    for (int k = 0; k < dim_; ++k) info[2 * i + 1] |= fixed[v * dim_ + k] ? 1 << k : 0;
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, info.data(), (int)info.size(), MPIU_INT, MPI_SUM, comm));
+  master_.clear();
+  for (std::size_t i = 0; i < all_needed.size(); ++i) master_[all_needed[i]] = {info[2 * i] - 1, (int)info[2 * i + 1]};
+  // G: rows the owned pairs, columns the displacement rows of the whole system's layout, every component.
+  const PetscInt start = dofs.RowStart(), end = start + dofs.OwnedRows();
+  std::vector<PetscInt> d_nnz(pairs.size(), 0), o_nnz(pairs.size(), 0);
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    if (pair_row_[p] < 0) continue;
+    for (const Term &t : rows_[pair_row_[p]].terms) {
+      const PetscInt first = master_[t.node].first;
+      ((first >= start && first < end) ? d_nnz : o_nnz)[p] += dim_;
+    }
+  }
+  PetscCall(MatCreateAIJ(comm, (PetscInt)pairs.size(), dofs.OwnedRows(), PETSC_DETERMINE, PETSC_DETERMINE, 0,
+                         d_nnz.data(), 0, o_nnz.data(), G_.out()));
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    if (pair_row_[p] < 0) continue;
+    const Row &r = rows_[pair_row_[p]];
+    PetscInt row;
+    PetscCall(MatGetOwnershipRange(G_, &row, nullptr));
+    row += (PetscInt)p;
+    for (const Term &t : r.terms) {
+      PetscInt cols[3];
+      PetscScalar vals[3];
+      for (int k = 0; k < dim_; ++k) cols[k] = master_[t.node].first + k, vals[k] = -t.w * r.n[k];
+      PetscCall(MatSetValues(G_, 1, &row, dim_, cols, vals, ADD_VALUES));
+    }
+  }
+  PetscCall(MatAssemblyBegin(G_, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(G_, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatCreateVecs(G_, x_.out(), y_.out()));
+  PetscFunctionReturn(0);
+}
+
+void MortarCoupling::ExtendRows(std::vector<ConstraintRow> &rows) const {
+  for (std::size_t p = 0; p < rows.size() && p < pair_row_.size(); ++p) {
+    if (pair_row_[p] < 0) continue;
+    const Row &r = rows_[pair_row_[p]];
+    for (const Term &t : r.terms) {
+      const auto &[first, fixed] = master_.at(t.node);
+      for (int k = 0; k < dim_; ++k)
+        if (!(fixed & (1 << k))) rows[p].Add(first + k, t.w * r.n[k]);
+    }
+  }
+}
+
+PetscErrorCode MortarCoupling::AddMasterGaps(const Mesh &mesh, const DofMap &dofs, const double *u_local,
+                                             std::vector<PairState> &states) const {
+  PetscScalar *x;
+  const PetscScalar *y;
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(x_));
+  PetscCall(VecGetArray(x_, &x));
+  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v)
+    if (mesh.Owned(v))
+      for (int k = 0; k < dim_; ++k) x[dofs.LocalOffset(v, k)] = u_local[v * dim_ + k];
+  PetscCall(VecRestoreArray(x_, &x));
+  PetscCall(MatMult(G_, x_, y_));
+  PetscCall(VecGetArrayRead(y_, &y));
+  for (std::size_t p = 0; p < states.size(); ++p)
+    if (pair_row_[p] >= 0) states[p].gap += y[p];
+  PetscCall(VecRestoreArrayRead(y_, &y));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MortarCoupling::AddMasterForces(const std::vector<double> &lambda, double sign,
+                                               std::vector<double> &out) const {
+  PetscScalar *y;
+  const PetscScalar *x;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(y_, &y));
+  for (std::size_t p = 0; p < pair_row_.size(); ++p) y[p] = lambda[p];
+  PetscCall(VecRestoreArray(y_, &y));
+  PetscCall(MatMultTranspose(G_, y_, x_));
+  PetscCall(VecGetArrayRead(x_, &x));
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] += sign * x[i];
+  PetscCall(VecRestoreArrayRead(x_, &x));
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini
