@@ -20,7 +20,8 @@ PetscErrorCode ReadReportOptions(MPI_Comm comm, HertzReport &hertz) {
   PetscOptionsBegin(comm, nullptr, "Report", "signorini");
   const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
   PetscCall(OptionsRealList(PetscOptionsObject, "-report_hertz", "Compare with Hertz contact: 2D cylinder radius R and "
-                            "load P per unit thickness, 3D sphere radius R and total load P (R,P)", "no comparison",
+                            "load P per unit thickness, 3D sphere radius R and total load P (R,P); between two bodies "
+                            "(-contact_pairs) R is the effective radius, 1 / R = 1 / R1 + 1 / R2", "no comparison",
                             "R,P", v, &set));
   PetscOptionsEnd();
   if (!set) PetscFunctionReturn(0);
@@ -148,7 +149,10 @@ PetscErrorCode ComputeHertz(const SolvedState &state, const Material &m, const N
              "-report_hertz %.6g,%.6g: the contact force%s is %.6g, which is not P, P/2 or P/4 within %d %%; expected the "
              "load P of a Hertz case (a cylinder in 2D or a sphere in 3D on a flat, or its half or quarter by symmetry "
              "planes)", h.R, h.P, dim == 2 ? " per unit thickness" : "", force, (int)std::lround(100 * HERTZ_LOAD_TOL));
-  const double Estar = dim == 2 && m.plane_stress ? m.E : m.E / (1 - m.nu * m.nu);
+  // Against a rigid obstacle E* = E / (1 - nu^2); between two bodies of one material 1 / E* = 2 (1 - nu^2) / E
+  // (Johnson 1985, 4.2; plane stress: without the 1 - nu^2).
+  const double Ebody = dim == 2 && m.plane_stress ? m.E : m.E / (1 - m.nu * m.nu);
+  const double Estar = s.bodies ? 0.5 * Ebody : Ebody;
   if (dim == 2) {
     h.a = std::sqrt(4 * h.P_model * h.R / (M_PI * Estar));
     h.p0 = 2 * h.P_model / (M_PI * h.a);

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from harness import displacement, test
+from harness import displacement, test, yaml_options
 
 
 @test("patch2d")
@@ -38,3 +38,37 @@ def patch2d(runner, kind):
         exact = np.column_stack([nu * (1 + nu) * q / E * nodes["x"], -(1 - nu * nu) * q / E * nodes["y"]])
         runner.expect_close("%s: displacement = exact linear field" % solver, displacement(nodes), exact, 0,
                             tol * np.abs(exact).max())
+
+
+@test("cylinders_2d")
+def cylinders_2d(runner):
+    """Hertz contact of two cylinders (options/cylinders_2d.yml, Johnson 4.2): over three meshes the contact half-width
+    of the active nodes converges to Johnson's (its error falls, within the contact element size), and on the finest
+    the fitted half-width and the peak pressure are within 1 %; the two sides' forces balance to round-off."""
+    options = dict(yaml_options(runner.path("options/cylinders_2d.yml")))
+    E, nu = float(options["material_E"]), float(options["material_nu"])
+    R1, R2, P = 8.0, 12.0, 10.0
+    R = 1 / (1 / R1 + 1 / R2)
+    Estar = 1 / (2 * (1 - nu * nu) / E)
+    a = np.sqrt(4 * P * R / (np.pi * Estar))
+    p0 = 2 * P / (np.pi * a)
+    errors = []
+    for f, h_slave in ((2, 0.04), (1.4, 0.028), (1, 0.02)):
+        r = runner.run(["-options_file", "options/cylinders_2d.yml", "-mesh_file", "meshes/cylinders2d.geo",
+                        "-mesh_size_factor", f], "cylinders factor %g" % f)
+        h = r.summary["hertz"]
+        runner.expect_close("factor %g: summary's Johnson a (effective radius, combined modulus)" % f, h["a"], a, 1e-9)
+        runner.expect_close("factor %g: summary's Johnson p0" % f, h["p0"], p0, 1e-9)
+        runner.expect_close("factor %g: a of the active nodes within the slave element size" % f, h["a_computed"], a, 0,
+                            2 * h_slave)
+        slave, master = np.array(r.get("contact.contact_force")), np.array(r.get("contact.master_contact_force"))
+        runner.expect_close("factor %g: slave side force = load" % f, slave, [0, P], 0, 1e-4 * P)
+        runner.expect_close("factor %g: master side force = - slave side force" % f, master, -slave, 0, 1e-10 * P)
+        errors.append(abs(h["a_computed"] / a - 1))
+        print("factor %g: a %+.3f %% (fit %+.3f %%), p0 %+.3f %%" % (f, 100 * (h["a_computed"] / a - 1),
+                                                                    100 * (h["a_fit"] / a - 1),
+                                                                    100 * (h["p0_computed"] / p0 - 1)))
+    runner.expect_true("the error of a falls with the mesh size (%s)" % ", ".join("%.3g" % e for e in errors),
+                       errors[0] > errors[1] > errors[2])
+    runner.expect_close("finest: fitted a within 1 %", h["a_fit"], a, 0.01)
+    runner.expect_close("finest: peak pressure within 1 %", h["p0_computed"], p0, 0.01)
