@@ -1,6 +1,8 @@
 // The dual mortar rows of the -contact_pairs interfaces (mortar.hpp) and their master terms.
 #include "signorini/contact/mortar.hpp"
 
+#include "signorini/obstacles/obstacle.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -146,6 +148,231 @@ void SegmentIntegrals(const GatheredFace &s, const std::vector<GatheredFace> &ma
   }
 }
 
+/// A facet's plane (3D): centre, outward unit normal (of the diagonals' cross product for a quadrilateral), area, and
+/// a tangent basis; coordinates of a point in the plane, its height over it.
+struct FacetPlane {
+  double c[3] = {0, 0, 0}, n[3], t1[3], t2[3], area;
+  explicit FacetPlane(const GatheredFace &f) {
+    for (int a = 0; a < f.n; ++a)
+      for (int d = 0; d < 3; ++d) c[d] += f.x[a][d] / f.n;
+    const auto &x = f.x;
+    double u[3], v[3];
+    for (int d = 0; d < 3; ++d)
+      u[d] = x[f.n == 4 ? 2 : 1][d] - x[0][d], v[d] = x[f.n == 4 ? 3 : 2][d] - x[f.n == 4 ? 1 : 0][d];
+    const double w[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double len = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    area = 0.5 * len; // of a triangle, and of a planar quadrilateral (half the diagonals' cross product)
+    for (int d = 0; d < 3; ++d) n[d] = w[d] / len;
+    TangentFrame(n, t1, t2);
+  }
+  std::array<double, 2> In(const std::array<double, 3> &x) const {
+    double r[2] = {0, 0};
+    for (int d = 0; d < 3; ++d) r[0] += (x[d] - c[d]) * t1[d], r[1] += (x[d] - c[d]) * t2[d];
+    return {r[0], r[1]};
+  }
+  double Height(const std::array<double, 3> &x) const {
+    double h = 0;
+    for (int d = 0; d < 3; ++d) h += (x[d] - c[d]) * n[d];
+    return h;
+  }
+};
+
+using Polygon = std::vector<std::array<double, 2>>;
+
+double Cross(const std::array<double, 2> &o, const std::array<double, 2> &a, const std::array<double, 2> &b) {
+  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
+double Area(const Polygon &p) {
+  double a = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto &u = p[i], &v = p[(i + 1) % p.size()];
+    a += u[0] * v[1] - u[1] * v[0];
+  }
+  return 0.5 * a;
+}
+
+/// The polygon's corners in counter-clockwise order.
+Polygon CounterClockwise(const Polygon &p) { return Area(p) >= 0 ? p : Polygon(p.rbegin(), p.rend()); }
+
+/// The part of the polygon `subject` inside the convex polygon `clip` (both counter-clockwise): Sutherland-Hodgman.
+Polygon Clip(Polygon subject, const Polygon &clip) {
+  for (std::size_t e = 0; e < clip.size() && !subject.empty(); ++e) {
+    const auto &a = clip[e], &b = clip[(e + 1) % clip.size()];
+    Polygon out;
+    for (std::size_t i = 0; i < subject.size(); ++i) {
+      const auto &p = subject[i], &q = subject[(i + 1) % subject.size()];
+      const double sp = Cross(a, b, p), sq = Cross(a, b, q);
+      if (sp >= 0) out.push_back(p);
+      if ((sp >= 0) != (sq >= 0)) {
+        const double t = sp / (sp - sq);
+        out.push_back({p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])});
+      }
+    }
+    subject = std::move(out);
+  }
+  return subject;
+}
+
+/// The shape functions at the point q of a facet's projection (corners p, in the facet's node order): barycentric
+/// coordinates of a triangle, bilinear functions of a quadrilateral at its reference coordinates (Newton's method on
+/// the bilinear map; corners at (-1,-1), (1,-1), (1,1), (-1,1)).
+void ShapeAt(const Polygon &p, const std::array<double, 2> &q, double *N) {
+  if (p.size() == 3) {
+    const double det = Cross(p[0], p[1], p[2]);
+    N[1] = Cross(p[0], q, p[2]) / det;
+    N[2] = Cross(p[0], p[1], q) / det;
+    N[0] = 1 - N[1] - N[2];
+    return;
+  }
+  static const double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  double xi[2] = {0, 0};
+  for (int it = 0; it < 30; ++it) {
+    double r[2] = {-q[0], -q[1]}, J[2][2] = {{0, 0}, {0, 0}};
+    for (int k = 0; k < 4; ++k) {
+      const double a = 1 + corner[k][0] * xi[0], b = 1 + corner[k][1] * xi[1];
+      for (int d = 0; d < 2; ++d) {
+        r[d] += 0.25 * a * b * p[k][d];
+        J[d][0] += 0.25 * corner[k][0] * b * p[k][d];
+        J[d][1] += 0.25 * a * corner[k][1] * p[k][d];
+      }
+    }
+    const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+    const double d0 = (J[1][1] * r[0] - J[0][1] * r[1]) / det, d1 = (J[0][0] * r[1] - J[1][0] * r[0]) / det;
+    xi[0] -= d0, xi[1] -= d1;
+    if (std::abs(d0) + std::abs(d1) < 1e-15) break;
+  }
+  for (int k = 0; k < 4; ++k) N[k] = 0.25 * (1 + corner[k][0] * xi[0]) * (1 + corner[k][1] * xi[1]);
+}
+
+/// Dunavant's 7-point rule on a triangle (degree 5): barycentric points and weights summing to 1.
+constexpr double TRI_A[7] = {1.0 / 3, 0.059715871789770, 0.470142064105115, 0.470142064105115,
+                             0.797426985353087, 0.101286507323456, 0.101286507323456};
+constexpr double TRI_B[7] = {1.0 / 3, 0.470142064105115, 0.059715871789770, 0.470142064105115,
+                             0.101286507323456, 0.797426985353087, 0.101286507323456};
+constexpr double TRI_W[7] = {0.225, 0.132394152788506, 0.132394152788506, 0.132394152788506,
+                             0.125939180544827, 0.125939180544827, 0.125939180544827};
+
+/// One point of the overlap of a slave facet with a master facet: its weight (area) and both sides' shape functions.
+struct OverlapPoint {
+  double w, Ns[4], Nm[4];
+  std::size_t master;
+};
+
+/// The quadrature points of slave facet s's overlap with the master facets (3D): each master facet with an opposite
+/// normal is projected along the slave facet's normal onto its plane and clipped against the slave facet (both
+/// convex), the overlap polygon split into triangles from its centre, each integrated by Dunavant's rule: exact for
+/// the products of linear functions on triangles and parallelograms, a quadrature of degree 5 of those of a general
+/// quadrilateral's (its bilinear map is not affine). An overlap whose master point is farther than radius along the
+/// normal is left out.
+void FacetOverlap(const GatheredFace &s, const std::vector<GatheredFace> &masters, double radius,
+                  std::vector<OverlapPoint> &points) {
+  const FacetPlane plane(s);
+  Polygon S(s.n);
+  double lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) lo[d] = 1e300, hi[d] = -1e300;
+  for (int a = 0; a < s.n; ++a) {
+    S[a] = plane.In(s.x[a]);
+    for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], s.x[a][d] - radius), hi[d] = std::max(hi[d], s.x[a][d] + radius);
+  }
+  const Polygon Sccw = CounterClockwise(S);
+  points.clear();
+  for (std::size_t m = 0; m < masters.size(); ++m) {
+    const GatheredFace &f = masters[m];
+    bool near = true;
+    for (int d = 0; d < 3 && near; ++d) {
+      double flo = 1e300, fhi = -1e300;
+      for (int a = 0; a < f.n; ++a) flo = std::min(flo, f.x[a][d]), fhi = std::max(fhi, f.x[a][d]);
+      near = fhi >= lo[d] && flo <= hi[d];
+    }
+    if (!near) continue;
+    const FacetPlane mp(f);
+    if (mp.n[0] * plane.n[0] + mp.n[1] * plane.n[1] + mp.n[2] * plane.n[2] >= 0) continue;
+    Polygon Mpoly(f.n);
+    double height[4];
+    for (int a = 0; a < f.n; ++a) Mpoly[a] = plane.In(f.x[a]), height[a] = plane.Height(f.x[a]);
+    // The master's outward normal opposes the slave's: its corners run clockwise in the slave's plane.
+    const Polygon ccw = CounterClockwise(Mpoly);
+    if (std::abs(Area(Mpoly)) <= 1e-12 * Area(Sccw)) continue; // edge-on in this projection
+    const Polygon overlap = Clip(Sccw, ccw);
+    if (overlap.size() < 3 || Area(overlap) <= 1e-12 * Area(Sccw)) continue;
+    std::array<double, 2> centre{0, 0};
+    for (const auto &p : overlap) centre[0] += p[0] / overlap.size(), centre[1] += p[1] / overlap.size();
+    double Nc[4], h = 0;
+    ShapeAt(Mpoly, centre, Nc);
+    for (int a = 0; a < f.n; ++a) h += Nc[a] * height[a];
+    if (std::abs(h) > radius) continue;
+    for (std::size_t i = 0; i < overlap.size(); ++i) {
+      const auto &p = overlap[i], &q = overlap[(i + 1) % overlap.size()];
+      const double area = 0.5 * Cross(centre, p, q);
+      if (area <= 0) continue;
+      for (int g = 0; g < 7; ++g) {
+        const double b = TRI_B[g], c = 1 - TRI_A[g] - TRI_B[g];
+        const std::array<double, 2> x{TRI_A[g] * centre[0] + b * p[0] + c * q[0],
+                                      TRI_A[g] * centre[1] + b * p[1] + c * q[1]};
+        OverlapPoint o;
+        o.w = TRI_W[g] * area, o.master = m;
+        ShapeAt(S, x, o.Ns);
+        ShapeAt(Mpoly, x, o.Nm);
+        points.push_back(o);
+      }
+    }
+  }
+}
+
+/// Solves the n x n system A X = B (row major, B with n columns) in place by Gaussian elimination with partial
+/// pivoting; false when a pivot vanishes.
+bool Solve(int n, double *A, double *B) {
+  for (int k = 0; k < n; ++k) {
+    int piv = k;
+    for (int i = k + 1; i < n; ++i)
+      if (std::abs(A[i * n + k]) > std::abs(A[piv * n + k])) piv = i;
+    if (!(std::abs(A[piv * n + k]) > 0)) return false;
+    for (int j = 0; j < n; ++j) std::swap(A[k * n + j], A[piv * n + j]), std::swap(B[k * n + j], B[piv * n + j]);
+    for (int i = k + 1; i < n; ++i) {
+      const double f = A[i * n + k] / A[k * n + k];
+      for (int j = 0; j < n; ++j) A[i * n + j] -= f * A[k * n + j], B[i * n + j] -= f * B[k * n + j];
+    }
+  }
+  for (int k = n - 1; k >= 0; --k)
+    for (int j = 0; j < n; ++j) {
+      double v = B[k * n + j];
+      for (int i = k + 1; i < n; ++i) v -= A[k * n + i] * B[i * n + j];
+      B[k * n + j] = v / A[k * n + k];
+    }
+  return true;
+}
+
+/// The contribution of slave facet s (3D) to D and M, with the dual basis biorthogonal on its overlap: psi_i =
+/// sum_k A_ik N_k, A = De Me^-1 (Me symmetric, so A^T = Me^-1 De solves for it).
+void FacetIntegrals(const GatheredFace &s, const std::vector<GatheredFace> &masters, double radius,
+                    std::map<PetscInt, double> &D, std::map<PetscInt, std::map<PetscInt, double>> &M) {
+  std::vector<OverlapPoint> points;
+  FacetOverlap(s, masters, radius, points);
+  const int n = s.n;
+  double Me[16] = {0}, De[4] = {0}, covered = 0;
+  for (const OverlapPoint &o : points) {
+    covered += o.w;
+    for (int i = 0; i < n; ++i) {
+      De[i] += o.w * o.Ns[i];
+      for (int k = 0; k < n; ++k) Me[i * n + k] += o.w * o.Ns[i] * o.Ns[k];
+    }
+  }
+  if (covered < 1e-9 * FacetPlane(s).area) return;
+  double At[16] = {0}; // A^T = Me^-1 De
+  for (int i = 0; i < n; ++i) At[i * n + i] = De[i];
+  if (!Solve(n, Me, At)) return;
+  for (int i = 0; i < n; ++i) D[s.node[i]] += De[i];
+  for (const OverlapPoint &o : points) {
+    const GatheredFace &m = masters[o.master];
+    for (int i = 0; i < n; ++i) {
+      double psi = 0;
+      for (int k = 0; k < n; ++k) psi += At[k * n + i] * o.Ns[k];
+      for (int l = 0; l < m.n; ++l) M[s.node[i]][m.node[l]] += o.w * psi * o.Nm[l];
+    }
+  }
+}
+
 } // namespace
 
 PetscErrorCode MortarCoupling::Build(const Mesh &mesh, const ContactOptions &opts, const std::vector<char> &fixed,
@@ -156,9 +383,6 @@ PetscErrorCode MortarCoupling::Build(const Mesh &mesh, const ContactOptions &opt
   facet_base_ = facet_base;
   rows_.clear();
   slave_.assign(mesh.NumLocalVertices(), 0);
-  PetscCheck(interfaces_ == 0 || dim_ == 2, mesh.Comm(), PETSC_ERR_SUP,
-             "-contact_pairs: contact between deformable bodies is implemented in 2D only so far; the mesh is 3D "
-             "(expected a 2D mesh, or rigid obstacles with -obstacle_* in 3D)");
   for (PetscInt i = 0; i < interfaces_; ++i) PetscCall(BuildInterface(mesh, opts, fixed, i));
   PetscFunctionReturn(0);
 }
@@ -186,17 +410,28 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
   std::map<PetscInt, std::map<PetscInt, double>> M;
   std::vector<Piece> pieces;
   for (const GatheredFace &s : sf) {
-    if (!owned.count(s.node[0]) && !owned.count(s.node[1])) continue;
-    const SegmentFrame fs(s);
-    for (int a = 0; a < 2; ++a) {
-      auto &n = normal[s.node[a]];
-      for (int d = 0; d < 2; ++d) n[d] += fs.n[d] * fs.length;
-      tributary[s.node[a]] += 0.5 * fs.length;
+    bool mine = false;
+    for (int a = 0; a < s.n; ++a) mine = mine || owned.count(s.node[a]);
+    if (!mine) continue;
+    if (dim_ == 2) {
+      const SegmentFrame fs(s);
+      for (int a = 0; a < 2; ++a) {
+        auto &n = normal[s.node[a]];
+        for (int d = 0; d < 2; ++d) n[d] += fs.n[d] * fs.length;
+        tributary[s.node[a]] += 0.5 * fs.length;
+      }
+      SegmentPieces(s, mf, opts.search_radius, pieces);
+      SegmentIntegrals(s, mf, pieces, D, M);
+    } else {
+      const FacetPlane fp(s);
+      for (int a = 0; a < s.n; ++a) {
+        auto &n = normal[s.node[a]];
+        for (int d = 0; d < 3; ++d) n[d] += fp.n[d] * fp.area;
+        tributary[s.node[a]] += fp.area / s.n;
+      }
+      FacetIntegrals(s, mf, opts.search_radius, D, M);
     }
-    SegmentPieces(s, mf, opts.search_radius, pieces);
-    SegmentIntegrals(s, mf, pieces, D, M);
   }
-  std::vector<std::pair<PetscInt, double>> coords; // master node -> coordinates, for the reference gaps
   std::unordered_map<PetscInt, const double *> master_x;
   for (const GatheredFace &f : mf)
     for (int a = 0; a < f.n; ++a) master_x[f.node[a]] = f.x[a].data();
@@ -207,18 +442,18 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
     const PetscInt v = it->second;
     Row row{v, facet_base_ + item, {0, 0, 0}, 0, Dj, {}};
     const auto &n = normal[node];
-    const double len = std::hypot(n[0], n[1]);
-    for (int d = 0; d < 2; ++d) row.n[d] = -n[d] / len; // from the master into the slave body
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int d = 0; d < dim_; ++d) row.n[d] = -n[d] / len; // from the master into the slave body
     double free2 = 0;
     for (int k = 0; k < dim_; ++k)
       if (!fixed[v * dim_ + k]) free2 += row.n[k] * row.n[k];
     if (free2 < 1e-12) continue; // the supports hold the node along its normal (as for a rigid obstacle)
     row.g0 = 0;
-    for (int d = 0; d < 2; ++d) row.g0 += row.n[d] * mesh.X(v)[d];
+    for (int d = 0; d < dim_; ++d) row.g0 += row.n[d] * mesh.X(v)[d];
     for (const auto &[l, Mjl] : M[node]) {
       const double w = Mjl / Dj;
       row.terms.push_back({l, w});
-      for (int d = 0; d < 2; ++d) row.g0 -= w * row.n[d] * master_x[l][d];
+      for (int d = 0; d < dim_; ++d) row.g0 -= w * row.n[d] * master_x[l][d];
     }
     rows_.push_back(std::move(row));
   }
