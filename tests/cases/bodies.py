@@ -81,3 +81,41 @@ def cylinders_2d(runner):
                        errors[0] > errors[1] > errors[2])
     runner.expect_close("finest: fitted a within 1 %", h["a_fit"], a, 0.01)
     runner.expect_close("finest: peak pressure within 1 %", h["p0_computed"], p0, 0.01)
+
+
+@test("sphere_on_block")
+def sphere_on_block(runner):
+    """3D Hertz contact of two bodies (options/sphere_on_block.yml: an octant of a ball on a quarter block, one
+    material): over three meshes the peak pressure converges to Johnson's, the contact radius of the active nodes
+    stays within the contact element size of it, and on the finest the
+    contact radius and the peak pressure are within 3 %; the two sides' forces balance to round-off."""
+    options = dict(yaml_options(runner.path("options/sphere_on_block.yml")))
+    E, nu = float(options["material_E"]), float(options["material_nu"])
+    R = 10.0
+    Estar = 1 / (2 * (1 - nu * nu) / E)
+    errors = []
+    for f in (1.4, 1, 0.7):
+        r = runner.run(["-options_file", "options/sphere_on_block.yml", "-mesh_file", "meshes/sphere_on_block.geo",
+                        "-mesh_size_factor", f], "sphere on block factor %g" % f)
+        h = r.summary["hertz"]
+        # Johnson's values for the load the quarter model carries (its slave side's force, times 4).
+        slave, master = np.array(r.get("contact.contact_force")), np.array(r.get("contact.master_contact_force"))
+        P = 4 * np.linalg.norm(slave)
+        a = np.cbrt(3 * P * R / (4 * Estar))
+        p0 = 3 * P / (2 * np.pi * a * a)
+        runner.expect_close("factor %g: summary's Johnson a (combined modulus)" % f, h["a"], a, 1e-8)
+        runner.expect_close("factor %g: summary's Johnson p0" % f, h["p0"], p0, 1e-8)
+        runner.expect_close("factor %g: master side force = - slave side force" % f, master, -slave, 0,
+                            1e-10 * np.linalg.norm(slave))
+        errors.append(abs(h["p0_computed"] / p0 - 1))
+        runner.expect_close("factor %g: contact radius within the ball's contact element size" % f, h["a_computed"],
+                            a, 0, 0.08 * f)
+        print("factor %g: a %+.3f %% (fit %+.3f %%), p0 %+.3f %%" % (f, 100 * (h["a_computed"] / a - 1),
+                                                                    100 * (h["a_fit"] / a - 1),
+                                                                    100 * (h["p0_computed"] / p0 - 1)))
+    # The contact radius of the active nodes moves by whole elements (-1.4, -2.1, -1.5 %); the peak pressure of the
+    # profile's fit converges (+1.7, +1.2, +0.95 %).
+    runner.expect_true("the error of p0 falls with the mesh size (%s)" % ", ".join("%.3g" % e for e in errors),
+                       errors[0] > errors[1] > errors[2])
+    runner.expect_close("finest: contact radius within 3 %", h["a_computed"], a, 0.03)
+    runner.expect_close("finest: peak pressure within 3 %", h["p0_computed"], p0, 0.03)
