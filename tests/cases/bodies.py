@@ -49,6 +49,14 @@ def patch(runner, kind):
                             tol * np.abs(exact).max())
 
 
+def print_hertz_errors(f, h, a, p0):
+    """The errors of a Hertz run's contact half-width or radius (of the active nodes, of the profile's fit) and peak
+    pressure against Johnson's a and p0."""
+    print("factor %g: a %+.3f %% (fit %+.3f %%), p0 %+.3f %%" % (f, 100 * (h["a_computed"] / a - 1),
+                                                                100 * (h["a_fit"] / a - 1),
+                                                                100 * (h["p0_computed"] / p0 - 1)))
+
+
 @test("cylinders_2d")
 def cylinders_2d(runner):
     """Hertz contact of two cylinders (options/cylinders_2d.yml, Johnson 4.2): over three meshes the contact half-width
@@ -74,9 +82,7 @@ def cylinders_2d(runner):
         runner.expect_close("factor %g: slave side force = load" % f, slave, [0, P], 0, 1e-4 * P)
         runner.expect_close("factor %g: master side force = - slave side force" % f, master, -slave, 0, 1e-10 * P)
         errors.append(abs(h["a_computed"] / a - 1))
-        print("factor %g: a %+.3f %% (fit %+.3f %%), p0 %+.3f %%" % (f, 100 * (h["a_computed"] / a - 1),
-                                                                    100 * (h["a_fit"] / a - 1),
-                                                                    100 * (h["p0_computed"] / p0 - 1)))
+        print_hertz_errors(f, h, a, p0)
     runner.expect_true("the error of a falls with the mesh size (%s)" % ", ".join("%.3g" % e for e in errors),
                        errors[0] > errors[1] > errors[2])
     runner.expect_close("finest: fitted a within 1 %", h["a_fit"], a, 0.01)
@@ -110,9 +116,7 @@ def sphere_on_block(runner):
         errors.append(abs(h["p0_computed"] / p0 - 1))
         runner.expect_close("factor %g: contact radius within the ball's contact element size" % f, h["a_computed"],
                             a, 0, 0.08 * f)
-        print("factor %g: a %+.3f %% (fit %+.3f %%), p0 %+.3f %%" % (f, 100 * (h["a_computed"] / a - 1),
-                                                                    100 * (h["a_fit"] / a - 1),
-                                                                    100 * (h["p0_computed"] / p0 - 1)))
+        print_hertz_errors(f, h, a, p0)
     # The contact radius of the active nodes moves by whole elements (-1.4, -2.1, -1.5 %); the peak pressure of the
     # profile's fit converges (+1.7, +1.2, +0.95 %).
     runner.expect_true("the error of p0 falls with the mesh size (%s)" % ", ".join("%.3g" % e for e in errors),
