@@ -43,7 +43,7 @@ PetscErrorCode ApplyDefaultCase(bool &on_user_mesh, bool &hertz_filled) {
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-mesh_file", &has_mesh));
   if (has_mesh) {
     std::vector<std::string> own = {"-bc_dirichlet", "-bc_traction", "-bc_pressure", "-bc_point_force",
-                                    "-bc_body_force", "-obstacle_mesh", "-contact_groups"};
+                                    "-bc_body_force", "-obstacle_mesh", "-contact_groups", "-contact_pairs"};
     for (const ShapeType &shape : ShapeRegistry()) own.push_back(shape.option);
     for (const std::string &name : own) {
       PetscBool set;
@@ -82,10 +82,11 @@ PetscErrorCode CheckDefaultCaseMesh(MPI_Comm comm, const std::string &file, cons
   const std::string what = mesh.Dim() != 2 ? "is " + std::to_string(mesh.Dim()) + "D"
                                            : "has no physical group " + Join(missing, ", ");
   PetscCheck(mesh.Dim() == 2 && missing.empty(), comm, PETSC_ERR_USER_INPUT,
-             "-mesh_file %s is given without supports, loads, obstacles or contact groups, so the run is the default "
+             "-mesh_file %s is given without supports, loads, obstacles, contact groups or pairs, so the run is the default "
              "case (2D Hertz) on it, which needs a 2D mesh with the physical groups %s; this mesh %s; expected a mesh "
              "of the Hertz geometry, or the case's own -bc_dirichlet, loads (-bc_traction, -bc_pressure, "
-             "-bc_point_force, -bc_body_force), -obstacle_* and -contact_groups (an -options_file of a case)",
+             "-bc_point_force, -bc_body_force), -obstacle_*, -contact_groups or -contact_pairs (an -options_file of a "
+             "case)",
              file.c_str(), Join(DEFAULT_CASE_GROUPS, ", ").c_str(), what.c_str());
   PetscFunctionReturn(0);
 }
@@ -226,9 +227,9 @@ PetscErrorCode ReadCase(MPI_Comm comm, bool help, Case &c) {
   PetscFunctionBeginUser;
   if (help)
     PetscCall(PetscPrintf(comm, "signorini: frictionless (Signorini) contact of elastic bodies against rigid "
-                          "obstacles.\nEvery input is a PETSc option. The built-in 2D Hertz case (options/hertz.yml) "
+                          "obstacles and between bodies.\nEvery input is a PETSc option. The built-in 2D Hertz case (options/hertz.yml) "
                           "fills in every option not given, unless the run gives a case of its own: -mesh_file with "
-                          "any of -bc_*, -obstacle_*, -contact_groups. -version prints the program's, PETSc's, MUMPS's "
+                          "any of -bc_*, -obstacle_*, -contact_groups, -contact_pairs. -version prints the program's, PETSc's, MUMPS's "
                           "and MPI's versions.\n\n"));
   bool hertz_filled;
   PetscCall(ApplyDefaultCase(c.default_on_user_mesh, hertz_filled));

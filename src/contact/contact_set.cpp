@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 namespace signorini {
 
@@ -41,9 +42,27 @@ PetscErrorCode CheckContactInputs(const Mesh &mesh, const Obstacle &obstacle, co
     PetscCheck(slave != master, comm, PETSC_ERR_USER_INPUT,
                "%s: the same group on both sides; expected the facet groups of two different bodies (self-contact is "
                "not supported)", item.c_str());
-    std::vector<Face> faces;
-    PetscCall(mesh.GroupFaces(slave, faces, item));
-    PetscCall(mesh.GroupFaces(master, faces, item));
+    // Each side is a facet group on a body's boundary: a curve or surface inside a body would pair its faces with
+    // the other body's from within.
+    std::vector<Face> boundary, faces;
+    PetscCall(mesh.BoundaryFaces(boundary));
+    std::set<std::array<PetscInt, 4>> on_boundary;
+    const auto key = [](const Face &f) {
+      std::array<PetscInt, 4> k{-1, -1, -1, -1};
+      std::copy(f.v.begin(), f.v.begin() + f.n, k.begin());
+      std::sort(k.begin(), k.begin() + f.n);
+      return k;
+    };
+    for (const Face &f : boundary) on_boundary.insert(key(f));
+    for (const std::string &group : {slave, master}) {
+      PetscCall(mesh.GroupFaces(group, faces, item));
+      PetscInt inside = 0;
+      for (const Face &f : faces) inside += !on_boundary.count(key(f));
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &inside, 1, MPIU_INT, MPI_SUM, comm));
+      PetscCheck(inside == 0, comm, PETSC_ERR_USER_INPUT,
+                 "%s: physical group '%s' has %" PetscInt_FMT " facet(s) inside a body, off its boundary; expected a "
+                 "group on the boundary of a body (curves in 2D, surfaces in 3D)", item.c_str(), group.c_str(), inside);
+    }
   }
   // A candidate is a node of the body's boundary: a group of the body's dimension (or one with interior nodes)
   // would make interior nodes candidates.

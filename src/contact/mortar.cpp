@@ -383,7 +383,45 @@ PetscErrorCode MortarCoupling::Build(const Mesh &mesh, const ContactOptions &opt
   facet_base_ = facet_base;
   rows_.clear();
   slave_.assign(mesh.NumLocalVertices(), 0);
-  for (PetscInt i = 0; i < interfaces_; ++i) PetscCall(BuildInterface(mesh, opts, fixed, i));
+  for (PetscInt i = 0; i < interfaces_; ++i) {
+    const std::size_t first = rows_.size();
+    PetscCall(BuildInterface(mesh, opts, fixed, i));
+    PetscCall(CheckInterface(mesh, opts, i, first));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MortarCoupling::CheckInterface(const Mesh &mesh, const ContactOptions &opts, PetscInt item,
+                                              std::size_t first) const {
+  const auto &[slave, master] = opts.pairs[item];
+  MPI_Comm comm = mesh.Comm();
+  PetscFunctionBeginUser;
+  // A pair whose sides are nowhere within the search radius of each other is most likely a wrong group or a wrong
+  // radius: no row would ever constrain it.
+  PetscInt count = (PetscInt)(rows_.size() - first);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCheck(count > 0, comm, PETSC_ERR_USER_INPUT,
+             "-contact_pairs %s:%s: no facet of '%s' faces a facet of '%s' within the search radius %g (opposite "
+             "normals, overlapping along the normal); expected the facing sides of two bodies, or a larger "
+             "-contact_search_radius", slave.c_str(), master.c_str(), slave.c_str(), master.c_str(),
+             opts.search_radius);
+  // Bodies that start inside each other by more than START_OVERLAP body diagonals: the mesh is wrong (a body placed
+  // at the wrong height, a group on the wrong side), not a contact to resolve.
+  struct {
+    double depth;
+    int rank;
+  } mine{0, 0}, deepest;
+  PetscCallMPI(MPI_Comm_rank(comm, &mine.rank));
+  PetscInt node = -1;
+  for (std::size_t r = first; r < rows_.size(); ++r)
+    if (-rows_[r].g0 > mine.depth) mine.depth = -rows_[r].g0, node = mesh.VertexOriginal(rows_[r].vertex) + 1;
+  PetscCallMPI(MPI_Allreduce(&mine, &deepest, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
+  PetscCallMPI(MPI_Bcast(&node, 1, MPIU_INT, deepest.rank, comm));
+  PetscCheck(deepest.depth <= START_OVERLAP * opts.length, comm, PETSC_ERR_USER_INPUT,
+             "-contact_pairs %s:%s: the bodies start inside each other: slave node %" PetscInt_FMT " (in file order) is "
+             "%g deep in '%s' (weighted gap %g); expected bodies that touch or stand apart at the start, overlapping "
+             "by at most %g body diagonals (%g)", slave.c_str(), master.c_str(), node, deepest.depth, master.c_str(),
+             -deepest.depth, START_OVERLAP, START_OVERLAP * opts.length);
   PetscFunctionReturn(0);
 }
 

@@ -65,6 +65,13 @@ private:
     double n[3], g0, D;
     std::vector<Term> terms;
   };
+  /// The most that two bodies may overlap at the start, in body diagonals (a faceted curved interface overlaps by
+  /// about h^2 / R; more is a wrong mesh).
+  static constexpr double START_OVERLAP = 1e-3;
+  /// Refuses an interface (rows from first on) that no row constrains, or whose bodies start inside each other by
+  /// more than START_OVERLAP, naming the deepest slave node. Collective.
+  [[nodiscard]] PetscErrorCode CheckInterface(const Mesh &mesh, const ContactOptions &opts, PetscInt item,
+                                              std::size_t first) const;
   /// The rows of one interface's owned slave nodes (2D: segments). Collective.
   [[nodiscard]] PetscErrorCode BuildInterface(const Mesh &mesh, const ContactOptions &opts,
                                               const std::vector<char> &fixed, PetscInt item);
