@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 
 namespace signorini {
 
@@ -253,6 +254,22 @@ constexpr double TRI_B[7] = {1.0 / 3, 0.470142064105115, 0.059715871789770, 0.47
 constexpr double TRI_W[7] = {0.225, 0.132394152788506, 0.132394152788506, 0.132394152788506,
                              0.125939180544827, 0.125939180544827, 0.125939180544827};
 
+/// The master facets' bounding boxes (lo, hi) and outward normals, computed once per interface (3D).
+struct MasterBoxes {
+  std::vector<std::array<double, 6>> box;
+  std::vector<std::array<double, 3>> normal;
+  explicit MasterBoxes(const std::vector<GatheredFace> &masters) {
+    for (const GatheredFace &f : masters) {
+      std::array<double, 6> b{1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
+      for (int a = 0; a < f.n; ++a)
+        for (int d = 0; d < 3; ++d) b[d] = std::min(b[d], f.x[a][d]), b[3 + d] = std::max(b[3 + d], f.x[a][d]);
+      box.push_back(b);
+      const FacetPlane p(f);
+      normal.push_back({p.n[0], p.n[1], p.n[2]});
+    }
+  }
+};
+
 /// One point of the overlap of a slave facet with a master facet: its weight (area) and both sides' shape functions.
 struct OverlapPoint {
   double w, Ns[4], Nm[4];
@@ -265,32 +282,39 @@ struct OverlapPoint {
 /// the products of linear functions on triangles and parallelograms, a quadrature of degree 5 of those of a general
 /// quadrilateral's (its bilinear map is not affine). An overlap whose master point is farther than radius along the
 /// normal is left out.
-void FacetOverlap(const GatheredFace &s, const std::vector<GatheredFace> &masters, double radius,
-                  std::vector<OverlapPoint> &points) {
+void FacetOverlap(const GatheredFace &s, const std::vector<GatheredFace> &masters, const MasterBoxes &boxes,
+                  double radius, std::vector<OverlapPoint> &points) {
   const FacetPlane plane(s);
   Polygon S(s.n);
-  double lo[3], hi[3];
+  double lo[3], hi[3], lo2[2] = {1e300, 1e300}, hi2[2] = {-1e300, -1e300};
   for (int d = 0; d < 3; ++d) lo[d] = 1e300, hi[d] = -1e300;
   for (int a = 0; a < s.n; ++a) {
     S[a] = plane.In(s.x[a]);
     for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], s.x[a][d] - radius), hi[d] = std::max(hi[d], s.x[a][d] + radius);
+    for (int d = 0; d < 2; ++d) lo2[d] = std::min(lo2[d], S[a][d]), hi2[d] = std::max(hi2[d], S[a][d]);
   }
   const Polygon Sccw = CounterClockwise(S);
   points.clear();
   for (std::size_t m = 0; m < masters.size(); ++m) {
-    const GatheredFace &f = masters[m];
+    // Cheap rejections first (this loop meets every master facet): the bounding boxes, the normals' orientation, the
+    // boxes of the projections on the slave facet's plane.
+    const auto &box = boxes.box[m];
     bool near = true;
-    for (int d = 0; d < 3 && near; ++d) {
-      double flo = 1e300, fhi = -1e300;
-      for (int a = 0; a < f.n; ++a) flo = std::min(flo, f.x[a][d]), fhi = std::max(fhi, f.x[a][d]);
-      near = fhi >= lo[d] && flo <= hi[d];
-    }
+    for (int d = 0; d < 3 && near; ++d) near = box[3 + d] >= lo[d] && box[d] <= hi[d];
     if (!near) continue;
-    const FacetPlane mp(f);
-    if (mp.n[0] * plane.n[0] + mp.n[1] * plane.n[1] + mp.n[2] * plane.n[2] >= 0) continue;
-    Polygon Mpoly(f.n);
+    const auto &nm = boxes.normal[m];
+    if (nm[0] * plane.n[0] + nm[1] * plane.n[1] + nm[2] * plane.n[2] >= 0) continue;
+    const GatheredFace &f = masters[m];
+    std::array<std::array<double, 2>, 4> xm;
+    double mlo[2] = {1e300, 1e300}, mhi[2] = {-1e300, -1e300};
+    for (int a = 0; a < f.n; ++a) {
+      xm[a] = plane.In(f.x[a]);
+      for (int d = 0; d < 2; ++d) mlo[d] = std::min(mlo[d], xm[a][d]), mhi[d] = std::max(mhi[d], xm[a][d]);
+    }
+    if (mhi[0] <= lo2[0] || mlo[0] >= hi2[0] || mhi[1] <= lo2[1] || mlo[1] >= hi2[1]) continue;
+    const Polygon Mpoly(xm.begin(), xm.begin() + f.n);
     double height[4];
-    for (int a = 0; a < f.n; ++a) Mpoly[a] = plane.In(f.x[a]), height[a] = plane.Height(f.x[a]);
+    for (int a = 0; a < f.n; ++a) height[a] = plane.Height(f.x[a]);
     // The master's outward normal opposes the slave's: its corners run clockwise in the slave's plane.
     const Polygon ccw = CounterClockwise(Mpoly);
     if (std::abs(Area(Mpoly)) <= 1e-12 * Area(Sccw)) continue; // edge-on in this projection
@@ -345,10 +369,10 @@ bool Solve(int n, double *A, double *B) {
 
 /// The contribution of slave facet s (3D) to D and M, with the dual basis biorthogonal on its overlap: psi_i =
 /// sum_k A_ik N_k, A = De Me^-1 (Me symmetric, so A^T = Me^-1 De solves for it).
-void FacetIntegrals(const GatheredFace &s, const std::vector<GatheredFace> &masters, double radius,
-                    std::map<PetscInt, double> &D, std::map<PetscInt, std::map<PetscInt, double>> &M) {
+void FacetIntegrals(const GatheredFace &s, const std::vector<GatheredFace> &masters, const MasterBoxes &boxes,
+                    double radius, std::map<PetscInt, double> &D, std::map<PetscInt, std::map<PetscInt, double>> &M) {
   std::vector<OverlapPoint> points;
-  FacetOverlap(s, masters, radius, points);
+  FacetOverlap(s, masters, boxes, radius, points);
   const int n = s.n;
   double Me[16] = {0}, De[4] = {0}, covered = 0;
   for (const OverlapPoint &o : points) {
@@ -377,7 +401,14 @@ void FacetIntegrals(const GatheredFace &s, const std::vector<GatheredFace> &mast
 
 PetscErrorCode MortarCoupling::Build(const Mesh &mesh, const ContactOptions &opts, const std::vector<char> &fixed,
                                      PetscInt facet_base) {
+  static PetscLogEvent event = 0;
   PetscFunctionBeginUser;
+  if (!event) {
+    PetscClassId id;
+    PetscCall(PetscClassIdRegister("signorini mortar", &id));
+    PetscCall(PetscLogEventRegister("SigMortar", id, &event));
+  }
+  PetscCall(PetscLogEventBegin(event, 0, 0, 0, 0));
   dim_ = mesh.Dim();
   interfaces_ = (PetscInt)opts.pairs.size();
   facet_base_ = facet_base;
@@ -388,6 +419,7 @@ PetscErrorCode MortarCoupling::Build(const Mesh &mesh, const ContactOptions &opt
     PetscCall(BuildInterface(mesh, opts, fixed, i));
     PetscCall(CheckInterface(mesh, opts, i, first));
   }
+  PetscCall(PetscLogEventEnd(event, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -447,6 +479,7 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
   std::map<PetscInt, double> D, tributary;
   std::map<PetscInt, std::map<PetscInt, double>> M;
   std::vector<Piece> pieces;
+  const auto boxes = dim_ == 3 ? std::make_unique<MasterBoxes>(mf) : nullptr;
   for (const GatheredFace &s : sf) {
     bool mine = false;
     for (int a = 0; a < s.n; ++a) mine = mine || owned.count(s.node[a]);
@@ -467,7 +500,7 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
         for (int d = 0; d < 3; ++d) n[d] += fp.n[d] * fp.area;
         tributary[s.node[a]] += fp.area / s.n;
       }
-      FacetIntegrals(s, mf, opts.search_radius, D, M);
+      FacetIntegrals(s, mf, *boxes, opts.search_radius, D, M);
     }
   }
   std::unordered_map<PetscInt, const double *> master_x;
