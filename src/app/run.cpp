@@ -249,7 +249,7 @@ PetscErrorCode ReadCase(MPI_Comm comm, bool help, Case &c) {
 PetscErrorCode ListCaseHelp(MPI_Comm comm, Case &c) {
   PetscFunctionBeginUser;
   PetscCall(ReadBoundaryConditions(comm, 0, c.bc));
-  PetscCall(ReadContactOptions(comm, 1.0, c.material.E * c.material.thickness, c.contact));
+  PetscCall(ReadContactOptions(comm, 1.0, c.material.MaxE() * c.material.thickness, c.contact));
   PetscCall(HelpKsp(comm));
   PetscCall(PrintGenericHelp(comm));
   PetscCall(PetscOptionsSetValue(nullptr, "-options_left", "0"));
@@ -263,6 +263,7 @@ PetscErrorCode CheckCaseOnMesh(MPI_Comm comm, const Mesh &mesh, Case &c, Box &bo
   PetscFunctionBeginUser;
   if (c.default_on_user_mesh) PetscCall(CheckDefaultCaseMesh(comm, c.mesh_opts.file, mesh));
   PetscCall(CheckMaterialDimension(comm, c.material, mesh.Dim()));
+  PetscCall(AssignCellMaterials(mesh, c.material));
   PetscCall(ReadBoundaryConditions(comm, mesh.Dim(), c.bc));
   PetscCall(CheckLoadGroups(mesh, c.bc));
   PetscCall(CheckObstacleDimension(comm, c.obstacle, mesh.Dim()));
@@ -270,8 +271,11 @@ PetscErrorCode CheckCaseOnMesh(MPI_Comm comm, const Mesh &mesh, Case &c, Box &bo
   PetscCall(mesh.BoundingBox(body.lo, body.hi));
   const double L = std::sqrt(std::pow(body.hi[0] - body.lo[0], 2) + std::pow(body.hi[1] - body.lo[1], 2) +
                              std::pow(body.hi[2] - body.lo[2], 2));
-  PetscCall(CheckLoadScale(comm, c.bc, L, c.material.E, c.material.thickness));
-  PetscCall(ReadContactOptions(comm, L, c.material.E * c.material.thickness, c.contact));
+  // The stiffness scale of the load checks and of the complementarity constant: the largest E of the run (the only one
+  // with one material), so that the stiffest part's multipliers are well scaled.
+  const double E = c.material.MaxE();
+  PetscCall(CheckLoadScale(comm, c.bc, L, E, c.material.thickness));
+  PetscCall(ReadContactOptions(comm, L, E * c.material.thickness, c.contact));
   PetscCall(CheckContactInputs(mesh, c.obstacle, c.contact));
   PetscFunctionReturn(0);
 }

@@ -110,11 +110,19 @@ void SegmentPieces(const GatheredFace &s, const std::vector<GatheredFace> &maste
   }
 }
 
+/// What the slave facets accumulate per slave node (file numbering): D_jj, M_jl per master node l, and the master's
+/// outward normal weighted by N_j over the overlap (the row's normal).
+struct Integrals {
+  std::map<PetscInt, double> D;
+  std::map<PetscInt, std::map<PetscInt, double>> M;
+  std::map<PetscInt, std::array<double, 3>> normal;
+};
+
 /// The contribution of slave segment s (its pieces with the master segments) to D (per slave node) and M (per slave
 /// node, per master node), with the dual basis biorthogonal on the pieces: psi_i = sum_k A_ik N_k, A = De Me^-1,
 /// De_i = int N_i, Me_ik = int N_i N_k over the pieces.
 void SegmentIntegrals(const GatheredFace &s, const std::vector<GatheredFace> &masters, const std::vector<Piece> &pieces,
-                      std::map<PetscInt, double> &D, std::map<PetscInt, std::map<PetscInt, double>> &M) {
+                      Integrals &in) {
   const double L = SegmentFrame(s).length;
   double Me[2][2] = {{0, 0}, {0, 0}}, De[2] = {0, 0}, covered = 0;
   for (const Piece &p : pieces) {
@@ -135,15 +143,17 @@ void SegmentIntegrals(const GatheredFace &s, const std::vector<GatheredFace> &ma
   double A[2][2];
   for (int i = 0; i < 2; ++i)
     for (int k = 0; k < 2; ++k) A[i][k] = De[i] * inv[i][k];
-  for (int i = 0; i < 2; ++i) D[s.node[i]] += De[i];
+  for (int i = 0; i < 2; ++i) in.D[s.node[i]] += De[i];
   for (const Piece &p : pieces) {
     const GatheredFace &m = masters[p.master];
+    const SegmentFrame fm(m);
     for (int q = 0; q < 2; ++q) {
       const double xi = p.lo + GAUSS_X[q] * (p.hi - p.lo), w = GAUSS_W[q] * (p.hi - p.lo) * L;
       const double N[2] = {1 - xi, xi}, eta = (xi - p.xi_c) / (p.xi_d - p.xi_c), Nm[2] = {1 - eta, eta};
       for (int i = 0; i < 2; ++i) {
         const double psi = A[i][0] * N[0] + A[i][1] * N[1];
-        for (int l = 0; l < 2; ++l) M[s.node[i]][m.node[l]] += w * psi * Nm[l];
+        for (int l = 0; l < 2; ++l) in.M[s.node[i]][m.node[l]] += w * psi * Nm[l];
+        for (int d = 0; d < 2; ++d) in.normal[s.node[i]][d] += w * N[i] * fm.n[d];
       }
     }
   }
@@ -370,7 +380,7 @@ bool Solve(int n, double *A, double *B) {
 /// The contribution of slave facet s (3D) to D and M, with the dual basis biorthogonal on its overlap: psi_i =
 /// sum_k A_ik N_k, A = De Me^-1 (Me symmetric, so A^T = Me^-1 De solves for it).
 void FacetIntegrals(const GatheredFace &s, const std::vector<GatheredFace> &masters, const MasterBoxes &boxes,
-                    double radius, std::map<PetscInt, double> &D, std::map<PetscInt, std::map<PetscInt, double>> &M) {
+                    double radius, Integrals &in) {
   std::vector<OverlapPoint> points;
   FacetOverlap(s, masters, boxes, radius, points);
   const int n = s.n;
@@ -386,13 +396,15 @@ void FacetIntegrals(const GatheredFace &s, const std::vector<GatheredFace> &mast
   double At[16] = {0}; // A^T = Me^-1 De
   for (int i = 0; i < n; ++i) At[i * n + i] = De[i];
   if (!Solve(n, Me, At)) return;
-  for (int i = 0; i < n; ++i) D[s.node[i]] += De[i];
+  for (int i = 0; i < n; ++i) in.D[s.node[i]] += De[i];
   for (const OverlapPoint &o : points) {
     const GatheredFace &m = masters[o.master];
+    const auto &nm = boxes.normal[o.master];
     for (int i = 0; i < n; ++i) {
       double psi = 0;
       for (int k = 0; k < n; ++k) psi += At[k * n + i] * o.Ns[k];
-      for (int l = 0; l < m.n; ++l) M[s.node[i]][m.node[l]] += o.w * psi * o.Nm[l];
+      for (int l = 0; l < m.n; ++l) in.M[s.node[i]][m.node[l]] += o.w * psi * o.Nm[l];
+      for (int d = 0; d < 3; ++d) in.normal[s.node[i]][d] += o.w * o.Ns[i] * nm[d];
     }
   }
 }
@@ -414,6 +426,7 @@ PetscErrorCode MortarCoupling::Build(const Mesh &mesh, const ContactOptions &opt
   facet_base_ = facet_base;
   rows_.clear();
   slave_.assign(mesh.NumLocalVertices(), 0);
+  master_vertex_.assign(mesh.NumLocalVertices(), 0);
   for (PetscInt i = 0; i < interfaces_; ++i) {
     const std::size_t first = rows_.size();
     PetscCall(BuildInterface(mesh, opts, fixed, i));
@@ -466,6 +479,8 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
   PetscFunctionBeginUser;
   PetscCall(GatherFaces(mesh, slave, input, sf));
   PetscCall(GatherFaces(mesh, master, input, mf));
+  PetscCall(mesh.GroupVertices(master, vertices, input));
+  for (PetscInt v : vertices) master_vertex_[v] = 1;
   PetscCall(mesh.GroupVertices(slave, vertices, input));
   // The owned slave nodes by file number.
   std::unordered_map<PetscInt, PetscInt> owned;
@@ -473,11 +488,10 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
     slave_[v] = 1;
     if (mesh.Owned(v)) owned[mesh.VertexOriginal(v)] = v;
   }
-  // Nodal normals (the facets' outward normals weighted by their lengths) and the integrals, over the slave segments
-  // that touch an owned node.
-  std::map<PetscInt, std::array<double, 3>> normal;
-  std::map<PetscInt, double> D, tributary;
-  std::map<PetscInt, std::map<PetscInt, double>> M;
+  // The integrals over the slave segments or facets that touch an owned node, and each node's tributary length or
+  // area.
+  Integrals in;
+  std::map<PetscInt, double> tributary;
   std::vector<Piece> pieces;
   const auto boxes = dim_ == 3 ? std::make_unique<MasterBoxes>(mf) : nullptr;
   for (const GatheredFace &s : sf) {
@@ -485,43 +499,37 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
     for (int a = 0; a < s.n; ++a) mine = mine || owned.count(s.node[a]);
     if (!mine) continue;
     if (dim_ == 2) {
-      const SegmentFrame fs(s);
-      for (int a = 0; a < 2; ++a) {
-        auto &n = normal[s.node[a]];
-        for (int d = 0; d < 2; ++d) n[d] += fs.n[d] * fs.length;
-        tributary[s.node[a]] += 0.5 * fs.length;
-      }
+      const double length = SegmentFrame(s).length;
+      for (int a = 0; a < 2; ++a) tributary[s.node[a]] += 0.5 * length;
       SegmentPieces(s, mf, opts.search_radius, pieces);
-      SegmentIntegrals(s, mf, pieces, D, M);
+      SegmentIntegrals(s, mf, pieces, in);
     } else {
-      const FacetPlane fp(s);
-      for (int a = 0; a < s.n; ++a) {
-        auto &n = normal[s.node[a]];
-        for (int d = 0; d < 3; ++d) n[d] += fp.n[d] * fp.area;
-        tributary[s.node[a]] += fp.area / s.n;
-      }
-      FacetIntegrals(s, mf, *boxes, opts.search_radius, D, M);
+      const double area = FacetPlane(s).area;
+      for (int a = 0; a < s.n; ++a) tributary[s.node[a]] += area / s.n;
+      FacetIntegrals(s, mf, *boxes, opts.search_radius, in);
     }
   }
   std::unordered_map<PetscInt, const double *> master_x;
   for (const GatheredFace &f : mf)
     for (int a = 0; a < f.n; ++a) master_x[f.node[a]] = f.x[a].data();
-  for (const auto &[node, Dj] : D) {
+  for (const auto &[node, Dj] : in.D) {
     const auto it = owned.find(node);
     // A node whose overlap is a vanishing part of its tributary length has no row worth its conditioning.
     if (it == owned.end() || !(Dj > 1e-6 * tributary[node])) continue;
     const PetscInt v = it->second;
     Row row{v, facet_base_ + item, {0, 0, 0}, 0, Dj, {}};
-    const auto &n = normal[node];
+    // The master's normal (from the master into the slave body, the obstacle's of a rigid master): a node on a
+    // flat master has the rows a rigid plane gives it.
+    const auto &n = in.normal[node];
     const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    for (int d = 0; d < dim_; ++d) row.n[d] = -n[d] / len; // from the master into the slave body
+    for (int d = 0; d < dim_; ++d) row.n[d] = n[d] / len;
     double free2 = 0;
     for (int k = 0; k < dim_; ++k)
       if (!fixed[v * dim_ + k]) free2 += row.n[k] * row.n[k];
     if (free2 < 1e-12) continue; // the supports hold the node along its normal (as for a rigid obstacle)
     row.g0 = 0;
     for (int d = 0; d < dim_; ++d) row.g0 += row.n[d] * mesh.X(v)[d];
-    for (const auto &[l, Mjl] : M[node]) {
+    for (const auto &[l, Mjl] : in.M[node]) {
       const double w = Mjl / Dj;
       row.terms.push_back({l, w});
       for (int d = 0; d < dim_; ++d) row.g0 -= w * row.n[d] * master_x[l][d];

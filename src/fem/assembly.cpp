@@ -70,6 +70,14 @@ void GatherElement(const double *u_local, const PetscInt *v, PetscInt nn, int di
 }
 } // namespace
 
+Assembler::Assembler(const Mesh &mesh, const Material &material, const DofMap &dofs, const DirichletData &dirichlet)
+    : mesh_(mesh), material_(material), dofs_(dofs), dirichlet_(dirichlet) {
+  if (material.constants.empty()) parts_.push_back(material.With(material.E, material.nu));
+  for (const auto &k : material.constants) parts_.push_back(material.With(k[0], k[1]));
+  part_D_.resize(parts_.size());
+  for (std::size_t p = 0; p < parts_.size(); ++p) ElasticityMatrix(parts_[p], mesh.Dim(), part_D_[p].D);
+}
+
 bool Assembler::Geometry(PetscInt c, ElementGeometry &g, PetscInt &nn, const PetscInt *&vertices) const {
   const int dim = mesh_.Dim();
   vertices = mesh_.CellVertices(c, nn);
@@ -343,9 +351,8 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
   std::vector<double> f_local(fint ? mesh_.NumLocalVertices() * dim : 0, 0.0);
   ElementGeometry g;
   ElementMatrixAdder adder;
-  double jmin = 1e300, D[6][6];
+  double jmin = 1e300;
   PetscFunctionBeginUser;
-  ElasticityMatrix(material_, dim, D);
   if (!A) {
     // The force alone at u = 0 (every rank): F_int(0) = 0 and det F = 1 for both models, no pass over the cells.
     int zero = std::all_of(u_local, u_local + mesh_.NumLocalVertices() * dim, [](double x) { return x == 0; });
@@ -364,7 +371,9 @@ PetscErrorCode Assembler::Assemble(const double *u_local, Mat A, double dirichle
     Geometry(c, g, nn, v);
     GatherElement(u_local, v, nn, dim, ue.data());
     // det F at the quadrature points (svk): the deformation must stay invertible.
-    jmin = std::min(jmin, ElementTangentAndForce(material_, D, g, ue.data(), A ? Ke.data() : nullptr, fe.data()));
+    const int p = Part(c);
+    jmin = std::min(jmin, ElementTangentAndForce(parts_[p], part_D_[p].D, g, ue.data(), A ? Ke.data() : nullptr,
+                                                 fe.data()));
     if (A) {
       for (PetscInt a = 0; a < nn; ++a)
         for (int k = 0; k < dim; ++k)
@@ -405,7 +414,7 @@ PetscErrorCode Assembler::AddStiffnessTimes(const double *u_local, const double 
     if (!any) continue;
     Geometry(c, g, nn, v);
     GatherElement(u_local, v, nn, dim, ue.data());
-    ElementTangentAndForce(material_, g, ue.data(), Ke.data(), fe.data());
+    ElementTangentAndForce(parts_[Part(c)], part_D_[Part(c)].D, g, ue.data(), Ke.data(), fe.data());
     for (PetscInt i = 0; i < nn * dim; ++i) {
       kv[i] = 0;
       for (PetscInt j = 0; j < nn * dim; ++j) kv[i] += Ke[i * nn * dim + j] * ve[j];
@@ -493,7 +502,7 @@ PetscErrorCode Assembler::CellResults(const double *u_local,
     const PetscInt *v;
     Geometry(c, g, nn, v);
     GatherElement(u_local, v, nn, dim, ue.data());
-    use(c, ElementStress(material_, g, ue.data()));
+    use(c, ElementStress(parts_[Part(c)], g, ue.data()));
   }
   PetscFunctionReturn(0);
 }
@@ -504,14 +513,14 @@ PetscErrorCode Assembler::StiffnessScale(double &scale, double *abs_row_sum) con
   std::array<double, MAX_EDOF> fe, ue{};
   double sum[3] = {0, 0, 0}, gsum[3];
   PetscFunctionBeginUser;
-  Material linear = material_;
-  linear.model = MaterialModel::LINEAR;
+  std::vector<Material> linear = parts_;
+  for (Material &m : linear) m.model = MaterialModel::LINEAR;
   ElementGeometry g;
   for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
     PetscInt nn;
     const PetscInt *v;
     Geometry(c, g, nn, v);
-    ElementTangentAndForce(linear, g, ue.data(), Ke.data(), fe.data());
+    ElementTangentAndForce(linear[Part(c)], part_D_[Part(c)].D, g, ue.data(), Ke.data(), fe.data());
     for (PetscInt i = 0; i < nn * dim; ++i) sum[0] += Ke[i * nn * dim + i];
     sum[1] += nn * dim;
     if (abs_row_sum)

@@ -299,6 +299,11 @@ PetscErrorCode OutputWriter::WriteGeometry(Hdf5File &file) const {
   PetscCall(WriteTopology(file));
   PetscCall(file.WriteRows("/mesh/node_tags", node_rows_.Global(), 1, node_rows_.Start(), node_tags));
   PetscCall(file.WriteRows("/mesh/cell_tags", cell_rows_.Global(), 1, cell_rows_.Start(), cell_tags));
+  // The body of each cell (Mesh::CellBody: connected groups of cells, numbered by their smallest file cell index).
+  std::vector<long long> body(mesh_->NumLocalCells()), body_block;
+  for (PetscInt c = 0; c < mesh_->NumLocalCells(); ++c) body[c] = mesh_->CellBody(c);
+  PetscCall(cell_rows_.ToBlocks(body, 1, body_block));
+  PetscCall(file.WriteRows("/mesh/body", cell_rows_.Global(), 1, cell_rows_.Start(), body_block));
   // The obstacle (known on every rank) and the contact boundary (gathered on rank 0) are small: rank 0 writes them.
   if (!obstacle_points_.empty()) {
     std::vector<double> coords;
@@ -371,7 +376,8 @@ std::string OutputWriter::BodyGrid(const std::string &name, const StepInfo &s) c
     << Shape("mesh", uniform_ ? XdmfCellName(mesh_->Dim(), cell_size_) : "Mixed", nc, cell_size_,
              uniform_ ? 0 : (std::size_t)mixed_topology_size_, nn)
     << Attribute("node_tags", 1, false, nn, true, "/mesh/node_tags")
-    << Attribute("cell_tags", 1, true, nc, true, "/mesh/cell_tags");
+    << Attribute("cell_tags", 1, true, nc, true, "/mesh/cell_tags")
+    << Attribute("body", 1, true, nc, true, "/mesh/body");
   for (const auto &f : s.layout)
     x << Attribute(f.name, f.ncomp, f.on_cells, f.on_cells ? nc : nn, false, group + f.name);
   return x.str();

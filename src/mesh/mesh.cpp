@@ -607,6 +607,38 @@ PetscErrorCode Mesh::KeepDistributed(DMH &dm) {
   PetscCall(BuildLocalArrays());
   PetscCall(BuildVertexSF());
   PetscCall(CacheLabelVertices());
+  PetscCall(BuildCellGroups());
+  PetscCall(BuildBodies());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::BuildCellGroups() {
+  const PetscInt nc = NumLocalCells();
+  PetscFunctionBeginUser;
+  // The cell labels travel with the cells through distribution and the .h5 file alike, so both paths agree; they are
+  // copied here because the DM is released after the set-up (ReleaseDM).
+  std::vector<std::vector<int>> groups(nc);
+  for (std::size_t g = 0; g < group_names_.size(); ++g) {
+    if (group_dims_[g] != dim_) continue;
+    DMLabel label;
+    ISH is;
+    PetscCall(DMGetLabel(dm_, (LABEL_PREFIX + group_names_[g]).c_str(), &label));
+    if (label) PetscCall(DMLabelGetStratumIS(label, 1, is.out()));
+    if (!is) continue;
+    PetscInt n;
+    const PetscInt *pts;
+    PetscCall(ISGetLocalSize(is, &n));
+    PetscCall(ISGetIndices(is, &pts));
+    for (PetscInt i = 0; i < n; ++i)
+      if (pts[i] >= cstart_ && pts[i] < cstart_ + nc) groups[pts[i] - cstart_].push_back((int)g);
+    PetscCall(ISRestoreIndices(is, &pts));
+  }
+  cell_group_offsets_.assign(1, 0);
+  cell_groups_.clear();
+  for (const auto &cg : groups) {
+    cell_groups_.insert(cell_groups_.end(), cg.begin(), cg.end());
+    cell_group_offsets_.push_back((int)cell_groups_.size());
+  }
   PetscFunctionReturn(0);
 }
 

@@ -4,6 +4,7 @@
 
 #include "signorini/options/readers.hpp"
 #include "signorini/io/json.hpp"
+#include "signorini/core/parse.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -121,18 +122,54 @@ PetscErrorCode FitProfile(const SolvedState &state, const NodeContact &nodes, co
 
 } // namespace
 
+/// The material of the cells that hold the nodes marked (per local vertex) in `marks` (the contact body's: the
+/// candidate nodes; the master sides of pairs of bodies), in contact; count: how many distinct materials those cells
+/// have over the ranks (1 with one material). Collective.
+PetscErrorCode ContactMaterial(const SolvedState &state, const Material &m, const std::vector<char> &marks,
+                               Material &contact, int &count) {
+  const Mesh &mesh = state.mesh;
+  PetscFunctionBeginUser;
+  contact = m.With(m.E, m.nu);
+  count = 1;
+  if (m.constants.empty()) PetscFunctionReturn(0);
+  std::vector<int> used(m.constants.size(), 0);
+  for (PetscInt c = 0; c < mesh.NumLocalCells(); ++c) {
+    PetscInt n;
+    const PetscInt *cv = mesh.CellVertices(c, n);
+    for (PetscInt a = 0; a < n; ++a)
+      if (marks[cv[a]]) used[m.cell_constants[c]] = 1;
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, used.data(), (int)used.size(), MPI_INT, MPI_MAX, mesh.Comm()));
+  count = (int)std::count(used.begin(), used.end(), 1);
+  const auto first = std::find(used.begin(), used.end(), 1) - used.begin();
+  if (count == 1) contact = m.With(m.constants[first][0], m.constants[first][1]);
+  PetscFunctionReturn(0);
+}
+
 /// Hertz's theory is for contacts small against the radius; a / R beyond this is not a Hertz case (the Hertz meshes
 /// have a / R = 0.085 in 2D and 0.08 in 3D).
 constexpr double HERTZ_MAX_A_OVER_R = 0.5;
 
-PetscErrorCode ComputeHertz(const SolvedState &state, const Material &m, const NodeContact &nodes,
+PetscErrorCode ComputeHertz(const SolvedState &state, const Material &material, const NodeContact &nodes,
                             const ContactSummary &s, HertzReport &h) {
   const Mesh &mesh = state.mesh;
   const int dim = mesh.Dim();
   MPI_Comm comm = mesh.Comm();
+  Material m;
   PetscFunctionBeginUser;
   if (!h.enabled || s.active_nodes == 0) PetscFunctionReturn(0);
   h.dim = dim;
+  // Johnson's E* is that of the body in contact: with materials per group, the one material of the cells along the
+  // contact boundary, or no comparison. Between two bodies, 1 / E* = 1 / E*_slave + 1 / E*_master (Johnson 1985,
+  // 4.2), each side's the one material of its cells.
+  PetscCall(ContactMaterial(state, material, state.candidates, m, h.contact_materials));
+  Material master = m;
+  if (s.bodies) {
+    int count;
+    PetscCall(ContactMaterial(state, material, state.mortar->MasterVertices(), master, count));
+    if (count != 1) h.contact_materials = std::max(h.contact_materials, 2);
+  }
+  if (h.contact_materials != 1) PetscFunctionReturn(0);
   // The model carries the fraction 1, 1/2 or 1/4 (one or two symmetry planes) of P: the power of two nearest to
   // |contact force| / P. Johnson's values are those of the load it carries, P_model = |contact force| / fraction
   // (a pressure on a faceted curved boundary falls short of the nominal load by the area the facets cut off).
@@ -149,10 +186,9 @@ PetscErrorCode ComputeHertz(const SolvedState &state, const Material &m, const N
              "-report_hertz %.6g,%.6g: the contact force%s is %.6g, which is not P, P/2 or P/4 within %d %%; expected the "
              "load P of a Hertz case (a cylinder in 2D or a sphere in 3D on a flat, or its half or quarter by symmetry "
              "planes)", h.R, h.P, dim == 2 ? " per unit thickness" : "", force, (int)std::lround(100 * HERTZ_LOAD_TOL));
-  // Against a rigid obstacle E* = E / (1 - nu^2); between two bodies of one material 1 / E* = 2 (1 - nu^2) / E
-  // (Johnson 1985, 4.2; plane stress: without the 1 - nu^2).
-  const double Ebody = dim == 2 && m.plane_stress ? m.E : m.E / (1 - m.nu * m.nu);
-  const double Estar = s.bodies ? 0.5 * Ebody : Ebody;
+  // A body's part of E*: E / (1 - nu^2), E in plane stress; a rigid obstacle adds nothing.
+  const auto part = [&](const Material &b) { return dim == 2 && b.plane_stress ? b.E : b.E / (1 - b.nu * b.nu); };
+  const double Estar = s.bodies ? 1 / (1 / part(m) + 1 / part(master)) : part(m);
   if (dim == 2) {
     h.a = std::sqrt(4 * h.P_model * h.R / (M_PI * Estar));
     h.p0 = 2 * h.P_model / (M_PI * h.a);
@@ -175,6 +211,20 @@ PetscErrorCode ComputeHertz(const SolvedState &state, const Material &m, const N
   PetscFunctionReturn(0);
 }
 
+namespace {
+/// A material constant for the header: "%.6g", or "GROUP:%.6g, ..." when given per group.
+std::string ValueText(double value, const std::vector<GroupValue> &groups) {
+  char text[64];
+  std::vector<std::string> items;
+  for (const auto &g : groups) {
+    std::snprintf(text, sizeof(text), "%.6g", g.value);
+    items.push_back(g.group + ":" + text);
+  }
+  std::snprintf(text, sizeof(text), "%.6g", value);
+  return groups.empty() ? std::string(text) : Join(items, ", ");
+}
+} // namespace
+
 PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m, const SolvedState &state) {
   const Mesh &mesh = state.mesh;
   const DofMap &dofs = state.dofs;
@@ -182,11 +232,14 @@ PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m
   PetscFunctionBeginUser;
   for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) owned += mesh.Owned(v) && state.candidates[v];
   PetscCallMPI(MPI_Allreduce(&owned, &candidates, 1, MPIU_INT, MPI_SUM, comm));
+  const std::string E = ValueText(m.E, m.E_groups), nu = ValueText(m.nu, m.nu_groups);
   if (mesh.Dim() == 2)
-    PetscCall(PetscPrintf(comm, "signorini: 2D %s, plane %s, E = %.6g, nu = %.6g, thickness = %.6g\n", m.ModelName(),
-                          m.plane_stress ? "stress" : "strain", m.E, m.nu, m.thickness));
+    PetscCall(PetscPrintf(comm, "signorini: 2D %s, plane %s, E = %s, nu = %s, thickness = %.6g\n", m.ModelName(),
+                          m.plane_stress ? "stress" : "strain", E.c_str(), nu.c_str(), m.thickness));
   else
-    PetscCall(PetscPrintf(comm, "signorini: 3D %s, E = %.6g, nu = %.6g\n", m.ModelName(), m.E, m.nu));
+    PetscCall(PetscPrintf(comm, "signorini: 3D %s, E = %s, nu = %s\n", m.ModelName(), E.c_str(), nu.c_str()));
+  if (mesh.NumBodies() > 1)
+    PetscCall(PetscPrintf(comm, "  bodies: %" PetscInt_FMT " (connected groups of cells)\n", mesh.NumBodies()));
   PetscCall(PetscPrintf(comm, "  mesh %s: %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells, %d rank(s)\n",
                         info.mesh_file.c_str(), mesh.NumGlobalNodes(), mesh.NumGlobalCells(), info.ranks));
   PetscCall(PetscPrintf(comm, "  unknowns: %" PetscInt_FMT " displacements, %" PetscInt_FMT " multipliers (%"
@@ -225,6 +278,9 @@ PetscErrorCode PrintSummary(MPI_Comm comm, const SolvedState &state, const Conta
                         s.max_penetration, s.complementarity, s.max_displacement));
   if (h.enabled && s.active_nodes == 0)
     PetscCall(PetscPrintf(comm, "  Hertz (R = %.6g, P = %.6g): no contact, nothing to compare\n", h.R, h.P));
+  else if (h.enabled && h.contact_materials != 1)
+    PetscCall(PetscPrintf(comm, "  Hertz (R = %.6g, P = %.6g): not compared, the cells along the contact boundary "
+                          "have %d materials (Johnson's E* is that of one)\n", h.R, h.P, h.contact_materials));
   else if (h.enabled && h.out_of_range)
     PetscCall(PetscPrintf(comm, "  Hertz (R = %.6g, the default case's): not compared, Johnson's contact %s %.6g is not "
                           "small against R\n", h.R, dim == 2 ? "half-width" : "radius", h.a));
@@ -335,7 +391,7 @@ void ContactJson(JsonWriter &j, const ContactSummary &s, int dim) {
 
 /// Johnson's values against the computed ones (summary.json "hertz"), when the report applies.
 void HertzJson(JsonWriter &j, const HertzReport &h) {
-  if (h.enabled && !h.out_of_range)
+  if (h.enabled && !h.out_of_range && h.contact_materials == 1)
     j.BeginObject("hertz")
         .Number("R", h.R)
         .Number("P", h.P)
@@ -368,17 +424,27 @@ std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedStat
       .Integer("dim", dim)
       .Integer("nodes", state.mesh.NumGlobalNodes())
       .Integer("cells", state.mesh.NumGlobalCells())
-      .Integer("ranks", info.ranks)
-      .EndObject();
+      .Integer("ranks", info.ranks);
+  if (state.mesh.NumBodies() > 1) j.Integer("bodies", state.mesh.NumBodies()); // a one-body summary as it always was
+  j.EndObject();
   j.BeginObject("material")
       .String("model", m.ModelName())
       .String("plane", dim == 3         ? "none (3D)"
                        : m.plane_stress ? "stress"
-                                        : "strain")
-      .Number("E", m.E)
-      .Number("nu", m.nu)
-      .Number("thickness", m.thickness)
-      .EndObject();
+                                        : "strain");
+  // A constant given per group is an object of group: value, as -material_E GROUP:VALUE,... gives it.
+  const auto constant = [&j](const char *key, double value, const std::vector<GroupValue> &groups) {
+    if (groups.empty()) {
+      j.Number(key, value);
+      return;
+    }
+    j.BeginObject(key);
+    for (const auto &g : groups) j.Number(g.group, g.value);
+    j.EndObject();
+  };
+  constant("E", m.E, m.E_groups);
+  constant("nu", m.nu, m.nu_groups);
+  j.Number("thickness", m.thickness).EndObject();
   j.BeginObject("problem")
       .Integer("displacement_dofs", dofs.GlobalU())
       .Integer("multipliers", dofs.GlobalLambda())

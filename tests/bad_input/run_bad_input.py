@@ -46,6 +46,9 @@ BEAM = ["-options_file", "{root}/options/beam_on_floor.yml"]
 CUBE = ["-options_file", "{root}/options/cube_on_plane.yml"]
 # Two blocks stacked (the contact patch test), the upper one held by contact with the lower one alone.
 PATCH = ["-options_file", "{root}/options/patch2d.yml"]
+# A bar of two physical surfaces (soft, stiff; all: both) in one body, held and pulled: materials per group.
+BAR = ["-mesh_file", "{root}/meshes/bimaterial_bar.geo", "-bc_dirichlet", "left:x,origin:y", "-bc_traction",
+       "right:2:0"]
 LOOSE_BEAM = ["-mesh_file", "{root}/meshes/beam.msh", "-material_E", "1000", "-material_nu", "0.3",
               "-bc_pressure", "top:0.2"]
 
@@ -136,6 +139,29 @@ CASES = {
     "material_thickness_minus_inf": (["-material_thickness", "-inf"], ["-material_thickness -inf", "expected"], {}),
     "material_model_unknown": (["-material_model", "neo"], ["-material_model", "neo", "linear svk"], {}),
     "material_model_empty": (["-material_model", ""], ["-material_model", "without a value", "linear or svk"], {}),
+    # Materials per physical group of cells (-material_E GROUP:E,..., -material_nu GROUP:NU,...).
+    "material_group_uncovered": (BAR + ["-material_E", "soft:100"],
+                                 ["-material_E soft:100", "cell 127 (gmsh element 136", "'stiff', 'all'",
+                                  "in none of the option's groups", "cover every cell exactly once"], {}),
+    "material_group_overlap": (BAR + ["-material_nu", "all:0.2,soft:0.1"],
+                               ["-material_nu all:0.2,soft:0.1", "cell 1 (gmsh element 10", "is in 2 ('soft', 'all')",
+                                "cover every cell exactly once"], {}),
+    "material_group_unknown": (BAR + ["-material_E", "steel:100,stiff:300"],
+                               ["-material_E steel:100,stiff:300", "'steel' is not in the mesh",
+                                "physical surfaces: soft, stiff, all"], {}),
+    "material_group_wrong_dimension": (BAR + ["-material_E", "left:100,stiff:300"],
+                                       ["-material_E left:100,stiff:300", "'left' has dimension 1",
+                                        "physical surfaces (dimension 2"], {}),
+    "material_group_malformed": (BAR + ["-material_E", "soft:100:2,stiff:300"],
+                                 ["-material_E soft:100:2,stiff:300", "'soft:100:2' is malformed",
+                                  "GROUP:E items"], {}),
+    "material_group_nu_out_of_range": (BAR + ["-material_nu", "soft:0.5,stiff:0"],
+                                       ["-material_nu soft:0.5,stiff:0", "'soft:0.5' is out of range", "GROUP:NU",
+                                        "(-1, 0.5)"], {}),
+    "material_group_E_scale": (BAR + ["-material_E", "soft:1e-300,stiff:1"],
+                               ["-material_E soft:1e-300", "stiffness scale", "[1e-06, 1e+24]"], {}),
+    "material_group_twice": (BAR + ["-material_E", "soft:1,soft:2"],
+                             ["-material_E soft:1,soft:2", "'soft' is given twice", "each group once"], {}),
     # Obstacles.
     "obstacle_segments_on_3d": (CUBE + ["-obstacle_segments", "-1,0,3,0"],
                                 ["-obstacle_segments", "2D shape", "mesh is 3D", "expected -obstacle_planes"], {}),

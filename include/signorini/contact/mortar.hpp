@@ -39,6 +39,8 @@ public:
   PetscInt Interfaces() const { return interfaces_; }
   PetscInt FacetBase() const { return facet_base_; }
   bool IsMortar(const ContactPair &p) const { return p.facet >= facet_base_; }
+  /// Per local vertex: a node of a master group.
+  const std::vector<char> &MasterVertices() const { return master_vertex_; }
   /// Appends the mortar pairs (unsorted) and marks the slave nodes as candidates.
   void AppendPairs(const Mesh &mesh, std::vector<ContactPair> &pairs, std::vector<char> &candidate) const;
   /// For the current numbering: the master nodes' global rows and G. Collective.
@@ -78,7 +80,7 @@ private:
 
   PetscInt interfaces_ = 0, facet_base_ = 0;
   std::vector<Row> rows_;
-  std::vector<char> slave_; ///< local vertices of a slave group
+  std::vector<char> slave_, master_vertex_; ///< local vertices of a slave group, of a master group
   /// Bind: per pair the index of its row in rows_ (-1: an obstacle's pair); per master node its first global row and
   /// its fixed components (bit k).
   std::vector<PetscInt> pair_row_;

@@ -30,8 +30,9 @@ struct DirichletData {
 
 class Assembler {
 public:
-  Assembler(const Mesh &mesh, const Material &material, const DofMap &dofs, const DirichletData &dirichlet)
-      : mesh_(mesh), material_(material), dofs_(dofs), dirichlet_(dirichlet) {}
+  /// The element kernels take each cell's constants: material's E and nu, or per group those AssignCellMaterials
+  /// gave the cell (material.cell_constants, set before).
+  Assembler(const Mesh &mesh, const Material &material, const DofMap &dofs, const DirichletData &dirichlet);
 
   /// Checks every local cell's Jacobian (positive, no inversion). Collective.
   [[nodiscard]] PetscErrorCode CheckCells() const;
@@ -72,8 +73,16 @@ private:
   /// of its displacement block, told by A's size (InsertPattern). Not collective.
   [[nodiscard]] PetscErrorCode FirstRows(Mat A, const PetscInt *&first) const;
   bool Geometry(PetscInt c, ElementGeometry &g, PetscInt &nn, const PetscInt *&vertices) const;
+  /// The index into parts_ of local cell c.
+  int Part(PetscInt c) const { return material_.cell_constants.empty() ? 0 : material_.cell_constants[c]; }
+  /// The elasticity matrix (Voigt) of one material.
+  struct Elasticity {
+    double D[6][6];
+  };
   const Mesh &mesh_;
   const Material &material_;
+  std::vector<Material> parts_;   ///< the run's materials: material_ alone, or one per entry of material_.constants
+  std::vector<Elasticity> part_D_; ///< the elasticity matrix of each of parts_, computed once
   const DofMap &dofs_;
   const DirichletData &dirichlet_;
 };

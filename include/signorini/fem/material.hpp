@@ -3,9 +3,13 @@
 
 #include <petscsys.h>
 
+#include <array>
 #include <string>
+#include <vector>
 
 namespace signorini {
+
+class Mesh;
 
 /// Bounds of the stiffness scale E x thickness (absolute): outside them the saddle-point system, with entries of order
 /// E t and 1 / (E t), is numerically singular or overflows.
@@ -14,6 +18,13 @@ constexpr double STIFFNESS_SCALE_MIN = 1e-6, STIFFNESS_SCALE_MAX = 1e24;
 constexpr double NEARLY_INCOMPRESSIBLE_NU = 0.499;
 
 enum class MaterialModel { LINEAR, SVK };
+
+/// One item GROUP:VALUE of -material_E or -material_nu given per physical group of cells.
+struct GroupValue {
+  std::string group;
+  double value = 0;
+  std::string item; ///< as written, for messages
+};
 
 /// Isotropic elastic material in 2D (plane strain or plane stress) or 3D.
 struct Material {
@@ -24,6 +35,18 @@ struct Material {
   double thickness = 1.0;                      ///< -material_thickness, out-of-plane thickness (scales stiffness and
                                                ///< distributed loads)
   bool plane_given = false, thickness_given = false; ///< the 2D-only options were set (an error on a 3D mesh)
+  /// -material_E, -material_nu given as GROUP:VALUE,... (each option on its own; empty: E, nu hold for every cell).
+  std::vector<GroupValue> E_groups, nu_groups;
+  /// Per group only (AssignCellMaterials): the distinct (E, nu) that cells of the run have, the same on every rank,
+  /// and each local cell's index into them. Empty: one material, E and nu.
+  std::vector<std::array<double, 2>> constants;
+  std::vector<int> cell_constants;
+
+  bool PerGroup() const { return !E_groups.empty() || !nu_groups.empty(); }
+  /// The largest Young's modulus of the run: E, or the largest of -material_E's groups.
+  double MaxE() const;
+  /// This material's model, plane and thickness with the constants E, nu (and no per-group data).
+  Material With(double E, double nu) const;
 
   double Mu() const { return E / (2.0 * (1.0 + nu)); }
   double Lambda3D() const { return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)); }
@@ -39,6 +62,12 @@ struct Material {
 /// Reads and validates the -material_ options (E and thickness > 0 with E t in [STIFFNESS_SCALE_MIN,
 /// STIFFNESS_SCALE_MAX], nu in (-1, 0.5)). Collective.
 [[nodiscard]] PetscErrorCode ReadMaterialOptions(MPI_Comm comm, Material &m);
+
+/// Resolves -material_E and -material_nu given per group on the mesh: each group must be a physical group of cells
+/// of the mesh's dimension, and each option's groups must cover every cell exactly once (an error names a cell, by
+/// its file number from 1, and its groups). Sets m.constants and m.cell_constants; nothing when neither option is
+/// given per group. Collective.
+[[nodiscard]] PetscErrorCode AssignCellMaterials(const Mesh &mesh, Material &m);
 
 /// Refuses -material_plane and -material_thickness on a 3D mesh (dim 3), where they mean nothing. Collective.
 [[nodiscard]] PetscErrorCode CheckMaterialDimension(MPI_Comm comm, const Material &m, int dim);

@@ -75,6 +75,20 @@ public:
     return &cell_vertices_[cell_offsets_[c]];
   }
   const std::vector<std::string> &GroupNames() const { return group_names_; }
+  /// Dimension of each group of GroupNames().
+  const std::vector<int> &GroupDims() const { return group_dims_; }
+  /// The groups of the mesh's dimension (physical surfaces in 2D, volumes in 3D) that hold local cell c, as indices
+  /// into GroupNames(), ascending: n of them (none, one, or several when the file lists a cell in several groups).
+  const int *CellGroups(PetscInt c, int &n) const {
+    n = cell_group_offsets_[c + 1] - cell_group_offsets_[c];
+    return &cell_groups_[cell_group_offsets_[c]];
+  }
+  /// Bodies: the connected components of the cells (cells sharing a vertex are in one body), numbered 0, 1, ... by
+  /// the smallest file cell index they hold, the same on any number of ranks. A one-body mesh has body 0 only.
+  PetscInt NumBodies() const { return num_bodies_; }
+  PetscInt CellBody(PetscInt c) const { return cell_body_[c]; }
+  /// The body of local vertex v (owned or ghost).
+  PetscInt VertexBody(PetscInt v) const { return vertex_body_[v]; }
   /// The file's tags of the nodes (cells) of this rank's block of file indices (BlockOf over NumGlobalNodes(),
   /// NumGlobalCells()): NodeTagsBlock()[i] is the tag of the file's node start + i.
   const std::vector<std::size_t> &NodeTagsBlock() const { return node_tags_; }
@@ -154,6 +168,10 @@ private:
   /// closure), whose vertices are gathered over the ranks. Collective when cells.
   [[nodiscard]] PetscErrorCode LabelVertices(const std::string &label, bool cells, std::vector<PetscInt> &vertices) const;
   [[nodiscard]] PetscErrorCode CheckGroup(const std::string &name, int required_dim, const std::string &input) const;
+  /// cell_group_offsets_, cell_groups_ from the labels of the groups of the mesh's dimension on dm_. Local.
+  [[nodiscard]] PetscErrorCode BuildCellGroups();
+  /// cell_body_, vertex_body_, num_bodies_ (mesh_bodies.cpp). Collective.
+  [[nodiscard]] PetscErrorCode BuildBodies();
 
   MPI_Comm comm_ = MPI_COMM_NULL;
   DMH dm_;
@@ -170,6 +188,9 @@ private:
   std::vector<PetscInt> cell_face_offsets_, cell_face_codes_;
   std::vector<std::vector<Face>> label_faces_;
   std::vector<std::vector<PetscInt>> label_vertices_; ///< local vertices of each group, then of the boundary
+  std::vector<int> cell_group_offsets_{0}, cell_groups_; ///< CellGroups, CSR over the local cells
+  PetscInt num_bodies_ = 0;
+  std::vector<PetscInt> cell_body_, vertex_body_;
   SFH vertex_sf_;
   std::vector<std::string> group_names_;
   std::vector<int> group_dims_;

@@ -23,6 +23,7 @@ struct HertzReport {
   PetscInt fit_nodes = 0;               ///< nodal pressures in the fit of p0_h
   double a_fit = 0;                     ///< a of the same fit (0: none), free of a_h's steps of whole elements
   bool out_of_range = false;            ///< the default case's comparison, not made: a is not small against R
+  int contact_materials = 1;            ///< materials of the cells at the contact boundary: no comparison unless 1
   bool check_load = true;               ///< P must be the load the model carries (not when the default case filled
                                         ///< it in: its P follows the run's load)
 };
