@@ -2,7 +2,7 @@
 // two sides (the lower block coarse, the upper one finer and graded, so that no node of one side lies over a node of
 // the other but the ends). The bodies share no nodes: each block has its own points on the interface.
 // -setnumber quads 1 recombines both blocks into quadrilaterals; 0 (the default) leaves triangles. -setnumber gap G
-// lifts the upper block by G (the interface is open at the start).
+// lifts the upper block by G (the interface is open at the start; patch2d_gap.msh: G = 0.01).
 // Physical groups: lower, upper (surfaces); bottom, lower_top, lower_left, upper_bottom, upper_top, upper_left
 // (curves).
 DefineConstant[quads = 0, gap = 0];

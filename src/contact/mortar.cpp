@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <set>
 
 namespace signorini {
 
@@ -15,7 +16,7 @@ namespace {
 /// One face of a group, as every rank sees it after the gather: its nodes (file numbering) and coordinates.
 struct GatheredFace {
   int n = 0;
-  std::array<PetscInt, 4> node{};
+  std::array<PetscInt, 4> node{}, body{};
   std::array<std::array<double, 3>, 4> x{};
 };
 
@@ -24,7 +25,7 @@ struct GatheredFace {
 PetscErrorCode GatherFaces(const Mesh &mesh, const std::string &name, const std::string &input,
                            std::vector<GatheredFace> &out) {
   const int dim = mesh.Dim();
-  constexpr int WIDTH = 1 + 4 + 12; // n, nodes, coordinates
+  constexpr int WIDTH = 1 + 4 + 12 + 4; // n, nodes, coordinates, bodies
   std::vector<Face> faces;
   PetscFunctionBeginUser;
   PetscCall(mesh.GroupFaces(name, faces, input));
@@ -35,6 +36,7 @@ PetscErrorCode GatherFaces(const Mesh &mesh, const std::string &name, const std:
     for (int a = 0; a < f.n; ++a) {
       rec[1 + a] = (double)mesh.VertexOriginal(f.v[a]);
       for (int d = 0; d < dim; ++d) rec[5 + 3 * a + d] = mesh.X(f.v[a])[d];
+      rec[17 + a] = (double)mesh.VertexBody(f.v[a]);
     }
     mine.insert(mine.end(), rec.begin(), rec.end());
   }
@@ -54,6 +56,7 @@ PetscErrorCode GatherFaces(const Mesh &mesh, const std::string &name, const std:
     for (int a = 0; a < g.n; ++a) {
       g.node[a] = (PetscInt)all[i + 1 + a];
       for (int d = 0; d < 3; ++d) g.x[a][d] = all[i + 5 + 3 * a + d];
+      g.body[a] = (PetscInt)all[i + 17 + a];
     }
     out.push_back(g);
   }
@@ -479,6 +482,14 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
   PetscFunctionBeginUser;
   PetscCall(GatherFaces(mesh, slave, input, sf));
   PetscCall(GatherFaces(mesh, master, input, mf));
+  // The two sides on one body would be self-contact, which needs rows that see the body's own deformation.
+  std::set<PetscInt> slave_bodies;
+  for (const GatheredFace &f : sf) slave_bodies.insert(f.body[0]);
+  for (const GatheredFace &f : mf)
+    PetscCheck(!slave_bodies.count(f.body[0]), mesh.Comm(), PETSC_ERR_USER_INPUT,
+               "%s: '%s' and '%s' are both on body %" PetscInt_FMT " (bodies: the connected cell groups of the mesh, "
+               "numbered from 0 by their first cell); expected the facet groups of two different bodies (self-contact "
+               "is not supported)", input.c_str(), slave.c_str(), master.c_str(), f.body[0]);
   PetscCall(mesh.GroupVertices(master, vertices, input));
   for (PetscInt v : vertices) master_vertex_[v] = 1;
   PetscCall(mesh.GroupVertices(slave, vertices, input));
@@ -509,9 +520,9 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
       FacetIntegrals(s, mf, *boxes, opts.search_radius, in);
     }
   }
-  std::unordered_map<PetscInt, const double *> master_x;
+  std::unordered_map<PetscInt, std::pair<const double *, PetscInt>> master_x; // position, body
   for (const GatheredFace &f : mf)
-    for (int a = 0; a < f.n; ++a) master_x[f.node[a]] = f.x[a].data();
+    for (int a = 0; a < f.n; ++a) master_x[f.node[a]] = {f.x[a].data(), f.body[a]};
   for (const auto &[node, Dj] : in.D) {
     const auto it = owned.find(node);
     // A node whose overlap is a vanishing part of its tributary length has no row worth its conditioning.
@@ -530,9 +541,10 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
     row.g0 = 0;
     for (int d = 0; d < dim_; ++d) row.g0 += row.n[d] * mesh.X(v)[d];
     for (const auto &[l, Mjl] : in.M[node]) {
-      const double w = Mjl / Dj;
-      row.terms.push_back({l, w});
-      for (int d = 0; d < dim_; ++d) row.g0 -= w * row.n[d] * master_x[l][d];
+      const auto &[x, body] = master_x[l];
+      MasterTerm t{l, Mjl / Dj, {x[0], x[1], x[2]}, body};
+      for (int d = 0; d < dim_; ++d) row.g0 -= t.w * row.n[d] * x[d];
+      row.terms.push_back(t);
     }
     rows_.push_back(std::move(row));
   }
@@ -565,7 +577,7 @@ PetscErrorCode MortarCoupling::Bind(const Mesh &mesh, const DofMap &dofs, const 
   // The master nodes' first rows and fixed components, from their owners to every rank (the interfaces' nodes only).
   std::vector<PetscInt> needed;
   for (const Row &r : rows_)
-    for (const Term &t : r.terms) needed.push_back(t.node);
+    for (const MasterTerm &t : r.terms) needed.push_back(t.node);
   std::sort(needed.begin(), needed.end());
   needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
   std::vector<PetscInt> all_needed;
@@ -599,7 +611,7 @@ PetscErrorCode MortarCoupling::Bind(const Mesh &mesh, const DofMap &dofs, const 
   std::vector<PetscInt> d_nnz(pairs.size(), 0), o_nnz(pairs.size(), 0);
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     if (pair_row_[p] < 0) continue;
-    for (const Term &t : rows_[pair_row_[p]].terms) {
+    for (const MasterTerm &t : rows_[pair_row_[p]].terms) {
       const PetscInt first = master_[t.node].first;
       ((first >= start && first < end) ? d_nnz : o_nnz)[p] += dim_;
     }
@@ -612,7 +624,7 @@ PetscErrorCode MortarCoupling::Bind(const Mesh &mesh, const DofMap &dofs, const 
     PetscInt row;
     PetscCall(MatGetOwnershipRange(G_, &row, nullptr));
     row += (PetscInt)p;
-    for (const Term &t : r.terms) {
+    for (const MasterTerm &t : r.terms) {
       PetscInt cols[3];
       PetscScalar vals[3];
       for (int k = 0; k < dim_; ++k) cols[k] = master_[t.node].first + k, vals[k] = -t.w * r.n[k];
@@ -625,11 +637,15 @@ PetscErrorCode MortarCoupling::Bind(const Mesh &mesh, const DofMap &dofs, const 
   PetscFunctionReturn(0);
 }
 
+const std::vector<MortarCoupling::MasterTerm> *MortarCoupling::Terms(std::size_t p) const {
+  return p < pair_row_.size() && pair_row_[p] >= 0 ? &rows_[pair_row_[p]].terms : nullptr;
+}
+
 void MortarCoupling::ExtendRows(std::vector<ConstraintRow> &rows) const {
   for (std::size_t p = 0; p < rows.size() && p < pair_row_.size(); ++p) {
     if (pair_row_[p] < 0) continue;
     const Row &r = rows_[pair_row_[p]];
-    for (const Term &t : r.terms) {
+    for (const MasterTerm &t : r.terms) {
       const auto &[first, fixed] = master_.at(t.node);
       for (int k = 0; k < dim_; ++k)
         if (!(fixed & (1 << k))) rows[p].Add(first + k, t.w * r.n[k]);

@@ -35,74 +35,104 @@ namespace {
 /// distance h from another has an eigenvalue of order (h / size)^2, far above it for any mesh; round-off is far below.
 constexpr double FREE_MODE = 1e-12;
 
-void AddRow(int n, const double *row, double *g) {
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) g[i * n + j] += row[i] * row[j];
-}
 } // namespace
 
-PetscErrorCode RigidModes::Setup(const Mesh &mesh, const std::vector<char> &fixed) {
+PetscErrorCode RigidModes::Setup(const Mesh &mesh, const std::vector<char> &fixed, const MortarCoupling *mortar) {
   const int dim = mesh.Dim();
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, glo[3], ghi[3];
+  const PetscInt nb = std::max<PetscInt>(mesh.NumBodies(), 1);
   PetscFunctionBeginUser;
   mesh_ = &mesh;
-  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v)
-    for (int d = 0; d < dim; ++d) lo[d] = std::min(lo[d], mesh.X(v)[d]), hi[d] = std::max(hi[d], mesh.X(v)[d]);
-  PetscCallMPI(MPI_Allreduce(lo, glo, 3, MPI_DOUBLE, MPI_MIN, mesh.Comm()));
-  PetscCallMPI(MPI_Allreduce(hi, ghi, 3, MPI_DOUBLE, MPI_MAX, mesh.Comm()));
-  size_ = 0;
-  for (int d = 0; d < dim; ++d) centre_[d] = 0.5 * (glo[d] + ghi[d]), size_ = std::max(size_, ghi[d] - glo[d]);
-  size_ = size_ > 0 ? size_ : 1;
-  std::array<double, 36> g{}, m{};
-  double row[6];
-  nmodes_ = dim == 2 ? 3 : 6;
+  mortar_ = mortar;
+  per_body_ = dim == 2 ? 3 : 6;
+  n_ = per_body_ * (int)nb;
+  // Each body's bounding box: its centre and size.
+  std::vector<double> lo(3 * nb, INFINITY), hi(3 * nb, -INFINITY);
+  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) {
+    const PetscInt b = mesh.NumBodies() > 0 ? mesh.VertexBody(v) : 0;
+    for (int d = 0; d < dim; ++d)
+      lo[3 * b + d] = std::min(lo[3 * b + d], mesh.X(v)[d]), hi[3 * b + d] = std::max(hi[3 * b + d], mesh.X(v)[d]);
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, lo.data(), (int)lo.size(), MPI_DOUBLE, MPI_MIN, mesh.Comm()));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, hi.data(), (int)hi.size(), MPI_DOUBLE, MPI_MAX, mesh.Comm()));
+  centre_.assign(3 * nb, 0.0);
+  size_.assign(nb, 0.0);
+  for (PetscInt b = 0; b < nb; ++b) {
+    for (int d = 0; d < dim; ++d)
+      centre_[3 * b + d] = 0.5 * (lo[3 * b + d] + hi[3 * b + d]), size_[b] = std::max(size_[b], hi[3 * b + d] - lo[3 * b + d]);
+    size_[b] = size_[b] > 0 ? size_[b] : 1;
+  }
+  g_dirichlet_.assign(n_ * n_, 0.0);
+  m_vertices_.assign(n_ * n_, 0.0);
+  std::vector<std::pair<int, double>> row;
   for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) {
     if (!mesh.Owned(v)) continue;
     for (int k = 0; k < dim; ++k) {
       double e[3] = {0, 0, 0};
       e[k] = 1;
-      RigidModeRow(dim, mesh.X(v), centre_, size_, e, row);
-      AddRow(nmodes_, row, m.data());
-      if (fixed[v * dim + k]) AddRow(nmodes_, row, g.data());
+      row.clear();
+      AppendModes(mesh.NumBodies() > 0 ? mesh.VertexBody(v) : 0, mesh.X(v), e, 1, row);
+      AddRow(row, m_vertices_);
+      if (fixed[v * dim + k]) AddRow(row, g_dirichlet_);
     }
   }
-  PetscCallMPI(MPI_Allreduce(g.data(), g_dirichlet_.data(), 36, MPI_DOUBLE, MPI_SUM, mesh.Comm()));
-  PetscCallMPI(MPI_Allreduce(m.data(), m_vertices_.data(), 36, MPI_DOUBLE, MPI_SUM, mesh.Comm()));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, g_dirichlet_.data(), n_ * n_, MPI_DOUBLE, MPI_SUM, mesh.Comm()));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, m_vertices_.data(), n_ * n_, MPI_DOUBLE, MPI_SUM, mesh.Comm()));
   PetscFunctionReturn(0);
 }
 
+void RigidModes::AddRow(const std::vector<std::pair<int, double>> &row, std::vector<double> &g) const {
+  for (const auto &[i, a] : row)
+    for (const auto &[j, b] : row) g[i * n_ + j] += a * b;
+}
+
+void RigidModes::AppendModes(PetscInt b, const double *x, const double *dir, double scale,
+                             std::vector<std::pair<int, double>> &row) const {
+  double m[6];
+  const int n = RigidModeRow(mesh_->Dim(), x, &centre_[3 * b], size_[b], dir, m);
+  for (int i = 0; i < n; ++i) row.emplace_back((int)b * per_body_ + i, scale * m[i]);
+}
+
+void RigidModes::PairRow(std::size_t p, const std::vector<PairKey> &keys,
+                         const std::vector<std::array<double, 3>> &normals,
+                         std::vector<std::pair<int, double>> &row) const {
+  const PetscInt v = keys[p].vertex;
+  row.clear();
+  AppendModes(mesh_->NumBodies() > 0 ? mesh_->VertexBody(v) : 0, mesh_->X(v), normals[p].data(), 1, row);
+  const auto *terms = mortar_ ? mortar_->Terms(p) : nullptr;
+  if (terms)
+    for (const auto &t : *terms) AppendModes(t.body, t.x, normals[p].data(), -t.w, row);
+}
+
 PetscErrorCode RigidModes::Gram(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
-                                const std::vector<char> &active, std::array<double, 36> &gram) const {
-  std::array<double, 36> g{};
-  double row[6];
+                                const std::vector<char> &active, std::vector<double> &gram) const {
+  std::vector<std::pair<int, double>> row;
   PetscFunctionBeginUser;
+  gram.assign(n_ * n_, 0.0);
   for (std::size_t p = 0; p < keys.size(); ++p)
     if (active[p]) {
-      RigidModeRow(mesh_->Dim(), mesh_->X(keys[p].vertex), centre_, size_, normals[p].data(), row);
-      AddRow(nmodes_, row, g.data());
+      PairRow(p, keys, normals, row);
+      AddRow(row, gram);
     }
-  PetscCallMPI(MPI_Allreduce(g.data(), gram.data(), 36, MPI_DOUBLE, MPI_SUM, mesh_->Comm()));
-  for (int i = 0; i < 36; ++i) gram[i] += g_dirichlet_[i];
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, gram.data(), n_ * n_, MPI_DOUBLE, MPI_SUM, mesh_->Comm()));
+  for (int i = 0; i < n_ * n_; ++i) gram[i] += g_dirichlet_[i];
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode RigidModes::Held(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
                                 const std::vector<char> &active, bool &held) const {
-  std::array<double, 36> gg;
+  std::vector<double> gg;
   PetscFunctionBeginUser;
   PetscCall(Gram(keys, normals, active, gg));
-  held = RelativeSmallestEigenvalue(nmodes_, gg.data()) > FREE_MODE;
+  held = RelativeSmallestEigenvalue(n_, gg.data()) > FREE_MODE;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode RigidModes::FreeMotion(const std::vector<PairKey> &keys,
                                       const std::vector<std::array<double, 3>> &normals,
-                                      const std::vector<char> &active, const double *du,
-                                      std::array<double, 6> &a) const {
-  const int dim = mesh_->Dim(), n = nmodes_;
-  std::array<double, 36> gg;
-  std::array<double, 6> b{};
-  double row[6];
+                                      const std::vector<char> &active, const double *du, RigidMotion &a) const {
+  const int dim = mesh_->Dim(), n = n_;
+  std::vector<double> gg, b(n, 0.0);
+  std::vector<std::pair<int, double>> row;
   PetscFunctionBeginUser;
   PetscCall(Gram(keys, normals, active, gg));
   for (PetscInt v = 0; v < mesh_->NumLocalVertices(); ++v) {
@@ -110,15 +140,16 @@ PetscErrorCode RigidModes::FreeMotion(const std::vector<PairKey> &keys,
     for (int k = 0; k < dim; ++k) {
       double e[3] = {0, 0, 0};
       e[k] = 1;
-      RigidModeRow(dim, mesh_->X(v), centre_, size_, e, row);
-      for (int i = 0; i < n; ++i) b[i] += row[i] * du[v * dim + k];
+      row.clear();
+      AppendModes(mesh_->NumBodies() > 0 ? mesh_->VertexBody(v) : 0, mesh_->X(v), e, 1, row);
+      for (const auto &[i, m] : row) b[i] += m * du[v * dim + k];
     }
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, b.data(), n, MPI_DOUBLE, MPI_SUM, mesh_->Comm()));
   // The free modes: the eigenvectors of the Gram matrix whose eigenvalues are below FREE_MODE of the largest (as in
   // Held). The fit a = F c minimises sum_v |du(v) - m(v) F c|^2: (F^T M F) c = F^T b, M the vertices' Gram matrix.
   std::vector<double> vec;
-  const std::vector<double> eig = SymmetricEigen(std::vector<double>(gg.begin(), gg.begin() + n * n), n, &vec);
+  const std::vector<double> eig = SymmetricEigen(gg, n, &vec);
   double top = 0;
   for (double e : eig) top = std::max(top, std::abs(e));
   std::vector<int> free;
@@ -143,30 +174,36 @@ PetscErrorCode RigidModes::FreeMotion(const std::vector<PairKey> &keys,
     for (int k = i + 1; k < f; ++k) rhs[i] -= lhs[i * f + k] * rhs[k];
     rhs[i] /= lhs[i * f + i];
   }
-  a.fill(0.0);
+  a.assign(n, 0.0);
   for (int i = 0; i < f; ++i)
     for (int r = 0; r < n; ++r) a[r] += vec[r * n + free[i]] * rhs[i];
   PetscFunctionReturn(0);
 }
 
-double RigidModes::Along(const double *x, const double *dir, const std::array<double, 6> &a) const {
-  double row[6], s = 0;
-  RigidModeRow(mesh_->Dim(), x, centre_, size_, dir, row);
-  for (int i = 0; i < nmodes_; ++i) s += row[i] * a[i];
+double RigidModes::PairRate(std::size_t p, const std::vector<PairKey> &keys,
+                            const std::vector<std::array<double, 3>> &normals, const RigidMotion &a) const {
+  std::vector<std::pair<int, double>> row;
+  PairRow(p, keys, normals, row);
+  double s = 0;
+  for (const auto &[i, m] : row) s += m * a[i];
   return s;
 }
 
-void RigidModes::Motion(const double *x, const std::array<double, 6> &a, double *v) const {
+void RigidModes::Motion(PetscInt vertex, const RigidMotion &a, double *v) const {
+  std::vector<std::pair<int, double>> row;
   for (int k = 0; k < mesh_->Dim(); ++k) {
     double e[3] = {0, 0, 0};
     e[k] = 1;
-    v[k] = Along(x, e, a);
+    row.clear();
+    AppendModes(mesh_->NumBodies() > 0 ? mesh_->VertexBody(vertex) : 0, mesh_->X(vertex), e, 1, row);
+    v[k] = 0;
+    for (const auto &[i, m] : row) v[k] += m * a[i];
   }
 }
 
-double RigidModes::Magnitude(const std::array<double, 6> &a) const {
+double RigidModes::Magnitude(const RigidMotion &a) const {
   double s = 0;
-  for (int i = 0; i < nmodes_; ++i) s += a[i] * a[i];
+  for (double c : a) s += c * c;
   return std::sqrt(s);
 }
 

@@ -383,19 +383,19 @@ PetscErrorCode ContactSolver::ExtendAlongFreeMotion(StepState &st, Outcome &outc
   const int dim = mesh_.Dim();
   std::vector<double> du(u_local_.size());
   for (std::size_t i = 0; i < du.size(); ++i) du[i] = u_local_[i] - st.u_before[i];
-  std::array<double, 6> motion;
+  RigidMotion motion;
   PetscCall(rigid_.FreeMotion(keys_, normals_, active_set_.Flags(), du.data(), motion));
   const double size = rigid_.Magnitude(motion);
   double reach = INFINITY;
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
     const double *X = mesh_.X(keys_[p].vertex);
-    const double closing = -rigid_.Along(X, normals_[p].data(), motion);
+    const double closing = -rigid_.PairRate(p, keys_, normals_, motion);
     if (!(closing > CLOSING * size && states_[p].gap >= 0)) continue;
     const double t = states_[p].gap / closing;
     bool on_facet = states_[p].InZone();
     if (model_->CurrentConfiguration()) {
       double x[3] = {0, 0, 0};
-      rigid_.Motion(X, motion, x);
+      rigid_.Motion(keys_[p].vertex, motion, x);
       for (int k = 0; k < dim; ++k) x[k] = X[k] + u_local_[keys_[p].vertex * dim + k] + t * x[k];
       on_facet = obstacle_.facets[pairs_[p].facet]->Project(x, contact_.alpha_tol, contact_.length).inside;
     }

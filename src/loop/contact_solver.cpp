@@ -45,7 +45,7 @@ PetscErrorCode ContactSolver::Setup() {
   lambda_.assign(pairs_.size(), 0.0);
   mult_.assign(pairs_.size(), 0.0);
   active_set_.Reset(pairs_.size());
-  PetscCall(rigid_.Setup(mesh_, dirichlet_.fixed));
+  PetscCall(rigid_.Setup(mesh_, dirichlet_.fixed, &mortar_));
   const bool kept = system_->ReusesFactorization() || dofs_.GlobalLambda() == 0;
   PetscCheck(!(opts_.lagged_search_set && opts_.lagged_search && !kept), comm, PETSC_ERR_USER_INPUT,
              "-newton_lagged_search needs -material_model svk and the kept factorisation (-contact_reuse_factorization "
@@ -382,7 +382,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactSolver::MoveRigidly(const std::array<double, 6> &motion, double t) {
+PetscErrorCode ContactSolver::MoveRigidly(const RigidMotion &motion, double t) {
   const int dim = mesh_.Dim();
   PetscScalar *u;
   PetscFunctionBeginUser;
@@ -392,7 +392,7 @@ PetscErrorCode ContactSolver::MoveRigidly(const std::array<double, 6> &motion, d
   for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v) {
     if (!mesh_.Owned(v)) continue;
     double m[3];
-    rigid_.Motion(mesh_.X(v), motion, m);
+    rigid_.Motion(v, motion, m);
     for (int k = 0; k < dim; ++k)
       if (!dirichlet_.fixed[v * dim + k]) u[dofs_.LocalOffset(v, k)] += t * m[k];
   }

@@ -313,6 +313,9 @@ CASES = {
                                     ["-contact_pairs upper_bottom:floor", "'floor'"], {}),
     "contact_pairs_surface_group": (PATCH + ["-contact_pairs", "upper:lower_top"],
                                     ["-contact_pairs upper:lower_top", "'upper'"], {}),
+    "contact_pairs_same_body": (PATCH + ["-contact_pairs", "upper_bottom:upper_top"],
+                                ["-contact_pairs upper_bottom:upper_top", "'upper_bottom' and 'upper_top'",
+                                 "both on body 1", "two different bodies"], {}),
     "contact_pairs_svk": (PATCH + ["-material_model", "svk"], ["-contact_pairs with -material_model svk",
                                                                  "expected -material_model linear"], {}),
     # Two squares sharing an edge (one body), the shared edge a group: inside the body.

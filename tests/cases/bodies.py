@@ -214,3 +214,26 @@ def stiff_block_equals_rigid_plane(runner):
                       "symmetry_x:x,symmetry_y:y,block_bottom:z", "-contact_groups", "contact"] + stiff,
                      "ball on a rigid plane")
     expect_same_state(runner, ref, r, tol=1e-4)
+
+
+@test("body_held_by_contact")
+def body_held_by_contact(runner):
+    """Each body's rigid modes are checked on their own: the upper block of the patch test lifted 0.01 off the lower
+    one (meshes/patch2d_gap.msh) is free until the interface closes, so the first solve is stabilised and the block
+    comes down onto the lower one (the patch test's state shifted down by the gap); pulled up instead of pressed, no
+    contact force can hold it: DIVERGED_NOT_HELD."""
+    q, gap = 2.0, 0.01
+    r = runner.run(["-options_file", "options/patch2d.yml", "-mesh_file", "meshes/patch2d_gap.msh"], "lifted block")
+    nodes = r.nodes()
+    slave = nodes[np.isfinite(nodes["gap"])]
+    runner.expect_equal("every slave node active", int(slave["active"].sum()), len(slave))
+    runner.expect_close("contact pressure = q", slave["pressure"], np.full(len(slave), q), 1e-9)
+    E, nu = r.get("material.E"), r.get("material.nu")
+    upper = nodes["y"] > 1 + gap / 2
+    exact_y = -(1 - nu * nu) * q / E * (nodes["y"] - np.where(upper, gap, 0)) - np.where(upper, gap, 0)
+    runner.expect_close("u_y = the patch test's field, the upper block lowered by the gap", nodes["u_y"], exact_y, 0,
+                        1e-9 * gap)
+    status, out, _ = runner.run_any(["-options_file", "options/patch2d.yml", "-bc_pressure", "upper_top:-2"],
+                                    "block pulled off")
+    runner.expect_true("the block pulled off ends as DIVERGED_NOT_HELD (exit %d)" % status,
+                       status != 0 and "DIVERGED_NOT_HELD" in out)

@@ -57,15 +57,21 @@ public:
   [[nodiscard]] PetscErrorCode AddMasterForces(const std::vector<double> &lambda, double sign,
                                                std::vector<double> &out) const;
 
-private:
-  struct Term {
-    PetscInt node; ///< master node, file numbering (from 0)
-    double w;      ///< M_jl / D_jj
+  /// A master node of a row: its file number (from 0), its weight w_jl = M_jl / D_jj, its position and its body.
+  struct MasterTerm {
+    PetscInt node;
+    double w;
+    double x[3];
+    PetscInt body;
   };
+  /// The master terms of pair p (Bind's numbering of the pairs); null for an obstacle's pair.
+  const std::vector<MasterTerm> *Terms(std::size_t p) const;
+
+private:
   struct Row {
     PetscInt vertex, facet; ///< the slave node (local vertex) and the pair's facet index
     double n[3], g0, D;
-    std::vector<Term> terms;
+    std::vector<MasterTerm> terms;
   };
   /// The most that two bodies may overlap at the start, in body diagonals (a faceted curved interface overlaps by
   /// about h^2 / R; more is a wrong mesh).

@@ -139,7 +139,7 @@ private:
   /// of the residual itself (Residual's roundoff): -newton_rtol scale + min(-newton_atol, 1e-6 scale) + roundoff.
   double EquilibriumTol(double scale, double roundoff) const;
   /// Adds t times the rigid motion with mode coefficients motion (RigidModes) to u. Collective.
-  [[nodiscard]] PetscErrorCode MoveRigidly(const std::array<double, 6> &motion, double t);
+  [[nodiscard]] PetscErrorCode MoveRigidly(const RigidMotion &motion, double t);
   /// Norm of R(u, lambda) = F_int - f - B^T lambda on the free rows, a force scale, and optionally direction . R and
   /// the round-off below which the norm means nothing (ROUNDOFF_FACTOR eps times the stiffness scale times ||u||: a
   /// body that prescribed displacements move rigidly has F_int of round-off size and no load, so a tolerance relative
