@@ -12,6 +12,10 @@ Families (each run is the executable with a case options file, a solver preset a
   hertz3d  options/hertz3d.yml on meshes/hertz3d.geo (3D Hertz: an octant of a ball on a plane, graded towards the
          contact; K is singular as in 2D). Levels up to 556k displacement dofs (F = 0.4: 14.7 GB on one rank) fit
          in 24 GiB with the direct solver; the largest, F = 0.35 (822k dofs), does not (MUMPS asks for 31 GB).
+  cylinders  options/cylinders_2d.yml on meshes/cylinders2d.geo (2D Hertz between two deformable cylinders, mortar rows;
+         elastic reference: the same mesh without the pair, the upper body clamped at its top, a body force)
+  sphere_block  options/sphere_on_block.yml on meshes/sphere_on_block.geo (3D Hertz between an octant of a ball and a
+         block; elastic reference as for cylinders)
   cube   options/cube_under_sphere.yml on meshes/cube_bench.geo (a unit cube of (16/F)^3 hexahedra, bottom clamped,
          sides on rollers, indented by a rigid sphere; its elastic reference: a pressure on the top, the sphere out of
          reach, so no multiplier). Levels 14.7k, 108k, 824k and 3.06M dofs.
@@ -99,6 +103,10 @@ HERTZ3D_LEVELS = [2.0, 1.4, 1.0, 0.7, 0.5, 0.4, 0.35]  # 6.2k, 16k, 40k, 110k, 2
 HERTZ3D_QUICK = [2.0]
 CUBE_LEVELS = [1.0, 0.5, 0.25, 0.16]  # 14.7k, 108k, 824k, 3.06M dofs
 CUBE_QUICK = [1.0]
+CYLINDERS_LEVELS = [1.0, 0.5, 0.25, 0.14, 0.1]  # 20k, 77k, 300k, 1M, 2M dofs
+CYLINDERS_QUICK = [1.0]
+SPHERE_BLOCK_LEVELS = [1.0, 0.7, 0.5, 0.35, 0.28]  # 17k, 45k, 115k, 330k, 640k dofs
+SPHERE_BLOCK_QUICK = [1.0]
 
 
 def hertz_dofs(f):
@@ -111,6 +119,14 @@ def hertz3d_dofs(f):
 
 def beam_dofs(f):
     return 2.0 * (round(40 / f) + 1) * (round(4 / f) + 1)
+
+
+def cylinders_dofs(f):
+    return 19800.0 / (f * f)
+
+
+def sphere_block_dofs(f):
+    return 17200.0 / f ** 2.8  # measured 17k, 45k, 115k at F = 1, 0.7, 0.5
 
 
 def cube_dofs(f):
@@ -133,6 +149,17 @@ FAMILIES = {
     # top, the sphere out of reach (no pair: no multiplier).
     "cube": dict(case="options/cube_under_sphere.yml", geo="meshes/cube_bench.geo", dofs=cube_dofs, extra=[],
                  elastic=["-bc_pressure", "top:1", "-obstacle_spheres", "0.5,0.5,3,0.5"]),
+    # Two bodies (-contact_pairs); elastic reference: the same mesh and material without the pair (no multiplier),
+    # the upper body clamped at its top as well, a body force of about the load.
+    "cylinders": dict(case="options/cylinders_2d.yml", geo="meshes/cylinders2d.geo", dofs=cylinders_dofs, extra=[],
+                      elastic_case=["-material_E", "200", "-material_nu", "0.3", "-bc_dirichlet",
+                                    "upper_top:x:y,lower_bottom_centre:x,lower_bottom:y", "-bc_body_force",
+                                    "0,-0.05"], elastic=[]),
+    "sphere_block": dict(case="options/sphere_on_block.yml", geo="meshes/sphere_on_block.geo",
+                         dofs=sphere_block_dofs, extra=[],
+                         elastic_case=["-material_E", "200", "-material_nu", "0.3", "-bc_dirichlet",
+                                       "symmetry_x:x,symmetry_y:y,block_bottom:z,top:x:y:z", "-bc_body_force",
+                                       "0,0,-0.00716"], elastic=[]),
     "svk": dict(case="options/hertz.yml", geo="meshes/hertz.geo", dofs=hertz_dofs,
                 extra=["-material_model", "svk", "-load_steps", "3"], elastic=None),
 }
@@ -217,8 +244,8 @@ def command(args, fam, level, preset, ranks, outdir, elastic):
     cmd = ["mpiexec", "-n", str(ranks), "--bind-to", "none"]
     if ranks > (os.cpu_count() or 1):
         cmd.append("--oversubscribe")
-    cmd += ["/usr/bin/time", "-v", args.exe,
-            "-options_file", f["case"]] + ([] if preset == AUTO_PRESET else
+    case = f["elastic_case"] if elastic and "elastic_case" in f else ["-options_file", f["case"]]
+    cmd += ["/usr/bin/time", "-v", args.exe] + case + ([] if preset == AUTO_PRESET else
                                            ["-options_file", "options/solver/%s.yml" % preset]) + [
             "-mesh_file", f["geo"], "-mesh_size_factor", repr(level)] + f["extra"]
     if elastic:
@@ -583,7 +610,8 @@ def main():
     ap.add_argument("--max-dofs", type=float, default=2.1e6, help="largest mesh (estimated displacement dofs)")
     ap.add_argument("--presets", default="", help="comma list of options/solver/*.yml names (default: all)")
     ap.add_argument("--ranks", default="1,2", help="comma list of MPI rank counts (default 1,2)")
-    ap.add_argument("--families", default="hertz,beam,svk,hertz3d", help="comma list of hertz, beam, svk, hertz3d, cube")
+    ap.add_argument("--families", default="hertz,beam,svk,hertz3d", help="comma list of hertz, beam, svk, hertz3d, cube, "
+                    "cylinders, sphere_block")
     ap.add_argument("--out", default=os.path.join(REPO, "scripts", "bench_out"), help="output folder")
     ap.add_argument("--exe", default=os.environ.get("SIGNORINI_EXE", os.path.join(REPO, "build", "signorini")))
     ap.add_argument("--timeout", type=float, default=None, help="seconds per run at most (default 1800, --quick 15)")
@@ -614,14 +642,17 @@ def main():
     families = [f for f in args.families.split(",") if f]
     for f in families:
         if f not in FAMILIES:
-            sys.exit("benchmark: unknown family %s; expected hertz, beam, svk, hertz3d, cube" % f)
+            sys.exit("benchmark: unknown family %s; expected hertz, beam, svk, hertz3d, cube, cylinders, "
+                     "sphere_block" % f)
     os.makedirs(os.path.join(args.out, "runs"), exist_ok=True)
 
     levels = {"hertz": HERTZ_QUICK if args.quick else HERTZ_LEVELS,
               "beam": BEAM_QUICK if args.quick else BEAM_LEVELS,
               "svk": SVK_QUICK if args.quick else SVK_LEVELS,
               "hertz3d": HERTZ3D_QUICK if args.quick else HERTZ3D_LEVELS,
-              "cube": CUBE_QUICK if args.quick else CUBE_LEVELS}
+              "cube": CUBE_QUICK if args.quick else CUBE_LEVELS,
+              "cylinders": CYLINDERS_QUICK if args.quick else CYLINDERS_LEVELS,
+              "sphere_block": SPHERE_BLOCK_QUICK if args.quick else SPHERE_BLOCK_LEVELS}
     plan = []
     for fam in families:
         fam_presets = [DEFAULT_PRESET] if fam == "svk" else presets

@@ -188,10 +188,19 @@ PetscErrorCode StepFields(ContactSolver &solver, const NodeContact &nodes, std::
   PetscFunctionReturn(0);
 }
 
-/// The columns of the node table of the current state: the displacement and the contact fields.
+/// The columns of the node table of the current state: the displacement and the contact fields, and with several
+/// bodies each node's body (a one-body table as it always was).
 std::vector<Field> NodeTableFields(ContactSolver &solver, const NodeContact &nodes) {
-  return {{"u", solver.GetMesh().Dim(), false, solver.ULocal()}, {"lambda", 1, false, nodes.lambda},
-          {"pressure", 1, false, nodes.pressure}, {"gap", 1, false, nodes.gap}, {"active", 1, false, nodes.active}};
+  const Mesh &mesh = solver.GetMesh();
+  std::vector<Field> fields = {{"u", mesh.Dim(), false, solver.ULocal()}, {"lambda", 1, false, nodes.lambda},
+                               {"pressure", 1, false, nodes.pressure}, {"gap", 1, false, nodes.gap},
+                               {"active", 1, false, nodes.active}};
+  if (mesh.NumBodies() > 1) {
+    std::vector<double> body(mesh.NumLocalVertices());
+    for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) body[v] = (double)mesh.VertexBody(v);
+    fields.push_back({"body", 1, false, body});
+  }
+  return fields;
 }
 
 /// -version: the versions of the program and of the libraries that decide its results, and nothing else. Collective.

@@ -76,6 +76,9 @@ std::string Certificate::Violation() const {
                   equilibrium, equilibrium_tol);
   else if (changes != 0)
     std::snprintf(text, sizeof(text), "the active-set rule would still switch %" PetscInt_FMT " pair(s)", changes);
+  else if (bodies && !(pair_force_balance <= pair_force_tol))
+    std::snprintf(text, sizeof(text), "the contact forces on the two sides of the pairs of bodies differ by %.6g "
+                  "(tolerance %.6g)", pair_force_balance, pair_force_tol);
   return text;
 }
 

@@ -448,12 +448,35 @@ PetscErrorCode ContactSolver::Certify(const std::vector<double> &u_eval, double 
   cert.unpaired_node = unpaired.node;
   std::copy(unpaired.x, unpaired.x + 3, cert.unpaired_x);
   cert.search_radius = contact_.search_radius;
+  if (!mortar_.Empty()) PetscCall(PairForceBalance(cert));
   // No solve can lift a node whose normal motion the supports prescribe: the input contradicts itself.
   PetscCheck(prescribed.depth <= cert.gap_tol, mesh_.Comm(), PETSC_ERR_USER_INPUT,
              "candidate node %" PetscInt_FMT " (at %.6g, %.6g, %.6g) is held by -bc_dirichlet inside the obstacle, by %.6g "
              "(gap tolerance %.6g); expected prescribed displacements that keep the contact candidates out of the "
              "obstacle",
              prescribed.node, prescribed.x[0], prescribed.x[1], prescribed.x[2], prescribed.depth, cert.gap_tol);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::PairForceBalance(Certificate &cert) const {
+  const int dim = mesh_.Dim();
+  std::vector<double> lambda(pairs_.size(), 0.0), master(dofs_.OwnedU(), 0.0);
+  double sums[4] = {0, 0, 0, 0}; // slave + master force, sum |lambda|
+  PetscFunctionBeginUser;
+  for (std::size_t p = 0; p < pairs_.size(); ++p)
+    if (mortar_.IsMortar(pairs_[p])) {
+      lambda[p] = states_[p].lambda;
+      for (int k = 0; k < dim; ++k) sums[k] += lambda[p] * normals_[p][k];
+      sums[3] += std::abs(lambda[p]);
+    }
+  PetscCall(mortar_.AddMasterForces(lambda, 1, master));
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    if (mesh_.Owned(v))
+      for (int k = 0; k < dim; ++k) sums[k] += master[dofs_.LocalOffset(v, k)];
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, mesh_.Comm()));
+  cert.bodies = true;
+  cert.pair_force_balance = std::sqrt(sums[0] * sums[0] + sums[1] * sums[1] + sums[2] * sums[2]);
+  cert.pair_force_tol = Certificate::PAIR_FORCE_RTOL * sums[3];
   PetscFunctionReturn(0);
 }
 

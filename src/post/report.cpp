@@ -317,8 +317,9 @@ void CertificateJson(JsonWriter &j, const Certificate &cert) {
       .Number("complementarity_tol", cert.complementarity_tol)
       .Number("equilibrium", cert.equilibrium)
       .Number("equilibrium_tol", cert.equilibrium_tol)
-      .Integer("changes", cert.changes)
-      .EndObject();
+      .Integer("changes", cert.changes);
+  if (cert.bodies) j.Number("pair_force_balance", cert.pair_force_balance).Number("pair_force_tol", cert.pair_force_tol);
+  j.EndObject();
 }
 
 /// The solver path and why it was chosen (summary.json "solver").

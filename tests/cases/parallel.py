@@ -18,6 +18,11 @@ RANK_CASES = {"hertz": [], "beam_on_floor": ["-options_file", "options/beam_on_f
               "hertz3d": ["-options_file", "options/hertz3d.yml"],
               "block_on_cylinder": ["-options_file", "options/block_on_cylinder.yml"],
               "block_on_floor": ["-options_file", "options/block_on_floor.yml"],
+              # Pairs of bodies (the mortar rows): the interface split between the ranks.
+              "cylinders_2d": ["-options_file", "options/cylinders_2d.yml"],
+              "sphere_on_block": ["-options_file", "options/sphere_on_block.yml"],
+              "patch3d_tet_on_hex": ["-options_file", "options/patch3d.yml", "-mesh_file",
+                                     "meshes/patch3d_tet_on_hex.msh"],
               "cube_mixed_conforming": ["-options_file", "options/cube_on_plane.yml", "-mesh_file",
                                         "meshes/cube_mixed_conforming.msh"],
               "cube_mixed_conforming_svk": ["-options_file", "options/cube_on_plane.yml", "-mesh_file",

@@ -79,6 +79,12 @@ struct Certificate {
   double equilibrium = 0;         ///< ||F_int - f - B^T lambda|| on the free rows
   double equilibrium_tol = 0;     ///< -newton_rtol (||F_int|| + ||f||) + -newton_atol
   PetscInt changes = 0;           ///< pairs the undamped rule would switch (the active set must be unchanged)
+  bool bodies = false;            ///< pairs of bodies (-contact_pairs): the two sides' forces are checked
+  double pair_force_balance = 0;  ///< |sum of the forces on the slave sides + on the master sides|
+  double pair_force_tol = 0;      ///< PAIR_FORCE_RTOL sum |lambda| over the pairs of bodies
+  /// The two sides' forces balance exactly in exact arithmetic (sum_l w_jl = 1 where the master covers the slave
+  /// node's support): beyond round-off the rows are wrong.
+  static constexpr double PAIR_FORCE_RTOL = 1e-10;
   PetscInt active = 0;            ///< active pairs
   bool Satisfied() const;
   /// The first condition that fails, as a phrase for an error message; empty when satisfied.

@@ -107,6 +107,9 @@ private:
   /// The certificate of the current state (states_ and the displacement u_eval, dim values per local vertex): the
   /// active-set conditions over the pairs, and no candidate node without a pair inside the obstacle. Collective.
   [[nodiscard]] PetscErrorCode Certify(const std::vector<double> &u_eval, double rnorm, double tol, Certificate &cert);
+  /// The certificate's balance of the two sides' forces of the pairs of bodies (Certificate::pair_force_balance).
+  /// Collective.
+  [[nodiscard]] PetscErrorCode PairForceBalance(Certificate &cert) const;
   /// svk: searches the pairs again at the current configuration u_eval (force, or when a candidate moved more than
   /// half the search radius since the last search); new pairs rebuild the system (rebuilt). Collective.
   [[nodiscard]] PetscErrorCode Repair(const std::vector<double> &u_eval, bool force, bool &rebuilt);
