@@ -149,17 +149,19 @@ FAMILIES = {
     # top, the sphere out of reach (no pair: no multiplier).
     "cube": dict(case="options/cube_under_sphere.yml", geo="meshes/cube_bench.geo", dofs=cube_dofs, extra=[],
                  elastic=["-bc_pressure", "top:1", "-obstacle_spheres", "0.5,0.5,3,0.5"]),
-    # Two bodies (-contact_pairs); elastic reference: the same mesh and material without the pair (no multiplier),
-    # the upper body clamped at its top as well, a body force of about the load.
+    # Two bodies (-contact_pairs); elastic reference: the same mesh and materials without the case file's pair (no
+    # multiplier), the upper body clamped at its top as well, a body force of about the load.
     "cylinders": dict(case="options/cylinders_2d.yml", geo="meshes/cylinders2d.geo", dofs=cylinders_dofs, extra=[],
-                      elastic_case=["-material_E", "200", "-material_nu", "0.3", "-bc_dirichlet",
-                                    "upper_top:x:y,lower_bottom_centre:x,lower_bottom:y", "-bc_body_force",
-                                    "0,-0.05"], elastic=[]),
+                      elastic_replaces_case=True,
+                      elastic=["-material_E", "upper:200,lower:600", "-material_nu", "upper:0.3,lower:0.2",
+                               "-bc_dirichlet", "upper_top:x:y,lower_bottom_centre:x,lower_bottom:y",
+                               "-bc_body_force", "0,-0.05"]),
     "sphere_block": dict(case="options/sphere_on_block.yml", geo="meshes/sphere_on_block.geo",
                          dofs=sphere_block_dofs, extra=[],
-                         elastic_case=["-material_E", "200", "-material_nu", "0.3", "-bc_dirichlet",
-                                       "symmetry_x:x,symmetry_y:y,block_bottom:z,top:x:y:z", "-bc_body_force",
-                                       "0,0,-0.00716"], elastic=[]),
+                         elastic_replaces_case=True,
+                         elastic=["-material_E", "ball:200,block:100", "-material_nu", "ball:0.3,block:0.35",
+                                  "-bc_dirichlet", "symmetry_x:x,symmetry_y:y,block_bottom:z,top:x:y:z",
+                                  "-bc_body_force", "0,0,-0.00716"]),
     "svk": dict(case="options/hertz.yml", geo="meshes/hertz.geo", dofs=hertz_dofs,
                 extra=["-material_model", "svk", "-load_steps", "3"], elastic=None),
 }
@@ -244,7 +246,8 @@ def command(args, fam, level, preset, ranks, outdir, elastic):
     cmd = ["mpiexec", "-n", str(ranks), "--bind-to", "none"]
     if ranks > (os.cpu_count() or 1):
         cmd.append("--oversubscribe")
-    case = f["elastic_case"] if elastic and "elastic_case" in f else ["-options_file", f["case"]]
+    # A two-body family's reference replaces the case file (its pair would add multipliers).
+    case = [] if elastic and f.get("elastic_replaces_case") else ["-options_file", f["case"]]
     cmd += ["/usr/bin/time", "-v", args.exe] + case + ([] if preset == AUTO_PRESET else
                                            ["-options_file", "options/solver/%s.yml" % preset]) + [
             "-mesh_file", f["geo"], "-mesh_size_factor", repr(level)] + f["extra"]
