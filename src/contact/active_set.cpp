@@ -87,6 +87,7 @@ void ActiveSet::First(const std::vector<PairState> &states, bool first_step, con
   next.resize(states.size());
   start_gap_.resize(states.size());
   for (std::size_t p = 0; p < states.size(); ++p) start_gap_[p] = states[p].gap;
+  started_ = true;
   for (std::size_t p = 0; p < states.size(); ++p)
     next[p] = first_step ? (states[p].InZone() && states[p].gap <= params_.touch_tol) : active_[p];
   DropParallelPairs(states, keys, normals, params_.GapTol(), next);
@@ -116,7 +117,9 @@ PetscErrorCode ActiveSet::Next(const std::vector<PairState> &states, PetscInt it
   std::vector<PairState> current = states;
   for (std::size_t p = 0; p < states.size(); ++p) current[p].active = active_[p];
   ProposeSet(current, params_.c, tol, activate_tol, keys, normals, next, params_.GapTol());
-  if (it == 1 && params_.activation_gap_factor > 0 && start_gap_.size() == states.size() && gdeepest > 0) {
+  // Only with the start gaps of the current pairs (First since the last Reset): a flag every rank sets alike, not the
+  // sizes, which agree trivially on a rank without pairs after a Reset and made the ranks' collectives below differ.
+  if (it == 1 && params_.activation_gap_factor > 0 && started_ && gdeepest > 0) {
     double g = -INFINITY, G;
     for (std::size_t p = 0; p < states.size(); ++p)
       if (!active_[p] && states[p].InZone() && -states[p].gap >= (1 - 1e-9) * gdeepest) g = std::max(g, start_gap_[p]);

@@ -17,15 +17,16 @@ namespace {
 struct GatheredFace {
   int n = 0;
   std::array<PetscInt, 4> node{}, body{};
-  std::array<std::array<double, 3>, 4> x{};
+  std::array<std::array<double, 3>, 4> x{}, X{}; ///< current and reference positions
 };
 
 /// Every rank's faces of the group `name` (input: the option item, for messages), gathered on every rank: the
-/// interface is a surface of the mesh, small beside the volume. Collective.
-PetscErrorCode GatherFaces(const Mesh &mesh, const std::string &name, const std::string &input,
+/// interface is a surface of the mesh, small beside the volume. u_local (dim values per local vertex; null: none):
+/// the displacement of the current configuration. Collective.
+PetscErrorCode GatherFaces(const Mesh &mesh, const std::string &name, const std::string &input, const double *u_local,
                            std::vector<GatheredFace> &out) {
   const int dim = mesh.Dim();
-  constexpr int WIDTH = 1 + 4 + 12 + 4; // n, nodes, coordinates, bodies
+  constexpr int WIDTH = 1 + 4 + 12 + 4 + 12; // n, nodes, coordinates, bodies, displacements
   std::vector<Face> faces;
   PetscFunctionBeginUser;
   PetscCall(mesh.GroupFaces(name, faces, input));
@@ -37,6 +38,7 @@ PetscErrorCode GatherFaces(const Mesh &mesh, const std::string &name, const std:
       rec[1 + a] = (double)mesh.VertexOriginal(f.v[a]);
       for (int d = 0; d < dim; ++d) rec[5 + 3 * a + d] = mesh.X(f.v[a])[d];
       rec[17 + a] = (double)mesh.VertexBody(f.v[a]);
+      for (int d = 0; d < dim && u_local; ++d) rec[21 + 3 * a + d] = u_local[f.v[a] * dim + d];
     }
     mine.insert(mine.end(), rec.begin(), rec.end());
   }
@@ -55,7 +57,7 @@ PetscErrorCode GatherFaces(const Mesh &mesh, const std::string &name, const std:
     g.n = (int)all[i];
     for (int a = 0; a < g.n; ++a) {
       g.node[a] = (PetscInt)all[i + 1 + a];
-      for (int d = 0; d < 3; ++d) g.x[a][d] = all[i + 5 + 3 * a + d];
+      for (int d = 0; d < 3; ++d) g.X[a][d] = all[i + 5 + 3 * a + d], g.x[a][d] = g.X[a][d] + all[i + 21 + 3 * a + d];
       g.body[a] = (PetscInt)all[i + 17 + a];
     }
     out.push_back(g);
@@ -415,7 +417,7 @@ void FacetIntegrals(const GatheredFace &s, const std::vector<GatheredFace> &mast
 } // namespace
 
 PetscErrorCode MortarCoupling::Build(const Mesh &mesh, const ContactOptions &opts, const std::vector<char> &fixed,
-                                     PetscInt facet_base) {
+                                     PetscInt facet_base, const double *u_local) {
   static PetscLogEvent event = 0;
   PetscFunctionBeginUser;
   if (!event) {
@@ -432,8 +434,8 @@ PetscErrorCode MortarCoupling::Build(const Mesh &mesh, const ContactOptions &opt
   master_vertex_.assign(mesh.NumLocalVertices(), 0);
   for (PetscInt i = 0; i < interfaces_; ++i) {
     const std::size_t first = rows_.size();
-    PetscCall(BuildInterface(mesh, opts, fixed, i));
-    PetscCall(CheckInterface(mesh, opts, i, first));
+    PetscCall(BuildInterface(mesh, opts, fixed, i, u_local));
+    if (!u_local) PetscCall(CheckInterface(mesh, opts, i, first));
   }
   PetscCall(PetscLogEventEnd(event, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -474,14 +476,14 @@ PetscErrorCode MortarCoupling::CheckInterface(const Mesh &mesh, const ContactOpt
 }
 
 PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOptions &opts,
-                                              const std::vector<char> &fixed, PetscInt item) {
+                                              const std::vector<char> &fixed, PetscInt item, const double *u_local) {
   const auto &[slave, master] = opts.pairs[item];
   const std::string input = "-contact_pairs " + slave + ":" + master;
   std::vector<GatheredFace> sf, mf;
   std::vector<PetscInt> vertices;
   PetscFunctionBeginUser;
-  PetscCall(GatherFaces(mesh, slave, input, sf));
-  PetscCall(GatherFaces(mesh, master, input, mf));
+  PetscCall(GatherFaces(mesh, slave, input, u_local, sf));
+  PetscCall(GatherFaces(mesh, master, input, u_local, mf));
   // The two sides on one body would be self-contact, which needs rows that see the body's own deformation.
   std::set<PetscInt> slave_bodies;
   for (const GatheredFace &f : sf) slave_bodies.insert(f.body[0]);
@@ -520,9 +522,9 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
       FacetIntegrals(s, mf, *boxes, opts.search_radius, in);
     }
   }
-  std::unordered_map<PetscInt, std::pair<const double *, PetscInt>> master_x; // position, body
+  std::unordered_map<PetscInt, std::pair<const double *, PetscInt>> master_x; // reference position, body
   for (const GatheredFace &f : mf)
-    for (int a = 0; a < f.n; ++a) master_x[f.node[a]] = {f.x[a].data(), f.body[a]};
+    for (int a = 0; a < f.n; ++a) master_x[f.node[a]] = {f.X[a].data(), f.body[a]};
   for (const auto &[node, Dj] : in.D) {
     const auto it = owned.find(node);
     // A node whose overlap is a vanishing part of its tributary length has no row worth its conditioning.
@@ -538,6 +540,8 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
     for (int k = 0; k < dim_; ++k)
       if (!fixed[v * dim_ + k]) free2 += row.n[k] * row.n[k];
     if (free2 < 1e-12) continue; // the supports hold the node along its normal (as for a rigid obstacle)
+    // The gap is g0 + n . (u_j - sum_l w_jl u_l) with the row's coefficients: g0 from the reference positions makes
+    // it the weighted gap of the configuration the row was computed in (svk: the current one).
     row.g0 = 0;
     for (int d = 0; d < dim_; ++d) row.g0 += row.n[d] * mesh.X(v)[d];
     for (const auto &[l, Mjl] : in.M[node]) {
@@ -549,6 +553,35 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
     rows_.push_back(std::move(row));
   }
   PetscFunctionReturn(0);
+}
+
+PetscErrorCode MortarCoupling::Update(const Mesh &mesh, const ContactOptions &opts, const std::vector<char> &fixed,
+                                      const double *u_local, bool &changed) {
+  PetscFunctionBeginUser;
+  const auto pattern = [this] {
+    std::vector<std::vector<PetscInt>> p;
+    for (const Row &r : rows_) {
+      p.push_back({r.vertex, r.facet});
+      for (const MasterTerm &t : r.terms) p.back().push_back(t.node);
+    }
+    return p;
+  };
+  const auto before = pattern();
+  PetscCall(Build(mesh, opts, fixed, facet_base_, u_local));
+  changed = pattern() != before;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPI_CXX_BOOL, MPI_LOR, mesh.Comm()));
+  PetscFunctionReturn(0);
+}
+
+void MortarCoupling::RefreshPairs(std::vector<ContactPair> &pairs) const {
+  std::map<std::pair<PetscInt, PetscInt>, const Row *> index;
+  for (const Row &r : rows_) index[{r.vertex, r.facet}] = &r;
+  for (ContactPair &p : pairs) {
+    const auto it = index.find({p.vertex, p.facet});
+    if (it == index.end()) continue;
+    std::copy(it->second->n, it->second->n + 3, p.n0);
+    p.g0 = it->second->g0;
+  }
 }
 
 void MortarCoupling::AppendPairs(const Mesh &mesh, std::vector<ContactPair> &pairs,

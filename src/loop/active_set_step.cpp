@@ -177,9 +177,12 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
     PetscFunctionReturn(0);
   }
   if (model_->CurrentConfiguration()) {
-    // svk: pairs from the current configuration (new pairs mean a new pattern and a new analysis).
-    bool rebuilt;
-    PetscCall(Repair(st.u_eval, it == 0, rebuilt));
+    // svk: pairs from the current configuration (new pairs mean a new pattern and a new analysis), the mortar rows
+    // of the pairs of bodies computed again there.
+    bool rebuilt, repaired;
+    PetscCall(UpdateMortar(st.u_eval, rebuilt));
+    PetscCall(Repair(st.u_eval, it == 0, repaired));
+    rebuilt = rebuilt || repaired;
     if (rebuilt) {
       // A new layout: no base of a condensed search survives it.
       st.base.ready = false;

@@ -29,9 +29,6 @@ PetscErrorCode ContactSolver::Setup() {
     PetscCall(PetscLogEventRegister("SigSolve", id, &EV_SOLVE));
   }
   PetscCall(BuildDirichlet(mesh_, bc_, dirichlet_));
-  PetscCheck(contact_.pairs.empty() || !model_->Nonlinear(), comm, PETSC_ERR_SUP,
-             "-contact_pairs with -material_model svk: contact between deformable bodies is implemented for the linear "
-             "material only so far; expected -material_model linear");
   PetscCall(mortar_.Build(mesh_, contact_, dirichlet_.fixed, (PetscInt)obstacle_.facets.size()));
   PetscCall(FindAllPairs(pairs_, candidate_, nullptr, &held_));
   if (!model_->CurrentConfiguration()) DropOutOfZone(pairs_);
@@ -168,6 +165,31 @@ PetscErrorCode ContactSolver::ChooseSolver() {
   stats_.solver_chosen = true;
   ProgressNote("solver: %s (%s: %s)", SOLVER_PATH_NAMES[(int)stats_.solver.path], CHOSEN_BY_NAMES[(int)stats_.solver.by],
                stats_.solver.why.c_str());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::UpdateMortar(const std::vector<double> &u_eval, bool &rebuilt) {
+  bool changed;
+  PetscFunctionBeginUser;
+  rebuilt = false;
+  if (mortar_.Empty()) PetscFunctionReturn(0);
+  PetscCall(mortar_.Update(mesh_, contact_, dirichlet_.fixed, u_eval.data(), changed));
+  if (!changed) {
+    // The same rows and columns: new coefficients in the same pattern.
+    mortar_.RefreshPairs(pairs_);
+    PetscCall(mortar_.Bind(mesh_, dofs_, dirichlet_.fixed, pairs_));
+    PetscFunctionReturn(0);
+  }
+  // A slave node that gained or lost its row, or a row whose master nodes changed (the slave side slid along the
+  // master): a new pattern, a new system; the pairs that persist keep their multipliers and active flags.
+  std::vector<ContactPair> pairs;
+  for (const ContactPair &p : pairs_)
+    if (!mortar_.IsMortar(p)) pairs.push_back(p);
+  std::vector<char> candidate = candidate_;
+  mortar_.AppendPairs(mesh_, pairs, candidate);
+  SortPairs(mesh_, pairs);
+  PetscCall(AdoptPairsFrom(std::move(pairs), IndexPairs(pairs_), lambda_, mult_, active_set_.Flags()));
+  rebuilt = true;
   PetscFunctionReturn(0);
 }
 

@@ -316,8 +316,6 @@ CASES = {
     "contact_pairs_same_body": (PATCH + ["-contact_pairs", "upper_bottom:upper_top"],
                                 ["-contact_pairs upper_bottom:upper_top", "'upper_bottom' and 'upper_top'",
                                  "both on body 1", "two different bodies"], {}),
-    "contact_pairs_svk": (PATCH + ["-material_model", "svk"], ["-contact_pairs with -material_model svk",
-                                                                 "expected -material_model linear"], {}),
     # Two squares sharing an edge (one body), the shared edge a group: inside the body.
     "contact_pairs_interior_group": (mesh("interior_curve.msh") + ["-contact_pairs", "middle:top"],
                                      ["-contact_pairs middle:top", "'middle'", "inside a body",

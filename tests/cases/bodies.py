@@ -242,3 +242,25 @@ def body_held_by_contact(runner):
                                     "block pulled off")
     runner.expect_true("the block pulled off ends as DIVERGED_NOT_HELD (exit %d)" % status,
                        status != 0 and "DIVERGED_NOT_HELD" in out)
+
+
+@test("slide_svk")
+def slide_svk(runner):
+    """St. Venant-Kirchhoff between bodies (options/slide2d.yml): a block pushed 1.5 along a deformable floor, more
+    than its length, over 10 load steps, the mortar rows computed again at every iterate. It converges with the
+    block's whole bottom in contact carrying the pressure's load; on a floor 1e6 times stiffer it has the state of the
+    same block on a rigid floor (a segment obstacle at the floor's top) to 1e-4."""
+    r = runner.run(["-options_file", "options/slide2d.yml"], "block sliding on a floor")
+    nodes = r.nodes()
+    bottom = nodes[np.isfinite(nodes["gap"])]
+    runner.expect_equal("the block's 11 bottom nodes active", int(bottom["active"].sum()), 11)
+    runner.expect_close("the block's bottom moved 1.5 along the floor", bottom["u_x"], np.full(len(bottom), 1.5), 0,
+                        0.05)
+    runner.expect_close("the slave side carries the load 5 x 1", r.get("contact.contact_force")[1], 5.0, 1e-8)
+    stiff = ["-material_E", "block:1000,floor:1e9"]
+    r = runner.run(["-options_file", "options/slide2d.yml"] + stiff, "on a stiff floor")
+    ref = runner.run(["-mesh_file", "meshes/slide2d.msh", "-material_model", "svk", "-material_nu", "0.3",
+                      "-bc_dirichlet", "floor_bottom:x:y,block_left:x=1.5", "-bc_pressure", "block_top:5",
+                      "-load_steps", "10", "-obstacle_segments", "-1,0,5,0", "-contact_groups", "block_bottom"] + stiff,
+                     "on a rigid floor")
+    expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-4)

@@ -293,3 +293,37 @@ def monitor_after_header(runner):
     result = first("CONVERGED")
     runner.expect_true("header line %d, unknowns line %d, first monitor line %d, result line %d in that order" % (
         header, unknowns, monitor, result), 0 <= header < unknowns < monitor < result)
+
+
+@test("paraview_view_bodies")
+def paraview_view_bodies(runner):
+    """What ParaView shows of a case of two bodies (the 3D contact patch test, tetrahedra on hexahedra), through each
+    of its XDMF readers: the body grid with every cell and the cell field body (one value per block), no obstacle grid, and the contact boundary on the slave side (the upper block's bottom, z = 1) whose
+    multipliers carry the load q * area; each block in a file of its own (check_block_files)."""
+    require_pvpython()
+    r = runner.run(["-options_file", "options/patch3d.yml", "-mesh_file", "meshes/patch3d_tet_on_hex.msh"],
+                   "patch test, tetrahedra on hexahedra")
+    check_contact_displacement(runner, r)
+    dump = paraview_dump(runner, [r])[0]
+    if dump is None:
+        return
+    check_block_files(runner, dump, ["body", "contact_boundary"])
+    xyz, cells, _ = r.solution()
+    for reader in PARAVIEW_READERS:
+        blocks = dump[reader]["blocks"]
+        runner.expect_equal("%s: blocks (body, contact_boundary)" % reader, len(blocks), 2)
+        if len(blocks) != 2:
+            continue
+        body, contact = blocks
+        runner.expect_equal("%s: body cells" % reader, len(body["cells"]), len(cells))
+        shown = np.array([v[0] for v in body["cell_data"]["body"]["values"]])
+        above = np.array([np.mean([body["points"][v][2] for v in c]) > 1 for c in body["cells"]])
+        # Bodies are numbered by their first cell in the file: the tetrahedra (above) come first in this mesh.
+        runner.expect_equal("%s: body field on the cells above the interface (values)" % reader,
+                            sorted(set(shown[above])), [0.0])
+        runner.expect_equal("%s: body field on the cells below it (values)" % reader, sorted(set(shown[~above])),
+                            [1.0])
+        runner.expect_close("%s: contact boundary at z = 1 (the slave side)" % reader,
+                            [p[2] for p in contact["points"]], [1.0] * len(contact["points"]), 0, 1e-14)
+        lam = contact["point_data"].get("contact_lambda", {"values": [[0.0]]})["values"]
+        runner.expect_close("%s: contact multipliers sum to q * area" % reader, sum(v[0] for v in lam), 2.0, 1e-10, 0)

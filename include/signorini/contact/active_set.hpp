@@ -109,7 +109,7 @@ struct ActiveSetParams {
 class ActiveSet {
 public:
   ActiveSet(MPI_Comm comm, const ActiveSetParams &params) : comm_(comm), params_(params) {}
-  void Reset(std::size_t npairs) { active_.assign(npairs, 0), start_gap_.clear(); }
+  void Reset(std::size_t npairs) { active_.assign(npairs, 0), start_gap_.clear(), started_ = false; }
   const std::vector<char> &Flags() const { return active_; }
   void Set(const std::vector<char> &flags) { active_ = flags; }
   /// Starts a load step: forgets the sets seen in the previous one. load_scale: the largest nodal force of the
@@ -179,6 +179,7 @@ private:
   std::vector<char> active_;
   std::vector<unsigned long long> seen_;
   std::vector<double> start_gap_; ///< the pairs' gaps at the start of the load step (First)
+  bool started_ = false;          ///< start_gap_ holds the current pairs' (First since the last Reset)
 };
 
 } // namespace signorini

@@ -9,7 +9,8 @@
 // the slave shape functions there), so a facet that the master covers only in part keeps D diagonal and positive.
 // With this scaling the multiplier is the normal force on the slave node and pressure = lambda / tributary length,
 // as for a rigid obstacle, and the master carries - w_jl lambda_j n_j. Linear material: the integrals and normals of
-// the reference configuration, fixed through the run (docs/theory.md §8).
+// the reference configuration, fixed through the run; svk: those of the current configuration, computed again at
+// every iterate (Update), their variation left out of the tangent (docs/theory.md §8).
 #pragma once
 
 #include "signorini/contact/active_set.hpp"
@@ -31,10 +32,18 @@ namespace signorini {
 /// AddMasterForces) through a matrix G of the master terms (rows: the owned pairs; columns: the displacement rows).
 class MortarCoupling {
 public:
-  /// Computes the rows of the owned slave nodes of every interface in the reference configuration; facet_base: the
-  /// obstacle's facet count. fixed marks the Dirichlet dofs per local vertex dof. Collective.
+  /// Computes the rows of the owned slave nodes of every interface in the reference configuration (u_local null:
+  /// the interfaces are checked, CheckInterface), or in the configuration of the displacement u_local (dim values per
+  /// local vertex); facet_base: the obstacle's facet count. fixed marks the Dirichlet dofs per local vertex dof.
+  /// Collective.
   [[nodiscard]] PetscErrorCode Build(const Mesh &mesh, const ContactOptions &opts, const std::vector<char> &fixed,
-                                     PetscInt facet_base);
+                                     PetscInt facet_base, const double *u_local = nullptr);
+  /// svk: the rows again in the configuration of u_local; changed: the pairs or the master nodes of a row changed
+  /// (the system's pattern with them), on any rank. Collective.
+  [[nodiscard]] PetscErrorCode Update(const Mesh &mesh, const ContactOptions &opts, const std::vector<char> &fixed,
+                                      const double *u_local, bool &changed);
+  /// Gives the mortar pairs among pairs their rows' current normals and gaps g0.
+  void RefreshPairs(std::vector<ContactPair> &pairs) const;
   bool Empty() const { return interfaces_ == 0; }
   PetscInt Interfaces() const { return interfaces_; }
   PetscInt FacetBase() const { return facet_base_; }
@@ -82,7 +91,7 @@ private:
                                               std::size_t first) const;
   /// The rows of one interface's owned slave nodes (2D: segments). Collective.
   [[nodiscard]] PetscErrorCode BuildInterface(const Mesh &mesh, const ContactOptions &opts,
-                                              const std::vector<char> &fixed, PetscInt item);
+                                              const std::vector<char> &fixed, PetscInt item, const double *u_local);
 
   PetscInt interfaces_ = 0, facet_base_ = 0;
   std::vector<Row> rows_;

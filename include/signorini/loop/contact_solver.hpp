@@ -110,6 +110,9 @@ private:
   /// The certificate's balance of the two sides' forces of the pairs of bodies (Certificate::pair_force_balance).
   /// Collective.
   [[nodiscard]] PetscErrorCode PairForceBalance(Certificate &cert) const;
+  /// svk: the mortar rows of the pairs of bodies in the configuration of u_eval (MortarCoupling::Update); a new
+  /// pattern rebuilds the system (rebuilt). Collective.
+  [[nodiscard]] PetscErrorCode UpdateMortar(const std::vector<double> &u_eval, bool &rebuilt);
   /// svk: searches the pairs again at the current configuration u_eval (force, or when a candidate moved more than
   /// half the search radius since the last search); new pairs rebuild the system (rebuilt). Collective.
   [[nodiscard]] PetscErrorCode Repair(const std::vector<double> &u_eval, bool force, bool &rebuilt);
