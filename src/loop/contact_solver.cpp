@@ -71,11 +71,24 @@ PetscErrorCode ContactSolver::CreateSystem() {
   std::vector<const ConstraintRow *> coupling;
   for (std::size_t p = 0; p < pairs_.size(); ++p)
     if (mortar_.IsMortar(pairs_[p])) coupling.push_back(&rows_[p]);
-  const PetscInt start = dofs_.RowStart(), end = start + dofs_.OwnedU();
-  for (const ConstraintRow *row : coupling)
-    for (PetscInt i : row->cols)
-      if (i >= start && i < end)
-        for (PetscInt j : row->cols) (j >= start && j < end ? d_nnz : o_nnz)[i - start]++;
+  // A row's columns may be another rank's rows: each entry's count goes to the row's owner (a count vector in the
+  // system's layout, summed), which reserves it on both its diagonal and its off-diagonal part. Without the counts
+  // of other ranks' rows, the insertion reallocated row by row: 172 s of the set-up on 2 ranks at 316k dofs (3D).
+  if (!mortar_.Empty()) {
+    VecH extra;
+    PetscCall(VecCreateMPI(mesh_.Comm(), dofs_.OwnedRows(), dofs_.GlobalRows(), extra.out()));
+    for (const ConstraintRow *row : coupling)
+      for (PetscInt i : row->cols) PetscCall(VecSetValue(extra, i, (PetscScalar)row->ncols, ADD_VALUES));
+    PetscCall(VecAssemblyBegin(extra));
+    PetscCall(VecAssemblyEnd(extra));
+    const PetscScalar *e;
+    PetscCall(VecGetArrayRead(extra, &e));
+    for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) {
+      const PetscInt n = (PetscInt)PetscRealPart(e[i]);
+      d_nnz[i] += std::min(n, dofs_.OwnedU()), o_nnz[i] += std::min(n, dofs_.GlobalU() - dofs_.OwnedU());
+    }
+    PetscCall(VecRestoreArrayRead(extra, &e));
+  }
   const auto insert_pattern = [&](Mat A) -> PetscErrorCode {
     PetscInt rows;
     PetscFunctionBeginUser;
