@@ -264,3 +264,26 @@ def slide_svk(runner):
                       "-load_steps", "10", "-obstacle_segments", "-1,0,5,0", "-contact_groups", "block_bottom"] + stiff,
                      "on a rigid floor")
     expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-4)
+
+
+@test("stack3")
+def stack3(runner):
+    """Three blocks stacked (options/stack3.yml): the middle one is held only through both interfaces, each body's
+    rigid modes checked on their own. Touching at the start: every slave node of both interfaces active with the
+    pressure q to 1e-10 and the exact linear field; with both interfaces open by 0.01 (meshes/stack3_gap.msh) the free
+    blocks are stabilised until they close, and come to the same pressures."""
+    q = 2.0
+    for mesh, gap in (("meshes/stack3.msh", 0.0), ("meshes/stack3_gap.msh", 0.01)):
+        r = runner.run(["-options_file", "options/stack3.yml", "-mesh_file", mesh], "stack, gap %g" % gap)
+        nodes = r.nodes()
+        slave = nodes[np.isfinite(nodes["gap"])]
+        runner.expect_true("gap %g: slave nodes on both interfaces" % gap,
+                           np.any(slave["y"] < 1.5) and np.any(slave["y"] > 1.5))
+        runner.expect_equal("gap %g: every slave node active" % gap, int(slave["active"].sum()), len(slave))
+        runner.expect_close("gap %g: contact pressure = q" % gap, slave["pressure"], np.full(len(slave), q), 1e-9)
+        runner.expect_close("gap %g: the slave sides carry 2 q W" % gap, r.get("contact.contact_force"), [0, 8.0], 0,
+                            1e-9)
+        if gap == 0:
+            E, nu = r.get("material.E"), r.get("material.nu")
+            exact = np.column_stack([nu * (1 + nu) * q / E * nodes["x"], -(1 - nu * nu) * q / E * nodes["y"]])
+            runner.expect_close("the exact linear field", displacement(nodes), exact, 0, 1e-10 * np.abs(exact).max())
