@@ -81,7 +81,8 @@ void EvaluatePairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOpti
     for (int d = 0; d < dim; ++d) x[d] = X[d] + u[d];
     for (std::size_t p = a; p < b; ++p)
       for (std::size_t q = p + 1; q < b; ++q) {
-        if (!states[p].inside || !states[q].inside ||
+        const auto nf = (PetscInt)obstacle.facets.size(); // a mortar pair (facet nf on) is no facet of a joint
+        if (!states[p].inside || !states[q].inside || pairs[p].facet >= nf || pairs[q].facet >= nf ||
             !ConvexJoint(obstacle, {pairs[p].facet, normals[p].data(), states[p].gap},
                          {pairs[q].facet, normals[q].data(), states[q].gap}, x, dim, opts.search_radius))
           continue;

@@ -396,7 +396,8 @@ PetscErrorCode ContactSolver::ExtendAlongFreeMotion(StepState &st, Outcome &outc
     if (!(closing > CLOSING * size && states_[p].gap >= 0)) continue;
     const double t = states_[p].gap / closing;
     bool on_facet = states_[p].InZone();
-    if (model_->CurrentConfiguration()) {
+    // A mortar pair (a pair of bodies) has no facet to project on: its row covers the master side it overlaps.
+    if (model_->CurrentConfiguration() && !mortar_.IsMortar(pairs_[p])) {
       double x[3] = {0, 0, 0};
       rigid_.Motion(keys_[p].vertex, motion, x);
       for (int k = 0; k < dim; ++k) x[k] = X[k] + u_local_[keys_[p].vertex * dim + k] + t * x[k];
