@@ -1,6 +1,7 @@
 // The dual mortar rows of the -contact_pairs interfaces (mortar.hpp) and their master terms.
 #include "signorini/contact/mortar.hpp"
 
+#include "signorini/core/blocks.hpp"
 #include "signorini/obstacles/obstacle.hpp"
 
 #include <algorithm>
@@ -42,15 +43,8 @@ PetscErrorCode GatherFaces(const Mesh &mesh, const std::string &name, const std:
     }
     mine.insert(mine.end(), rec.begin(), rec.end());
   }
-  int size;
-  PetscCallMPI(MPI_Comm_size(mesh.Comm(), &size));
-  std::vector<int> counts(size), displs(size + 1, 0);
-  const int count = (int)mine.size();
-  PetscCallMPI(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, mesh.Comm()));
-  for (int r = 0; r < size; ++r) displs[r + 1] = displs[r] + counts[r];
-  std::vector<double> all(displs[size]);
-  PetscCallMPI(MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE,
-                              mesh.Comm()));
+  std::vector<double> all;
+  PetscCall(AllGather(mesh.Comm(), mine, all));
   out.clear();
   for (std::size_t i = 0; i < all.size(); i += WIDTH) {
     GatheredFace g;
@@ -614,19 +608,7 @@ PetscErrorCode MortarCoupling::Bind(const Mesh &mesh, const DofMap &dofs, const 
   std::sort(needed.begin(), needed.end());
   needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
   std::vector<PetscInt> all_needed;
-  {
-    int size;
-    PetscCallMPI(MPI_Comm_size(comm, &size));
-    std::vector<int> counts(size), displs(size + 1, 0);
-    const int count = (int)needed.size();
-    PetscCallMPI(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm));
-    for (int r = 0; r < size; ++r) displs[r + 1] = displs[r] + counts[r];
-    all_needed.resize(displs[size]);
-    PetscCallMPI(MPI_Allgatherv(needed.data(), count, MPIU_INT, all_needed.data(), counts.data(), displs.data(),
-                                MPIU_INT, comm));
-    std::sort(all_needed.begin(), all_needed.end());
-    all_needed.erase(std::unique(all_needed.begin(), all_needed.end()), all_needed.end());
-  }
+  PetscCall(AllGatherUnion(comm, needed, all_needed));
   std::vector<PetscInt> info(2 * all_needed.size(), 0); // first row + 1 (0: not mine), fixed bits
   for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) {
     if (!mesh.Owned(v)) continue;
@@ -717,6 +699,17 @@ PetscErrorCode MortarCoupling::AddMasterForces(const std::vector<double> &lambda
   PetscCall(VecGetArrayRead(x_, &x));
   for (std::size_t i = 0; i < out.size(); ++i) out[i] += sign * x[i];
   PetscCall(VecRestoreArrayRead(x_, &x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MortarCoupling::MasterForces(const Mesh &mesh, const DofMap &dofs, const std::vector<double> &lambda,
+                                            std::vector<double> &master, double *sum) const {
+  PetscFunctionBeginUser;
+  master.assign(dofs.OwnedU(), 0.0);
+  PetscCall(AddMasterForces(lambda, 1, master));
+  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v)
+    if (mesh.Owned(v))
+      for (int k = 0; k < dim_; ++k) sum[k] += master[dofs.LocalOffset(v, k)];
   PetscFunctionReturn(0);
 }
 

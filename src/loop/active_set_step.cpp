@@ -464,7 +464,7 @@ PetscErrorCode ContactSolver::Certify(const std::vector<double> &u_eval, double 
 
 PetscErrorCode ContactSolver::PairForceBalance(Certificate &cert) const {
   const int dim = mesh_.Dim();
-  std::vector<double> lambda(pairs_.size(), 0.0), master(dofs_.OwnedU(), 0.0);
+  std::vector<double> lambda(pairs_.size(), 0.0), master;
   double sums[4] = {0, 0, 0, 0}; // slave + master force, sum |lambda|
   PetscFunctionBeginUser;
   for (std::size_t p = 0; p < pairs_.size(); ++p)
@@ -473,10 +473,7 @@ PetscErrorCode ContactSolver::PairForceBalance(Certificate &cert) const {
       for (int k = 0; k < dim; ++k) sums[k] += lambda[p] * normals_[p][k];
       sums[3] += std::abs(lambda[p]);
     }
-  PetscCall(mortar_.AddMasterForces(lambda, 1, master));
-  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
-    if (mesh_.Owned(v))
-      for (int k = 0; k < dim; ++k) sums[k] += master[dofs_.LocalOffset(v, k)];
+  PetscCall(mortar_.MasterForces(mesh_, dofs_, lambda, master, sums));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, mesh_.Comm()));
   cert.bodies = true;
   cert.pair_force_balance = std::sqrt(sums[0] * sums[0] + sums[1] * sums[1] + sums[2] * sums[2]);

@@ -1,6 +1,8 @@
 // The bodies of the mesh: connected components of its cells, found in parallel without gathering the mesh.
 #include "signorini/mesh/mesh.hpp"
 
+#include "signorini/core/blocks.hpp"
+
 #include <algorithm>
 #include <numeric>
 
@@ -64,16 +66,8 @@ PetscErrorCode Mesh::BuildBodies() {
     if (uf.Find(v) == v && label[v] != PETSC_MAX_INT) mine.push_back(label[v]);
   std::sort(mine.begin(), mine.end());
   mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
-  PetscMPIInt size, count = (PetscMPIInt)mine.size();
-  PetscCallMPI(MPI_Comm_size(comm_, &size));
-  std::vector<PetscMPIInt> counts(size), displs(size + 1, 0);
-  PetscCallMPI(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_));
-  for (PetscMPIInt r = 0; r < size; ++r) displs[r + 1] = displs[r] + counts[r];
-  std::vector<PetscInt> all(displs[size]);
-  PetscCallMPI(MPI_Allgatherv(mine.data(), count, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT,
-                              comm_));
-  std::sort(all.begin(), all.end());
-  all.erase(std::unique(all.begin(), all.end()), all.end());
+  std::vector<PetscInt> all;
+  PetscCall(AllGatherUnion(comm_, mine, all));
   num_bodies_ = (PetscInt)all.size();
   const auto body_of = [&](PetscInt v) {
     return (PetscInt)(std::lower_bound(all.begin(), all.end(), label[uf.Find(v)]) - all.begin());

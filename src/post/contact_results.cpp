@@ -78,12 +78,9 @@ PetscErrorCode BodyResults(const SolvedState &state, Partial &part) {
     for (int k = 0; k < dim; ++k)
       contact_at[dofs.LocalOffset(pairs[p].vertex, k)] += state.states[p].lambda * state.normals[p][k];
   if (state.mortar && !state.mortar->Empty()) {
-    std::vector<double> lambda(pairs.size()), master(dofs.OwnedU(), 0.0);
+    std::vector<double> lambda(pairs.size()), master;
     for (std::size_t p = 0; p < pairs.size(); ++p) lambda[p] = state.states[p].lambda;
-    PetscCall(state.mortar->AddMasterForces(lambda, 1, master));
-    for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v)
-      if (mesh.Owned(v))
-        for (int k = 0; k < dim; ++k) local[13 + k] += master[dofs.LocalOffset(v, k)];
+    PetscCall(state.mortar->MasterForces(mesh, dofs, lambda, master, &local[13]));
     for (PetscInt i = 0; i < dofs.OwnedU(); ++i) contact_at[i] += master[i];
   }
   double umax = 0;

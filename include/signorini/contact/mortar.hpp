@@ -61,6 +61,11 @@ public:
   /// vertex, prescribed values included). Collective.
   [[nodiscard]] PetscErrorCode AddMasterGaps(const Mesh &mesh, const DofMap &dofs, const double *u_local,
                                              std::vector<PairState> &states) const;
+  /// The forces of the multipliers lambda on the master nodes (G^T lambda over the owned displacement rows, every
+  /// component) into master, and their sums per component over this rank's nodes added to sum (dim values).
+  /// Collective.
+  [[nodiscard]] PetscErrorCode MasterForces(const Mesh &mesh, const DofMap &dofs, const std::vector<double> &lambda,
+                                            std::vector<double> &master, double *sum) const;
   /// out[i] += sign (G^T lambda)_i over the owned displacement rows (local offsets, every component): the forces of
   /// the multipliers on the master nodes, - w_jl lambda_j n_j. Collective.
   [[nodiscard]] PetscErrorCode AddMasterForces(const std::vector<double> &lambda, double sign,
