@@ -15,53 +15,43 @@ void EvaluatePairs(const Mesh &mesh, const Obstacle &obstacle, const ContactOpti
   normals.resize(pairs.size());
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     const ContactPair &pair = pairs[p];
-    const double *X = mesh.X(pair.vertex), *u = &u_local[pair.vertex * dim];
-    double x[3] = {0, 0, 0};
-    for (int d = 0; d < dim; ++d) x[d] = X[d] + u[d];
-    if (pair.facet >= (PetscInt)obstacle.facets.size()) {
-      // A mortar pair (MortarCoupling): its slave part, g0 + n0 . u in its fixed zone; the caller adds the master's.
-      double g = pair.g0;
-      for (int d = 0; d < dim; ++d) g += pair.n0[d] * u[d];
-      states[p].gap = g;
-      states[p].inside = true;
-      states[p].entered = false;
-      states[p].crossing = 0;
-      for (int d = 0; d < 3; ++d) normals[p][d] = pair.n0[d];
-      rows[p].Clear();
-      for (int k = 0; k < dim; ++k)
-        if (!fixed[pair.vertex * dim + k]) rows[p].Add(dofs.Row(pair.vertex, k), -normals[p][k]);
-      continue;
-    }
-    const Facet &facet = *obstacle.facets[pair.facet];
-    const Projection proj = facet.Project(x, opts.alpha_tol, opts.length);
-    states[p].inside = proj.inside;
-    if (large_deformation) {
-      states[p].gap = proj.gap;
-      for (int d = 0; d < 3; ++d) normals[p][d] = proj.normal[d];
-    } else {
-      double g = pair.g0;
-      for (int d = 0; d < dim; ++d) g += pair.n0[d] * u[d];
-      states[p].gap = g;
-      for (int d = 0; d < 3; ++d) normals[p][d] = pair.n0[d];
-    }
-    // The zone in which the gap counts. Linear material: fixed in the reference configuration with the linearised
-    // gap (zone0), so the constraints are fixed. svk: the current projection, or a node that went through the facet
-    // on the straight path X -> x (X: where the pair was found) from an open start (the gap, linear along the path for a flat facet, changes sign at
-    // t = g0 / (g0 - g); the crossing point must lie on the finite facet), or that started behind it in its strip;
-    // a node touching at the start (|g0| <= -contact_touch_tol) has only its current projection.
-    const double g = states[p].gap;
+    const double *u = &u_local[pair.vertex * dim];
+    // A mortar pair (MortarCoupling) has no facet: its slave part is evaluated here, the caller adds the master's.
+    const bool mortar = pair.facet >= (PetscInt)obstacle.facets.size();
     states[p].entered = false;
     states[p].crossing = 0;
-    if (!large_deformation) {
-      states[p].inside = pair.zone0;
-    } else if (pair.g0 > opts.touch_tol && g < 0) {
-      const double t = pair.g0 / (pair.g0 - g);
-      double c[3] = {0, 0, 0};
-      for (int d = 0; d < dim; ++d) c[d] = pair.x0[d] + t * (x[d] - pair.x0[d]);
-      states[p].entered = facet.Project(c, opts.alpha_tol, opts.length).inside;
-      states[p].crossing = t;
+    if (mortar || !large_deformation) {
+      // Linearised from where the pair was found: g0 + n0 . u, in a zone fixed there (a mortar row covers the master
+      // side it overlaps).
+      double g = pair.g0;
+      for (int d = 0; d < dim; ++d) g += pair.n0[d] * u[d];
+      states[p].gap = g;
+      for (int d = 0; d < 3; ++d) normals[p][d] = pair.n0[d];
+      states[p].inside = mortar || pair.zone0;
     } else {
-      states[p].entered = pair.g0 < -opts.touch_tol && pair.inside0 && g < 0;
+      // svk: the current projection. The zone in which the gap counts: the node is over the facet now, or went
+      // through it on the straight path X -> x (X: where the pair was found) from an open start (the gap, linear
+      // along the path for a flat facet, changes sign at t = g0 / (g0 - g); the crossing point must lie on the
+      // finite facet), or started behind it in its strip; a node touching at the start (|g0| <= -contact_touch_tol)
+      // has only its current projection.
+      const double *X = mesh.X(pair.vertex);
+      double x[3] = {0, 0, 0};
+      for (int d = 0; d < dim; ++d) x[d] = X[d] + u[d];
+      const Facet &facet = *obstacle.facets[pair.facet];
+      const Projection proj = facet.Project(x, opts.alpha_tol, opts.length);
+      const double g = proj.gap;
+      states[p].gap = g;
+      for (int d = 0; d < 3; ++d) normals[p][d] = proj.normal[d];
+      states[p].inside = proj.inside;
+      if (pair.g0 > opts.touch_tol && g < 0) {
+        const double t = pair.g0 / (pair.g0 - g);
+        double c[3] = {0, 0, 0};
+        for (int d = 0; d < dim; ++d) c[d] = pair.x0[d] + t * (x[d] - pair.x0[d]);
+        states[p].entered = facet.Project(c, opts.alpha_tol, opts.length).inside;
+        states[p].crossing = t;
+      } else {
+        states[p].entered = pair.g0 < -opts.touch_tol && pair.inside0 && g < 0;
+      }
     }
     ConstraintRow &row = rows[p];
     row.Clear();
