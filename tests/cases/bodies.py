@@ -115,6 +115,9 @@ def patch(runner, kind):
         runner.expect_close("%s: master side force" % solver, r.get("contact.master_contact_force"), -np.array(force),
                             tol, tol * q * area)
         runner.expect_close("%s: force balance" % solver, r.get("contact.force_balance"), 0, 0, tol)
+        runner.expect_true("%s: certificate: the two sides' forces balance (%.3g <= %.3g)" % (
+            solver, r.get("certificate.pair_force_balance"), r.get("certificate.pair_force_tol")),
+            r.get("certificate.pair_force_balance") <= r.get("certificate.pair_force_tol"))
         # sigma = -q along the vertical, zero across (plane strain in 2D), rollers on the faces through the origin:
         # one linear field through both bodies, the interface closed.
         E, nu = r.get("material.E"), r.get("material.nu")
@@ -283,6 +286,12 @@ def stack3(runner):
         runner.expect_close("gap %g: contact pressure = q" % gap, slave["pressure"], np.full(len(slave), q), 1e-9)
         runner.expect_close("gap %g: the slave sides carry 2 q W" % gap, r.get("contact.contact_force"), [0, 8.0], 0,
                             1e-9)
+        # nodes.csv: each node's body (numbered by the bodies' first cells in the file): one per block, three.
+        level = nodes["y"] / (1 + gap)
+        inside = np.abs(level - np.round(level)) > 1e-6  # off the blocks' bottoms and tops, which two blocks share
+        per_block = [sorted(set(nodes["body"][inside & (np.floor(level) == k)])) for k in range(3)]
+        runner.expect_true("gap %g: nodes.csv body column: one body per block, three in all (%s)" % (gap, per_block),
+                           all(len(b) == 1 for b in per_block) and sorted(b[0] for b in per_block) == [0, 1, 2])
         if gap == 0:
             E, nu = r.get("material.E"), r.get("material.nu")
             exact = np.column_stack([nu * (1 + nu) * q / E * nodes["x"], -(1 - nu * nu) * q / E * nodes["y"]])
