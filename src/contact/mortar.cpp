@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <memory>
 #include <set>
 
 namespace signorini {
@@ -70,94 +69,6 @@ struct SegmentFrame {
   }
 };
 
-/// The part [lo, hi] of a slave segment (parameter xi in [0, 1]) that a master segment covers, projected along the
-/// slave segment's normal; the master segment runs from xi_c (its node 0) to xi_d (its node 1).
-struct Piece {
-  std::size_t master;
-  double lo, hi, xi_c, xi_d;
-};
-
-/// Two-point Gauss rule on [0, 1]: exact for the products of two linear functions that the mortar integrals hold.
-constexpr double GAUSS_X[2] = {0.21132486540518713, 0.78867513459481287};
-constexpr double GAUSS_W[2] = {0.5, 0.5};
-
-/// Accumulates the pieces a slave segment s has with the master segments: opposite normals, an overlap of more
-/// than round-off, within the search radius along the normal.
-void SegmentPieces(const GatheredFace &s, const std::vector<GatheredFace> &masters, double radius,
-                   std::vector<Piece> &pieces) {
-  const SegmentFrame fs(s);
-  pieces.clear();
-  for (std::size_t m = 0; m < masters.size(); ++m) {
-    const GatheredFace &f = masters[m];
-    const SegmentFrame fm(f);
-    if (fs.n[0] * fm.n[0] + fs.n[1] * fm.n[1] >= 0) continue;
-    double xi[2];
-    for (int a = 0; a < 2; ++a)
-      xi[a] = ((f.x[a][0] - s.x[0][0]) * fs.t[0] + (f.x[a][1] - s.x[0][1]) * fs.t[1]) / fs.length;
-    if (std::abs(xi[1] - xi[0]) < 1e-12) continue;
-    const double lo = std::max(0.0, std::min(xi[0], xi[1])), hi = std::min(1.0, std::max(xi[0], xi[1]));
-    if (hi - lo <= 1e-12) continue;
-    // The normal distance at the middle of the overlap.
-    const double mid = 0.5 * (lo + hi), eta = (mid - xi[0]) / (xi[1] - xi[0]);
-    double h = 0;
-    for (int d = 0; d < 2; ++d) {
-      const double xs = s.x[0][d] + mid * (s.x[1][d] - s.x[0][d]), xm = f.x[0][d] + eta * (f.x[1][d] - f.x[0][d]);
-      h += (xs - xm) * fs.n[d];
-    }
-    if (std::abs(h) > radius) continue;
-    pieces.push_back({m, lo, hi, xi[0], xi[1]});
-  }
-}
-
-/// What the slave facets accumulate per slave node (file numbering): D_jj, M_jl per master node l, and the master's
-/// outward normal weighted by N_j over the overlap (the row's normal).
-struct Integrals {
-  std::map<PetscInt, double> D;
-  std::map<PetscInt, std::map<PetscInt, double>> M;
-  std::map<PetscInt, std::array<double, 3>> normal;
-};
-
-/// The contribution of slave segment s (its pieces with the master segments) to D (per slave node) and M (per slave
-/// node, per master node), with the dual basis biorthogonal on the pieces: psi_i = sum_k A_ik N_k, A = De Me^-1,
-/// De_i = int N_i, Me_ik = int N_i N_k over the pieces.
-void SegmentIntegrals(const GatheredFace &s, const std::vector<GatheredFace> &masters, const std::vector<Piece> &pieces,
-                      Integrals &in) {
-  const double L = SegmentFrame(s).length;
-  double Me[2][2] = {{0, 0}, {0, 0}}, De[2] = {0, 0}, covered = 0;
-  for (const Piece &p : pieces) {
-    covered += p.hi - p.lo;
-    for (int q = 0; q < 2; ++q) {
-      const double xi = p.lo + GAUSS_X[q] * (p.hi - p.lo), w = GAUSS_W[q] * (p.hi - p.lo) * L;
-      const double N[2] = {1 - xi, xi};
-      for (int i = 0; i < 2; ++i) {
-        De[i] += w * N[i];
-        for (int k = 0; k < 2; ++k) Me[i][k] += w * N[i] * N[k];
-      }
-    }
-  }
-  // A piece of a few 1e-9 of the segment carries no weight worth its ill-conditioned basis.
-  if (covered < 1e-9) return;
-  const double det = Me[0][0] * Me[1][1] - Me[0][1] * Me[1][0];
-  const double inv[2][2] = {{Me[1][1] / det, -Me[0][1] / det}, {-Me[1][0] / det, Me[0][0] / det}};
-  double A[2][2];
-  for (int i = 0; i < 2; ++i)
-    for (int k = 0; k < 2; ++k) A[i][k] = De[i] * inv[i][k];
-  for (int i = 0; i < 2; ++i) in.D[s.node[i]] += De[i];
-  for (const Piece &p : pieces) {
-    const GatheredFace &m = masters[p.master];
-    const SegmentFrame fm(m);
-    for (int q = 0; q < 2; ++q) {
-      const double xi = p.lo + GAUSS_X[q] * (p.hi - p.lo), w = GAUSS_W[q] * (p.hi - p.lo) * L;
-      const double N[2] = {1 - xi, xi}, eta = (xi - p.xi_c) / (p.xi_d - p.xi_c), Nm[2] = {1 - eta, eta};
-      for (int i = 0; i < 2; ++i) {
-        const double psi = A[i][0] * N[0] + A[i][1] * N[1];
-        for (int l = 0; l < 2; ++l) in.M[s.node[i]][m.node[l]] += w * psi * Nm[l];
-        for (int d = 0; d < 2; ++d) in.normal[s.node[i]][d] += w * N[i] * fm.n[d];
-      }
-    }
-  }
-}
-
 /// A facet's plane (3D): centre, outward unit normal (of the diagonals' cross product for a quadrilateral), area, and
 /// a tangent basis; coordinates of a point in the plane, its height over it.
 struct FacetPlane {
@@ -186,6 +97,77 @@ struct FacetPlane {
     return h;
   }
 };
+
+/// The master facets' bounding boxes (lo, hi) and outward normals, computed once per interface.
+struct MasterBoxes {
+  std::vector<std::array<double, 6>> box;
+  std::vector<std::array<double, 3>> normal;
+  explicit MasterBoxes(const std::vector<GatheredFace> &masters) {
+    for (const GatheredFace &f : masters) {
+      std::array<double, 6> b{1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
+      for (int a = 0; a < f.n; ++a)
+        for (int d = 0; d < 3; ++d) b[d] = std::min(b[d], f.x[a][d]), b[3 + d] = std::max(b[3 + d], f.x[a][d]);
+      box.push_back(b);
+      if (f.n == 2) {
+        const SegmentFrame p(f);
+        normal.push_back({p.n[0], p.n[1], 0});
+      } else {
+        const FacetPlane p(f);
+        normal.push_back({p.n[0], p.n[1], p.n[2]});
+      }
+    }
+  }
+};
+
+/// One point of the overlap of a slave facet with a master facet: its weight (length or area) and both sides' shape
+/// functions.
+struct OverlapPoint {
+  double w, Ns[4], Nm[4];
+  std::size_t master;
+};
+
+/// Two-point Gauss rule on [0, 1]: exact for the products of two linear functions that the mortar integrals hold.
+constexpr double GAUSS_X[2] = {0.21132486540518713, 0.78867513459481287};
+constexpr double GAUSS_W[2] = {0.5, 0.5};
+
+/// The quadrature points of slave segment s's overlap with the master segments (2D): each master segment with an
+/// opposite normal is projected along the slave segment's normal onto it; the part of the slave segment it covers
+/// (parameter xi in [lo, hi], the master running from xi_c to xi_d) is integrated by 2 Gauss points, exact for the
+/// products of two linear functions. An overlap whose master point is farther than radius along the normal (at the
+/// middle of the overlap) is left out.
+void SegmentOverlap(const GatheredFace &s, const std::vector<GatheredFace> &masters, const MasterBoxes &boxes,
+                    double radius, std::vector<OverlapPoint> &points) {
+  const SegmentFrame fs(s);
+  double lo2[2], hi2[2]; // the slave segment's box, widened by the radius
+  for (int d = 0; d < 2; ++d)
+    lo2[d] = std::min(s.x[0][d], s.x[1][d]) - radius, hi2[d] = std::max(s.x[0][d], s.x[1][d]) + radius;
+  points.clear();
+  for (std::size_t m = 0; m < masters.size(); ++m) {
+    const auto &box = boxes.box[m];
+    const auto &nm = boxes.normal[m];
+    if (box[3] < lo2[0] || box[0] > hi2[0] || box[4] < lo2[1] || box[1] > hi2[1]) continue;
+    if (fs.n[0] * nm[0] + fs.n[1] * nm[1] >= 0) continue;
+    const GatheredFace &f = masters[m];
+    double xi[2];
+    for (int a = 0; a < 2; ++a)
+      xi[a] = ((f.x[a][0] - s.x[0][0]) * fs.t[0] + (f.x[a][1] - s.x[0][1]) * fs.t[1]) / fs.length;
+    if (std::abs(xi[1] - xi[0]) < 1e-12) continue;
+    const double lo = std::max(0.0, std::min(xi[0], xi[1])), hi = std::min(1.0, std::max(xi[0], xi[1]));
+    if (hi - lo <= 1e-12) continue;
+    // The normal distance at the middle of the overlap.
+    const double mid = 0.5 * (lo + hi), eta = (mid - xi[0]) / (xi[1] - xi[0]);
+    double h = 0;
+    for (int d = 0; d < 2; ++d) {
+      const double xs = s.x[0][d] + mid * (s.x[1][d] - s.x[0][d]), xm = f.x[0][d] + eta * (f.x[1][d] - f.x[0][d]);
+      h += (xs - xm) * fs.n[d];
+    }
+    if (std::abs(h) > radius) continue;
+    for (int q = 0; q < 2; ++q) {
+      const double x = lo + GAUSS_X[q] * (hi - lo), e = (x - xi[0]) / (xi[1] - xi[0]);
+      points.push_back({GAUSS_W[q] * (hi - lo) * fs.length, {1 - x, x, 0, 0}, {1 - e, e, 0, 0}, m});
+    }
+  }
+}
 
 using Polygon = std::vector<std::array<double, 2>>;
 
@@ -262,28 +244,6 @@ constexpr double TRI_B[7] = {1.0 / 3, 0.470142064105115, 0.059715871789770, 0.47
                              0.101286507323456, 0.797426985353087, 0.101286507323456};
 constexpr double TRI_W[7] = {0.225, 0.132394152788506, 0.132394152788506, 0.132394152788506,
                              0.125939180544827, 0.125939180544827, 0.125939180544827};
-
-/// The master facets' bounding boxes (lo, hi) and outward normals, computed once per interface (3D).
-struct MasterBoxes {
-  std::vector<std::array<double, 6>> box;
-  std::vector<std::array<double, 3>> normal;
-  explicit MasterBoxes(const std::vector<GatheredFace> &masters) {
-    for (const GatheredFace &f : masters) {
-      std::array<double, 6> b{1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
-      for (int a = 0; a < f.n; ++a)
-        for (int d = 0; d < 3; ++d) b[d] = std::min(b[d], f.x[a][d]), b[3 + d] = std::max(b[3 + d], f.x[a][d]);
-      box.push_back(b);
-      const FacetPlane p(f);
-      normal.push_back({p.n[0], p.n[1], p.n[2]});
-    }
-  }
-};
-
-/// One point of the overlap of a slave facet with a master facet: its weight (area) and both sides' shape functions.
-struct OverlapPoint {
-  double w, Ns[4], Nm[4];
-  std::size_t master;
-};
 
 /// The quadrature points of slave facet s's overlap with the master facets (3D): each master facet with an opposite
 /// normal is projected along the slave facet's normal onto its plane and clipped against the slave facet (both
@@ -376,12 +336,20 @@ bool Solve(int n, double *A, double *B) {
   return true;
 }
 
-/// The contribution of slave facet s (3D) to D and M, with the dual basis biorthogonal on its overlap: psi_i =
-/// sum_k A_ik N_k, A = De Me^-1 (Me symmetric, so A^T = Me^-1 De solves for it).
-void FacetIntegrals(const GatheredFace &s, const std::vector<GatheredFace> &masters, const MasterBoxes &boxes,
-                    double radius, Integrals &in) {
-  std::vector<OverlapPoint> points;
-  FacetOverlap(s, masters, boxes, radius, points);
+/// What the slave facets accumulate per slave node (file numbering): D_jj, M_jl per master node l, and the master's
+/// outward normal weighted by N_j over the overlap (the row's normal).
+struct Integrals {
+  std::map<PetscInt, double> D;
+  std::map<PetscInt, std::map<PetscInt, double>> M;
+  std::map<PetscInt, std::array<double, 3>> normal;
+};
+
+/// The contribution of slave facet s (its measure: length or area) to D, M and the rows' normals from the points of
+/// its overlap with the master facets (SegmentOverlap, FacetOverlap), with the dual basis biorthogonal on the
+/// overlap: psi_i = sum_k A_ik N_k, A = De Me^-1, De_i = int N_i, Me_ik = int N_i N_k (Me symmetric, so
+/// A^T = Me^-1 De solves for it).
+void OverlapIntegrals(const GatheredFace &s, double measure, const std::vector<GatheredFace> &masters,
+                      const MasterBoxes &boxes, const std::vector<OverlapPoint> &points, Integrals &in) {
   const int n = s.n;
   double Me[16] = {0}, De[4] = {0}, covered = 0;
   for (const OverlapPoint &o : points) {
@@ -391,7 +359,8 @@ void FacetIntegrals(const GatheredFace &s, const std::vector<GatheredFace> &mast
       for (int k = 0; k < n; ++k) Me[i * n + k] += o.w * o.Ns[i] * o.Ns[k];
     }
   }
-  if (covered < 1e-9 * FacetPlane(s).area) return;
+  // An overlap of a few 1e-9 of the facet carries no weight worth its ill-conditioned basis.
+  if (covered < 1e-9 * measure) return;
   double At[16] = {0}; // A^T = Me^-1 De
   for (int i = 0; i < n; ++i) At[i * n + i] = De[i];
   if (!Solve(n, Me, At)) return;
@@ -499,22 +468,17 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
   // area.
   Integrals in;
   std::map<PetscInt, double> tributary;
-  std::vector<Piece> pieces;
-  const auto boxes = dim_ == 3 ? std::make_unique<MasterBoxes>(mf) : nullptr;
+  std::vector<OverlapPoint> points;
+  const MasterBoxes boxes(mf);
   for (const GatheredFace &s : sf) {
     bool mine = false;
     for (int a = 0; a < s.n; ++a) mine = mine || owned.count(s.node[a]);
     if (!mine) continue;
-    if (dim_ == 2) {
-      const double length = SegmentFrame(s).length;
-      for (int a = 0; a < 2; ++a) tributary[s.node[a]] += 0.5 * length;
-      SegmentPieces(s, mf, opts.search_radius, pieces);
-      SegmentIntegrals(s, mf, pieces, in);
-    } else {
-      const double area = FacetPlane(s).area;
-      for (int a = 0; a < s.n; ++a) tributary[s.node[a]] += area / s.n;
-      FacetIntegrals(s, mf, *boxes, opts.search_radius, in);
-    }
+    const double measure = dim_ == 2 ? SegmentFrame(s).length : FacetPlane(s).area;
+    for (int a = 0; a < s.n; ++a) tributary[s.node[a]] += measure / s.n;
+    if (dim_ == 2) SegmentOverlap(s, mf, boxes, opts.search_radius, points);
+    else FacetOverlap(s, mf, boxes, opts.search_radius, points);
+    OverlapIntegrals(s, measure, mf, boxes, points, in);
   }
   std::unordered_map<PetscInt, std::pair<const double *, PetscInt>> master_x; // reference position, body
   for (const GatheredFace &f : mf)
@@ -627,22 +591,28 @@ PetscErrorCode MortarCoupling::Bind(const Mesh &mesh, const DofMap &dofs, const 
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     if (pair_row_[p] < 0) continue;
     for (const MasterTerm &t : rows_[pair_row_[p]].terms) {
-      const PetscInt first = master_[t.node].first;
+      const PetscInt first = master_.at(t.node).first;
       ((first >= start && first < end) ? d_nnz : o_nnz)[p] += dim_;
     }
   }
   PetscCall(MatCreateAIJ(comm, (PetscInt)pairs.size(), dofs.OwnedRows(), PETSC_DETERMINE, PETSC_DETERMINE, 0,
                          d_nnz.data(), 0, o_nnz.data(), G_.out()));
+  // G's entries, and each row's free master columns for the system (ExtendRows, at every evaluation of the pairs).
+  PetscInt first_row;
+  PetscCall(MatGetOwnershipRange(G_, &first_row, nullptr));
+  free_columns_.assign(pairs.size(), {});
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     if (pair_row_[p] < 0) continue;
     const Row &r = rows_[pair_row_[p]];
-    PetscInt row;
-    PetscCall(MatGetOwnershipRange(G_, &row, nullptr));
-    row += (PetscInt)p;
+    const PetscInt row = first_row + (PetscInt)p;
     for (const MasterTerm &t : r.terms) {
+      const auto &[first, fixed] = master_.at(t.node);
       PetscInt cols[3];
       PetscScalar vals[3];
-      for (int k = 0; k < dim_; ++k) cols[k] = master_[t.node].first + k, vals[k] = -t.w * r.n[k];
+      for (int k = 0; k < dim_; ++k) {
+        cols[k] = first + k, vals[k] = -t.w * r.n[k];
+        if (!(fixed & (1 << k))) free_columns_[p].emplace_back(first + k, t.w * r.n[k]);
+      }
       PetscCall(MatSetValues(G_, 1, &row, dim_, cols, vals, ADD_VALUES));
     }
   }
@@ -657,15 +627,8 @@ const std::vector<MortarCoupling::MasterTerm> *MortarCoupling::Terms(std::size_t
 }
 
 void MortarCoupling::ExtendRows(std::vector<ConstraintRow> &rows) const {
-  for (std::size_t p = 0; p < rows.size() && p < pair_row_.size(); ++p) {
-    if (pair_row_[p] < 0) continue;
-    const Row &r = rows_[pair_row_[p]];
-    for (const MasterTerm &t : r.terms) {
-      const auto &[first, fixed] = master_.at(t.node);
-      for (int k = 0; k < dim_; ++k)
-        if (!(fixed & (1 << k))) rows[p].Add(first + k, t.w * r.n[k]);
-    }
-  }
+  for (std::size_t p = 0; p < rows.size() && p < free_columns_.size(); ++p)
+    for (const auto &[col, coef] : free_columns_[p]) rows[p].Add(col, coef);
 }
 
 PetscErrorCode MortarCoupling::AddMasterGaps(const Mesh &mesh, const DofMap &dofs, const double *u_local,

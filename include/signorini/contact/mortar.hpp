@@ -105,6 +105,8 @@ private:
   /// its fixed components (bit k).
   std::vector<PetscInt> pair_row_;
   std::unordered_map<PetscInt, std::pair<PetscInt, int>> master_;
+  /// Bind: per pair its master nodes' free columns in the system and their coefficients w_jl n_j (ExtendRows).
+  std::vector<std::vector<std::pair<PetscInt, double>>> free_columns_;
   PetscInt dim_ = 2;
   MatH G_;
   mutable VecH x_, y_; ///< work vectors of G's columns and rows
