@@ -66,6 +66,35 @@ PetscErrorCode ContactSolver::CreateSystem() {
   if (!stats_.solver_chosen) PetscCall(ChooseSolver());
   // A path chosen by the run's own solver options takes no defaults of a path.
   system_->UsePath(stats_.solver.by == ChosenBy::SOLVER_OPTIONS ? SolverPath::DIRECT : stats_.solver.path);
+  std::function<PetscErrorCode(Mat)> insert_pattern;
+  PetscCall(SystemPattern(d_nnz, o_nnz, insert_pattern));
+  PetscCall(system_->Create(dofs_, rows_, coords, !model_->Nonlinear(), kscale_, d_nnz, o_nnz, insert_pattern));
+  if (opts_.lagged_search_set && opts_.lagged_search) system_->KeepFactorization();
+  k_assembled_ = false;
+  PetscCall(MatCreateVecs(system_->A(), u_.out(), nullptr));
+  PetscCall(VecDuplicate(u_, du_.out()));
+  PetscCall(VecDuplicate(u_, fext_.out()));
+  PetscCall(VecDuplicate(u_, fint_.out()));
+  fint_at_.u.clear();
+  fdir_.Reset(); // made by the first step that moves a Dirichlet value
+  PetscCall(PetscObjectSetName((PetscObject)u_.get(), "displacement"));
+  std::vector<PetscInt> from(mesh_.NumLocalVertices() * dim);
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    for (int k = 0; k < dim; ++k) from[v * dim + k] = dofs_.Row(v, k);
+  ISH is_from;
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)from.size(), from.data(), PETSC_COPY_VALUES, is_from.out()));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, (PetscInt)from.size(), u_seq_.out()));
+  PetscCall(VecScatterDestroy(&scatter_));
+  PetscCall(VecScatterCreate(u_, is_from, u_seq_, nullptr, &scatter_));
+  keys_.resize(pairs_.size());
+  for (std::size_t p = 0; p < pairs_.size(); ++p)
+    keys_[p] = {pairs_[p].vertex, mesh_.VertexOriginal(pairs_[p].vertex), pairs_[p].facet};
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::SystemPattern(std::vector<PetscInt> &d_nnz, std::vector<PetscInt> &o_nnz,
+                                            std::function<PetscErrorCode(Mat)> &insert) const {
+  PetscFunctionBeginUser;
   // A mortar row couples its slave node with master nodes of another body: the augmented forms add B_p^T B_p to the
   // displacement block (SaddlePointSystem::Reweight), so its entries join K's fixed pattern.
   std::vector<const ConstraintRow *> coupling;
@@ -89,7 +118,7 @@ PetscErrorCode ContactSolver::CreateSystem() {
     }
     PetscCall(VecRestoreArrayRead(extra, &e));
   }
-  const auto insert_pattern = [&](Mat A) -> PetscErrorCode {
+  insert = [this, coupling](Mat A) -> PetscErrorCode {
     PetscInt rows;
     PetscFunctionBeginUser;
     PetscCall(assembler_->InsertPattern(A));
@@ -105,27 +134,6 @@ PetscErrorCode ContactSolver::CreateSystem() {
     }
     PetscFunctionReturn(0);
   };
-  PetscCall(system_->Create(dofs_, rows_, coords, !model_->Nonlinear(), kscale_, d_nnz, o_nnz, insert_pattern));
-  if (opts_.lagged_search_set && opts_.lagged_search) system_->KeepFactorization();
-  k_assembled_ = false;
-  PetscCall(MatCreateVecs(system_->A(), u_.out(), nullptr));
-  PetscCall(VecDuplicate(u_, du_.out()));
-  PetscCall(VecDuplicate(u_, fext_.out()));
-  PetscCall(VecDuplicate(u_, fint_.out()));
-  fint_at_.u.clear();
-  fdir_.Reset(); // made by the first step that moves a Dirichlet value
-  PetscCall(PetscObjectSetName((PetscObject)u_.get(), "displacement"));
-  std::vector<PetscInt> from(mesh_.NumLocalVertices() * dim);
-  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
-    for (int k = 0; k < dim; ++k) from[v * dim + k] = dofs_.Row(v, k);
-  ISH is_from;
-  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)from.size(), from.data(), PETSC_COPY_VALUES, is_from.out()));
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, (PetscInt)from.size(), u_seq_.out()));
-  PetscCall(VecScatterDestroy(&scatter_));
-  PetscCall(VecScatterCreate(u_, is_from, u_seq_, nullptr, &scatter_));
-  keys_.resize(pairs_.size());
-  for (std::size_t p = 0; p < pairs_.size(); ++p)
-    keys_[p] = {pairs_[p].vertex, mesh_.VertexOriginal(pairs_[p].vertex), pairs_[p].facet};
   PetscFunctionReturn(0);
 }
 

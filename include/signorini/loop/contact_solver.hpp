@@ -95,6 +95,10 @@ public:
 private:
   /// The saddle-point system, its vectors and the pair keys for the current pairs. Collective.
   [[nodiscard]] PetscErrorCode CreateSystem();
+  /// K's pattern for the system: the counts d_nnz, o_nnz (PatternCounts', on entry) and the function that inserts the
+  /// pattern, with the couplings that the mortar rows' B_p^T B_p add between slave and master nodes. Collective.
+  [[nodiscard]] PetscErrorCode SystemPattern(std::vector<PetscInt> &d_nnz, std::vector<PetscInt> &o_nnz,
+                                             std::function<PetscErrorCode(Mat)> &insert) const;
   /// The pairs of the rigid obstacles (FindContactPairs, with u_local as there) and of the bodies' interfaces
   /// (mortar_), sorted; a case without an obstacle has no candidates but the slave nodes. Collective.
   [[nodiscard]] PetscErrorCode FindAllPairs(std::vector<ContactPair> &pairs, std::vector<char> &candidate,
