@@ -79,6 +79,7 @@ std::string Certificate::Violation() const {
   else if (bodies && !(pair_force_balance <= pair_force_tol))
     std::snprintf(text, sizeof(text), "the contact forces on the two sides of the pairs of bodies differ by %.6g "
                   "(tolerance %.6g)", pair_force_balance, pair_force_tol);
+  else return friction.Violation();
   return text;
 }
 
@@ -188,8 +189,9 @@ PetscErrorCode ActiveSet::Seen(const std::vector<char> &next, const std::vector<
   PetscFunctionBeginUser;
   for (std::size_t p = 0; p < keys.size(); ++p)
     if (next[p]) {
+      // A flag above 1 (friction's stick and slip sets, Friction::SetKey) is another state of the pair.
       unsigned long long z = (unsigned long long)keys[p].original * 1000003ULL + (unsigned long long)keys[p].facet +
-                             0x9E3779B97F4A7C15ULL;
+                             0x9E3779B97F4A7C15ULL + (unsigned long long)(next[p] - 1) * 0x632BE59BD9B4E019ULL;
       z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
       z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
       mine += z ^ (z >> 31);

@@ -50,7 +50,7 @@ PetscErrorCode SaddlePointSystem::CreatePattern(const std::vector<SparseRow> &ro
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SetDefaultSolver(KSP ksp, SolverPath path) {
+PetscErrorCode SetDefaultSolver(KSP ksp, SolverPath path, bool lu) {
   PC pc;
   PetscFunctionBeginUser;
   // The iterative path: its settings become the options' defaults, which KSPSetFromOptions and the fieldsplit's
@@ -60,7 +60,7 @@ PetscErrorCode SetDefaultSolver(KSP ksp, SolverPath path) {
   PetscCall(KSPSetOptionsPrefix(ksp, "contact_"));
   PetscCall(KSPSetType(ksp, KSPPREONLY));
   PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCCHOLESKY));
+  PetscCall(PCSetType(pc, lu ? PCLU : PCCHOLESKY));
   PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   PetscCall(KSPSetTolerances(ksp, 1e-10, 1e-50, PETSC_DEFAULT, 2000));
   PetscFunctionReturn(0);
@@ -177,7 +177,7 @@ PetscErrorCode SaddlePointSystem::Create(const DofMap &dofs, const std::vector<S
     PetscCall(MatSetOption(A_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
     PetscCall(MatSetOption(A_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
   }
-  PetscCall(MatSetOption(A_, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(A_, MAT_SYMMETRIC, nonsymmetric_.empty() ? PETSC_TRUE : PETSC_FALSE));
   PetscCall(MatSetOption(A_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
   PetscCall(PetscObjectSetName((PetscObject)A_.get(), "saddle_point"));
   PetscCall(MatCreateVecs(A_, x_.out(), b_.out()));
@@ -240,12 +240,13 @@ PetscErrorCode SaddlePointSystem::CreateNest(const std::vector<SparseRow> &rows,
 }
 
 PetscErrorCode SaddlePointSystem::SetRow(const SparseRow &row, PetscInt p, const PetscScalar *coef,
-                                         PetscScalar d) {
+                                         PetscScalar d, const PetscScalar *column) {
   PetscFunctionBeginUser;
+  if (!column) column = coef;
   if (!nest_.on) {
     const PetscInt r = dofs_->LambdaRow(p);
     PetscCall(MatSetValues(A_, 1, &r, row.ncols, row.cols.data(), coef, INSERT_VALUES));
-    PetscCall(MatSetValues(A_, row.ncols, row.cols.data(), 1, &r, coef, INSERT_VALUES));
+    PetscCall(MatSetValues(A_, row.ncols, row.cols.data(), 1, &r, column, INSERT_VALUES));
     PetscCall(MatSetValue(A_, r, r, d, INSERT_VALUES));
     PetscFunctionReturn(0);
   }
@@ -253,7 +254,7 @@ PetscErrorCode SaddlePointSystem::SetRow(const SparseRow &row, PetscInt p, const
   std::vector<PetscInt> cols(row.ncols);
   for (PetscInt i = 0; i < row.ncols; ++i) cols[i] = dofs_->UBlockRow(row.cols[i]);
   PetscCall(MatSetValues(nest_.B, 1, &r, row.ncols, cols.data(), coef, INSERT_VALUES));
-  PetscCall(MatSetValues(nest_.Bt, row.ncols, cols.data(), 1, &r, coef, INSERT_VALUES));
+  PetscCall(MatSetValues(nest_.Bt, row.ncols, cols.data(), 1, &r, column, INSERT_VALUES));
   PetscCall(MatSetValue(nest_.D, r, r, d, INSERT_VALUES));
   PetscFunctionReturn(0);
 }
@@ -263,7 +264,7 @@ PetscErrorCode SaddlePointSystem::CreateKsp(MPI_Comm comm, bool &fieldsplit) {
   PetscBool is_fieldsplit;
   PetscFunctionBeginUser;
   PetscCall(KSPCreate(comm, ksp_.out()));
-  PetscCall(SetDefaultSolver(ksp_, path_));
+  PetscCall(SetDefaultSolver(ksp_, path_, !nonsymmetric_.empty()));
   PetscCall(KSPSetFromOptions(ksp_));
   // Every solve must end within ACCEPTED_RESIDUAL (CheckAndConvert): a looser Krylov tolerance would only fail after
   // the solve. The iterative presets take 1e-10 (PETSc reads no tolerance for KSPPREONLY, the direct presets).
@@ -313,8 +314,24 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   SaddlePointOptions opts;
   PetscCall(ReadSaddlePointOptions(comm, opts));
   PetscCall(CheckReuseOptions(comm, opts, constant_k));
+  if (!nonsymmetric_.empty()) {
+    // A nonsymmetric matrix: a factorisation with pivoting of the plain form at every change.
+    PetscBool lu;
+    PCType type;
+    PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
+    PetscCall(PCGetType(pc, &type));
+    PetscCheck(lu, comm, PETSC_ERR_USER_INPUT,
+               "%s makes the saddle-point matrix nonsymmetric, which the given solver (-contact_pc_type %s) cannot "
+               "solve; expected an LU factorisation: no solver option (MUMPS LU is then the default) or "
+               "-options_file options/solver/mumps_lu.yml",
+               nonsymmetric_.c_str(), type);
+    PetscCheck(!(opts.reuse_set && opts.reuse_factorization), comm, PETSC_ERR_USER_INPUT,
+               "-contact_reuse_factorization with %s: the kept factorisation needs a symmetric saddle-point matrix; "
+               "expected -contact_reuse_factorization 0 or no such option",
+               nonsymmetric_.c_str());
+  }
   const bool possible = mumps_factor_ != nullptr;
-  reuse_ = possible && opts.reuse_factorization && dofs_->GlobalLambda() > 0;
+  reuse_ = possible && opts.reuse_factorization && dofs_->GlobalLambda() > 0 && nonsymmetric_.empty();
   // PETSc's MUMPS interface takes no given ordering (it would stop at the factorisation).
   PetscCheck(!(possible && !reuse_ && mumps_controls_.Icntl(7, 7) == 1), comm, PETSC_ERR_USER_INPUT,
              "-contact_mat_mumps_icntl_7 1 (the given nested dissection) applies to the kept factorisation only "
@@ -561,7 +578,9 @@ PetscErrorCode SaddlePointSystem::MultiplierDiagonal(std::vector<PetscScalar> &d
 
 PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<SparseRow> &rows,
                                                  const std::vector<char> &active, double inactive_diag,
-                                                 double stabilisation) {
+                                                 double stabilisation,
+                                                 const std::vector<std::vector<double>> *columns,
+                                                 const std::vector<double> *diag) {
   std::vector<PetscScalar> zeros;
   PetscFunctionBeginUser;
   PetscCheck(stabilisation >= 0 && stabilisation < aug_inactive_, PetscObjectComm((PetscObject)A_.get()),
@@ -576,8 +595,10 @@ PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<SparseRow> &r
   for (std::size_t p = 0; p < rows.size(); ++p) {
     const bool keep = active[p] || augmented_ || stab_ > 0;
     if (!keep) zeros.assign(rows[p].ncols, 0.0);
+    const bool column = keep && columns && !(*columns)[p].empty();
     PetscCall(SetRow(rows[p], (PetscInt)p, keep ? rows[p].coef.data() : zeros.data(),
-                     active[p] ? 0.0 : InactiveDiagonal(inactive_diag)));
+                     active[p] ? (diag ? (*diag)[p] : 0.0) : InactiveDiagonal(inactive_diag),
+                     column ? (*columns)[p].data() : nullptr));
   }
   active_ = active;
   PetscCall(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));

@@ -213,6 +213,7 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
       PetscCall(mortar_.AddMasterForces(mult_, 1, master));
       for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) fi[i] += master[i];
     }
+    if (friction_.On()) friction_.AddForces(pairs_, dofs_, 1, true, fi);
     PetscCall(VecRestoreArrayRead(fext_, &fe));
     PetscCall(VecRestoreArray(fint_, &fi));
     st.r.norm = st.solve_residual;
@@ -235,7 +236,7 @@ PetscErrorCode ContactSolver::StepControl(StepState &st, PetscInt it, PetscInt &
     PetscCall(RecordIteration(st.step, it, st.factor, st.next, changes, st.krylov, st.r.norm, st.last_solve_time));
     // A state that may be the solution: certified, or the loop goes on (svk: Newton; linear: one more solve corrects
     // an equilibrium residual left by an inexact solver) or stops with the violated condition.
-    if (changes == 0 && !st.moving && !st.stabilised) {
+    if (changes == 0 && st.friction_changes == 0 && st.friction_turns == 0 && !st.moving && !st.stabilised) {
       PetscCall(JudgeCandidate(st, it, outcome, done));
       if (done) PetscFunctionReturn(0);
     }
@@ -272,7 +273,7 @@ PetscErrorCode ContactSolver::ActiveSetCameBack(StepState &st, PetscInt it, Pets
   const bool lagging = model_->Nonlinear() && opts_.lagged_search && system_->ReusesFactorization() && !st.newton.exact;
   if (it > 0 && changes > 0 && std::isfinite(st.r.norm) && (lagging || !active_set_.OneAtATime())) {
     bool back;
-    PetscCall(active_set_.Seen(st.next, keys_, model_->CycleRepeats(), back, false));
+    PetscCall(active_set_.Seen(SetKey(st), keys_, model_->CycleRepeats(), back, false));
     if (back && lagging) {
       st.newton.exact = true;
       active_set_.Forget();
@@ -430,11 +431,12 @@ PetscErrorCode ContactSolver::StopAtLimits(StepState &st, PetscInt it, PetscInt 
   const bool limit =
       model_->Nonlinear() ? it >= opts_.newton_max_it || st.set_changes > contact_.max_it : it >= contact_.max_it;
   bool cycling = false;
-  if (std::isfinite(st.r.norm) && !limit) PetscCall(active_set_.Seen(st.next, keys_, model_->CycleRepeats(), cycling));
+  if (std::isfinite(st.r.norm) && !limit)
+    PetscCall(active_set_.Seen(SetKey(st), keys_, model_->CycleRepeats(), cycling));
   if (!std::isfinite(st.r.norm))
     stats_.reason = Reason::DIVERGED_NONINVERTIBLE_DEFORMATION;
   else if (limit) stats_.reason = Reason::DIVERGED_MAX_IT;
-  else if (cycling && changes > 0 && it > 0) stats_.reason = Reason::DIVERGED_CYCLING;
+  else if (cycling && changes + st.friction_changes > 0 && it > 0) stats_.reason = Reason::DIVERGED_CYCLING;
   else PetscFunctionReturn(0);
   outcome = Outcome::STOP;
   PetscFunctionReturn(0);
@@ -453,6 +455,9 @@ PetscErrorCode ContactSolver::Certify(const std::vector<double> &u_eval, double 
   std::copy(unpaired.x, unpaired.x + 3, cert.unpaired_x);
   cert.search_radius = contact_.search_radius;
   if (!mortar_.Empty()) PetscCall(PairForceBalance(cert));
+  if (friction_.On())
+    PetscCall(friction_.Certify(mesh_.Comm(), mesh_, pairs_, states_, u_eval.data(), cert.lambda_tol, cert.gap_tol,
+                                cert.friction));
   // No solve can lift a node whose normal motion the supports prescribe: the input contradicts itself.
   PetscCheck(prescribed.depth <= cert.gap_tol, mesh_.Comm(), PETSC_ERR_USER_INPUT,
              "candidate node %" PetscInt_FMT " (at %.6g, %.6g, %.6g) is held by -bc_dirichlet inside the obstacle, by %.6g "

@@ -32,7 +32,10 @@ PetscErrorCode ContactSolver::Setup() {
   PetscCall(mortar_.Build(mesh_, contact_, dirichlet_.fixed, (PetscInt)obstacle_.facets.size()));
   PetscCall(FindAllPairs(pairs_, candidate_, nullptr, &held_));
   if (!model_->CurrentConfiguration()) DropOutOfZone(pairs_);
-  PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size()));
+  PetscCheck(!(friction_.On() && model_->Nonlinear()), comm, PETSC_ERR_USER_INPUT,
+             "-contact_friction %g with -material_model svk: friction is implemented for the linear material only so "
+             "far; expected -material_model linear, or -contact_friction 0", friction_.Coefficient());
+  PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size() * RowsPerPair()));
   assembler_ = std::make_unique<Assembler>(mesh_, material_, dofs_, dirichlet_);
   PetscCall(assembler_->CheckCells());
   PetscCall(assembler_->StiffnessScale(kscale_, &krow_));
@@ -68,7 +71,20 @@ PetscErrorCode ContactSolver::CreateSystem() {
   system_->UsePath(stats_.solver.by == ChosenBy::SOLVER_OPTIONS ? SolverPath::DIRECT : stats_.solver.path);
   std::function<PetscErrorCode(Mat)> insert_pattern;
   PetscCall(SystemPattern(d_nnz, o_nnz, insert_pattern));
-  PetscCall(system_->Create(dofs_, rows_, coords, !model_->Nonlinear(), kscale_, d_nnz, o_nnz, insert_pattern));
+  std::vector<ConstraintRow> rows = rows_;
+  if (friction_.On()) {
+    // The tangential rows after the normal ones, on the same columns.
+    std::vector<char> is_mortar(pairs_.size()), flags;
+    for (std::size_t p = 0; p < pairs_.size(); ++p) is_mortar[p] = mortar_.IsMortar(pairs_[p]);
+    friction_.Bind(mesh_, dofs_, dirichlet_.fixed, pairs_, normals_, is_mortar);
+    std::vector<std::vector<double>> columns;
+    std::vector<double> diag;
+    friction_.SystemRows(rows_, std::vector<char>(pairs_.size(), 0), rows, flags, columns, diag);
+    char why[64];
+    std::snprintf(why, sizeof(why), "-contact_friction %g", friction_.Coefficient());
+    system_->UseNonsymmetric(why);
+  }
+  PetscCall(system_->Create(dofs_, rows, coords, !model_->Nonlinear(), kscale_, d_nnz, o_nnz, insert_pattern));
   if (opts_.lagged_search_set && opts_.lagged_search) system_->KeepFactorization();
   k_assembled_ = false;
   PetscCall(MatCreateVecs(system_->A(), u_.out(), nullptr));
@@ -183,6 +199,19 @@ PetscErrorCode ContactSolver::ChooseSolver() {
     PetscFunctionReturn(0);
   };
   PetscCall(ChooseSolverPath(comm, opts.path, given, factor_pc, problem, stats_.solver));
+  if (friction_.On() && stats_.solver.path == SolverPath::ITERATIVE) {
+    // Friction's slip rows make the matrix nonsymmetric, which the iterative path's Schur fieldsplit (its augmented
+    // form and its kept displacement preconditioner) is not built for: MUMPS LU solves it.
+    PetscCheck(stats_.solver.by == ChosenBy::AUTO, comm, PETSC_ERR_USER_INPUT,
+               "-contact_friction %g: the iterative path (%s) does not solve the nonsymmetric saddle-point matrix of "
+               "friction yet; expected the direct path: -contact_solver direct, no solver option, or -options_file "
+               "options/solver/mumps_lu.yml",
+               friction_.Coefficient(),
+               stats_.solver.by == ChosenBy::CONTACT_SOLVER ? "-contact_solver iterative" : "the given solver options");
+    stats_.solver.path = SolverPath::DIRECT;
+    stats_.solver.why = "friction: the slip rows make the matrix nonsymmetric, which MUMPS LU solves (the iterative "
+                        "path does not yet)";
+  }
   stats_.solver_chosen = true;
   ProgressNote("solver: %s (%s: %s)", SOLVER_PATH_NAMES[(int)stats_.solver.path], CHOSEN_BY_NAMES[(int)stats_.solver.by],
                stats_.solver.why.c_str());
@@ -274,7 +303,7 @@ PetscErrorCode ContactSolver::AdoptPairs(std::vector<ContactPair> pairs, const s
   std::vector<double> u_owned;
   PetscCall(OwnedDisplacement(u_owned));
   pairs_ = std::move(pairs);
-  PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size()));
+  PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size() * RowsPerPair()));
   PetscCall(CreateSystem());
   PetscCall(SetOwnedDisplacement(u_owned));
   lambda_ = lambda, mult_ = mult;
@@ -374,6 +403,8 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
   PetscReal load_scale;
   PetscCall(VecNorm(fext_, NORM_INFINITY, &load_scale));
   active_set_.BeginStep(load_scale);
+  // Friction: the slips of this step count from the converged state.
+  if (friction_.On()) friction_.BeginStep(pairs_, u_local_.data());
   retry_.widen_to = 0;
   retry_.unheld_detail.clear();
   PetscInt it = 0;
@@ -389,6 +420,15 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
       }
       if (it == 0) active_set_.First(states_, first, keys_, normals_, st.next);
       else PetscCall(active_set_.Next(states_, it, keys_, normals_, st.next, changes));
+      if (friction_.On()) {
+        // The stick and slip sets of the next solve, from this solve's multipliers and slips.
+        st.friction_changes = st.friction_turns = 0;
+        if (it == 0) friction_.First(st.next);
+        else
+          PetscCall(friction_.Next(mesh_.Comm(), pairs_, states_, st.next, st.u_eval.data(), contact_.c,
+                                   st.friction_changes, st.friction_turns));
+        friction_.SetKey(st.next, st.key);
+      }
     }
     Outcome outcome;
     PetscCall(StepControl(st, it, changes, outcome));
@@ -411,8 +451,9 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
     if (outcome == Outcome::CONVERGED || outcome == Outcome::STOP) break;
     if (outcome == Outcome::EXTENDED) continue;
     active_set_.Set(st.next);
+    friction_.Adopt();
     bool held;
-    PetscCall(rigid_.Held(keys_, normals_, st.next, held));
+    PetscCall(Held(st.next, held));
     st.stabilised = !held;
     PetscCall(AssembleSystem(st));
     PetscCall(SolveAndUpdate(st));
@@ -422,6 +463,26 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
   // call regular pivots null (the step may be repeated with the pairs of a wider radius, UnpairedAfterFailure).
   if (st.singular) stats_.reason = Reason::DIVERGED_SINGULAR;
   if (!ok) PetscCall(UnpairedAfterFailure(st, it));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::Held(const std::vector<char> &next, bool &held) const {
+  PetscFunctionBeginUser;
+  if (!friction_.On()) {
+    PetscCall(rigid_.Held(keys_, normals_, next, held));
+    PetscFunctionReturn(0);
+  }
+  // A stick pair holds its node along its tangents too, a 3D slip pair across its slip.
+  std::vector<PairKey> keys = keys_;
+  std::vector<std::array<double, 3>> normals = normals_;
+  std::vector<char> flags = next;
+  std::vector<std::array<double, 3>> dirs;
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    if (!next[p]) continue;
+    friction_.HeldDirections(p, dirs);
+    for (const auto &d : dirs) keys.push_back(keys_[p]), normals.push_back(d), flags.push_back(1);
+  }
+  PetscCall(rigid_.Held(keys, normals, flags, held));
   PetscFunctionReturn(0);
 }
 
@@ -472,6 +533,7 @@ PetscErrorCode ContactSolver::SaveConverged(Converged &c) const {
   c.lambda = lambda_;
   c.mult = mult_;
   c.active = active_set_.Flags();
+  if (friction_.On()) c.friction = friction_.Save();
   PetscFunctionReturn(0);
 }
 
@@ -492,6 +554,7 @@ PetscErrorCode ContactSolver::RestoreConverged(const Converged &c) {
   lambda_ = c.lambda;
   mult_ = c.mult;
   active_set_.Set(c.active);
+  if (friction_.On() && c.friction.grip.size() == pairs_.size()) friction_.Restore(c.friction);
   PetscFunctionReturn(0);
 }
 

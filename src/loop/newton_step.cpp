@@ -45,6 +45,7 @@ PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double
     for (int k = 0; k < dim; ++k) r[dofs_.LocalOffset(pairs_[p].vertex, k)] -= lambda[p] * normals_[p][k];
   // The mortar pairs' forces on their master nodes (of any rank).
   if (!mortar_.Empty()) PetscCall(mortar_.AddMasterForces(lambda, -1, r));
+  if (friction_.On()) friction_.AddForces(pairs_, dofs_, -1, false, r.data());
   // s[3]: ||u||^2 over the owned rows (prescribed values included), for the round-off of F_int (roundoff).
   for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
     if (mesh_.Owned(v))
@@ -95,7 +96,19 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
     k_assembled_ = true;
     ProgressEnd();
   }
-  PetscCall(system_->SetConstraints(rows_, st.next, -1.0 / kscale_, st.stabilised ? STABILISATION * kscale_ : 0.0));
+  if (friction_.On()) {
+    // The tangential rows after the normal ones: stick rows active, slip pairs' normal columns with their friction.
+    std::vector<ConstraintRow> rows;
+    std::vector<char> flags;
+    std::vector<std::vector<double>> columns;
+    std::vector<double> diag;
+    friction_.SystemRows(rows_, st.next, rows, flags, columns, diag);
+    PetscCall(system_->SetConstraints(rows, flags, -1.0 / kscale_, st.stabilised ? STABILISATION * kscale_ : 0.0,
+                                      &columns, &diag));
+  } else {
+    PetscCall(
+        system_->SetConstraints(rows_, st.next, -1.0 / kscale_, st.stabilised ? STABILISATION * kscale_ : 0.0));
+  }
   if (Condensable(st)) {
     // The base's right-hand side with the new active set: its displacement rows stay, the gaps are the base's.
     PetscScalar *b;
@@ -128,6 +141,7 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
       for (int k = 0; k < dim; ++k)
         if (dirichlet_.fixed[v * dim + k]) b[dofs_.LocalOffset(v, k)] = kscale_ * st.delta[v * dim + k];
   for (std::size_t p = 0; p < pairs_.size(); ++p) b[dofs_.OwnedU() + p] = st.next[p] ? states_[p].gap : 0.0;
+  if (friction_.On()) friction_.RowRhs(pairs_, st.u_eval.data(), b + dofs_.OwnedU() + pairs_.size());
   PetscCall(VecRestoreArrayRead(fint_, &fi));
   PetscCall(VecRestoreArrayRead(fext_, &fe));
   PetscCall(VecRestoreArray(system_->Rhs(), &b));
@@ -270,6 +284,7 @@ PetscErrorCode ContactSolver::UpdateSolution(double r0, bool stabilised, double 
   PetscCall(VecGetArrayRead(system_->Solution(), &x));
   // The solved multipliers: contact forces on active rows, stabilisation springs on inactive ones.
   for (std::size_t p = 0; p < pairs_.size(); ++p) mult_[p] = x[nu + p], new_lambda[p] = active[p] ? x[nu + p] : 0.0;
+  if (friction_.On()) friction_.Read(x + nu + pairs_.size(), new_lambda, mult_);
   PetscCall(VecRestoreArrayRead(system_->Solution(), &x));
   PetscCall(VecCopy(u_, du_));
   // Step length: halved while det F <= MIN_DET_F somewhere (always); with -newton_linesearch, the line search of Crisfield

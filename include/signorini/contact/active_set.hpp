@@ -61,6 +61,23 @@ void ProposeSet(const std::vector<PairState> &states, double c, double tol, doub
                 const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
                 std::vector<char> &next, double gap_tol = 0);
 
+/// The friction part of the certificate (docs/theory.md §9), over the pairs with mu > 0.
+struct FrictionCertificate {
+  bool on = false;
+  double cone = 0;        ///< max (|lambda_t| - mu lambda_n) over the active pairs
+  double stick_slip = 0;  ///< max |s| over the stick pairs
+  double slip_rule = 0;   ///< max |lambda_t - mu lambda_n s/|s|| over the slip pairs with |s| > slip_tol
+  double open_force = 0;  ///< max |lambda_t| over the open pairs
+  double force_tol = 0;   ///< FORCE_RTOL times the largest lambda_n (or the lambda tolerance when larger)
+  double slip_tol = 0;    ///< -contact_gap_tol
+  PetscInt node[4] = {-1, -1, -1, -1}; ///< the node (file numbering, from 1) of each of the four above
+  PetscInt stick = 0, slip = 0;        ///< pairs in each set
+  double tangential_force[3] = {0, 0, 0}; ///< total friction force on the body, sum -t lambda_t
+  /// The condition that fails, as a phrase for an error message (naming the node); empty when satisfied.
+  std::string Violation() const;
+  static constexpr double FORCE_RTOL = 1e-8;
+};
+
 /// The discrete Signorini conditions at a state, checked over every candidate pair; the residuals and the
 /// thresholds they are held to. Satisfied() is the only way the loop reports convergence.
 struct Certificate {
@@ -86,6 +103,7 @@ struct Certificate {
   /// node's support): beyond round-off the rows are wrong.
   static constexpr double PAIR_FORCE_RTOL = 1e-10;
   PetscInt active = 0;            ///< active pairs
+  FrictionCertificate friction;   ///< -contact_friction > 0 (friction.hpp)
   bool Satisfied() const;
   /// The first condition that fails, as a phrase for an error message; empty when satisfied.
   std::string Violation() const;
@@ -144,7 +162,8 @@ public:
   void Forget() { seen_.clear(); }
   /// Forgets them and the one-at-a-time mode: the step starts again from another set.
   void Restart() { seen_.clear(), single_ = false; }
-  /// Records `next` (unless record is false) and tells whether it came back: an earlier set of this load step
+  /// Records `next` (unless record is false; a flag above 1 is another state of an active pair) and tells whether
+  /// it came back: an earlier set of this load step
   /// (`repeats` times before). Collective.
   [[nodiscard]] PetscErrorCode Seen(const std::vector<char> &next, const std::vector<PairKey> &keys, int repeats,
                                     bool &cycling, bool record = true);

@@ -51,7 +51,8 @@ namespace signorini {
 /// The default saddle-point solver of a path (direct: MUMPS LDL^T of the whole matrix; iterative: the settings of
 /// options/solver/fieldsplit_gamg.yml, SetIterativeDefaults), options prefix -contact_, iterative tolerances rtol
 /// 1e-10; options given by the user override it at KSPSetFromOptions.
-[[nodiscard]] PetscErrorCode SetDefaultSolver(KSP ksp, SolverPath path = SolverPath::DIRECT);
+/// lu: the matrix is nonsymmetric (friction): the direct path's default is MUMPS LU.
+[[nodiscard]] PetscErrorCode SetDefaultSolver(KSP ksp, SolverPath path = SolverPath::DIRECT, bool lu = false);
 
 /// Options of the saddle-point system: -contact_reuse_factorization (set tells whether the user gave it),
 /// -contact_reuse_max_it (the FGMRES iterations on a kept factorisation of an earlier tangent before a refactorisation,
@@ -88,6 +89,11 @@ public:
   /// Collective.
   /// The path (SolverChoice) whose default solver Create sets up: direct unless told otherwise before Create.
   void UsePath(SolverPath path) { path_ = path; }
+  /// The matrix will be nonsymmetric (friction's slip rows; before Create): the default solver is MUMPS LU, a solver
+  /// that needs symmetry (a Cholesky factorisation, a fieldsplit preset) is refused naming what would do, and the
+  /// factorisation is not kept across active sets (the plain form, refactored at every change). why: the cause, for
+  /// the messages.
+  void UseNonsymmetric(const std::string &why) { nonsymmetric_ = why; }
   [[nodiscard]] PetscErrorCode Create(const DofMap &dofs, const std::vector<SparseRow> &rows,
                                       const std::vector<double> &coords, bool constant_k, double kscale,
                                       const std::vector<PetscInt> &d_nnz_k, const std::vector<PetscInt> &o_nnz_k,
@@ -123,8 +129,13 @@ public:
   /// s B_i^T B_i on the normal of every inactive pair to the displacement block (plain form: the row kept with
   /// D = -1/s; augmented: D = 1/(r_I - s)), for a body that the active set does not hold. Ends with a final assembly
   /// of A. Collective.
+  /// columns (if given): per row, the coefficients of its column B^T where they differ from the row's (empty: the
+  /// same), on the row's pattern (a nonsymmetric matrix, UseNonsymmetric); diag (if given): per row, D on an active
+  /// row instead of 0 (a spring 1/|D| on the row's direction: friction's slip rows in 3D).
   [[nodiscard]] PetscErrorCode SetConstraints(const std::vector<SparseRow> &rows, const std::vector<char> &active,
-                                              double inactive_diag, double stabilisation = 0);
+                                              double inactive_diag, double stabilisation = 0,
+                                              const std::vector<std::vector<double>> *columns = nullptr,
+                                              const std::vector<double> *diag = nullptr);
   /// Solves A x = b; a failed or inaccurate solve is an error naming the likely cause. On return the multiplier
   /// rows of the solution hold, in both forms, the contact multipliers lambda on active rows and the spring forces
   /// -s B du on inactive ones (0 without stabilisation), so that F_int(u + du) = f + B^T x on the free rows.
@@ -201,7 +212,9 @@ private:
                                           const std::function<PetscErrorCode(Mat)> &insert_k);
   /// Writes constraint row p (its coefficients coef, or zeros) into B and B^T and its diagonal d (INSERT_VALUES), in A
   /// or in the nest's blocks. Not collective.
-  [[nodiscard]] PetscErrorCode SetRow(const SparseRow &row, PetscInt p, const PetscScalar *coef, PetscScalar d);
+  /// column (if given): the coefficients of its column B^T instead of coef.
+  [[nodiscard]] PetscErrorCode SetRow(const SparseRow &row, PetscInt p, const PetscScalar *coef, PetscScalar d,
+                                      const PetscScalar *column = nullptr);
   /// Nonzeros per owned row of the whole matrix: K's counts plus the constraint entries.
   void RowCounts(const std::vector<SparseRow> &rows, const std::vector<PetscInt> &d_nnz_k,
                  const std::vector<PetscInt> &o_nnz_k, std::vector<PetscInt> &d_nnz,
@@ -314,6 +327,7 @@ private:
   PetscBool lu_ = PETSC_FALSE; ///< the PC is LU (the mumps_lu preset): the reuse mode factors with LU too
   double aug_ = 1;  ///< augmentation weight r (the stiffness scale)
   SolverPath path_ = SolverPath::DIRECT; ///< UsePath
+  std::string nonsymmetric_; ///< UseNonsymmetric's cause (empty: symmetric)
   double aug_inactive_ = 1; ///< augmentation weight r_I of an inactive row (r, or INACTIVE_WEIGHT r: iterative)
   std::vector<double> weight_; ///< owned multiplier rows: the augmentation weight A holds now (AddAugmentation)
   double stab_ = 0; ///< stabilisation spring s of the current system (0: none)

@@ -6,6 +6,7 @@
 #include "signorini/contact/active_set.hpp"
 #include "signorini/contact/constraints.hpp"
 #include "signorini/contact/contact_set.hpp"
+#include "signorini/contact/friction.hpp"
 #include "signorini/contact/mortar.hpp"
 #include "signorini/contact/rigid_modes.hpp"
 #include "signorini/fem/assembly.hpp"
@@ -40,7 +41,9 @@ public:
       : mesh_(mesh), material_(material), model_(MakeMaterialPolicy(material.model)), bc_(bc), obstacle_(obstacle),
         contact_(contact), opts_(solver),
         active_set_(mesh.Comm(), {contact.c, contact.gap_tol, contact.touch_tol, contact.activation_fraction,
-                                  contact.length, contact.activation_gap_factor}) {}
+                                  contact.length, contact.activation_gap_factor}) {
+    friction_.SetCoefficient(contact.friction);
+  }
 
   /// Initial weight of the springs on the normals of the inactive pairs, relative to the stiffness scale, in the
   /// solves whose active set leaves a rigid-body motion free (RigidModes). They pull the increment towards the
@@ -85,7 +88,7 @@ public:
   /// A plain view of the final state for post-processing (valid while the solver lives).
   SolvedState State() const {
     return {mesh_,   dofs_,    dirichlet_, pairs_, states_,       normals_,      candidate_,
-            u_local_, fext_,    fint_,      stats_, certificate_, &mortar_};
+            u_local_, fext_,    fint_,      stats_, certificate_, &mortar_, friction_.On() ? &friction_ : nullptr};
   }
   /// External load and internal force at the converged state (displacement rows of the saddle-point layout).
   Vec Fext() const { return fext_; }
@@ -134,6 +137,7 @@ private:
     std::vector<ContactPair> pairs;
     std::vector<double> lambda, mult;
     std::vector<char> active;
+    Friction::Saved friction;
   };
   [[nodiscard]] PetscErrorCode SaveConverged(Converged &c) const;
   /// Goes back to c after a failed attempt (the pairs adopted again where they changed on some rank). Collective.
@@ -158,6 +162,12 @@ private:
                                         const PetscScalar *direction = nullptr, double *dot = nullptr,
                                         double *roundoff = nullptr);
   [[nodiscard]] PetscErrorCode SetDirichlet(double factor);
+  /// Multiplier rows per pair: 1, or dim with friction (the tangential rows after the normal ones).
+  PetscInt RowsPerPair() const { return friction_.On() ? mesh_.Dim() : 1; }
+  /// Whether the supports and the next solve's active rows (st.next, with friction the stick rows) hold every rigid
+  /// mode (RigidModes::Held). Collective.
+  [[nodiscard]] PetscErrorCode Held(const std::vector<char> &next, bool &held) const;
+
   [[nodiscard]] PetscErrorCode UpdateSolution(double residual_before, bool stabilised, double &step);
   /// What runs per load step (LoadStep) and per active-set/Newton iteration within it: EvaluateIterate (pairs at the
   /// current iterate, the residual), the active-set update (ActiveSet), StepControl (certificate, stabilisation
@@ -169,6 +179,10 @@ private:
     bool first;
     std::vector<double> delta{}, u_eval{}; ///< prescribed-displacement increment still to apply; u + delta
     std::vector<char> next{};              ///< the active set of the next solve
+    /// Friction (-contact_friction): pairs whose stick/slip set changes for the next solve, slip pairs whose
+    /// direction turned (3D), and the sets as one key per pair for cycle detection (Friction::SetKey).
+    PetscInt friction_changes = 0, friction_turns = 0;
+    std::vector<char> key{};
     PetscInt krylov = 0;
     double last_solve_time = 0, solve_residual = 0;
     /// The equilibrium residual at the iterate, its force scale and its round-off (Residual).
@@ -242,6 +256,8 @@ private:
   /// Collective.
   [[nodiscard]] PetscErrorCode WidenSearch(const std::vector<double> &lambda, const std::vector<double> &mult,
                                            const std::vector<char> &active);
+  /// The active-set flags that identify a set for cycle detection: st.next, or with friction st.key.
+  const std::vector<char> &SetKey(const StepState &st) const { return friction_.On() ? st.key : st.next; }
   [[nodiscard]] PetscErrorCode EvaluateIterate(StepState &st, PetscInt it);
   [[nodiscard]] PetscErrorCode StepControl(StepState &st, PetscInt it, PetscInt &changes, Outcome &outcome);
   /// StepControl's parts, in its order. svk, once the set cycled: a switch away from an equilibrium of the current set
@@ -309,6 +325,7 @@ private:
   RigidModes rigid_;
   Certificate certificate_;
   std::vector<PairState> states_;
+  Friction friction_; ///< Coulomb friction at the pairs against rigid obstacles (-contact_friction)
   std::vector<ConstraintRow> rows_;
   std::vector<std::array<double, 3>> normals_;
   DofMap dofs_;

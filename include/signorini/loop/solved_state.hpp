@@ -3,6 +3,7 @@
 
 #include "signorini/contact/active_set.hpp"
 #include "signorini/contact/contact_set.hpp"
+#include "signorini/contact/friction.hpp"
 #include "signorini/contact/mortar.hpp"
 #include "signorini/fem/assembly.hpp"
 #include "signorini/fem/dof_map.hpp"
@@ -30,6 +31,7 @@ struct SolvedState {
   const SolveStats &stats;
   const Certificate &certificate;
   const MortarCoupling *mortar; ///< the master terms of the pairs of bodies (forces on the master nodes)
+  const Friction *friction;     ///< the friction at the pairs (null: frictionless)
 };
 
 } // namespace signorini

@@ -1,0 +1,364 @@
+// Coulomb friction at the pairs against rigid obstacles: tangent bases and rows, slips, the stick/slip sets, the
+// system's rows and the certificate (friction.hpp, docs/theory.md §9).
+#include "signorini/contact/friction.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace signorini {
+
+const char *const GRIP_NAMES[] = {"open", "slip", "stick"};
+
+namespace {
+
+/// An orthonormal tangent basis of the unit normal n: in 2D t = (n_y, -n_x) (along +x on a floor); in 3D t_1 is the
+/// coordinate axis least aligned with n made orthogonal to it (the first at a tie: x on a floor), t_2 = n x t_1.
+void TangentBasis(int dim, const double *n, std::array<std::array<double, 3>, 2> &t) {
+  t = {};
+  if (dim == 2) {
+    t[0] = {n[1], -n[0], 0};
+    return;
+  }
+  int e = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(n[k]) < std::abs(n[e])) e = k;
+  double norm = 0;
+  for (int k = 0; k < 3; ++k) t[0][k] = (k == e) - n[e] * n[k], norm += t[0][k] * t[0][k];
+  for (int k = 0; k < 3; ++k) t[0][k] /= std::sqrt(norm);
+  t[1] = {n[1] * t[0][2] - n[2] * t[0][1], n[2] * t[0][0] - n[0] * t[0][2], n[0] * t[0][1] - n[1] * t[0][0]};
+}
+
+} // namespace
+
+std::string FrictionCertificate::Violation() const {
+  char text[512] = "";
+  if (!on) return text;
+  if (!(cone <= force_tol))
+    std::snprintf(text, sizeof(text),
+                  "friction: the tangential force of node %" PetscInt_FMT " exceeds mu times its normal force by %.6g "
+                  "(tolerance %.6g)", node[0], cone, force_tol);
+  else if (!(stick_slip <= slip_tol))
+    std::snprintf(text, sizeof(text), "friction: stick node %" PetscInt_FMT " slipped by %.6g (tolerance %.6g)",
+                  node[1], stick_slip, slip_tol);
+  else if (!(slip_rule <= force_tol))
+    std::snprintf(text, sizeof(text),
+                  "friction: the tangential force of slip node %" PetscInt_FMT " differs from mu lambda_n s/|s| by "
+                  "%.6g (tolerance %.6g)", node[2], slip_rule, force_tol);
+  else if (!(open_force <= force_tol))
+    std::snprintf(text, sizeof(text), "friction: open node %" PetscInt_FMT " carries a tangential force %.6g", node[3],
+                  open_force);
+  return text;
+}
+
+void Friction::Bind(const Mesh &mesh, const DofMap &dofs, const std::vector<char> &fixed,
+                    const std::vector<ContactPair> &pairs, const std::vector<std::array<double, 3>> &normals,
+                    const std::vector<char> &is_mortar) {
+  dim_ = mesh.Dim();
+  const std::size_t n = pairs.size();
+  const int m = PerPair();
+  mu_pair_.assign(n, 0.0);
+  tangents_.assign(n, {});
+  rows_.assign(n * m, SparseRow());
+  components_.assign(n, {});
+  base_.assign(n * m, 0.0);
+  grip_.assign(n, Grip::OPEN), next_ = grip_;
+  dir_.assign(n * m, 0.0), next_dir_ = dir_;
+  across_.assign(n, NAN), next_across_ = across_;
+  lambda_t_.assign(n * m, 0.0), mult_t_ = lambda_t_;
+  for (std::size_t p = 0; p < n; ++p) {
+    if (is_mortar[p]) continue;
+    mu_pair_[p] = mu_;
+    TangentBasis(dim_, normals[p].data(), tangents_[p]);
+    const PetscInt v = pairs[p].vertex;
+    for (int c = 0; c < dim_; ++c)
+      if (!fixed[v * dim_ + c]) components_[p].push_back(c);
+    for (int k = 0; k < m; ++k) {
+      // A tangent whose free part vanishes (the supports fix the node along it) gets no row: nothing can slip there.
+      double free2 = 0;
+      for (int c : components_[p]) free2 += tangents_[p][k][c] * tangents_[p][k][c];
+      if (free2 < 1e-12) continue;
+      for (int c : components_[p]) rows_[p * m + k].Add(dofs.Row(v, c), tangents_[p][k][c]);
+    }
+  }
+}
+
+void Friction::BeginStep(const std::vector<ContactPair> &pairs, const double *u_local) {
+  const int m = PerPair();
+  for (std::size_t p = 0; p < pairs.size(); ++p)
+    for (int k = 0; k < m; ++k) {
+      double s = 0;
+      for (int c = 0; c < dim_; ++c) s += tangents_[p][k][c] * u_local[pairs[p].vertex * dim_ + c];
+      base_[p * m + k] = s;
+    }
+}
+
+void Friction::Slips(const std::vector<ContactPair> &pairs, const double *u_local, std::vector<double> &s) const {
+  const int m = PerPair();
+  s.assign(pairs.size() * m, 0.0);
+  for (std::size_t p = 0; p < pairs.size(); ++p)
+    for (int k = 0; k < m; ++k) {
+      // Along a tangent the supports fix, the node's motion is theirs: no slip of friction's.
+      if (rows_[p * m + k].ncols == 0) continue;
+      double v = -base_[p * m + k];
+      for (int c = 0; c < dim_; ++c) v += tangents_[p][k][c] * u_local[pairs[p].vertex * dim_ + c];
+      s[p * m + k] = v;
+    }
+}
+
+void Friction::First(const std::vector<char> &active) {
+  for (std::size_t p = 0; p < grip_.size(); ++p) {
+    next_[p] = !active[p] || mu_pair_[p] == 0 ? Grip::OPEN : grip_[p] == Grip::OPEN ? Grip::STICK : grip_[p];
+    for (int k = 0; k < PerPair(); ++k) next_dir_[p * PerPair() + k] = dir_[p * PerPair() + k];
+    // A new step's slip starts from 0: across the slip it sticks until the next update.
+    next_across_[p] = next_[p] == Grip::SLIP ? 0.0 : NAN;
+  }
+}
+
+PetscErrorCode Friction::Next(MPI_Comm comm, const std::vector<ContactPair> &pairs,
+                              const std::vector<PairState> &states, const std::vector<char> &active,
+                              const double *u_local, double c, PetscInt &changes, PetscInt &turns) {
+  const int m = PerPair();
+  std::vector<double> s;
+  PetscInt counts[2] = {0, 0};
+  PetscFunctionBeginUser;
+  Slips(pairs, u_local, s);
+  next_dir_ = dir_;
+  next_across_.assign(pairs.size(), NAN);
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    if (!active[p] || mu_pair_[p] == 0) {
+      next_[p] = Grip::OPEN;
+    } else {
+      // The complementarity function of the friction law: z = lambda_t + c s against the bound mu (lambda_n - c g).
+      double z[2] = {0, 0}, zn = 0;
+      for (int k = 0; k < m; ++k) {
+        if (rows_[p * m + k].ncols == 0) continue; // fixed along that tangent
+        z[k] = lambda_t_[p * m + k] + c * s[p * m + k];
+        zn += z[k] * z[k];
+      }
+      zn = std::sqrt(zn);
+      const double bound = mu_pair_[p] * std::max(0.0, states[p].lambda - c * states[p].gap);
+      if (zn <= bound) {
+        next_[p] = Grip::STICK;
+      } else {
+        next_[p] = Grip::SLIP;
+        double turn = 0;
+        for (int k = 0; k < m; ++k) {
+          next_dir_[p * m + k] = z[k] / zn;
+          turn += std::pow(next_dir_[p * m + k] - dir_[p * m + k], 2);
+        }
+        // In 2D the direction is a sign: a slip that reverses changes the set; in 3D it turns.
+        if (grip_[p] == Grip::SLIP && std::sqrt(turn) > DIRECTION_TOL) counts[m == 1 ? 0 : 1]++;
+        // 3D: the spring across the slip, mu lambda_n / |s| (a slip of zero: it sticks across).
+        const double force = mu_pair_[p] * states[p].lambda;
+        double sn = 0;
+        for (int k = 0; k < m; ++k) sn += s[p * m + k] * s[p * m + k];
+        if (m == 2 && force > 0) next_across_[p] = -std::sqrt(sn) / force;
+      }
+    }
+    counts[0] += next_[p] != grip_[p];
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, comm));
+  changes = counts[0], turns = counts[1];
+  PetscFunctionReturn(0);
+}
+
+void Friction::SetKey(const std::vector<char> &active, std::vector<char> &key) const {
+  key.resize(active.size());
+  for (std::size_t p = 0; p < active.size(); ++p) {
+    // 2D: a slip to the other side is another set (3: slip along -t).
+    const bool back = PerPair() == 1 && next_dir_[p] < 0;
+    key[p] = !active[p] ? 0 : next_[p] == Grip::STICK ? 2 : back ? 3 : 1;
+  }
+}
+
+void Friction::TurnedRow(std::size_t p, double a, double b, SparseRow &row) const {
+  row.Clear();
+  double dir[3], free2 = 0;
+  for (int c = 0; c < 3; ++c) dir[c] = a * tangents_[p][0][c] + b * tangents_[p][1][c];
+  for (int c : components_[p]) free2 += dir[c] * dir[c];
+  if (free2 < 1e-12) return;
+  // The columns of the pair's tangential rows (its free components), whichever of them has any.
+  const SparseRow &any = rows_[p * 2].ncols ? rows_[p * 2] : rows_[p * 2 + 1];
+  for (PetscInt i = 0; i < any.ncols; ++i) row.Add(any.cols[i], dir[components_[p][i]]);
+}
+
+void Friction::SystemRow(std::size_t p, int k, SparseRow &row) const {
+  const int m = PerPair();
+  if (m == 1 || grip_[p] != Grip::SLIP) {
+    row = rows_[p * m + k];
+    return;
+  }
+  // 3D slip: along d, then across it (d_perp = (-d_2, d_1) in the tangent basis).
+  const double d0 = dir_[p * 2], d1 = dir_[p * 2 + 1];
+  if (rows_[p * 2].ncols == 0 && rows_[p * 2 + 1].ncols == 0) row.Clear();
+  else if (k == 0) TurnedRow(p, d0, d1, row);
+  else TurnedRow(p, -d1, d0, row);
+}
+
+void Friction::SystemRows(const std::vector<SparseRow> &normal_rows, const std::vector<char> &active,
+                          std::vector<SparseRow> &rows, std::vector<char> &flags,
+                          std::vector<std::vector<double>> &columns, std::vector<double> &diag) const {
+  const int m = PerPair();
+  const std::size_t n = normal_rows.size();
+  rows = normal_rows;
+  rows.resize(n + rows_.size());
+  flags.assign(rows.size(), 0);
+  columns.assign(rows.size(), {});
+  diag.assign(rows.size(), 0.0);
+  for (std::size_t p = 0; p < n; ++p) {
+    flags[p] = active[p];
+    for (int k = 0; k < m; ++k) {
+      const std::size_t i = n + p * m + k;
+      SystemRow(p, k, rows[i]);
+      // Stick rows hold; a 3D slip pair's row across the slip is its spring.
+      const bool across = m == 2 && k == 1 && grip_[p] == Grip::SLIP && std::isfinite(across_[p]);
+      flags[i] = (grip_[p] == Grip::STICK || across) && rows[i].ncols > 0;
+      if (across) diag[i] = across_[p];
+    }
+    if (grip_[p] != Grip::SLIP) continue;
+    // The slip pair's normal multiplier also carries its friction force mu lambda_n d: the force on the body per unit
+    // lambda_n is n - mu sum_k d_k t_k, and its column -(n - ...) (the row's coefficients are -n).
+    const SparseRow &row = normal_rows[p];
+    std::vector<double> &col = columns[p];
+    col = row.coef;
+    for (PetscInt i = 0; i < row.ncols; ++i)
+      for (int k = 0; k < m; ++k)
+        col[i] += mu_pair_[p] * dir_[p * m + k] * tangents_[p][k][components_[p][i]];
+  }
+}
+
+void Friction::HeldDirections(std::size_t p, std::vector<std::array<double, 3>> &dirs) const {
+  const int m = PerPair();
+  dirs.clear();
+  for (int k = 0; k < m; ++k) {
+    const bool across = m == 2 && k == 1 && grip_[p] == Grip::SLIP && std::isfinite(across_[p]);
+    if (!(grip_[p] == Grip::STICK || across) || rows_[p * m + k].ncols == 0) continue;
+    std::array<double, 3> d = tangents_[p][k];
+    if (across) {
+      const double d0 = dir_[p * 2], d1 = dir_[p * 2 + 1];
+      for (int c = 0; c < 3; ++c) d[c] = -d1 * tangents_[p][0][c] + d0 * tangents_[p][1][c];
+    }
+    dirs.push_back(d);
+  }
+}
+
+void Friction::RowRhs(const std::vector<ContactPair> &pairs, const double *u_local, PetscScalar *b) const {
+  const int m = PerPair();
+  std::vector<double> s;
+  Slips(pairs, u_local, s);
+  for (std::size_t p = 0; p < pairs.size(); ++p)
+    for (int k = 0; k < m; ++k) {
+      double v = 0;
+      if (grip_[p] == Grip::STICK) v = -s[p * m + k];
+      // 3D slip: across the slip, -d_perp . s.
+      else if (grip_[p] == Grip::SLIP && m == 2 && k == 1 && std::isfinite(across_[p]))
+        v = -(-dir_[p * 2 + 1] * s[p * 2] + dir_[p * 2] * s[p * 2 + 1]);
+      b[p * m + k] = v;
+    }
+}
+
+void Friction::Read(const PetscScalar *x_t, const std::vector<double> &lambda_n, const std::vector<double> &mult_n) {
+  const int m = PerPair();
+  for (std::size_t p = 0; p < grip_.size(); ++p) {
+    const double *d = &dir_[p * m];
+    for (int k = 0; k < m; ++k) {
+      const std::size_t i = p * m + k;
+      if (grip_[p] == Grip::STICK) {
+        lambda_t_[i] = x_t[i], mult_t_[i] = x_t[i];
+      } else if (grip_[p] == Grip::OPEN) {
+        lambda_t_[i] = 0, mult_t_[i] = x_t[i];
+      } else if (m == 1) {
+        // 2D slip: the row along t is inactive (x_t: a stabilisation spring's force at most).
+        lambda_t_[i] = mu_pair_[p] * d[0] * lambda_n[p];
+        mult_t_[i] = x_t[i] + mu_pair_[p] * d[0] * mult_n[p];
+      }
+    }
+    if (m == 2 && grip_[p] == Grip::SLIP) {
+      // 3D slip: along d mu lambda_n (plus the inactive row's spring, if any), across it the solved lambda_perp.
+      const double along = x_t[p * 2], across = x_t[p * 2 + 1];
+      const double l = mu_pair_[p] * lambda_n[p], f = mu_pair_[p] * mult_n[p] + along;
+      lambda_t_[p * 2] = l * d[0] - across * d[1], lambda_t_[p * 2 + 1] = l * d[1] + across * d[0];
+      mult_t_[p * 2] = f * d[0] - across * d[1], mult_t_[p * 2 + 1] = f * d[1] + across * d[0];
+    }
+  }
+}
+
+void Friction::AddForces(const std::vector<ContactPair> &pairs, const DofMap &dofs, double scale, bool solved,
+                         double *r) const {
+  const int m = PerPair();
+  const std::vector<double> &l = solved ? mult_t_ : lambda_t_;
+  for (std::size_t p = 0; p < pairs.size(); ++p)
+    for (int k = 0; k < m; ++k)
+      for (int c = 0; c < dim_; ++c)
+        r[dofs.LocalOffset(pairs[p].vertex, c)] -= scale * tangents_[p][k][c] * l[p * m + k];
+}
+
+PetscErrorCode Friction::Certify(MPI_Comm comm, const Mesh &mesh, const std::vector<ContactPair> &pairs,
+                                 const std::vector<PairState> &states, const double *u_local, double lambda_tol,
+                                 double slip_tol, FrictionCertificate &cert) const {
+  const int m = PerPair();
+  std::vector<double> s;
+  // Per condition the largest violation and its node (file numbering, from 1); the largest lambda_n; the counts and
+  // the total friction force.
+  struct {
+    double value;
+    int node;
+  } worst[4], global[4];
+  for (auto &w : worst) w = {-INFINITY, -1};
+  double lmax = 0, force[3] = {0, 0, 0};
+  PetscInt counts[2] = {0, 0};
+  PetscFunctionBeginUser;
+  Slips(pairs, u_local, s);
+  const auto note = [&](int i, double value, PetscInt vertex) {
+    const int node = (int)mesh.VertexOriginal(vertex) + 1;
+    if (value > worst[i].value || (value == worst[i].value && node < worst[i].node)) worst[i] = {value, node};
+  };
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    if (mu_pair_[p] == 0) continue;
+    const PetscInt v = pairs[p].vertex;
+    double lt = 0, sn = 0;
+    for (int k = 0; k < m; ++k) {
+      lt += lambda_t_[p * m + k] * lambda_t_[p * m + k], sn += s[p * m + k] * s[p * m + k];
+      for (int c = 0; c < dim_; ++c) force[c] -= tangents_[p][k][c] * lambda_t_[p * m + k];
+    }
+    lt = std::sqrt(lt), sn = std::sqrt(sn);
+    lmax = std::max(lmax, states[p].lambda);
+    if (!states[p].active) {
+      note(3, lt, v);
+      continue;
+    }
+    note(0, lt - mu_pair_[p] * std::max(0.0, states[p].lambda), v);
+    if (grip_[p] == Grip::STICK) {
+      counts[0]++;
+      note(1, sn, v);
+    } else if (grip_[p] == Grip::SLIP) {
+      counts[1]++;
+      // A slip node that has not moved (|s| within the tolerance) is on the border of the stick zone: only the cone
+      // applies to it.
+      if (sn > slip_tol) {
+        double d = 0;
+        for (int k = 0; k < m; ++k)
+          d += std::pow(lambda_t_[p * m + k] - mu_pair_[p] * states[p].lambda * s[p * m + k] / sn, 2);
+        note(2, std::sqrt(d), v);
+      }
+    }
+  }
+  PetscCallMPI(MPI_Allreduce(worst, global, 4, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &lmax, 1, MPI_DOUBLE, MPI_MAX, comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, force, 3, MPI_DOUBLE, MPI_SUM, comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, comm));
+  cert.on = true;
+  cert.cone = std::max(0.0, global[0].value);
+  cert.stick_slip = std::max(0.0, global[1].value);
+  cert.slip_rule = std::max(0.0, global[2].value);
+  cert.open_force = std::max(0.0, global[3].value);
+  for (int i = 0; i < 4; ++i) cert.node[i] = global[i].node;
+  cert.force_tol = std::max(FrictionCertificate::FORCE_RTOL * lmax, lambda_tol);
+  cert.slip_tol = slip_tol;
+  cert.stick = counts[0], cert.slip = counts[1];
+  std::copy(force, force + 3, cert.tangential_force);
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini
