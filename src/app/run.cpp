@@ -182,6 +182,19 @@ PetscErrorCode StepFields(ContactSolver &solver, const NodeContact &nodes, std::
   fields.push_back({"contact_pressure", 1, false, nodes.pressure, true});
   fields.push_back({"contact_gap", 1, false, nodes.gap, true});
   fields.push_back({"contact_active", 1, false, nodes.active, true});
+  if (!nodes.friction.empty()) {
+    // Friction: dim values per vertex, as 3-component vectors.
+    const auto vector3 = [dim](const std::vector<double> &v) {
+      std::vector<double> out(v.size() / dim * 3, 0.0);
+      for (std::size_t i = 0; i < v.size() / dim; ++i)
+        for (int k = 0; k < dim; ++k) out[3 * i + k] = v[i * dim + k];
+      return out;
+    };
+    fields.push_back({"contact_friction", 3, false, vector3(nodes.friction), true});
+    fields.push_back({"contact_friction_traction", 3, false, vector3(nodes.friction_traction), true});
+    fields.push_back({"contact_slip", 3, false, vector3(nodes.slip), true});
+    fields.push_back({"contact_friction_state", 1, false, nodes.friction_state, true});
+  }
   fields.push_back({"strain", 6, true, {}, false, cell_field(STRAIN)});
   fields.push_back({"stress", 6, true, {}, false, cell_field(STRESS)});
   fields.push_back({"von_mises", 1, true, {}, false, cell_field(VON_MISES)});
@@ -195,6 +208,12 @@ std::vector<Field> NodeTableFields(ContactSolver &solver, const NodeContact &nod
   std::vector<Field> fields = {{"u", mesh.Dim(), false, solver.ULocal()}, {"lambda", 1, false, nodes.lambda},
                                {"pressure", 1, false, nodes.pressure}, {"gap", 1, false, nodes.gap},
                                {"active", 1, false, nodes.active}};
+  if (!nodes.friction.empty()) {
+    fields.push_back({"friction", mesh.Dim(), false, nodes.friction});
+    fields.push_back({"friction_traction", mesh.Dim(), false, nodes.friction_traction});
+    fields.push_back({"slip", mesh.Dim(), false, nodes.slip});
+    fields.push_back({"friction_state", 1, false, nodes.friction_state});
+  }
   if (mesh.NumBodies() > 1) {
     std::vector<double> body(mesh.NumLocalVertices());
     for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v) body[v] = (double)mesh.VertexBody(v);

@@ -11,12 +11,43 @@ namespace {
 /// A rank's share of the summary, reduced over the ranks by Summarise.
 struct Partial {
   /// Sums: contact force (0-2), contact length or area (3), applied force (4-6), reaction force (8-10), strain energy
-  /// (12), contact force on the master sides of pairs of bodies (13-15).
-  double sum[16] = {0};
+  /// (12), contact force on the master sides of pairs of bodies (13-15), friction force (16-18).
+  double sum[19] = {0};
   /// Maxima: pressure, penetration, |lambda g|, -min lambda over the active pairs, |u|.
   double max[5] = {0, 0, 0, -std::numeric_limits<double>::infinity(), 0};
   PetscInt count[4] = {0, 0, 0, 0}; ///< candidate nodes, pairs, active pairs, active nodes
 };
+
+/// The friction force F = -sum_k t_k lambda_t,k per node, its traction F / (w t), the slip and the set, and the total
+/// friction force (part of the contact force).
+void FrictionResults(const SolvedState &state, const Material &material, const std::vector<double> &w,
+                     NodeContact &nodes, Partial &part) {
+  const Friction &friction = *state.friction;
+  const int dim = state.mesh.Dim(), m = friction.PerPair();
+  const PetscInt nv = state.mesh.NumLocalVertices();
+  std::vector<double> s;
+  friction.Slips(state.pairs, state.u_local.data(), s);
+  nodes.friction.assign(nv * dim, 0.0);
+  nodes.friction_traction.assign(nv * dim, 0.0);
+  nodes.slip.assign(nv * dim, 0.0);
+  nodes.friction_state.assign(nv, 0.0);
+  for (std::size_t p = 0; p < state.pairs.size(); ++p) {
+    const PetscInt v = state.pairs[p].vertex;
+    for (int k = 0; k < m; ++k) {
+      const double *t = friction.Tangent(p, k);
+      for (int c = 0; c < dim; ++c) {
+        const double f = -t[c] * friction.LambdaT(p)[k];
+        nodes.friction[v * dim + c] += f;
+        if (state.mesh.Owned(v)) part.sum[c] += f, part.sum[16 + c] += f;
+        nodes.slip[v * dim + c] += t[c] * s[p * m + k];
+      }
+    }
+    if (state.states[p].active) nodes.friction_state[v] = std::max(nodes.friction_state[v], (double)friction.State(p));
+  }
+  for (PetscInt v = 0; v < nv; ++v)
+    if (w[v] > 0)
+      for (int c = 0; c < dim; ++c) nodes.friction_traction[v * dim + c] = nodes.friction[v * dim + c] / (w[v] * material.thickness);
+}
 
 /// The multipliers, pressures, gaps and active flags per node (nodes) from the pairs, with the contact force, length
 /// and the maxima of the pairs (w: the tributary lengths or areas).
@@ -50,6 +81,7 @@ void NodeResults(const SolvedState &state, const Material &material, const std::
     if (st.InZone()) maxes[1] = std::max(maxes[1], -st.gap);
     maxes[2] = std::max(maxes[2], std::abs(st.lambda * st.gap));
   }
+  if (state.friction) FrictionResults(state, material, w, nodes, part);
   for (PetscInt v = 0; v < nv; ++v) {
     if (!mesh.Owned(v)) continue;
     counts[0] += state.candidates[v];
@@ -77,6 +109,7 @@ PetscErrorCode BodyResults(const SolvedState &state, Partial &part) {
   for (std::size_t p = 0; p < pairs.size(); ++p)
     for (int k = 0; k < dim; ++k)
       contact_at[dofs.LocalOffset(pairs[p].vertex, k)] += state.states[p].lambda * state.normals[p][k];
+  if (state.friction) state.friction->AddForces(pairs, dofs, 1, false, contact_at.data());
   if (state.mortar && !state.mortar->Empty()) {
     std::vector<double> lambda(pairs.size()), master;
     for (std::size_t p = 0; p < pairs.size(); ++p) lambda[p] = state.states[p].lambda;
@@ -107,9 +140,9 @@ PetscErrorCode BodyResults(const SolvedState &state, Partial &part) {
 PetscErrorCode Summarise(MPI_Comm comm, Partial &part, ContactSummary &s) {
   PetscFunctionBeginUser;
   part.max[0] = std::max(part.max[0], 0.0);
-  double global[16], gmax[5];
+  double global[19], gmax[5];
   PetscInt gcounts[4];
-  PetscCallMPI(MPI_Allreduce(part.sum, global, 16, MPI_DOUBLE, MPI_SUM, comm));
+  PetscCallMPI(MPI_Allreduce(part.sum, global, 19, MPI_DOUBLE, MPI_SUM, comm));
   PetscCallMPI(MPI_Allreduce(part.max, gmax, 5, MPI_DOUBLE, MPI_MAX, comm));
   PetscCallMPI(MPI_Allreduce(part.count, gcounts, 4, MPIU_INT, MPI_SUM, comm));
   s.candidates = gcounts[0];
@@ -122,6 +155,7 @@ PetscErrorCode Summarise(MPI_Comm comm, Partial &part, ContactSummary &s) {
     s.applied_force[k] = global[4 + k];
     s.reaction_force[k] = global[8 + k];
     s.master_force[k] = global[13 + k];
+    s.friction_force[k] = global[16 + k];
     total[k] = global[k] + global[4 + k] + global[8 + k] + global[13 + k];
     na += global[4 + k] * global[4 + k];
     nc += global[k] * global[k];
@@ -150,6 +184,7 @@ PetscErrorCode ComputeContactResults(const SolvedState &state, const Material &m
   PetscCall(BodyResults(state, part));
   PetscCall(Summarise(state.mesh.Comm(), part, s));
   s.bodies = state.mortar && !state.mortar->Empty();
+  s.friction = state.friction != nullptr;
   PetscFunctionReturn(0);
 }
 

@@ -273,6 +273,10 @@ PetscErrorCode PrintSummary(MPI_Comm comm, const SolvedState &state, const Conta
                                                              s.contact_force[2] + s.master_force[2]}
                                      : s.contact_force).c_str(),
                         vec(s.applied_force).c_str(), vec(s.reaction_force).c_str(), s.force_balance));
+  if (s.friction)
+    PetscCall(PetscPrintf(comm, "  friction force %s (part of the contact force): %" PetscInt_FMT " stick, %" PetscInt_FMT
+                          " slip node(s)\n", vec(s.friction_force).c_str(), state.certificate.friction.stick,
+                          state.certificate.friction.slip));
   PetscCall(PetscPrintf(comm, "  contact %s %.6g, max pressure %.6g, max penetration %.3e, max |lambda g| "
                         "%.3e, max |u| %.6g\n", dim == 2 ? "length" : "area", s.contact_length, s.max_pressure,
                         s.max_penetration, s.complementarity, s.max_displacement));
@@ -319,6 +323,14 @@ void CertificateJson(JsonWriter &j, const Certificate &cert) {
       .Number("equilibrium_tol", cert.equilibrium_tol)
       .Integer("changes", cert.changes);
   if (cert.bodies) j.Number("pair_force_balance", cert.pair_force_balance).Number("pair_force_tol", cert.pair_force_tol);
+  const FrictionCertificate &f = cert.friction;
+  if (f.on)
+    j.Number("friction_cone", f.cone)
+        .Number("stick_slip", f.stick_slip)
+        .Number("slip_rule", f.slip_rule)
+        .Number("open_tangential_force", f.open_force)
+        .Number("friction_force_tol", f.force_tol)
+        .Number("slip_tol", f.slip_tol);
   j.EndObject();
 }
 
@@ -379,6 +391,7 @@ void ContactJson(JsonWriter &j, const ContactSummary &s, int dim) {
       .Integer("active_nodes", s.active_nodes)
       .Numbers("contact_force", vec3(s.contact_force));
   if (s.bodies) j.Numbers("master_contact_force", vec3(s.master_force));
+  if (s.friction) j.Numbers("friction_force", vec3(s.friction_force));
   j.Numbers("applied_force", vec3(s.applied_force))
       .Numbers("reaction_force", vec3(s.reaction_force))
       .Number("force_balance", s.force_balance)
@@ -458,6 +471,12 @@ std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedStat
     j.Number(k, v);
   j.EndObject();
   ContactJson(j, s, dim);
+  if (state.friction)
+    j.BeginObject("friction")
+        .Number("mu", state.friction->Coefficient())
+        .Integer("stick_nodes", cert.friction.stick)
+        .Integer("slip_nodes", cert.friction.slip)
+        .EndObject();
   j.BeginObject("solution").Number("max_displacement", s.max_displacement).Number("strain_energy", s.strain_energy);
   j.EndObject();
   HertzJson(j, h);

@@ -46,6 +46,7 @@ BEAM = ["-options_file", "{root}/options/beam_on_floor.yml"]
 CUBE = ["-options_file", "{root}/options/cube_on_plane.yml"]
 # Two blocks stacked (the contact patch test), the upper one held by contact with the lower one alone.
 PATCH = ["-options_file", "{root}/options/patch2d.yml"]
+SLIDING = ["-options_file", "{root}/options/sliding_block.yml"]
 # A bar of two physical surfaces (soft, stiff; all: both) in one body, held and pulled: materials per group.
 BAR = ["-mesh_file", "{root}/meshes/bimaterial_bar.geo", "-bc_dirichlet", "left:x,origin:y", "-bc_traction",
        "right:2:0"]
@@ -303,6 +304,20 @@ CASES = {
                                                               "not in the mesh"], {}),
     "contact_option_without_obstacle": (["-options_file", "{root}/options/lame_cylinder.yml", "-contact_gap_tol",
                                          "1e-3"], ["-contact_gap_tol is given", "no obstacle"], {}),
+    # Friction (-contact_friction).
+    "friction_negative": (SLIDING + ["-contact_friction", "-0.1"], ["-contact_friction -0.1", "[0, 1000]"], {}),
+    "friction_not_a_number": (SLIDING + ["-contact_friction", "high"], ["-contact_friction high", "real number"], {}),
+    "friction_pair_coefficient": (PATCH + ["-contact_pairs", "upper_bottom:lower_top:rough"],
+                                  ["-contact_pairs: item 'upper_bottom:lower_top:rough'", "'rough'",
+                                   "SLAVE:MASTER:MU"], {}),
+    "friction_between_bodies": (PATCH + ["-contact_friction", "0.3"],
+                                ["-contact_friction 0.3 with -contact_pairs", "not implemented yet"], {}),
+    "friction_with_cholesky": (SLIDING + ["-options_file", "{root}/options/solver/mumps_cholesky.yml"],
+                               ["nonsymmetric", "cholesky", "options/solver/mumps_lu.yml"], {}),
+    "friction_with_fieldsplit": (SLIDING + ["-options_file", "{root}/options/solver/fieldsplit_gamg.yml"],
+                                 ["-contact_friction 0.3", "iterative path", "options/solver/mumps_lu.yml"], {}),
+    "friction_with_svk": (SLIDING + ["-material_model", "svk"],
+                          ["-contact_friction 0.3 with -material_model svk", "linear material only"], {}),
     # Pairs of bodies (-contact_pairs).
     "contact_pairs_malformed": (PATCH + ["-contact_pairs", "upper_bottom"],
                                 ["-contact_pairs: item 'upper_bottom'", "SLAVE:MASTER"], {}),

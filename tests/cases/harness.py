@@ -322,5 +322,5 @@ def expect_balance(runner, r, what, atol=None):
     total = np.array(r.get("contact.contact_force")) + np.array(r.get("contact.reaction_force")) + \
         np.array(r.get("contact.applied_force"))
     load = np.linalg.norm(r.get("contact.applied_force"))
-    runner.expect_close("%s: contact force + reactions + load" % what, total, [0, 0], 0,
+    runner.expect_close("%s: contact force + reactions + load" % what, total, np.zeros(len(total)), 0,
                         1e-10 * load if atol is None else atol)

@@ -17,6 +17,10 @@ struct ContactSummary {
   /// and the obstacles'); equal and opposite to the slave sides' to round-off
   std::array<double, 3> master_force{};
   bool bodies = false; ///< the case has pairs of bodies
+  /// Friction (-contact_friction > 0): the friction force on the body (its part of contact_force, which holds the
+  /// whole force of the obstacles: normal and friction).
+  bool friction = false;
+  std::array<double, 3> friction_force{};
   double force_balance = 0;   ///< |contact + master + applied + reaction| / max(|applied|, |contact|)
   double contact_length = 0;  ///< sum of tributary lengths of the active nodes
   double max_pressure = 0, max_penetration = 0, complementarity = 0, min_lambda = 0;
@@ -27,6 +31,9 @@ struct ContactSummary {
 /// where there is none), active flag.
 struct NodeContact {
   std::vector<double> lambda, pressure, gap, active;
+  /// With friction, per local vertex: the friction force on the body and its traction (force / (w t)), dim values
+  /// each, the slip of the last load step (dim values), and the set: 0 open, 1 slip, 2 stick.
+  std::vector<double> friction, friction_traction, slip, friction_state;
 };
 
 /// The per-node contact fields and the summary's global quantities of a solved state. Collective.

@@ -1,0 +1,138 @@
+"""Coulomb friction against rigid obstacles (-contact_friction, friction.hpp): mu = 0 is frictionless to the last
+byte, a small mu converges to it, a block dragged over a floor in full slip carries mu times its normal force (2D and
+3D), and one that sticks everywhere is the bonded block (also after several load steps)."""
+
+import filecmp
+import os
+
+import numpy as np
+
+from harness import displacement, expect_balance, expect_same_state, test
+
+SLIDING = ["-options_file", "options/sliding_block.yml"]
+# The cube of options/cube_on_plane.yml dragged by its top (nu = 0: every slice y = const is the same plane problem,
+# so the slip is along x alone).
+CUBE_DRAG = ["-options_file", "options/cube_on_plane.yml", "-material_nu", "0", "-bc_dirichlet", "top:x=0.05",
+             "-contact_friction", "0.3"]
+
+
+def expect_friction_certificate(runner, r):
+    """The friction conditions of the certificate within their tolerances (docs/theory.md section 9)."""
+    c = r.get("certificate")
+    for key, tol in (("friction_cone", "friction_force_tol"), ("stick_slip", "slip_tol"),
+                     ("slip_rule", "friction_force_tol"), ("open_tangential_force", "friction_force_tol")):
+        runner.expect_true("%s: certificate %s %.3g <= %.3g" % (r.label, key, c[key], c[tol]), c[key] <= c[tol])
+
+
+# The cube with nu = 0.3 and a small drag: a stick zone, and slip directions that turn in the plane (the Poisson
+# expansion under the pressure).
+PARTIAL_3D = ["-options_file", "options/cube_on_plane.yml", "-bc_dirichlet", "top:x=3e-3", "-contact_friction", "0.3"]
+
+
+@test("friction_zero_is_frictionless")
+def friction_zero_is_frictionless(runner):
+    """-contact_friction 0 on existing cases (2D, 3D, a body held by contact alone) writes the same node table as
+    without it, byte for byte, and the same iterations; no friction entry appears in the summary."""
+    for args in (["-options_file", "options/block_on_floor.yml"], ["-options_file", "options/cube_on_plane.yml"],
+                 ["-options_file", "options/block_on_cylinder.yml"]):
+        a = runner.run(args, "%s frictionless" % args[1])
+        b = runner.run(args + ["-contact_friction", "0"], "%s -contact_friction 0" % args[1])
+        runner.expect_true("%s: nodes.csv identical" % args[1],
+                           filecmp.cmp(os.path.join(a.dir, "nodes.csv"), os.path.join(b.dir, "nodes.csv"),
+                                       shallow=False))
+        runner.expect_equal("%s: solves" % args[1], b.get("iterations.solves"), a.get("iterations.solves"))
+        runner.expect_true("%s: no friction in the summary" % args[1], "friction" not in b.summary)
+
+
+@test("friction_small_mu")
+def friction_small_mu(runner):
+    """A small mu converges to the frictionless state: the difference shrinks in proportion to mu (the friction force
+    mu N changes the state linearly while the sets stay)."""
+    ref = runner.run(SLIDING + ["-contact_friction", "0"], "sliding block, mu = 0")
+    u0 = displacement(ref.nodes())
+    diffs = []
+    for mu in (1e-3, 1e-4, 1e-5):
+        r = runner.run(SLIDING + ["-contact_friction", "%g" % mu], "sliding block, mu = %g" % mu)
+        expect_friction_certificate(runner, r)
+        diffs.append(np.abs(displacement(r.nodes()) - u0).max())
+    runner.expect_true("difference at mu = 1e-5: %.3g <= 1e-5 of |u| %.3g" % (diffs[2], np.abs(u0).max()),
+                       diffs[2] <= 1e-5 * np.abs(u0).max())
+    for a, b in zip(diffs, diffs[1:]):
+        runner.expect_close("difference ratio over a factor 10 in mu (%.3g / %.3g)" % (a, b), a / b, 10, 0.01)
+
+
+@test("sliding_block")
+def sliding_block(runner, dim):
+    """A block pressed on a rigid floor and dragged by its top beyond what friction holds: every node in contact
+    slips, the friction force on the body is -mu times its normal force to 1e-10 (2D: options/sliding_block.yml; 3D:
+    the cube of cube_on_plane.yml), and at each node the friction traction is mu times the pressure, against the
+    node's slip."""
+    args = SLIDING if dim == "2d" else CUBE_DRAG
+    r = runner.run(args, "sliding block %s" % dim)
+    expect_friction_certificate(runner, r)
+    expect_balance(runner, r, "sliding block %s" % dim)
+    mu = r.get("friction.mu")
+    normal = np.array(r.get("contact.contact_force")) - np.array(r.get("contact.friction_force"))
+    want = np.zeros(len(normal))
+    want[0] = -mu * np.linalg.norm(normal)
+    runner.expect_close("friction force = -mu N", r.get("contact.friction_force"), want, 0, 1e-10 * abs(want[0]))
+    runner.expect_equal("every active node slips", r.get("friction.slip_nodes"), r.get("contact.active_nodes"))
+    nodes = r.nodes()
+    axes = "xy" if dim == "2d" else "xyz"
+    active = nodes["active"] == 1
+    traction = np.stack([nodes["friction_traction_" + a] for a in axes], axis=1)[active]
+    slip = np.stack([nodes["slip_" + a] for a in axes], axis=1)[active]
+    pressure = nodes["pressure"][active]
+    runner.expect_close("|friction traction| = mu p at every slip node", np.linalg.norm(traction, axis=1),
+                        mu * pressure, 0, 1e-10 * pressure.max())
+    direction = slip / np.linalg.norm(slip, axis=1)[:, None]
+    runner.expect_close("friction traction against the slip", traction, -mu * pressure[:, None] * direction, 0,
+                        1e-8 * pressure.max())
+    runner.expect_true("friction_state 1 (slip) on the active nodes", np.all(nodes["friction_state"][active] == 1))
+
+
+@test("sticking_block_is_bonded")
+def sticking_block_is_bonded(runner):
+    """With friction that holds every node (mu = 10, a small drag), the block is the bonded one: the same
+    displacement as with its bottom clamped (1e-10), in one load step and in four."""
+    args = SLIDING + ["-contact_friction", "10", "-bc_dirichlet", "top:x=5e-4"]
+    bonded = runner.run(["-mesh_file", "meshes/block.msh", "-material_E", "1000", "-material_nu", "0.3",
+                         "-bc_dirichlet", "top:x=5e-4,bottom:x:y", "-bc_pressure", "top:2"], "bonded block")
+    u = displacement(bonded.nodes())
+    for steps in ("1", "4"):
+        r = runner.run(args + ["-load_steps", steps], "sticking block, %s load step(s)" % steps)
+        expect_friction_certificate(runner, r)
+        runner.expect_equal("every active node sticks", r.get("friction.stick_nodes"), r.get("contact.active_nodes"))
+        runner.expect_equal("every bottom node active", r.get("contact.active_nodes"), 20)
+        runner.expect_close("%s step(s): displacement of the bonded block" % steps, displacement(r.nodes()), u, 0,
+                            1e-10 * np.abs(u).max())
+
+
+@test("partial_slip")
+def partial_slip(runner, dim):
+    """A small drag: a stick zone and a slip zone, certified; the friction force is below mu N and balances the
+    reaction; on 2 ranks the same state (case_friction_rank_independence)."""
+    args = (SLIDING + ["-bc_dirichlet", "top:x=5e-4"]) if dim == "2d" else PARTIAL_3D
+    r = runner.run(args, "partial slip %s" % dim)
+    expect_friction_certificate(runner, r)
+    expect_balance(runner, r, "partial slip %s" % dim)
+    runner.expect_true("stick and slip nodes (%d, %d)" % (r.get("friction.stick_nodes"), r.get("friction.slip_nodes")),
+                       r.get("friction.stick_nodes") > 0 and r.get("friction.slip_nodes") > 0)
+    normal = np.array(r.get("contact.contact_force")) - np.array(r.get("contact.friction_force"))
+    runner.expect_true("|friction force| < mu N",
+                       np.linalg.norm(r.get("contact.friction_force")) < r.get("friction.mu") * np.linalg.norm(normal))
+
+
+@test("friction_rank_independence")
+def friction_rank_independence(runner, dim):
+    """The frictional states of 1 and 2 ranks agree to 1e-10 (partial slip: stick and slip zones)."""
+    args = (SLIDING + ["-bc_dirichlet", "top:x=5e-4"]) if dim == "2d" else PARTIAL_3D
+    one = runner.run(args, "partial slip %s, 1 rank" % dim, np_=1)
+    two = runner.run(args, "partial slip %s, 2 ranks" % dim, np_=2)
+    expect_same_state(runner, one, two)
+    for key in ("friction.stick_nodes", "friction.slip_nodes"):
+        runner.expect_equal(key, two.get(key), one.get(key))
+    f1, f2 = one.nodes(), two.nodes()
+    for a in ("xy" if dim == "2d" else "xyz"):
+        runner.expect_close("friction_" + a, f2["friction_" + a], f1["friction_" + a], 0,
+                            1e-10 * np.abs(f1["friction_x"]).max())
