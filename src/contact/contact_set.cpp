@@ -32,10 +32,6 @@ PetscErrorCode CheckContactInputs(const Mesh &mesh, const Obstacle &obstacle, co
                "(-contact_pairs), so there is no contact for it to act on; expected an obstacle or a pair, or no "
                "contact options", name);
   }
-  PetscCheck(!(opts.friction > 0 && !opts.pairs.empty()), comm, PETSC_ERR_USER_INPUT,
-             "-contact_friction %g with -contact_pairs: friction between two bodies is not implemented yet (it acts "
-             "against rigid obstacles only); expected -contact_friction 0 in a case with pairs of bodies",
-             opts.friction);
   PetscBool groups_set;
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-contact_groups", &groups_set));
   PetscCheck(!groups_set || !obstacle.facets.empty(), comm, PETSC_ERR_USER_INPUT,
@@ -110,14 +106,15 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
   std::vector<std::string> items;
   PetscCall(OptionsStringList(PetscOptionsObject, "-contact_pairs", "Pairs of facet groups of two bodies in contact, "
                               "SLAVE:MASTER[:MU],... (the slave side carries the multipliers: make it the finer mesh; MU: "
-                              "the pair's friction coefficient, only 0 for now)",
+                              "the pair's friction coefficient, default -contact_friction)",
                               "no pair of bodies", "SLAVE:MASTER[:MU] items of physical group names", items));
   opts.pairs.clear();
+  opts.pair_friction.clear();
   for (std::string item : items) {
     // An optional third field is the pair's friction coefficient.
     const auto colon = item.find(':');
     auto third = colon == std::string::npos ? colon : item.find(':', colon + 1);
-    double mu = 0;
+    double mu = -1;
     if (third != std::string::npos) {
       const std::string text = item.substr(third + 1);
       char *end = nullptr;
@@ -125,9 +122,9 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
       PetscCheck(!text.empty() && *end == '\0' && std::isfinite(mu) && mu >= 0, comm, PETSC_ERR_USER_INPUT,
                  "-contact_pairs: item '%s' has the friction coefficient '%s'; expected a number >= 0 after the two "
                  "groups (SLAVE:MASTER:MU)", item.c_str(), text.c_str());
-      PetscCheck(mu == 0, comm, PETSC_ERR_USER_INPUT,
-                 "-contact_pairs: item '%s' asks for friction between two bodies, which is not implemented yet "
-                 "(friction acts against rigid obstacles only); expected MU = 0 or no third field", item.c_str());
+      PetscCheck(mu <= 1e3, comm, PETSC_ERR_USER_INPUT,
+                 "-contact_pairs: item '%s' has the friction coefficient %g; expected a number in [0, 1000]",
+                 item.c_str(), mu);
       item = item.substr(0, third);
     }
     PetscCheck(colon != std::string::npos && colon > 0 && colon + 1 < item.size() &&
@@ -137,9 +134,10 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
                "(curves in 2D, surfaces in 3D) joined by a colon, e.g. -contact_pairs top_bottom:base_top",
                item.c_str());
     opts.pairs.emplace_back(item.substr(0, colon), item.substr(colon + 1));
+    opts.pair_friction.push_back(mu);
   }
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_friction", "Coulomb friction coefficient mu of every pair "
-                        "against a rigid obstacle (0: frictionless; docs/theory.md section 9)", friction,
+                        "(against rigid obstacles and between bodies; 0: frictionless; docs/theory.md section 9)", friction,
                         opts.friction));
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_search_radius", "Pair a node with the facets within this "
                         "distance (default 0.1 x body diagonal); a load step that ends with a node inside a facet it "

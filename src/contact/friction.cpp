@@ -51,59 +51,100 @@ std::string FrictionCertificate::Violation() const {
   return text;
 }
 
+std::string Friction::Describe() const {
+  char text[64];
+  if (mu_ > 0) std::snprintf(text, sizeof(text), "-contact_friction %g", mu_);
+  else std::snprintf(text, sizeof(text), "-contact_pairs SLAVE:MASTER:MU with MU > 0");
+  return text;
+}
+
+bool Friction::On() const {
+  bool on = mu_ > 0;
+  for (double m : pair_mu_) on = on || m > 0;
+  return on;
+}
+
+bool Friction::HasRow(const SparseRow &row) {
+  double norm2 = 0;
+  for (double c : row.coef) norm2 += c * c;
+  return norm2 > 1e-12;
+}
+
 void Friction::Bind(const Mesh &mesh, const DofMap &dofs, const std::vector<char> &fixed,
                     const std::vector<ContactPair> &pairs, const std::vector<std::array<double, 3>> &normals,
-                    const std::vector<char> &is_mortar) {
+                    const MortarCoupling &mortar) {
   dim_ = mesh.Dim();
+  mesh_ = &mesh, dofs_ = &dofs, mortar_ = mortar.Empty() ? nullptr : &mortar;
   const std::size_t n = pairs.size();
   const int m = PerPair();
-  mu_pair_.assign(n, 0.0);
+  mu_pair_.assign(n, mu_);
   tangents_.assign(n, {});
   rows_.assign(n * m, SparseRow());
-  components_.assign(n, {});
+  has_.assign(n * m, 0);
   base_.assign(n * m, 0.0);
   grip_.assign(n, Grip::OPEN), next_ = grip_;
   dir_.assign(n * m, 0.0), next_dir_ = dir_;
   across_.assign(n, NAN), next_across_ = across_;
   lambda_t_.assign(n * m, 0.0), mult_t_ = lambda_t_;
   for (std::size_t p = 0; p < n; ++p) {
-    if (is_mortar[p]) continue;
-    mu_pair_[p] = mu_;
+    if (mortar.IsMortar(pairs[p])) {
+      const std::size_t item = (std::size_t)(pairs[p].facet - mortar.FacetBase());
+      if (item < pair_mu_.size() && pair_mu_[item] >= 0) mu_pair_[p] = pair_mu_[item];
+    }
     TangentBasis(dim_, normals[p].data(), tangents_[p]);
     const PetscInt v = pairs[p].vertex;
-    for (int c = 0; c < dim_; ++c)
-      if (!fixed[v * dim_ + c]) components_[p].push_back(c);
     for (int k = 0; k < m; ++k) {
-      // A tangent whose free part vanishes (the supports fix the node along it) gets no row: nothing can slip there.
-      double free2 = 0;
-      for (int c : components_[p]) free2 += tangents_[p][k][c] * tangents_[p][k][c];
-      if (free2 < 1e-12) continue;
-      for (int c : components_[p]) rows_[p * m + k].Add(dofs.Row(v, c), tangents_[p][k][c]);
+      // The columns of the normal row (EvaluatePairs, MortarCoupling::ExtendRows) in its order: the node's free
+      // components, then the master nodes' with - w_jl t_k (the slip is u_j - sum_l w_jl u_l along t_k).
+      SparseRow &row = rows_[p * m + k];
+      for (int c = 0; c < dim_; ++c)
+        if (!fixed[v * dim_ + c]) row.Add(dofs.Row(v, c), tangents_[p][k][c]);
+      if (mortar.IsMortar(pairs[p])) mortar.MasterColumns(p, tangents_[p][k].data(), -1, row);
+      has_[p * m + k] = HasRow(row);
     }
   }
 }
 
-void Friction::BeginStep(const std::vector<ContactPair> &pairs, const double *u_local) {
+PetscErrorCode Friction::Relative(const std::vector<ContactPair> &pairs, const double *u_local,
+                                  std::vector<double> &r) const {
+  PetscFunctionBeginUser;
+  r.assign(pairs.size() * dim_, 0.0);
+  if (mortar_) PetscCall(mortar_->MasterDisplacements(*mesh_, *dofs_, u_local, r));
+  for (std::size_t p = 0; p < pairs.size(); ++p)
+    for (int c = 0; c < dim_; ++c) r[p * dim_ + c] = u_local[pairs[p].vertex * dim_ + c] - r[p * dim_ + c];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Friction::BeginStep(const std::vector<ContactPair> &pairs, const double *u_local) {
   const int m = PerPair();
+  std::vector<double> r;
+  PetscFunctionBeginUser;
+  PetscCall(Relative(pairs, u_local, r));
   for (std::size_t p = 0; p < pairs.size(); ++p)
     for (int k = 0; k < m; ++k) {
       double s = 0;
-      for (int c = 0; c < dim_; ++c) s += tangents_[p][k][c] * u_local[pairs[p].vertex * dim_ + c];
+      for (int c = 0; c < dim_; ++c) s += tangents_[p][k][c] * r[p * dim_ + c];
       base_[p * m + k] = s;
     }
+  PetscFunctionReturn(0);
 }
 
-void Friction::Slips(const std::vector<ContactPair> &pairs, const double *u_local, std::vector<double> &s) const {
+PetscErrorCode Friction::Slips(const std::vector<ContactPair> &pairs, const double *u_local,
+                               std::vector<double> &s) const {
   const int m = PerPair();
+  std::vector<double> r;
+  PetscFunctionBeginUser;
+  PetscCall(Relative(pairs, u_local, r));
   s.assign(pairs.size() * m, 0.0);
   for (std::size_t p = 0; p < pairs.size(); ++p)
     for (int k = 0; k < m; ++k) {
-      // Along a tangent the supports fix, the node's motion is theirs: no slip of friction's.
-      if (rows_[p * m + k].ncols == 0) continue;
+      // Along a tangent the supports fix, the motion is theirs: no slip of friction's.
+      if (!has_[p * m + k]) continue;
       double v = -base_[p * m + k];
-      for (int c = 0; c < dim_; ++c) v += tangents_[p][k][c] * u_local[pairs[p].vertex * dim_ + c];
+      for (int c = 0; c < dim_; ++c) v += tangents_[p][k][c] * r[p * dim_ + c];
       s[p * m + k] = v;
     }
+  PetscFunctionReturn(0);
 }
 
 void Friction::First(const std::vector<char> &active) {
@@ -122,7 +163,7 @@ PetscErrorCode Friction::Next(MPI_Comm comm, const std::vector<ContactPair> &pai
   std::vector<double> s;
   PetscInt counts[2] = {0, 0};
   PetscFunctionBeginUser;
-  Slips(pairs, u_local, s);
+  PetscCall(Slips(pairs, u_local, s));
   next_dir_ = dir_;
   next_across_.assign(pairs.size(), NAN);
   for (std::size_t p = 0; p < pairs.size(); ++p) {
@@ -132,7 +173,7 @@ PetscErrorCode Friction::Next(MPI_Comm comm, const std::vector<ContactPair> &pai
       // The complementarity function of the friction law: z = lambda_t + c s against the bound mu (lambda_n - c g).
       double z[2] = {0, 0}, zn = 0;
       for (int k = 0; k < m; ++k) {
-        if (rows_[p * m + k].ncols == 0) continue; // fixed along that tangent
+        if (!has_[p * m + k]) continue; // fixed along that tangent
         z[k] = lambda_t_[p * m + k] + c * s[p * m + k];
         zn += z[k] * z[k];
       }
@@ -173,26 +214,22 @@ void Friction::SetKey(const std::vector<char> &active, std::vector<char> &key) c
 }
 
 void Friction::TurnedRow(std::size_t p, double a, double b, SparseRow &row) const {
-  row.Clear();
-  double dir[3], free2 = 0;
-  for (int c = 0; c < 3; ++c) dir[c] = a * tangents_[p][0][c] + b * tangents_[p][1][c];
-  for (int c : components_[p]) free2 += dir[c] * dir[c];
-  if (free2 < 1e-12) return;
-  // The columns of the pair's tangential rows (its free components), whichever of them has any.
-  const SparseRow &any = rows_[p * 2].ncols ? rows_[p * 2] : rows_[p * 2 + 1];
-  for (PetscInt i = 0; i < any.ncols; ++i) row.Add(any.cols[i], dir[components_[p][i]]);
+  // The two rows have the same columns (Bind): their combination is the row along a t_1 + b t_2.
+  row = rows_[p * 2];
+  for (PetscInt i = 0; i < row.ncols; ++i) row.coef[i] = a * rows_[p * 2].coef[i] + b * rows_[p * 2 + 1].coef[i];
+  if (!HasRow(row)) row.Clear();
 }
 
 void Friction::SystemRow(std::size_t p, int k, SparseRow &row) const {
   const int m = PerPair();
   if (m == 1 || grip_[p] != Grip::SLIP) {
     row = rows_[p * m + k];
+    if (!has_[p * m + k]) row.Clear();
     return;
   }
   // 3D slip: along d, then across it (d_perp = (-d_2, d_1) in the tangent basis).
   const double d0 = dir_[p * 2], d1 = dir_[p * 2 + 1];
-  if (rows_[p * 2].ncols == 0 && rows_[p * 2 + 1].ncols == 0) row.Clear();
-  else if (k == 0) TurnedRow(p, d0, d1, row);
+  if (k == 0) TurnedRow(p, d0, d1, row);
   else TurnedRow(p, -d1, d0, row);
 }
 
@@ -219,12 +256,13 @@ void Friction::SystemRows(const std::vector<SparseRow> &normal_rows, const std::
     if (grip_[p] != Grip::SLIP) continue;
     // The slip pair's normal multiplier also carries its friction force mu lambda_n d: the force on the body per unit
     // lambda_n is n - mu sum_k d_k t_k, and its column -(n - ...) (the row's coefficients are -n).
+    // The tangential rows have the normal row's columns (Bind).
     const SparseRow &row = normal_rows[p];
     std::vector<double> &col = columns[p];
     col = row.coef;
-    for (PetscInt i = 0; i < row.ncols; ++i)
-      for (int k = 0; k < m; ++k)
-        col[i] += mu_pair_[p] * dir_[p * m + k] * tangents_[p][k][components_[p][i]];
+    for (int k = 0; k < m; ++k)
+      if (has_[p * m + k])
+        for (PetscInt i = 0; i < row.ncols; ++i) col[i] += mu_pair_[p] * dir_[p * m + k] * rows_[p * m + k].coef[i];
   }
 }
 
@@ -233,7 +271,7 @@ void Friction::HeldDirections(std::size_t p, std::vector<std::array<double, 3>> 
   dirs.clear();
   for (int k = 0; k < m; ++k) {
     const bool across = m == 2 && k == 1 && grip_[p] == Grip::SLIP && std::isfinite(across_[p]);
-    if (!(grip_[p] == Grip::STICK || across) || rows_[p * m + k].ncols == 0) continue;
+    if (!(grip_[p] == Grip::STICK || across) || !has_[p * m + k]) continue;
     std::array<double, 3> d = tangents_[p][k];
     if (across) {
       const double d0 = dir_[p * 2], d1 = dir_[p * 2 + 1];
@@ -243,10 +281,11 @@ void Friction::HeldDirections(std::size_t p, std::vector<std::array<double, 3>> 
   }
 }
 
-void Friction::RowRhs(const std::vector<ContactPair> &pairs, const double *u_local, PetscScalar *b) const {
+PetscErrorCode Friction::RowRhs(const std::vector<ContactPair> &pairs, const double *u_local, PetscScalar *b) const {
   const int m = PerPair();
   std::vector<double> s;
-  Slips(pairs, u_local, s);
+  PetscFunctionBeginUser;
+  PetscCall(Slips(pairs, u_local, s));
   for (std::size_t p = 0; p < pairs.size(); ++p)
     for (int k = 0; k < m; ++k) {
       double v = 0;
@@ -256,6 +295,7 @@ void Friction::RowRhs(const std::vector<ContactPair> &pairs, const double *u_loc
         v = -(-dir_[p * 2 + 1] * s[p * 2] + dir_[p * 2] * s[p * 2 + 1]);
       b[p * m + k] = v;
     }
+  PetscFunctionReturn(0);
 }
 
 void Friction::Read(const PetscScalar *x_t, const std::vector<double> &lambda_n, const std::vector<double> &mult_n) {
@@ -284,17 +324,39 @@ void Friction::Read(const PetscScalar *x_t, const std::vector<double> &lambda_n,
   }
 }
 
-void Friction::AddForces(const std::vector<ContactPair> &pairs, const DofMap &dofs, double scale, bool solved,
-                         double *r) const {
+PetscErrorCode Friction::AddForces(const std::vector<ContactPair> &pairs, double scale, bool solved, double *r,
+                                  PetscInt n) const {
   const int m = PerPair();
   const std::vector<double> &l = solved ? mult_t_ : lambda_t_;
+  std::vector<double> F(pairs.size() * dim_, 0.0); // the friction force on each pair's node
+  PetscFunctionBeginUser;
   for (std::size_t p = 0; p < pairs.size(); ++p)
     for (int k = 0; k < m; ++k)
-      for (int c = 0; c < dim_; ++c)
-        r[dofs.LocalOffset(pairs[p].vertex, c)] -= scale * tangents_[p][k][c] * l[p * m + k];
+      for (int c = 0; c < dim_; ++c) F[p * dim_ + c] -= tangents_[p][k][c] * l[p * m + k];
+  for (std::size_t p = 0; p < pairs.size(); ++p)
+    for (int c = 0; c < dim_; ++c) r[dofs_->LocalOffset(pairs[p].vertex, c)] += scale * F[p * dim_ + c];
+  if (mortar_) PetscCall(mortar_->AddMasterVectorForces(F, scale, r, n));
+  PetscFunctionReturn(0);
 }
 
-PetscErrorCode Friction::Certify(MPI_Comm comm, const Mesh &mesh, const std::vector<ContactPair> &pairs,
+PetscErrorCode Friction::AddMasterForces(const std::vector<ContactPair> &pairs, double *r, PetscInt n,
+                                        double *sum) const {
+  const int m = PerPair();
+  std::vector<double> F(pairs.size() * dim_, 0.0), master(n, 0.0);
+  PetscFunctionBeginUser;
+  if (!mortar_) PetscFunctionReturn(0);
+  for (std::size_t p = 0; p < pairs.size(); ++p)
+    for (int k = 0; k < m; ++k)
+      for (int c = 0; c < dim_; ++c) F[p * dim_ + c] -= tangents_[p][k][c] * lambda_t_[p * m + k];
+  PetscCall(mortar_->AddMasterVectorForces(F, 1, master.data(), n));
+  for (PetscInt i = 0; i < n; ++i) r[i] += master[i];
+  for (PetscInt v = 0; v < mesh_->NumLocalVertices(); ++v)
+    if (mesh_->Owned(v))
+      for (int c = 0; c < dim_; ++c) sum[c] += master[dofs_->LocalOffset(v, c)];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Friction::Certify(MPI_Comm comm, const std::vector<ContactPair> &pairs,
                                  const std::vector<PairState> &states, const double *u_local, double lambda_tol,
                                  double slip_tol, FrictionCertificate &cert) const {
   const int m = PerPair();
@@ -309,9 +371,9 @@ PetscErrorCode Friction::Certify(MPI_Comm comm, const Mesh &mesh, const std::vec
   double lmax = 0, force[3] = {0, 0, 0};
   PetscInt counts[2] = {0, 0};
   PetscFunctionBeginUser;
-  Slips(pairs, u_local, s);
+  PetscCall(Slips(pairs, u_local, s));
   const auto note = [&](int i, double value, PetscInt vertex) {
-    const int node = (int)mesh.VertexOriginal(vertex) + 1;
+    const int node = (int)mesh_->VertexOriginal(vertex) + 1;
     if (value > worst[i].value || (value == worst[i].value && node < worst[i].node)) worst[i] = {value, node};
   };
   for (std::size_t p = 0; p < pairs.size(); ++p) {

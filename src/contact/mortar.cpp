@@ -597,10 +597,16 @@ PetscErrorCode MortarCoupling::Bind(const Mesh &mesh, const DofMap &dofs, const 
   }
   PetscCall(MatCreateAIJ(comm, (PetscInt)pairs.size(), dofs.OwnedRows(), PETSC_DETERMINE, PETSC_DETERMINE, 0,
                          d_nnz.data(), 0, o_nnz.data(), G_.out()));
+  std::vector<PetscInt> wd_nnz(pairs.size() * dim_), wo_nnz(pairs.size() * dim_);
+  for (std::size_t i = 0; i < wd_nnz.size(); ++i) wd_nnz[i] = d_nnz[i / dim_] / dim_, wo_nnz[i] = o_nnz[i / dim_] / dim_;
+  PetscCall(MatCreateAIJ(comm, (PetscInt)pairs.size() * dim_, dofs.OwnedRows(), PETSC_DETERMINE, PETSC_DETERMINE, 0,
+                         wd_nnz.data(), 0, wo_nnz.data(), W_.out()));
   // G's entries, and each row's free master columns for the system (ExtendRows, at every evaluation of the pairs).
-  PetscInt first_row;
+  PetscInt first_row, first_w;
   PetscCall(MatGetOwnershipRange(G_, &first_row, nullptr));
+  PetscCall(MatGetOwnershipRange(W_, &first_w, nullptr));
   free_columns_.assign(pairs.size(), {});
+  free_terms_.assign(pairs.size(), {});
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     if (pair_row_[p] < 0) continue;
     const Row &r = rows_[pair_row_[p]];
@@ -611,7 +617,9 @@ PetscErrorCode MortarCoupling::Bind(const Mesh &mesh, const DofMap &dofs, const 
       PetscScalar vals[3];
       for (int k = 0; k < dim_; ++k) {
         cols[k] = first + k, vals[k] = -t.w * r.n[k];
-        if (!(fixed & (1 << k))) free_columns_[p].emplace_back(first + k, t.w * r.n[k]);
+        if (!(fixed & (1 << k))) free_columns_[p].emplace_back(first + k, t.w * r.n[k]), free_terms_[p].push_back({t.w, k});
+        const PetscInt wrow = first_w + (PetscInt)p * dim_ + k;
+        PetscCall(MatSetValue(W_, wrow, first + k, t.w, ADD_VALUES));
       }
       PetscCall(MatSetValues(G_, 1, &row, dim_, cols, vals, ADD_VALUES));
     }
@@ -619,6 +627,55 @@ PetscErrorCode MortarCoupling::Bind(const Mesh &mesh, const DofMap &dofs, const 
   PetscCall(MatAssemblyBegin(G_, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(G_, MAT_FINAL_ASSEMBLY));
   PetscCall(MatCreateVecs(G_, x_.out(), y_.out()));
+  PetscCall(MatAssemblyBegin(W_, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(W_, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatCreateVecs(W_, wx_.out(), wy_.out()));
+  PetscFunctionReturn(0);
+}
+
+void MortarCoupling::MasterColumns(std::size_t p, const double *dir, double scale, SparseRow &row) const {
+  if (p >= free_columns_.size()) return;
+  for (std::size_t i = 0; i < free_columns_[p].size(); ++i)
+    row.Add(free_columns_[p][i].first, scale * free_terms_[p][i].w * dir[free_terms_[p][i].k]);
+}
+
+PetscErrorCode MortarCoupling::Apply(Mat M, const Mesh &mesh, const DofMap &dofs, const double *u_local, Vec x,
+                                     Vec y) const {
+  PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(x));
+  PetscCall(VecGetArray(x, &a));
+  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v)
+    if (mesh.Owned(v))
+      for (int k = 0; k < dim_; ++k) a[dofs.LocalOffset(v, k)] = u_local[v * dim_ + k];
+  PetscCall(VecRestoreArray(x, &a));
+  PetscCall(MatMult(M, x, y));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MortarCoupling::MasterDisplacements(const Mesh &mesh, const DofMap &dofs, const double *u_local,
+                                                   std::vector<double> &m) const {
+  const PetscScalar *y;
+  PetscFunctionBeginUser;
+  PetscCall(Apply(W_, mesh, dofs, u_local, wx_, wy_));
+  PetscCall(VecGetArrayRead(wy_, &y));
+  m.assign(y, y + pair_row_.size() * dim_);
+  PetscCall(VecRestoreArrayRead(wy_, &y));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MortarCoupling::AddMasterVectorForces(const std::vector<double> &F, double sign, double *out,
+                                                     PetscInt n) const {
+  PetscScalar *y;
+  const PetscScalar *x;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(wy_, &y));
+  for (std::size_t i = 0; i < pair_row_.size() * dim_; ++i) y[i] = F[i];
+  PetscCall(VecRestoreArray(wy_, &y));
+  PetscCall(MatMultTranspose(W_, wy_, wx_));
+  PetscCall(VecGetArrayRead(wx_, &x));
+  for (PetscInt i = 0; i < n; ++i) out[i] -= sign * x[i];
+  PetscCall(VecRestoreArrayRead(wx_, &x));
   PetscFunctionReturn(0);
 }
 
@@ -633,16 +690,9 @@ void MortarCoupling::ExtendRows(std::vector<ConstraintRow> &rows) const {
 
 PetscErrorCode MortarCoupling::AddMasterGaps(const Mesh &mesh, const DofMap &dofs, const double *u_local,
                                              std::vector<PairState> &states) const {
-  PetscScalar *x;
   const PetscScalar *y;
   PetscFunctionBeginUser;
-  PetscCall(VecZeroEntries(x_));
-  PetscCall(VecGetArray(x_, &x));
-  for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v)
-    if (mesh.Owned(v))
-      for (int k = 0; k < dim_; ++k) x[dofs.LocalOffset(v, k)] = u_local[v * dim_ + k];
-  PetscCall(VecRestoreArray(x_, &x));
-  PetscCall(MatMult(G_, x_, y_));
+  PetscCall(Apply(G_, mesh, dofs, u_local, x_, y_));
   PetscCall(VecGetArrayRead(y_, &y));
   for (std::size_t p = 0; p < states.size(); ++p)
     if (pair_row_[p] >= 0) states[p].gap += y[p];

@@ -94,23 +94,24 @@ void RigidModes::AppendModes(PetscInt b, const double *x, const double *dir, dou
 
 void RigidModes::PairRow(std::size_t p, const std::vector<PairKey> &keys,
                          const std::vector<std::array<double, 3>> &normals,
-                         std::vector<std::pair<int, double>> &row) const {
+                         std::vector<std::pair<int, double>> &row, std::size_t terms_of) const {
   const PetscInt v = keys[p].vertex;
   row.clear();
   AppendModes(mesh_->NumBodies() > 0 ? mesh_->VertexBody(v) : 0, mesh_->X(v), normals[p].data(), 1, row);
-  const auto *terms = mortar_ ? mortar_->Terms(p) : nullptr;
+  const auto *terms = mortar_ ? mortar_->Terms(terms_of) : nullptr;
   if (terms)
     for (const auto &t : *terms) AppendModes(t.body, t.x, normals[p].data(), -t.w, row);
 }
 
 PetscErrorCode RigidModes::Gram(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
-                                const std::vector<char> &active, std::vector<double> &gram) const {
+                                const std::vector<char> &active, std::vector<double> &gram,
+                                const std::vector<std::size_t> *pair_of) const {
   std::vector<std::pair<int, double>> row;
   PetscFunctionBeginUser;
   gram.assign(n_ * n_, 0.0);
   for (std::size_t p = 0; p < keys.size(); ++p)
     if (active[p]) {
-      PairRow(p, keys, normals, row);
+      PairRow(p, keys, normals, row, pair_of ? (*pair_of)[p] : p);
       AddRow(row, gram);
     }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, gram.data(), n_ * n_, MPI_DOUBLE, MPI_SUM, mesh_->Comm()));
@@ -119,10 +120,11 @@ PetscErrorCode RigidModes::Gram(const std::vector<PairKey> &keys, const std::vec
 }
 
 PetscErrorCode RigidModes::Held(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
-                                const std::vector<char> &active, bool &held) const {
+                                const std::vector<char> &active, bool &held,
+                                const std::vector<std::size_t> *pair_of) const {
   std::vector<double> gg;
   PetscFunctionBeginUser;
-  PetscCall(Gram(keys, normals, active, gg));
+  PetscCall(Gram(keys, normals, active, gg, pair_of));
   held = RelativeSmallestEigenvalue(n_, gg.data()) > FREE_MODE;
   PetscFunctionReturn(0);
 }

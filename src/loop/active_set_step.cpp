@@ -213,7 +213,7 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
       PetscCall(mortar_.AddMasterForces(mult_, 1, master));
       for (PetscInt i = 0; i < dofs_.OwnedU(); ++i) fi[i] += master[i];
     }
-    if (friction_.On()) friction_.AddForces(pairs_, dofs_, 1, true, fi);
+    if (friction_.On()) PetscCall(friction_.AddForces(pairs_, 1, true, fi, dofs_.OwnedU()));
     PetscCall(VecRestoreArrayRead(fext_, &fe));
     PetscCall(VecRestoreArray(fint_, &fi));
     st.r.norm = st.solve_residual;
@@ -456,7 +456,7 @@ PetscErrorCode ContactSolver::Certify(const std::vector<double> &u_eval, double 
   cert.search_radius = contact_.search_radius;
   if (!mortar_.Empty()) PetscCall(PairForceBalance(cert));
   if (friction_.On())
-    PetscCall(friction_.Certify(mesh_.Comm(), mesh_, pairs_, states_, u_eval.data(), cert.lambda_tol, cert.gap_tol,
+    PetscCall(friction_.Certify(mesh_.Comm(), pairs_, states_, u_eval.data(), cert.lambda_tol, cert.gap_tol,
                                 cert.friction));
   // No solve can lift a node whose normal motion the supports prescribe: the input contradicts itself.
   PetscCheck(prescribed.depth <= cert.gap_tol, mesh_.Comm(), PETSC_ERR_USER_INPUT,

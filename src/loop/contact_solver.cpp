@@ -33,8 +33,8 @@ PetscErrorCode ContactSolver::Setup() {
   PetscCall(FindAllPairs(pairs_, candidate_, nullptr, &held_));
   if (!model_->CurrentConfiguration()) DropOutOfZone(pairs_);
   PetscCheck(!(friction_.On() && model_->Nonlinear()), comm, PETSC_ERR_USER_INPUT,
-             "-contact_friction %g with -material_model svk: friction is implemented for the linear material only so "
-             "far; expected -material_model linear, or -contact_friction 0", friction_.Coefficient());
+             "%s with -material_model svk: friction is implemented for the linear material only so far; expected "
+             "-material_model linear, or no friction", friction_.Describe().c_str());
   PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size() * RowsPerPair()));
   assembler_ = std::make_unique<Assembler>(mesh_, material_, dofs_, dirichlet_);
   PetscCall(assembler_->CheckCells());
@@ -74,15 +74,12 @@ PetscErrorCode ContactSolver::CreateSystem() {
   std::vector<ConstraintRow> rows = rows_;
   if (friction_.On()) {
     // The tangential rows after the normal ones, on the same columns.
-    std::vector<char> is_mortar(pairs_.size()), flags;
-    for (std::size_t p = 0; p < pairs_.size(); ++p) is_mortar[p] = mortar_.IsMortar(pairs_[p]);
-    friction_.Bind(mesh_, dofs_, dirichlet_.fixed, pairs_, normals_, is_mortar);
+    std::vector<char> flags;
+    friction_.Bind(mesh_, dofs_, dirichlet_.fixed, pairs_, normals_, mortar_);
     std::vector<std::vector<double>> columns;
     std::vector<double> diag;
     friction_.SystemRows(rows_, std::vector<char>(pairs_.size(), 0), rows, flags, columns, diag);
-    char why[64];
-    std::snprintf(why, sizeof(why), "-contact_friction %g", friction_.Coefficient());
-    system_->UseNonsymmetric(why);
+    system_->UseNonsymmetric(friction_.Describe());
   }
   PetscCall(system_->Create(dofs_, rows, coords, !model_->Nonlinear(), kscale_, d_nnz, o_nnz, insert_pattern));
   if (opts_.lagged_search_set && opts_.lagged_search) system_->KeepFactorization();
@@ -203,10 +200,10 @@ PetscErrorCode ContactSolver::ChooseSolver() {
     // Friction's slip rows make the matrix nonsymmetric, which the iterative path's Schur fieldsplit (its augmented
     // form and its kept displacement preconditioner) is not built for: MUMPS LU solves it.
     PetscCheck(stats_.solver.by == ChosenBy::AUTO, comm, PETSC_ERR_USER_INPUT,
-               "-contact_friction %g: the iterative path (%s) does not solve the nonsymmetric saddle-point matrix of "
-               "friction yet; expected the direct path: -contact_solver direct, no solver option, or -options_file "
+               "%s: the iterative path (%s) does not solve the nonsymmetric saddle-point matrix of friction yet; "
+               "expected the direct path: -contact_solver direct, no solver option, or -options_file "
                "options/solver/mumps_lu.yml",
-               friction_.Coefficient(),
+               friction_.Describe().c_str(),
                stats_.solver.by == ChosenBy::CONTACT_SOLVER ? "-contact_solver iterative" : "the given solver options");
     stats_.solver.path = SolverPath::DIRECT;
     stats_.solver.why = "friction: the slip rows make the matrix nonsymmetric, which MUMPS LU solves (the iterative "
@@ -404,7 +401,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double factor, bool first,
   PetscCall(VecNorm(fext_, NORM_INFINITY, &load_scale));
   active_set_.BeginStep(load_scale);
   // Friction: the slips of this step count from the converged state.
-  if (friction_.On()) friction_.BeginStep(pairs_, u_local_.data());
+  if (friction_.On()) PetscCall(friction_.BeginStep(pairs_, u_local_.data()));
   retry_.widen_to = 0;
   retry_.unheld_detail.clear();
   PetscInt it = 0;
@@ -477,12 +474,14 @@ PetscErrorCode ContactSolver::Held(const std::vector<char> &next, bool &held) co
   std::vector<std::array<double, 3>> normals = normals_;
   std::vector<char> flags = next;
   std::vector<std::array<double, 3>> dirs;
+  std::vector<std::size_t> pair_of(pairs_.size());
+  for (std::size_t p = 0; p < pairs_.size(); ++p) pair_of[p] = p;
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
     if (!next[p]) continue;
     friction_.HeldDirections(p, dirs);
-    for (const auto &d : dirs) keys.push_back(keys_[p]), normals.push_back(d), flags.push_back(1);
+    for (const auto &d : dirs) keys.push_back(keys_[p]), normals.push_back(d), flags.push_back(1), pair_of.push_back(p);
   }
-  PetscCall(rigid_.Held(keys, normals, flags, held));
+  PetscCall(rigid_.Held(keys, normals, flags, held, &pair_of));
   PetscFunctionReturn(0);
 }
 

@@ -45,7 +45,7 @@ PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double
     for (int k = 0; k < dim; ++k) r[dofs_.LocalOffset(pairs_[p].vertex, k)] -= lambda[p] * normals_[p][k];
   // The mortar pairs' forces on their master nodes (of any rank).
   if (!mortar_.Empty()) PetscCall(mortar_.AddMasterForces(lambda, -1, r));
-  if (friction_.On()) friction_.AddForces(pairs_, dofs_, -1, false, r.data());
+  if (friction_.On()) PetscCall(friction_.AddForces(pairs_, -1, false, r.data(), dofs_.OwnedU()));
   // s[3]: ||u||^2 over the owned rows (prescribed values included), for the round-off of F_int (roundoff).
   for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
     if (mesh_.Owned(v))
@@ -141,7 +141,7 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
       for (int k = 0; k < dim; ++k)
         if (dirichlet_.fixed[v * dim + k]) b[dofs_.LocalOffset(v, k)] = kscale_ * st.delta[v * dim + k];
   for (std::size_t p = 0; p < pairs_.size(); ++p) b[dofs_.OwnedU() + p] = st.next[p] ? states_[p].gap : 0.0;
-  if (friction_.On()) friction_.RowRhs(pairs_, st.u_eval.data(), b + dofs_.OwnedU() + pairs_.size());
+  if (friction_.On()) PetscCall(friction_.RowRhs(pairs_, st.u_eval.data(), b + dofs_.OwnedU() + pairs_.size()));
   PetscCall(VecRestoreArrayRead(fint_, &fi));
   PetscCall(VecRestoreArrayRead(fext_, &fe));
   PetscCall(VecRestoreArray(system_->Rhs(), &b));

@@ -20,13 +20,14 @@ struct Partial {
 
 /// The friction force F = -sum_k t_k lambda_t,k per node, its traction F / (w t), the slip and the set, and the total
 /// friction force (part of the contact force).
-void FrictionResults(const SolvedState &state, const Material &material, const std::vector<double> &w,
-                     NodeContact &nodes, Partial &part) {
+PetscErrorCode FrictionResults(const SolvedState &state, const Material &material, const std::vector<double> &w,
+                               NodeContact &nodes, Partial &part) {
   const Friction &friction = *state.friction;
   const int dim = state.mesh.Dim(), m = friction.PerPair();
   const PetscInt nv = state.mesh.NumLocalVertices();
   std::vector<double> s;
-  friction.Slips(state.pairs, state.u_local.data(), s);
+  PetscFunctionBeginUser;
+  PetscCall(friction.Slips(state.pairs, state.u_local.data(), s));
   nodes.friction.assign(nv * dim, 0.0);
   nodes.friction_traction.assign(nv * dim, 0.0);
   nodes.slip.assign(nv * dim, 0.0);
@@ -46,7 +47,9 @@ void FrictionResults(const SolvedState &state, const Material &material, const s
   }
   for (PetscInt v = 0; v < nv; ++v)
     if (w[v] > 0)
-      for (int c = 0; c < dim; ++c) nodes.friction_traction[v * dim + c] = nodes.friction[v * dim + c] / (w[v] * material.thickness);
+      for (int c = 0; c < dim; ++c)
+        nodes.friction_traction[v * dim + c] = nodes.friction[v * dim + c] / (w[v] * material.thickness);
+  PetscFunctionReturn(0);
 }
 
 /// The multipliers, pressures, gaps and active flags per node (nodes) from the pairs, with the contact force, length
@@ -81,7 +84,6 @@ void NodeResults(const SolvedState &state, const Material &material, const std::
     if (st.InZone()) maxes[1] = std::max(maxes[1], -st.gap);
     maxes[2] = std::max(maxes[2], std::abs(st.lambda * st.gap));
   }
-  if (state.friction) FrictionResults(state, material, w, nodes, part);
   for (PetscInt v = 0; v < nv; ++v) {
     if (!mesh.Owned(v)) continue;
     counts[0] += state.candidates[v];
@@ -109,7 +111,14 @@ PetscErrorCode BodyResults(const SolvedState &state, Partial &part) {
   for (std::size_t p = 0; p < pairs.size(); ++p)
     for (int k = 0; k < dim; ++k)
       contact_at[dofs.LocalOffset(pairs[p].vertex, k)] += state.states[p].lambda * state.normals[p][k];
-  if (state.friction) state.friction->AddForces(pairs, dofs, 1, false, contact_at.data());
+  if (state.friction) {
+    // The friction forces on the pairs' nodes, and (pairs of bodies) on their master nodes, part of the master sides'.
+    std::vector<double> slave(dofs.OwnedU(), 0.0);
+    PetscCall(state.friction->AddForces(pairs, 1, false, slave.data(), dofs.OwnedU()));
+    for (PetscInt i = 0; i < dofs.OwnedU(); ++i) contact_at[i] += slave[i];
+    std::vector<double> master(dofs.OwnedU(), 0.0);
+    PetscCall(state.friction->AddMasterForces(pairs, master.data(), dofs.OwnedU(), &local[13]));
+  }
   if (state.mortar && !state.mortar->Empty()) {
     std::vector<double> lambda(pairs.size()), master;
     for (std::size_t p = 0; p < pairs.size(); ++p) lambda[p] = state.states[p].lambda;
@@ -181,6 +190,7 @@ PetscErrorCode ComputeContactResults(const SolvedState &state, const Material &m
   PetscCall(TributaryLengths(state.mesh, state.candidates, w));
   Partial part;
   NodeResults(state, material, w, nodes, part);
+  if (state.friction) PetscCall(FrictionResults(state, material, w, nodes, part));
   PetscCall(BodyResults(state, part));
   PetscCall(Summarise(state.mesh.Comm(), part, s));
   s.bodies = state.mortar && !state.mortar->Empty();

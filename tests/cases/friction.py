@@ -136,3 +136,26 @@ def friction_rank_independence(runner, dim):
     for a in ("xy" if dim == "2d" else "xyz"):
         runner.expect_close("friction_" + a, f2["friction_" + a], f1["friction_" + a], 0,
                             1e-10 * np.abs(f1["friction_x"]).max())
+
+
+@test("sliding_between_bodies")
+def sliding_between_bodies(runner):
+    """Friction between two bodies (-contact_pairs SLAVE:MASTER:MU): the upper block of the 2D patch test dragged by
+    its top over the lower block beyond what friction holds: every slave node slips, the friction force on the upper
+    block is -mu times its normal force to 1e-10, the master side carries the opposite force (the two sides' forces
+    balance to round-off), and a pair's own MU overrides -contact_friction."""
+    args = ["-options_file", "options/patch2d.yml", "-bc_dirichlet", "bottom:y,lower_left:x,upper_top:x=0.01"]
+    r = runner.run(args + ["-contact_pairs", "upper_bottom:lower_top:0.3"], "patch blocks sliding, MU = 0.3")
+    expect_friction_certificate(runner, r)
+    runner.expect_true("force balance of both sides, reactions and load %.3g <= 1e-10" % r.get("contact.force_balance"),
+                       r.get("contact.force_balance") <= 1e-10)
+    normal = np.array(r.get("contact.contact_force")) - np.array(r.get("contact.friction_force"))
+    want = [-0.3 * np.linalg.norm(normal), 0]
+    runner.expect_close("friction force = -mu N", r.get("contact.friction_force"), want, 0, 1e-10 * abs(want[0]))
+    runner.expect_close("master side = - slave side", r.get("contact.master_contact_force"),
+                        -np.array(r.get("contact.contact_force")), 0, 1e-10 * np.linalg.norm(normal))
+    runner.expect_equal("every active slave node slips", r.get("friction.slip_nodes"), r.get("contact.active_nodes"))
+    o = runner.run(args + ["-contact_friction", "0.1", "-contact_pairs", "upper_bottom:lower_top:0.3"],
+                   "patch blocks sliding, -contact_friction 0.1, MU = 0.3")
+    runner.expect_close("the pair's MU overrides -contact_friction", o.get("contact.friction_force"),
+                        r.get("contact.friction_force"), 1e-12)

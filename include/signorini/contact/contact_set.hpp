@@ -22,6 +22,7 @@ struct ContactOptions {
   std::vector<std::string> groups; ///< -contact_groups: physical groups of candidate nodes (default: whole boundary)
   /// -contact_pairs SLAVE:MASTER,...: facet groups of two bodies in contact (mortar.hpp), slave first
   std::vector<std::pair<std::string, std::string>> pairs;
+  std::vector<double> pair_friction; ///< per item of pairs: its MU (-contact_pairs SLAVE:MASTER:MU), -1: none given
   double friction = 0;             ///< -contact_friction: Coulomb's coefficient mu (friction.hpp; 0: frictionless)
   double length = 1;               ///< the body's diagonal (the length scale of the tolerances)
   double search_radius = -1;       ///< -contact_search_radius: pair a node with facets closer than this

@@ -71,6 +71,18 @@ public:
   [[nodiscard]] PetscErrorCode AddMasterForces(const std::vector<double> &lambda, double sign,
                                                std::vector<double> &out) const;
 
+  /// Appends to row the free master columns of pair p in ExtendRows' order, with coefficients scale w_jl dir_k (the
+  /// master part of a row along the direction dir: friction's tangential rows).
+  void MasterColumns(std::size_t p, const double *dir, double scale, SparseRow &row) const;
+  /// The weighted master displacement of every pair, m_p = sum_l w_jl u_l (dim values per pair; 0 for an obstacle's
+  /// pair), at u_local (dim values per local vertex). Collective.
+  [[nodiscard]] PetscErrorCode MasterDisplacements(const Mesh &mesh, const DofMap &dofs, const double *u_local,
+                                                   std::vector<double> &m) const;
+  /// out[i] += sign times the forces on the master nodes of the forces F (dim values per pair) on the slave nodes,
+  /// - w_jl F_p, over the owned displacement rows (local offsets). Collective.
+  [[nodiscard]] PetscErrorCode AddMasterVectorForces(const std::vector<double> &F, double sign, double *out,
+                                                     PetscInt n) const;
+
   /// A master node of a row: its file number (from 0), its weight w_jl = M_jl / D_jj, its position and its body.
   struct MasterTerm {
     PetscInt node;
@@ -98,6 +110,10 @@ private:
   [[nodiscard]] PetscErrorCode BuildInterface(const Mesh &mesh, const ContactOptions &opts,
                                               const std::vector<char> &fixed, PetscInt item, const double *u_local);
 
+  /// y = M x with x the displacement u_local (dim values per local vertex) in the system's layout. Collective.
+  [[nodiscard]] PetscErrorCode Apply(Mat M, const Mesh &mesh, const DofMap &dofs, const double *u_local, Vec x,
+                                     Vec y) const;
+
   PetscInt interfaces_ = 0, facet_base_ = 0;
   std::vector<Row> rows_;
   std::vector<char> slave_, master_vertex_; ///< local vertices of a slave group, of a master group
@@ -107,6 +123,15 @@ private:
   std::unordered_map<PetscInt, std::pair<PetscInt, int>> master_;
   /// Bind: per pair its master nodes' free columns in the system and their coefficients w_jl n_j (ExtendRows).
   std::vector<std::vector<std::pair<PetscInt, double>>> free_columns_;
+  /// Bind: per pair its free master columns' weights w_jl and components, in free_columns_' order.
+  struct FreeTerm {
+    double w;
+    int k;
+  };
+  std::vector<std::vector<FreeTerm>> free_terms_;
+  /// Bind: W, the weights w_jl per pair and component (rows: dim per owned pair; columns as G's), and its vectors.
+  MatH W_;
+  mutable VecH wx_, wy_;
   PetscInt dim_ = 2;
   MatH G_;
   mutable VecH x_, y_; ///< work vectors of G's columns and rows

@@ -34,8 +34,11 @@ public:
   [[nodiscard]] PetscErrorCode Setup(const Mesh &mesh, const std::vector<char> &fixed,
                                      const MortarCoupling *mortar = nullptr);
   /// Whether the Dirichlet rows and the active pairs (normals at their vertices) hold every rigid mode. Collective.
+  /// pair_of (if given): per row, the pair whose master terms (mortar) the row has (rows beyond the pairs: friction's
+  /// tangential rows); else row p has pair p's.
   [[nodiscard]] PetscErrorCode Held(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
-                                    const std::vector<char> &active, bool &held) const;
+                                    const std::vector<char> &active, bool &held,
+                                    const std::vector<std::size_t> *pair_of = nullptr) const;
   /// The rigid motion nearest to the displacement du (local vertex layout, du[v*dim+k]; least squares over the owned
   /// vertices) among those the Dirichlet rows and the active pairs leave free: its mode coefficients a (zero when
   /// every mode is held). Collective.
@@ -56,7 +59,11 @@ private:
   /// The row of pair p on the modes, as (mode, value) entries: its node's body's modes along its normal, less the
   /// master terms' (mortar).
   void PairRow(std::size_t p, const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
-               std::vector<std::pair<int, double>> &row) const;
+               std::vector<std::pair<int, double>> &row, std::size_t terms_of) const;
+  void PairRow(std::size_t p, const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
+               std::vector<std::pair<int, double>> &row) const {
+    PairRow(p, keys, normals, row, p);
+  }
   /// Adds the outer product of a sparse row to the n_ x n_ matrix g.
   void AddRow(const std::vector<std::pair<int, double>> &row, std::vector<double> &g) const;
   /// Appends the modes of body b at x in direction dir, times scale, to row.
@@ -64,7 +71,8 @@ private:
                    std::vector<std::pair<int, double>> &row) const;
   /// The Gram matrix of the Dirichlet rows and the active pairs' rows (n_ x n_). Collective.
   [[nodiscard]] PetscErrorCode Gram(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
-                                    const std::vector<char> &active, std::vector<double> &gram) const;
+                                    const std::vector<char> &active, std::vector<double> &gram,
+                                    const std::vector<std::size_t> *pair_of = nullptr) const;
 
   const Mesh *mesh_ = nullptr;
   const MortarCoupling *mortar_ = nullptr;
