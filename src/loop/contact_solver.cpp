@@ -356,6 +356,24 @@ PetscErrorCode ContactSolver::Monitor(const IterationRecord &r) const {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ContactSolver::CertifiedAtRest(StepState &st, bool &ok) {
+  PetscFunctionBeginUser;
+  // Loads that start later or ended earlier: the step's loads and prescribed values are those of its start, whose
+  // state (the unloaded one before the first step) stays if the certificate says it is a solution.
+  PetscCall(EvaluateIterate(st, 0));
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    states_[p].lambda = lambda_[p];
+    states_[p].active = active_set_.Flags()[p];
+  }
+  Certificate cert;
+  PetscCall(Certify(st.u_eval, st.r.norm, EquilibriumTol(st.r.scale, st.r.roundoff), cert));
+  ok = cert.Satisfied();
+  if (ok) certificate_ = cert, stats_.reason = model_->ConvergedReason();
+  PetscCall(PetscInfo(nullptr, "load step %" PetscInt_FMT ": no ramp moves; its start %s\n", st.step,
+                      ok ? "is certified, no solve" : "is not certified, the step solves"));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor, bool &ok) {
   // The first step's rule (the pairs touching at the start) holds until some load or prescribed value has moved.
   const bool first = !AnyRampMoves(bc_, 0, from);
@@ -428,24 +446,6 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
   // call regular pivots null (the step may be repeated with the pairs of a wider radius, UnpairedAfterFailure).
   if (st.singular) stats_.reason = Reason::DIVERGED_SINGULAR;
   if (!ok) PetscCall(UnpairedAfterFailure(st, it));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode ContactSolver::CertifiedAtRest(StepState &st, bool &ok) {
-  PetscFunctionBeginUser;
-  // Loads that start later or ended earlier: the step's loads and prescribed values are those of its start, whose
-  // state (the unloaded one before the first step) stays if the certificate says it is a solution.
-  PetscCall(EvaluateIterate(st, 0));
-  for (std::size_t p = 0; p < pairs_.size(); ++p) {
-    states_[p].lambda = lambda_[p];
-    states_[p].active = active_set_.Flags()[p];
-  }
-  Certificate cert;
-  PetscCall(Certify(st.u_eval, st.r.norm, EquilibriumTol(st.r.scale, st.r.roundoff), cert));
-  ok = cert.Satisfied();
-  if (ok) certificate_ = cert, stats_.reason = model_->ConvergedReason();
-  PetscCall(PetscInfo(nullptr, "load step %" PetscInt_FMT ": no ramp moves; its start %s\n", st.step,
-                      ok ? "is certified, no solve" : "is not certified, the step solves"));
   PetscFunctionReturn(0);
 }
 
