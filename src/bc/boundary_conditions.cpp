@@ -6,12 +6,46 @@
 #include "signorini/core/parse.hpp"
 
 #include <cmath>
+#include <optional>
 
 
 namespace signorini {
 
+namespace {
+
+constexpr const char *RAMP_GRAMMAR = "expected one suffix @T0:T1 with numbers 0 <= T0 < T1 <= 1 (the load steps' "
+                                     "pseudo-time)";
+
+} // namespace
+
+std::string Ramp::Suffix() const {
+  return Proportional() ? "" : "@" + FormatNumber(t0) + ":" + FormatNumber(t1);
+}
+
+std::string ParseRamp(const std::string &entry, std::string &rest, Ramp &ramp) {
+  const auto at = entry.find('@');
+  ramp = Ramp{};
+  rest = entry.substr(0, at);
+  if (at == std::string::npos) return "";
+  const std::string text = entry.substr(at);
+  const auto quote = "'" + entry + "' has ramp '" + text + "'";
+  if (entry.find('@', at + 1) != std::string::npos) return "'" + entry + "' has two ramps; " + RAMP_GRAMMAR;
+  const auto fields = Split(text.substr(1), ':');
+  if (text.size() == 1) return "'" + entry + "' has an empty ramp '@'; " + RAMP_GRAMMAR;
+  std::optional<double> t0, t1;
+  if (fields.size() == 2) t0 = ParseFinite(fields[0]), t1 = ParseFinite(fields[1]);
+  if (!t0 || !t1) return quote + ", not two numbers T0:T1; " + RAMP_GRAMMAR;
+  if (*t0 < 0 || *t1 > 1) return quote + " outside [0, 1]; " + RAMP_GRAMMAR;
+  if (*t0 >= *t1) return quote + ", which does not start before it ends; " + RAMP_GRAMMAR;
+  ramp = Ramp{*t0, *t1};
+  return "";
+}
+
 std::string ParseDirichlet(const std::string &entry, int dim, std::vector<DirichletSpec> &out) {
-  const auto fields = Split(entry, ':');
+  std::string body;
+  Ramp ramp;
+  if (std::string error = ParseRamp(entry, body, ramp); !error.empty()) return error;
+  const auto fields = Split(body, ':');
   if (fields.size() < 2 || fields[0].empty())
     return "'" + entry + "' is malformed; expected GROUP:COMPONENT[=VALUE][:COMPONENT[=VALUE]] such as left:x=0:y=0";
   for (std::size_t k = 1; k < fields.size(); ++k) {
@@ -29,14 +63,16 @@ std::string ParseDirichlet(const std::string &entry, int dim, std::vector<Dirich
       if (comp < 0 || comp >= dim)
         return "'" + entry + "' has component '" + std::string(1, c) + "'; expected " +
                (dim == 3 ? "x, y or z" : "x or y (the mesh is 2D)");
-      out.push_back({fields[0], comp, value, entry});
+      out.push_back({fields[0], comp, value, entry, ramp});
     }
   }
   return "";
 }
 
 std::string ParseLoad(const std::string &entry, int count, const char *what, LoadSpec &out) {
-  const auto fields = Split(entry, ':');
+  std::string body;
+  if (std::string error = ParseRamp(entry, body, out.ramp); !error.empty()) return std::string(what) + " " + error;
+  const auto fields = Split(body, ':');
   const std::string form = count == 1 ? "GROUP:VALUE" : count == 2 ? "GROUP:VX:VY" : "GROUP:VX:VY:VZ";
   if (fields.size() < 2 || fields[0].empty())
     return std::string(what) + " '" + entry + "' is malformed; expected " + form;
@@ -54,25 +90,40 @@ std::string ParseLoad(const std::string &entry, int count, const char *what, Loa
   return "";
 }
 
+bool AnyRampMoves(const BoundaryConditions &bc, double t0, double t1) {
+  const auto moves = [t0, t1](const Ramp &r, const std::vector<double> &value) {
+    return r.At(t0) != r.At(t1) && std::any_of(value.begin(), value.end(), [](double v) { return v != 0; });
+  };
+  for (const auto &d : bc.dirichlet)
+    if (moves(d.ramp, {d.value})) return true;
+  for (const auto *loads : {&bc.traction, &bc.pressure, &bc.point_force})
+    for (const auto &l : *loads)
+      if (moves(l.ramp, l.value)) return true;
+  return moves(bc.body_force_ramp, bc.body_force);
+}
+
 PetscErrorCode ReadBoundaryConditions(MPI_Comm comm, int dim, BoundaryConditions &bc) {
-  std::vector<std::string> dirichlet, traction, pressure, point_force;
-  std::vector<double> body;
+  std::vector<std::string> dirichlet, traction, pressure, point_force, body;
   PetscBool body_set = PETSC_FALSE;
   const char *nothing = "no condition of this kind";
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Boundary conditions and loads", "signorini");
   const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
   PetscCall(OptionsStringList(PetscOptionsObject, "-bc_dirichlet", "Prescribed displacements GROUP:x=VALUE:y=VALUE"
-                              "[:z=VALUE],... (value defaults to 0)", nothing, "GROUP:COMPONENT[=VALUE] items",
-                              dirichlet));
-  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_traction", "Tractions GROUP:TX:TY[:TZ],... on physical curves "
-                              "(2D) or surfaces (3D) (force per area)", nothing, "GROUP:TX:TY[:TZ] items", traction));
-  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_pressure", "Pressures GROUP:P,... on physical curves (2D) or "
-                              "surfaces (3D), along the inward normal", nothing, "GROUP:P items", pressure));
-  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_point_force", "Point forces GROUP:FX:FY[:FZ],... on every node "
-                              "of the group", nothing, "GROUP:FX:FY[:FZ] items", point_force));
-  PetscCall(OptionsRealList(PetscOptionsObject, "-bc_body_force", "Body force per unit volume BX,BY[,BZ]", nothing,
-                            "BX,BY[,BZ]", body, &body_set));
+                              "[:z=VALUE][@T0:T1],... (value defaults to 0). Every -bc_ item may end with a ramp @T0:T1 "
+                              "(0 <= T0 < T1 <= 1): it is applied from pseudo-time T0 to T1 of the load steps "
+                              "(top:5@0:0.5: over the first half of -load_steps); without one, in proportion over all "
+                              "of them", nothing, "GROUP:COMPONENT[=VALUE][@T0:T1] items", dirichlet));
+  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_traction", "Tractions GROUP:TX:TY[:TZ][@T0:T1],... on physical "
+                              "curves (2D) or surfaces (3D) (force per area)", nothing,
+                              "GROUP:TX:TY[:TZ][@T0:T1] items", traction));
+  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_pressure", "Pressures GROUP:P[@T0:T1],... on physical curves "
+                              "(2D) or surfaces (3D), along the inward normal", nothing, "GROUP:P[@T0:T1] items",
+                              pressure));
+  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_point_force", "Point forces GROUP:FX:FY[:FZ][@T0:T1],... on "
+                              "every node of the group", nothing, "GROUP:FX:FY[:FZ][@T0:T1] items", point_force));
+  PetscCall(OptionsStringList(PetscOptionsObject, "-bc_body_force", "Body force per unit volume BX,BY[,BZ][@T0:T1]",
+                              nothing, "BX,BY[,BZ][@T0:T1]", body, &body_set));
   PetscOptionsEnd();
   // -help lists the options before the mesh, and so its dimension, is known (dim 0): nothing to parse.
   if (dim == 0) PetscFunctionReturn(0);
@@ -100,9 +151,15 @@ PetscErrorCode ReadBoundaryConditions(MPI_Comm comm, int dim, BoundaryConditions
     }
   PetscCheck(error.empty(), comm, PETSC_ERR_USER_INPUT, "%s", error.c_str());
   if (body_set) {
-    PetscCheck((int)body.size() == dim, comm, PETSC_ERR_USER_INPUT,
-               "-bc_body_force has %zu value(s); expected %d (%s)", body.size(), dim, dim == 2 ? "BX,BY" : "BX,BY,BZ");
-    bc.body_force = body;
+    // The ramp follows the last number: the whole value is the entry.
+    const std::string text = Join(body, ",");
+    std::string numbers;
+    error = ParseRamp(text, numbers, bc.body_force_ramp);
+    PetscCheck(error.empty(), comm, PETSC_ERR_USER_INPUT, "-bc_body_force %s", error.c_str());
+    PetscCall(ParseRealList(comm, "-bc_body_force", text, Split(numbers, ','), bc.body_force));
+    PetscCheck((int)bc.body_force.size() == dim, comm, PETSC_ERR_USER_INPUT,
+               "-bc_body_force has %zu value(s); expected %d (%s)", bc.body_force.size(), dim,
+               dim == 2 ? "BX,BY" : "BX,BY,BZ");
   }
   PetscFunctionReturn(0);
 }

@@ -16,9 +16,15 @@ PetscErrorCode BuildDirichlet(const Mesh &mesh, const BoundaryConditions &bc, Di
   PetscFunctionBeginUser;
   data.fixed.assign(mesh.NumLocalVertices() * dim, 0);
   data.value.assign(mesh.NumLocalVertices() * dim, 0.0);
-  // Two items prescribing different values to one node component would leave the last one silently in force. The
-  // first such conflict in (file node, component, item, item) order is reported: the key is the same on every rank
-  // that sees the node, so the minimum over the ranks gives one message whatever the partition.
+  data.ramp.assign(mesh.NumLocalVertices() * dim, 0);
+  data.ramps.assign(1, Ramp{});
+  // Two items prescribing different values (or ramps, but for the value 0, fixed at any time) to one node component
+  // would leave the last one silently in force. The first such conflict in (file node, component, item, item) order
+  // is reported: the key is the same on every rank that sees the node, so the minimum over the ranks gives one
+  // message whatever the partition.
+  const auto differ = [](const DirichletSpec &a, const DirichletSpec &b) {
+    return a.value != b.value || (a.ramp != b.ramp && a.value != 0);
+  };
   std::vector<PetscInt> setter(mesh.NumLocalVertices() * dim, -1);
   PetscInt64 conflict = std::numeric_limits<PetscInt64>::max();
   std::vector<PetscInt> vertices;
@@ -27,7 +33,7 @@ PetscErrorCode BuildDirichlet(const Mesh &mesh, const BoundaryConditions &bc, Di
     PetscCall(mesh.GroupVertices(d.group, vertices, "-bc_dirichlet " + d.item));
     for (PetscInt v : vertices) {
       const PetscInt r = v * dim + d.component;
-      if (setter[r] >= 0 && bc.dirichlet[setter[r]].value != d.value) {
+      if (setter[r] >= 0 && differ(bc.dirichlet[setter[r]], d)) {
         const PetscInt64 node_comp = (PetscInt64)mesh.VertexOriginal(v) * dim + d.component;
         const PetscInt64 key = (node_comp * nspec + setter[r]) * nspec + i;
         conflict = std::min(conflict, key);
@@ -36,6 +42,8 @@ PetscErrorCode BuildDirichlet(const Mesh &mesh, const BoundaryConditions &bc, Di
       if (setter[r] < 0) setter[r] = i;
       data.fixed[r] = 1;
       data.value[r] = d.value;
+      data.ramp[r] = (int)(std::find(data.ramps.begin(), data.ramps.end(), d.ramp) - data.ramps.begin());
+      if (data.ramp[r] == (int)data.ramps.size()) data.ramps.push_back(d.ramp);
     }
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &conflict, 1, MPIU_INT64, MPI_MIN, mesh.Comm()));
@@ -45,9 +53,10 @@ PetscErrorCode BuildDirichlet(const Mesh &mesh, const BoundaryConditions &bc, Di
     const auto &a = bc.dirichlet[first], &b = bc.dirichlet[i];
     SETERRQ(mesh.Comm(), PETSC_ERR_USER_INPUT,
             "-bc_dirichlet prescribes two values to component %c of node %" PetscInt64_FMT " (in file order): %s by "
-            "item '%s' and %s by item '%s'; expected one value per node component (the same value twice is allowed)",
-            "xyz"[node_comp % dim], node_comp / dim + 1, FormatNumber(a.value).c_str(), a.item.c_str(),
-            FormatNumber(b.value).c_str(), b.item.c_str());
+            "item '%s' and %s by item '%s'; expected one value per node component (the same value with the same ramp "
+            "twice is allowed)",
+            "xyz"[node_comp % dim], node_comp / dim + 1, (FormatNumber(a.value) + a.ramp.Suffix()).c_str(),
+            a.item.c_str(), (FormatNumber(b.value) + b.ramp.Suffix()).c_str(), b.item.c_str());
   }
   PetscFunctionReturn(0);
 }
@@ -431,11 +440,12 @@ PetscErrorCode Assembler::AddStiffnessTimes(const double *u_local, const double 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::AssembleLoads(const BoundaryConditions &bc, double factor, Vec f) const {
+PetscErrorCode Assembler::AssembleLoads(const BoundaryConditions &bc, double time, Vec f) const {
   const int dim = mesh_.Dim();
   const double t = material_.thickness;
   std::vector<Face> faces;
   std::vector<PetscInt> vertices;
+  double factor = 0; // the ramp of the item being added, at time
   PetscFunctionBeginUser;
   auto add = [&](PetscInt v, const double *value, double scale) -> PetscErrorCode {
     PetscFunctionBeginUser;
@@ -446,6 +456,7 @@ PetscErrorCode Assembler::AssembleLoads(const BoundaryConditions &bc, double fac
   auto face_loads = [&](const std::vector<LoadSpec> &loads, bool pressure) -> PetscErrorCode {
     PetscFunctionBeginUser;
     for (const auto &load : loads) {
+      factor = load.ramp.At(time);
       const std::string input = std::string(pressure ? "-bc_pressure " : "-bc_traction ") + load.item;
       PetscCall(mesh_.GroupFaces(load.group, faces, input));
       for (const auto &face : faces) {
@@ -468,11 +479,13 @@ PetscErrorCode Assembler::AssembleLoads(const BoundaryConditions &bc, double fac
   PetscCall(face_loads(bc.traction, false));
   PetscCall(face_loads(bc.pressure, true));
   for (const auto &pf : bc.point_force) {
+    factor = pf.ramp.At(time);
     PetscCall(mesh_.GroupVertices(pf.group, vertices, "-bc_point_force " + pf.item));
     for (PetscInt v : vertices)
       if (mesh_.Owned(v)) PetscCall(add(v, pf.value.data(), 1.0));
   }
   if (!bc.body_force.empty()) {
+    factor = bc.body_force_ramp.At(time);
     std::array<PetscInt, MAX_EDOF> rows;
     std::array<double, MAX_EDOF> fe;
     ElementGeometry g;

@@ -16,7 +16,8 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptio
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Load stepping and Newton-Raphson", "signorini");
   const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
-  PetscCall(OptionsInt(PetscOptionsObject, "-load_steps", "Number of load increments", 1, SolverOptions::LOAD_STEPS_MAX,
+  PetscCall(OptionsInt(PetscOptionsObject, "-load_steps", "Number of load increments (step k at pseudo-time "
+                       "k/N, along which each -bc_ item's ramp runs)", 1, SolverOptions::LOAD_STEPS_MAX,
                        opts.load_steps));
   PetscCall(OptionsInt(PetscOptionsObject, "-load_max_cuts", "Halvings allowed for a failed load increment (svk)", 0,
                        SolverOptions::LOAD_MAX_CUTS_MAX, opts.max_cuts, &max_cuts_set));

@@ -161,11 +161,18 @@ PetscErrorCode OptionsRealList(PetscOptionItems *PetscOptionsObject, const char 
   std::vector<std::string> items;
   PetscFunctionBeginUser;
   PetscCall(OptionsStringList(PetscOptionsObject, name, help, empty_means, expected, items, set));
+  PetscCall(ParseRealList(PetscOptionsObject->comm, name, Join(items, ","), items, values));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ParseRealList(MPI_Comm comm, const char *name, const std::string &text,
+                             const std::vector<std::string> &items, std::vector<double> &values) {
+  PetscFunctionBeginUser;
   values.clear();
   for (std::size_t i = 0; i < items.size(); ++i) {
     const auto v = ParseFinite(items[i]);
-    PetscCheck(v, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s %s: value %zu '%s' is invalid; expected %s",
-               name, Join(items, ",").c_str(), i + 1, items[i].c_str(), REAL_GRAMMAR);
+    PetscCheck(v, comm, PETSC_ERR_USER_INPUT, "%s %s: value %zu '%s' is invalid; expected %s", name, text.c_str(),
+               i + 1, items[i].c_str(), REAL_GRAMMAR);
     values.push_back(*v);
   }
   PetscFunctionReturn(0);

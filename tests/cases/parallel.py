@@ -18,6 +18,10 @@ RANK_CASES = {"hertz": [], "beam_on_floor": ["-options_file", "options/beam_on_f
               "hertz3d": ["-options_file", "options/hertz3d.yml"],
               "block_on_cylinder": ["-options_file", "options/block_on_cylinder.yml"],
               "block_on_floor": ["-options_file", "options/block_on_floor.yml"],
+              # A load path (load_paths.py): nothing in step 1, pressed in step 2, sheared and pulled in 3 and 4.
+              "block_on_floor_ramps": ["-options_file", "options/block_on_floor.yml", "-load_steps", "4",
+                                       "-bc_pressure", "top:2@0.25:0.5", "-bc_traction", "top:0.2:0@0.5:1",
+                                       "-bc_dirichlet", "left:x=0.01@0.5:1"],
               # Pairs of bodies (the mortar rows): the interface split between the ranks.
               "cylinders_2d": ["-options_file", "options/cylinders_2d.yml"],
               "sphere_on_block": ["-options_file", "options/sphere_on_block.yml"],

@@ -23,7 +23,7 @@ import time
 
 # The test modules, by theme; each registers its tests with @test when imported.
 TEST_MODULES = ("cases", "verification", "obstacles", "robustness", "parallel", "solvers", "svk", "output",
-                "mesh_h5", "bodies", "friction")
+                "mesh_h5", "bodies", "friction", "load_paths")
 
 
 def main():

@@ -13,15 +13,21 @@
 
 namespace signorini {
 
-/// Dirichlet data per local vertex dof (v * dim + k): whether it is fixed, and its full prescribed value.
+/// Dirichlet data per local vertex dof (v * dim + k): whether it is fixed, its full prescribed value and its ramp.
 struct DirichletData {
   std::vector<char> fixed;
   std::vector<double> value;
+  std::vector<int> ramp;   ///< per dof, its index in ramps (0 when it is free)
+  std::vector<Ramp> ramps; ///< the distinct ramps of the -bc_dirichlet items, the proportional one first
+  /// The prescribed value of dof i at the load steps' pseudo-time t: value * ramp(t) (t * value without ramps).
+  [[nodiscard]] double At(std::size_t i, double t) const {
+    return (ramp.empty() ? t : ramps[ramp[i]].At(t)) * value[i];
+  }
 };
 
 /// Marks the Dirichlet dofs of every local vertex (ghosts included). Unknown groups are errors, and so are two items
-/// prescribing different values to one node component (the message names the node, the component, both values and
-/// both items, the same on any number of ranks). Collective.
+/// prescribing different values or ramps to one node component (the message names the node, the component, both
+/// values and both items, the same on any number of ranks). Collective.
 [[nodiscard]] PetscErrorCode BuildDirichlet(const Mesh &mesh, const BoundaryConditions &bc, DirichletData &data);
 /// Checks the groups of the loads (-bc_traction, -bc_pressure: a physical curve in 2D, a surface in 3D;
 /// -bc_point_force: any group), so that a wrong name stops the run before the set-up; each error names the option and
@@ -54,8 +60,9 @@ public:
   /// Adds K(u) v to the free rows of f, for v nonzero on Dirichlet dofs only (the coupling of a prescribed
   /// displacement increment into the free rows). u_local, v_local: dim values per local vertex. Collective.
   [[nodiscard]] PetscErrorCode AddStiffnessTimes(const double *u_local, const double *v_local, Vec f) const;
-  /// Adds the external loads (tractions, pressures, point forces, body force) scaled by factor to f. Collective.
-  [[nodiscard]] PetscErrorCode AssembleLoads(const BoundaryConditions &bc, double factor, Vec f) const;
+  /// Adds the external loads (tractions, pressures, point forces, body force) at the load steps' pseudo-time t to f,
+  /// each item scaled by its ramp at t (t itself without a ramp). Collective.
+  [[nodiscard]] PetscErrorCode AssembleLoads(const BoundaryConditions &bc, double t, Vec f) const;
   /// Cell strain, stress and von Mises at u, handed to use(c, result) cell by cell (local cells; no array of them:
   /// at 1M cells it would take 120 MB at the peak of the output).
   [[nodiscard]] PetscErrorCode CellResults(const double *u_local,

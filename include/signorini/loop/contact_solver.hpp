@@ -224,7 +224,11 @@ private:
     } base{};
   };
   enum class Outcome { SOLVE, EXTENDED, CONVERGED, STOP };
-  [[nodiscard]] PetscErrorCode LoadStep(PetscInt step, double factor, bool first, bool &ok);
+  /// Load step number step from the converged state at pseudo-time from to that at factor; ok: it converged.
+  [[nodiscard]] PetscErrorCode LoadStep(PetscInt step, double from, double factor, bool &ok);
+  /// A step over which no ramp moves: ok when the state it starts from is certified at its loads (no solve then).
+  /// Collective.
+  [[nodiscard]] PetscErrorCode CertifiedAtRest(StepState &st, bool &ok);
   /// After a failed load step: the search radius a repeated step needs (retry_.widen_to; 0: none), when a candidate
   /// node is inside a facet it has no pair with at the step's last iterate (linear material: that pair goes to
   /// retry_.extra_pairs), or, once per run, when the step cycled or left the body free (DIVERGED_CYCLING, _NOT_HELD;

@@ -61,6 +61,11 @@ struct RealRange {
                                              const char *empty_means, const char *expected,
                                              std::vector<double> &values, PetscBool *set = nullptr);
 
+/// Parses the items of list option name (text: its value, for the message) as finite reals into values; an item that
+/// is not one is an error naming the option, its value, the item and the grammar. Collective on comm.
+[[nodiscard]] PetscErrorCode ParseRealList(MPI_Comm comm, const char *name, const std::string &text,
+                                           const std::vector<std::string> &items, std::vector<double> &values);
+
 /// Refuses the option name when it is given without a value (for choices read by PETSc, such as PetscOptionsEList).
 [[nodiscard]] PetscErrorCode OptionsRequireValue(PetscOptionItems *PetscOptionsObject, const char *name,
                                                  const char *expected);
