@@ -115,11 +115,14 @@ PetscErrorCode Friction::Relative(const std::vector<ContactPair> &pairs, const d
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Friction::BeginStep(const std::vector<ContactPair> &pairs, const double *u_local) {
+PetscErrorCode Friction::BeginStep(const std::vector<ContactPair> &pairs, const std::vector<PairState> &states,
+                                   const double *u_local) {
   const int m = PerPair();
-  std::vector<double> r;
+  std::vector<double> &r = start_r_;
   PetscFunctionBeginUser;
   PetscCall(Relative(pairs, u_local, r));
+  start_gap_.resize(pairs.size());
+  for (std::size_t p = 0; p < pairs.size(); ++p) start_gap_[p] = states[p].gap;
   for (std::size_t p = 0; p < pairs.size(); ++p)
     for (int k = 0; k < m; ++k) {
       double s = 0;
@@ -160,9 +163,24 @@ PetscErrorCode Friction::Next(MPI_Comm comm, const std::vector<ContactPair> &pai
                               const std::vector<PairState> &states, const std::vector<char> &active,
                               const double *u_local, double c, PetscInt &changes, PetscInt &turns) {
   const int m = PerPair();
-  std::vector<double> s;
+  std::vector<double> s, r;
   PetscInt counts[2] = {0, 0};
   PetscFunctionBeginUser;
+  // A pair that closes in this step slips from where it touched, not from where its node was at the start of the step
+  // (a point of a curved surface moves along the other before it touches it, which a stick row would undo): the
+  // origin of its slip moves to the point of its path from the step's start, where the gap, linear along it, was 0.
+  PetscCall(Relative(pairs, u_local, r));
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const double g0 = start_gap_[p], g = states[p].gap;
+    if (!active[p] || grip_[p] != Grip::OPEN || !(g0 > 0 && g < g0)) continue;
+    const double theta = std::min(1.0, g0 / (g0 - g));
+    for (int k = 0; k < m; ++k) {
+      double b = 0;
+      for (int c = 0; c < dim_; ++c)
+        b += tangents_[p][k][c] * (start_r_[p * dim_ + c] + theta * (r[p * dim_ + c] - start_r_[p * dim_ + c]));
+      base_[p * m + k] = b;
+    }
+  }
   PetscCall(Slips(pairs, u_local, s));
   next_dir_ = dir_;
   next_across_.assign(pairs.size(), NAN);

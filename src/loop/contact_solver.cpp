@@ -29,6 +29,7 @@ PetscErrorCode ContactSolver::Setup() {
     PetscCall(PetscLogEventRegister("SigSolve", id, &EV_SOLVE));
   }
   PetscCall(BuildDirichlet(mesh_, bc_, dirichlet_));
+  if (!contact_.pairs.empty()) PetscCall(SetBodyCompliance());
   PetscCall(mortar_.Build(mesh_, contact_, dirichlet_.fixed, (PetscInt)obstacle_.facets.size()));
   PetscCall(FindAllPairs(pairs_, candidate_, nullptr, &held_));
   if (!model_->CurrentConfiguration()) DropOutOfZone(pairs_);
@@ -50,6 +51,28 @@ PetscErrorCode ContactSolver::Setup() {
   PetscCheck(!(opts_.lagged_search_set && opts_.lagged_search && !kept), comm, PETSC_ERR_USER_INPUT,
              "-newton_lagged_search needs -material_model svk and the kept factorisation (-contact_reuse_factorization "
              "with a MUMPS LU or Cholesky solver)");
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSolver::SetBodyCompliance() {
+  PetscFunctionBeginUser;
+  // Per body the mean over its cells of (1 - nu^2) / E (plane stress: 1 / E), the same on every rank.
+  const PetscInt nb = mesh_.NumBodies();
+  std::vector<double> sum(2 * nb, 0.0);
+  for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
+    double E = material_.E, nu = material_.nu;
+    if (!material_.cell_constants.empty()) {
+      const auto &k = material_.constants[material_.cell_constants[c]];
+      E = k[0], nu = k[1];
+    }
+    // Each cell lives on one rank (the partition has no overlap of cells).
+    sum[2 * mesh_.CellBody(c)] += (material_.plane_stress ? 1.0 : 1.0 - nu * nu) / E;
+    sum[2 * mesh_.CellBody(c) + 1] += 1;
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sum.data(), (int)sum.size(), MPI_DOUBLE, MPI_SUM, mesh_.Comm()));
+  std::vector<double> compliance(nb, 0.0);
+  for (PetscInt b = 0; b < nb; ++b) compliance[b] = sum[2 * b + 1] > 0 ? sum[2 * b] / sum[2 * b + 1] : 0.0;
+  mortar_.SetCompliance(std::move(compliance));
   PetscFunctionReturn(0);
 }
 
@@ -421,7 +444,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
   PetscCall(VecNorm(fext_, NORM_INFINITY, &load_scale));
   active_set_.BeginStep(load_scale);
   // Friction: the slips of this step count from the converged state.
-  if (friction_.On()) PetscCall(friction_.BeginStep(pairs_, u_local_.data()));
+  if (friction_.On()) PetscCall(friction_.BeginStep(pairs_, states_, u_local_.data()));
   retry_.widen_to = 0;
   retry_.unheld_detail.clear();
   if (!AnyRampMoves(bc_, from, factor)) {
@@ -449,6 +472,8 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
           PetscCall(friction_.Next(mesh_.Comm(), pairs_, states_, st.next, st.u_eval.data(), contact_.c,
                                    st.friction_changes, st.friction_turns));
         friction_.SetKey(st.next, st.key);
+        PetscCall(PetscInfo(nullptr, "friction: %" PetscInt_FMT " pair(s) change set, %" PetscInt_FMT
+                            " slip direction(s) turn\n", st.friction_changes, st.friction_turns));
       }
     }
     Outcome outcome;

@@ -159,3 +159,92 @@ def sliding_between_bodies(runner):
                    "patch blocks sliding, -contact_friction 0.1, MU = 0.3")
     runner.expect_close("the pair's MU overrides -contact_friction", o.get("contact.friction_force"),
                         r.get("contact.friction_force"), 1e-12)
+
+
+# Cattaneo-Mindlin (Johnson, Contact Mechanics, 7.1): meshes/cattaneo2d.geo, two equal half-cylinders R = 8 (effective
+# radius 4) of one material, the upper one's flat top moved rigidly: down by 0.2 over the first half of the load steps,
+# then sideways by 0.05 over the second half (P about 11, Q/(mu P) about 0.48).
+CATTANEO = ["-mesh_file", "meshes/cattaneo2d.geo", "-material_E", "200", "-material_nu", "0.3", "-contact_pairs",
+            "upper_contact:lower_contact", "-contact_friction", "0.3"]
+CATTANEO_PATH = "lower_bottom:x:y,upper_top:y=-0.2@0:0.5,upper_top:x=0.05@0.5:1"
+
+
+def cattaneo_profile(r, mu=0.3, E=200.0, nu=0.3, R=4.0):
+    """Johnson's values for the run's P and Q against the computed ones: the contact and stick half-widths from the
+    active and stick slave nodes (midway between the outermost one and the next on each side), and the tangential
+    traction at the active nodes against q(x) = mu p0 [sqrt(1 - x^2/a^2) - (c/a) sqrt(1 - x^2/c^2)], x from the
+    contact's centre."""
+    P = r.get("contact.contact_force.1") - r.get("contact.friction_force.1")
+    Q = abs(r.get("contact.friction_force.0"))
+    a = np.sqrt(4 * P * R / (np.pi * E / (2 * (1 - nu * nu))))
+    p0 = 2 * P / (np.pi * a)
+    c = a * np.sqrt(1 - Q / (mu * P))
+    n = r.nodes()
+    s = n[~np.isnan(n["gap"])]
+    s = s[np.argsort(s["x"])]
+    x = s["x"] + s["u_x"]
+
+    def half_width(flags):
+        i = np.where(flags)[0]
+        lo, hi = (x[i[0]] + x[i[0] - 1]) / 2, (x[i[-1]] + x[i[-1] + 1]) / 2
+        return (hi - lo) / 2, (hi + lo) / 2
+
+    active = s["active"] == 1
+    a_fe, x0 = half_width(active)
+    c_fe, _ = half_width(active & (s["friction_state"] == 2))
+    xi = x[active] - x0
+    q_th = mu * p0 * (np.sqrt(np.clip(1 - xi ** 2 / a ** 2, 0, None)) - (c / a) * np.sqrt(np.clip(1 - xi ** 2 / c ** 2,
+                                                                                                    0, None)))
+    err = (np.abs(s["friction_traction_x"][active]) - q_th) / (mu * p0)
+    return {"P": P, "Q": Q, "a": a, "c": c, "a_fe": a_fe, "c_fe": c_fe, "rms": np.sqrt(np.mean(err ** 2)),
+            "max": np.abs(err).max(), "slip": r.get("friction.slip_nodes")}
+
+
+@test("cattaneo_mindlin_2d")
+def cattaneo_mindlin_2d(runner):
+    """Partial slip of two equal cylinders pressed, then sheared (Q < mu P): the stick zone's half-width c =
+    a sqrt(1 - Q/(mu P)) within 2 % of a on the finest of three meshes (size factors 2, 1.4, 1), its error falling with
+    the mesh; the tangential traction's profile within 5 % of mu p0 in the root mean square over the contact on the
+    finest (its largest nodal errors, at the contact's edges and the stick zone's, are in docs/verification.md)."""
+    errors = []
+    for factor in ("2", "1.4", "1"):
+        r = runner.run(CATTANEO + ["-mesh_size_factor", factor, "-bc_dirichlet", CATTANEO_PATH, "-load_steps", "10"],
+                       "Cattaneo-Mindlin, size factor %s" % factor, heap_check=False)
+        expect_friction_certificate(runner, r)
+        k = cattaneo_profile(r)
+        runner.expect_true("factor %s: Q/(mu P) = %.3f in the partial-slip range [0.3, 0.7]" % (factor, k["Q"] / (0.3 * k["P"])),
+                           0.3 <= k["Q"] / (0.3 * k["P"]) <= 0.7)
+        errors.append(abs(k["c_fe"] - k["c"]) / k["a"])
+        # Also against the computed contact half-width: c / a = sqrt(1 - Q/(mu P)) alone, without the Hertz half-width
+        # of the finite bodies (within 2.5 % of Johnson's half-spaces' here).
+        ratio = k["c_fe"] / k["a_fe"] / np.sqrt(1 - k["Q"] / (0.3 * k["P"])) - 1
+        print("  factor %s: P %.4f Q %.4f a %.4f (computed %.4f) c %.4f (computed %.4f, %.2f %% of a; c/a %+.2f %% of "
+              "Cattaneo's); q: rms %.2f %%, max %.2f %% of mu p0" % (
+                  factor, k["P"], k["Q"], k["a"], k["a_fe"], k["c"], k["c_fe"], 100 * errors[-1], 100 * ratio,
+                  100 * k["rms"], 100 * k["max"]))
+    runner.expect_true("stick half-width within 2 %% of a on the finest mesh (%.2f %%)" % (100 * errors[-1]),
+                       errors[-1] <= 0.02)
+    runner.expect_true("its error falls with the mesh (%s)" % ", ".join("%.2f %%" % (100 * e) for e in errors),
+                       errors[0] > errors[1] > errors[2])
+    runner.expect_true("traction profile rms %.2f %% <= 5 %% of mu p0" % (100 * k["rms"]), k["rms"] <= 0.05)
+
+
+@test("cattaneo_load_path")
+def cattaneo_load_path(runner):
+    """The final displacements of Cattaneo-Mindlin reached in one step (P and Q together, proportionally) and in ten
+    (pressed, then sheared): as Mindlin and Deresiewicz's theory says, a load whose tangential part grows no faster
+    than mu times the normal one slips nowhere (every node sticks but at most the contact's outermost pair), while
+    shearing after pressing opens a slip zone; the friction forces differ."""
+    one = runner.run(CATTANEO + ["-mesh_size_factor", "2", "-bc_dirichlet",
+                                 "lower_bottom:x:y,upper_top:y=-0.2,upper_top:x=0.05", "-load_steps", "1"],
+                     "Cattaneo-Mindlin in one proportional step")
+    ten = runner.run(CATTANEO + ["-mesh_size_factor", "2", "-bc_dirichlet", CATTANEO_PATH, "-load_steps", "10"],
+                     "Cattaneo-Mindlin pressed, then sheared")
+    for r in (one, ten):
+        expect_friction_certificate(runner, r)
+    runner.expect_true("one step: at most the 2 outermost nodes slip (%d)" % one.get("friction.slip_nodes"),
+                       one.get("friction.slip_nodes") <= 2)
+    runner.expect_true("ten steps: a slip zone (%d nodes)" % ten.get("friction.slip_nodes"),
+                       ten.get("friction.slip_nodes") >= 10)
+    q1, q10 = abs(one.get("contact.friction_force.0")), abs(ten.get("contact.friction_force.0"))
+    runner.expect_true("the tangential forces differ (%.4f, %.4f)" % (q1, q10), abs(q1 - q10) > 0.02 * q10)

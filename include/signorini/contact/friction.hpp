@@ -53,9 +53,11 @@ public:
             const MortarCoupling &mortar);
   /// Tangential rows per pair (dim - 1).
   int PerPair() const { return dim_ - 1; }
-  /// Starts a load step: the relative tangential displacements at u_local (the converged state) are the slips'
-  /// origin. Collective.
-  [[nodiscard]] PetscErrorCode BeginStep(const std::vector<ContactPair> &pairs, const double *u_local);
+  /// Starts a load step: the relative tangential displacements at u_local (the converged state, whose gaps states
+  /// hold) are the slips' origin; a pair that closes during the step moves its origin to where it touched (Next).
+  /// Collective.
+  [[nodiscard]] PetscErrorCode BeginStep(const std::vector<ContactPair> &pairs, const std::vector<PairState> &states,
+                                         const double *u_local);
   /// The slip increments at u_local (PerPair() per pair). Collective.
   [[nodiscard]] PetscErrorCode Slips(const std::vector<ContactPair> &pairs, const double *u_local,
                                      std::vector<double> &s) const;
@@ -142,7 +144,8 @@ private:
   std::vector<std::array<std::array<double, 3>, 2>> tangents_; ///< per pair
   std::vector<SparseRow> rows_;   ///< per pair and tangent, on all the free columns of its normal row
   std::vector<char> has_;         ///< per pair and tangent: HasRow
-  std::vector<double> base_;      ///< t_k . r at the start of the step
+  std::vector<double> base_;      ///< t_k . r at the start of the step (or where the pair touched)
+  std::vector<double> start_r_, start_gap_; ///< r and the gap at the start of the step
   std::vector<Grip> grip_, next_;
   std::vector<double> dir_, next_dir_; ///< slip directions (PerPair() per pair)
   /// 3D slip pairs: D of the row across the slip, -|s| / (mu lambda_n) (NaN: no such row, lambda_n = 0)

@@ -38,6 +38,9 @@ public:
   /// Collective.
   [[nodiscard]] PetscErrorCode Build(const Mesh &mesh, const ContactOptions &opts, const std::vector<char> &fixed,
                                      PetscInt facet_base, const double *u_local = nullptr);
+  /// The compliance (1 - nu^2) / E (plane stress: 1 / E) of every body, before Build: the rows' normals weight the two
+  /// surfaces' by it (mortar.cpp, InterfaceNormal). Without it the master's normal alone.
+  void SetCompliance(std::vector<double> compliance) { compliance_ = std::move(compliance); }
   /// svk: the rows again in the configuration of u_local; changed: the pairs or the master nodes of a row changed
   /// (the system's pattern with them), on any rank. Collective.
   [[nodiscard]] PetscErrorCode Update(const Mesh &mesh, const ContactOptions &opts, const std::vector<char> &fixed,
@@ -115,6 +118,7 @@ private:
                                      Vec y) const;
 
   PetscInt interfaces_ = 0, facet_base_ = 0;
+  std::vector<double> compliance_; ///< per body (SetCompliance)
   std::vector<Row> rows_;
   std::vector<char> slave_, master_vertex_; ///< local vertices of a slave group, of a master group
   /// Bind: per pair the index of its row in rows_ (-1: an obstacle's pair); per master node its first global row and

@@ -96,6 +96,8 @@ public:
   double StiffnessScale() const { return kscale_; }
 
 private:
+  /// The compliance of every body for the mortar rows' normals (MortarCoupling::SetCompliance). Collective.
+  [[nodiscard]] PetscErrorCode SetBodyCompliance();
   /// The saddle-point system, its vectors and the pair keys for the current pairs. Collective.
   [[nodiscard]] PetscErrorCode CreateSystem();
   /// K's pattern for the system: the counts d_nnz, o_nnz (PatternCounts', on entry) and the function that inserts the
