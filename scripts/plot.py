@@ -9,6 +9,9 @@ Writes into OUTPUT_DIR (or --out), for a 2D result:
   contact_pressure.png  the contact pressure along the contact boundary against x, with Hertz's
                       p(x) = p0 sqrt(1 - x^2/a^2) when summary.json has a "hertz" block
   active_set.png      active pairs and maximum penetration per active-set iteration (summary.json iterations.history)
+  friction.png        with friction only (-contact_friction): the tangential traction along the contact boundary
+                      against x, each node marked by its state (stick, slip, open), with mu times the pressure (the
+                      bound that slip nodes reach) and the stick zones shaded
 and for a 3D result (summary.json's mesh.dim), drawn by ParaView (scripts/plot3d_pvpython.py run by pvpython):
   deformed.png        the body warped by its displacement times S (default: the round number that makes the largest
                       displacement about a tenth of the body's size; the title states it), coloured by the von Mises
@@ -101,6 +104,9 @@ def read_solution(directory):
         if "contact_boundary" in f and "contact_boundary" in step:
             data["contact_xy"] = f["contact_boundary/coordinates"][:, :2]
             data["contact_pressure"] = step["contact_boundary/contact_pressure"][()]
+            if "contact_friction_traction" in step["contact_boundary"]:
+                data["friction_traction"] = step["contact_boundary/contact_friction_traction"][:, :2]
+                data["friction_state"] = step["contact_boundary/contact_friction_state"][()]
     return data
 
 
@@ -140,6 +146,39 @@ def plot_pressure(summary, d, path):
     ax.set_xlabel("x")
     ax.set_ylabel("contact pressure")
     ax.set_title("contact pressure along the contact boundary")
+    ax.legend()
+    ax.grid(True, alpha=0.3)
+    fig.savefig(path, dpi=100, bbox_inches="tight")
+    plt.close(fig)
+
+
+def plot_friction(summary, d, path):
+    """The tangential traction |t| against x per contact boundary node, marked by state, with mu p and the stick zones."""
+    mu = summary["friction"]["mu"]
+    order = np.argsort(d["contact_xy"][:, 0])
+    x = d["contact_xy"][order, 0]
+    t = np.linalg.norm(d["friction_traction"][order], axis=1)
+    state = d["friction_state"][order]
+    p = d["contact_pressure"][order]
+    fig, ax = plt.subplots(figsize=(7, 4))
+    active = state > 0
+    ax.plot(x[active], mu * p[active], "k--", lw=1, label="mu x pressure (mu = %g)" % mu)
+    ax.plot(x[active], t[active], "-", color="0.6", lw=1)
+    for value, name, colour in ((2, "stick", "tab:green"), (1, "slip", "tab:red"), (0, "open", "0.7")):
+        sel = state == value
+        if sel.any():
+            ax.plot(x[sel], t[sel], "o", ms=3, color=colour, label="%s (%d)" % (name, sel.sum()))
+    # The stick zones: runs of consecutive stick nodes.
+    stick = np.where(state == 2)[0]
+    for run in np.split(stick, np.where(np.diff(stick) > 1)[0] + 1) if stick.size else []:
+        ax.axvspan(x[run[0]], x[run[-1]], color="tab:green", alpha=0.08)
+    if active.any():
+        span = x[active].max() - x[active].min()
+        ax.set_xlim(x[active].min() - 0.25 * span, x[active].max() + 0.25 * span)
+    ax.set_xlabel("x")
+    ax.set_ylabel("tangential traction |t|")
+    ax.set_title("friction along the contact boundary: %d stick, %d slip node(s)" % (
+        summary["friction"]["stick_nodes"], summary["friction"]["slip_nodes"]))
     ax.legend()
     ax.grid(True, alpha=0.3)
     fig.savefig(path, dpi=100, bbox_inches="tight")
@@ -380,7 +419,11 @@ def main():
             plot_deformed(summary, data, os.path.join(out, "deformed.png"), scale)
             plot_pressure(summary, data, os.path.join(out, "contact_pressure.png"))
             plot_history(summary, os.path.join(out, "active_set.png"))
-            lines = [os.path.join(out, n) for n in ("deformed.png", "contact_pressure.png", "active_set.png")]
+            names = ["deformed.png", "contact_pressure.png", "active_set.png"]
+            if "friction" in summary and "friction_traction" in data:
+                plot_friction(summary, data, os.path.join(out, "friction.png"))
+                names.append("friction.png")
+            lines = [os.path.join(out, n) for n in names]
     except NotDrawable as e:
         print("plot.py: error: %s" % e, file=sys.stderr)
         return 1

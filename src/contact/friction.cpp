@@ -74,23 +74,41 @@ void Friction::Bind(const Mesh &mesh, const DofMap &dofs, const std::vector<char
                     const std::vector<ContactPair> &pairs, const std::vector<std::array<double, 3>> &normals,
                     const MortarCoupling &mortar) {
   dim_ = mesh.Dim();
-  mesh_ = &mesh, dofs_ = &dofs, mortar_ = mortar.Empty() ? nullptr : &mortar;
+  mesh_ = &mesh, dofs_ = &dofs, fixed_ = &fixed, mortar_ = mortar.Empty() ? nullptr : &mortar;
   const std::size_t n = pairs.size();
   const int m = PerPair();
   mu_pair_.assign(n, mu_);
-  tangents_.assign(n, {});
-  rows_.assign(n * m, SparseRow());
-  has_.assign(n * m, 0);
-  base_.assign(n * m, 0.0);
-  grip_.assign(n, Grip::OPEN), next_ = grip_;
-  dir_.assign(n * m, 0.0), next_dir_ = dir_;
-  across_.assign(n, NAN), next_across_ = across_;
-  lambda_t_.assign(n * m, 0.0), mult_t_ = lambda_t_;
-  for (std::size_t p = 0; p < n; ++p) {
+  for (std::size_t p = 0; p < n; ++p)
     if (mortar.IsMortar(pairs[p])) {
       const std::size_t item = (std::size_t)(pairs[p].facet - mortar.FacetBase());
       if (item < pair_mu_.size() && pair_mu_[item] >= 0) mu_pair_[p] = pair_mu_[item];
     }
+  tangents_.clear();
+  origin_.assign(n * dim_, 0.0);
+  grip_.assign(n, Grip::OPEN), next_ = grip_;
+  dir_.assign(n * m, 0.0), next_dir_ = dir_;
+  across_.assign(n, NAN), next_across_ = across_;
+  lambda_t_.assign(n * m, 0.0), mult_t_ = lambda_t_;
+  Frame(pairs, normals);
+}
+
+void Friction::Frame(const std::vector<ContactPair> &pairs, const std::vector<std::array<double, 3>> &normals) {
+  const std::size_t n = pairs.size();
+  const int m = PerPair();
+  // What lives in the tangent plane (the slip directions, the multipliers) turns with it: to 3D vectors with the old
+  // basis, back with the new one (the directions normalised again).
+  std::vector<std::vector<double> *> planar = {&dir_, &next_dir_, &lambda_t_, &mult_t_};
+  std::vector<std::vector<double>> v3(planar.size(), std::vector<double>(3 * n, 0.0));
+  const bool turn = tangents_.size() == n;
+  if (turn)
+    for (std::size_t i = 0; i < planar.size(); ++i)
+      for (std::size_t p = 0; p < n; ++p)
+        for (int k = 0; k < m; ++k)
+          for (int c = 0; c < 3; ++c) v3[i][3 * p + c] += (*planar[i])[p * m + k] * tangents_[p][k][c];
+  tangents_.assign(n, {});
+  rows_.assign(n * m, SparseRow());
+  has_.assign(n * m, 0);
+  for (std::size_t p = 0; p < n; ++p) {
     TangentBasis(dim_, normals[p].data(), tangents_[p]);
     const PetscInt v = pairs[p].vertex;
     for (int k = 0; k < m; ++k) {
@@ -98,9 +116,61 @@ void Friction::Bind(const Mesh &mesh, const DofMap &dofs, const std::vector<char
       // components, then the master nodes' with - w_jl t_k (the slip is u_j - sum_l w_jl u_l along t_k).
       SparseRow &row = rows_[p * m + k];
       for (int c = 0; c < dim_; ++c)
-        if (!fixed[v * dim_ + c]) row.Add(dofs.Row(v, c), tangents_[p][k][c]);
-      if (mortar.IsMortar(pairs[p])) mortar.MasterColumns(p, tangents_[p][k].data(), -1, row);
+        if (!(*fixed_)[v * dim_ + c]) row.Add(dofs_->Row(v, c), tangents_[p][k][c]);
+      if (mortar_ && mortar_->IsMortar(pairs[p])) mortar_->MasterColumns(p, tangents_[p][k].data(), -1, row);
       has_[p * m + k] = HasRow(row);
+    }
+  }
+  if (!turn) return;
+  for (std::size_t i = 0; i < planar.size(); ++i)
+    for (std::size_t p = 0; p < n; ++p) {
+      double norm = 0;
+      for (int k = 0; k < m; ++k) {
+        double x = 0;
+        for (int c = 0; c < 3; ++c) x += v3[i][3 * p + c] * tangents_[p][k][c];
+        (*planar[i])[p * m + k] = x, norm += x * x;
+      }
+      if (i < 2 && norm > 0)
+        for (int k = 0; k < m; ++k) (*planar[i])[p * m + k] /= std::sqrt(norm);
+    }
+}
+
+Friction::Memory Friction::Remember(const std::vector<ContactPair> &pairs) const {
+  Memory mem;
+  const int m = PerPair();
+  for (std::size_t p = 0; p < pairs.size() && p < grip_.size(); ++p) {
+    PairMemory &pm = mem[{pairs[p].vertex, pairs[p].facet}];
+    pm.grip = grip_[p];
+    for (int c = 0; c < 3; ++c) pm.origin[c] = c < dim_ ? origin_[p * dim_ + c] : 0.0;
+    for (int c = 0; c < 3; ++c) {
+      pm.dir[c] = pm.lambda_t[c] = pm.mult_t[c] = 0;
+      for (int k = 0; k < m; ++k) {
+        pm.dir[c] += dir_[p * m + k] * tangents_[p][k][c];
+        pm.lambda_t[c] += lambda_t_[p * m + k] * tangents_[p][k][c];
+        pm.mult_t[c] += mult_t_[p * m + k] * tangents_[p][k][c];
+      }
+    }
+  }
+  return mem;
+}
+
+void Friction::Recall(const Memory &mem, const std::vector<ContactPair> &pairs) {
+  const int m = PerPair();
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const PetscInt v = pairs[p].vertex;
+    const auto it = mem.find({v, pairs[p].facet});
+    // A new pair against a rigid obstacle slips from its node's displacement at the start of the step.
+    for (int c = 0; c < dim_; ++c)
+      origin_[p * dim_ + c] = it != mem.end() ? it->second.origin[c]
+                                              : (start_u_.empty() ? 0.0 : start_u_[v * dim_ + c]);
+    if (it == mem.end()) continue;
+    grip_[p] = next_[p] = it->second.grip;
+    for (int k = 0; k < m; ++k) {
+      double d = 0, l = 0, f = 0;
+      for (int c = 0; c < 3; ++c)
+        d += it->second.dir[c] * tangents_[p][k][c], l += it->second.lambda_t[c] * tangents_[p][k][c],
+            f += it->second.mult_t[c] * tangents_[p][k][c];
+      dir_[p * m + k] = next_dir_[p * m + k] = d, lambda_t_[p * m + k] = l, mult_t_[p * m + k] = f;
     }
   }
 }
@@ -117,18 +187,12 @@ PetscErrorCode Friction::Relative(const std::vector<ContactPair> &pairs, const d
 
 PetscErrorCode Friction::BeginStep(const std::vector<ContactPair> &pairs, const std::vector<PairState> &states,
                                    const double *u_local) {
-  const int m = PerPair();
-  std::vector<double> &r = start_r_;
   PetscFunctionBeginUser;
-  PetscCall(Relative(pairs, u_local, r));
+  PetscCall(Relative(pairs, u_local, start_r_));
+  origin_ = start_r_;
+  start_u_.assign(u_local, u_local + mesh_->NumLocalVertices() * dim_);
   start_gap_.resize(pairs.size());
   for (std::size_t p = 0; p < pairs.size(); ++p) start_gap_[p] = states[p].gap;
-  for (std::size_t p = 0; p < pairs.size(); ++p)
-    for (int k = 0; k < m; ++k) {
-      double s = 0;
-      for (int c = 0; c < dim_; ++c) s += tangents_[p][k][c] * r[p * dim_ + c];
-      base_[p * m + k] = s;
-    }
   PetscFunctionReturn(0);
 }
 
@@ -143,8 +207,8 @@ PetscErrorCode Friction::Slips(const std::vector<ContactPair> &pairs, const doub
     for (int k = 0; k < m; ++k) {
       // Along a tangent the supports fix, the motion is theirs: no slip of friction's.
       if (!has_[p * m + k]) continue;
-      double v = -base_[p * m + k];
-      for (int c = 0; c < dim_; ++c) v += tangents_[p][k][c] * r[p * dim_ + c];
+      double v = 0;
+      for (int c = 0; c < dim_; ++c) v += tangents_[p][k][c] * (r[p * dim_ + c] - origin_[p * dim_ + c]);
       s[p * m + k] = v;
     }
   PetscFunctionReturn(0);
@@ -174,12 +238,8 @@ PetscErrorCode Friction::Next(MPI_Comm comm, const std::vector<ContactPair> &pai
     const double g0 = start_gap_[p], g = states[p].gap;
     if (!active[p] || grip_[p] != Grip::OPEN || !(g0 > 0 && g < g0)) continue;
     const double theta = std::min(1.0, g0 / (g0 - g));
-    for (int k = 0; k < m; ++k) {
-      double b = 0;
-      for (int c = 0; c < dim_; ++c)
-        b += tangents_[p][k][c] * (start_r_[p * dim_ + c] + theta * (r[p * dim_ + c] - start_r_[p * dim_ + c]));
-      base_[p * m + k] = b;
-    }
+    for (int c = 0; c < dim_; ++c)
+      origin_[p * dim_ + c] = start_r_[p * dim_ + c] + theta * (r[p * dim_ + c] - start_r_[p * dim_ + c]);
   }
   PetscCall(Slips(pairs, u_local, s));
   next_dir_ = dir_;

@@ -33,9 +33,10 @@ PetscErrorCode ContactSolver::Setup() {
   PetscCall(mortar_.Build(mesh_, contact_, dirichlet_.fixed, (PetscInt)obstacle_.facets.size()));
   PetscCall(FindAllPairs(pairs_, candidate_, nullptr, &held_));
   if (!model_->CurrentConfiguration()) DropOutOfZone(pairs_);
-  PetscCheck(!(friction_.On() && model_->Nonlinear()), comm, PETSC_ERR_USER_INPUT,
-             "%s with -material_model svk: friction is implemented for the linear material only so far; expected "
-             "-material_model linear, or no friction", friction_.Describe().c_str());
+  PetscCheck(!(friction_.On() && model_->Nonlinear() && !contact_.pairs.empty()), comm, PETSC_ERR_USER_INPUT,
+             "%s with -material_model svk and -contact_pairs: friction between bodies is implemented for the linear "
+             "material only so far (svk has friction against rigid obstacles); expected -material_model linear, or "
+             "no friction", friction_.Describe().c_str());
   PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size() * RowsPerPair()));
   assembler_ = std::make_unique<Assembler>(mesh_, material_, dofs_, dirichlet_);
   PetscCall(assembler_->CheckCells());
@@ -188,6 +189,8 @@ PetscErrorCode ContactSolver::FindAllPairs(std::vector<ContactPair> &pairs, std:
 PetscErrorCode ContactSolver::EvaluateAt(const double *u, bool current) {
   PetscFunctionBeginUser;
   EvaluatePairs(mesh_, obstacle_, contact_, pairs_, dofs_, dirichlet_.fixed, current, u, states_, rows_, normals_);
+  // svk: the tangent planes follow the current normals.
+  if (current && friction_.On()) friction_.Frame(pairs_, normals_);
   if (mortar_.Empty()) PetscFunctionReturn(0);
   mortar_.ExtendRows(rows_);
   PetscCall(mortar_.AddMasterGaps(mesh_, dofs_, u, states_));
@@ -322,9 +325,12 @@ PetscErrorCode ContactSolver::AdoptPairs(std::vector<ContactPair> pairs, const s
   PetscFunctionBeginUser;
   std::vector<double> u_owned;
   PetscCall(OwnedDisplacement(u_owned));
+  // The friction state of the pairs that persist (svk's new pairs keep their stick or slip and slip's origin).
+  const Friction::Memory friction = friction_.On() ? friction_.Remember(pairs_) : Friction::Memory();
   pairs_ = std::move(pairs);
   PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size() * RowsPerPair()));
   PetscCall(CreateSystem());
+  if (friction_.On()) friction_.Recall(friction, pairs_);
   PetscCall(SetOwnedDisplacement(u_owned));
   lambda_ = lambda, mult_ = mult;
   active_set_.Reset(pairs_.size());

@@ -331,8 +331,9 @@ CASES = {
                                ["nonsymmetric", "cholesky", "options/solver/mumps_lu.yml"], {}),
     "friction_with_fieldsplit": (SLIDING + ["-options_file", "{root}/options/solver/fieldsplit_gamg.yml"],
                                  ["-contact_friction 0.3", "iterative path", "options/solver/mumps_lu.yml"], {}),
-    "friction_with_svk": (SLIDING + ["-material_model", "svk"],
-                          ["-contact_friction 0.3 with -material_model svk", "linear material only"], {}),
+    "friction_with_svk_between_bodies": (PATCH + ["-material_model", "svk", "-contact_friction", "0.3"],
+                                         ["-contact_friction 0.3 with -material_model svk and -contact_pairs",
+                                          "linear material only"], {}),
     # Pairs of bodies (-contact_pairs).
     "contact_pairs_malformed": (PATCH + ["-contact_pairs", "upper_bottom"],
                                 ["-contact_pairs: item 'upper_bottom'", "SLAVE:MASTER"], {}),

@@ -248,3 +248,40 @@ def cattaneo_load_path(runner):
                        ten.get("friction.slip_nodes") >= 10)
     q1, q10 = abs(one.get("contact.friction_force.0")), abs(ten.get("contact.friction_force.0"))
     runner.expect_true("the tangential forces differ (%.4f, %.4f)" % (q1, q10), abs(q1 - q10) > 0.02 * q10)
+
+
+@test("svk_sliding_block")
+def svk_sliding_block(runner):
+    """St. Venant-Kirchhoff with friction against a rigid floor: the block of options/sliding_block.yml pressed over
+    the first load step, then dragged by its top over 2.5 (more than its length, 2) in nine more along a floor long
+    enough (x from -1 to 6): every step converges
+    in full slip, and the friction force is -mu times the normal force to round-off (the floor is flat: the slip law's
+    direction is the floor's)."""
+    r = runner.run(SLIDING + ["-material_model", "svk", "-load_steps", "10", "-obstacle_segments", "-1,0,6,0",
+                              "-bc_pressure", "top:2@0:0.1",
+                              "-bc_dirichlet", "top:x=2.5@0.1:1"], "svk block dragged 2.5 over the floor")
+    expect_friction_certificate(runner, r)
+    runner.expect_equal("load steps", r.get("iterations.load_steps"), 10)
+    normal = np.array(r.get("contact.contact_force")) - np.array(r.get("contact.friction_force"))
+    want = [-0.3 * np.linalg.norm(normal), 0]
+    runner.expect_close("friction force = -mu N", r.get("contact.friction_force"), want, 0, 1e-10 * abs(want[0]))
+    runner.expect_equal("every active node slips", r.get("friction.slip_nodes"), r.get("contact.active_nodes"))
+    runner.expect_true("the block moved by more than its length (%.4g)" % r.nodes()["u_x"].min(),
+                       r.nodes()["u_x"].min() > 2.0)
+
+
+@test("svk_friction_small_load")
+def svk_friction_small_load(runner):
+    """At a small load (a drag of 5e-5: stick and slip zones), svk with friction is the linear material with friction:
+    the same stick and slip nodes, displacements within 1e-3 of the largest (the strains are about 1e-3)."""
+    args = SLIDING + ["-bc_pressure", "top:0.2", "-bc_dirichlet", "top:x=5e-5"]
+    lin = runner.run(args, "linear, small load")
+    svk = runner.run(args + ["-material_model", "svk"], "svk, small load")
+    for r in (lin, svk):
+        expect_friction_certificate(runner, r)
+    runner.expect_true("stick and slip zones (%d, %d)" % (lin.get("friction.stick_nodes"), lin.get("friction.slip_nodes")),
+                       lin.get("friction.stick_nodes") > 0 and lin.get("friction.slip_nodes") > 0)
+    for key in ("friction.stick_nodes", "friction.slip_nodes"):
+        runner.expect_equal(key, svk.get(key), lin.get(key))
+    u = displacement(lin.nodes())
+    runner.expect_close("svk displacement = linear", displacement(svk.nodes()), u, 0, 1e-3 * np.abs(u).max())

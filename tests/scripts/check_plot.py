@@ -4,7 +4,9 @@ analytical curve is drawn, in two load steps): it exits 0 and writes deformed.pn
 active_set.png, each a valid PNG (signature, non-empty, an image matplotlib reads back, at least 200 pixels each way);
 the pressure plot's analytical curve is Johnson's p0 sqrt(1 - x^2/a^2), with a and p0 computed here from R, P, E and
 nu. It refuses, with one line naming the reason, no traceback, exit status 1 and no picture written: a directory that
-does not exist, and one that is not an output. 3D outputs: check_plot_3d.py."""
+does not exist, and one that is not an output. With friction (options/sliding_block.yml, every node slipping) it also
+writes friction.png, whose slip markers are at mu times the pressure of the nodes in nodes.csv; a frictionless output has
+no friction.png. 3D outputs: check_plot_3d.py."""
 import argparse
 import os
 import shutil
@@ -64,6 +66,38 @@ def analytic_curve(args, out):
                                                                                         p.max())]
 
 
+def friction_picture(args, work):
+    """friction.png of a sliding block: a valid picture whose slip markers are the nodes' mu p (full slip)."""
+    out = os.path.join(work, "friction")
+    cmd = [args.mpiexec, "-n", str(args.np), args.exe, "-options_file", "options/sliding_block.yml", "-output_dir", out]
+    run = subprocess.run(cmd, cwd=args.source_dir, capture_output=True, text=True)
+    if run.returncode != 0:
+        return ["the friction run failed: %s\n%s%s" % (" ".join(cmd), run.stdout, run.stderr)]
+    sys.dont_write_bytecode = True
+    sys.path.insert(0, os.path.join(args.source_dir, "scripts"))
+    import plot
+
+    figures = []
+    close = plot.plt.close
+    plot.plt.close = lambda fig=None: figures.append(fig)
+    try:
+        summary, data = plot.read_summary(out), plot.read(out)
+        plot.plot_friction(summary, data, os.path.join(out, "friction.png"))
+    finally:
+        plot.plt.close = close
+    image = matplotlib.image.imread(os.path.join(out, "friction.png"))
+    slip = [line for fig in figures if hasattr(fig, "axes") for ax in fig.axes for line in ax.get_lines()
+            if line.get_label().startswith("slip")]
+    nodes = np.genfromtxt(os.path.join(out, "nodes.csv"), delimiter=",", names=True)
+    want = np.sort(summary["friction"]["mu"] * nodes["pressure"][nodes["friction_state"] == 1])
+    got = np.sort(np.asarray(slip[0].get_ydata())) if len(slip) == 1 else np.array([])
+    ok = min(image.shape[:2]) >= 200 and got.shape == want.shape and np.allclose(got, want, rtol=1e-8, atol=0)
+    print("%s friction.png: %dx%d pixels, %d slip markers at mu p" % ("ok  " if ok else "FAIL", image.shape[1],
+                                                                     image.shape[0], got.size))
+    return [] if ok else ["friction.png: %d slip marker(s) %s, expected mu p of the %d slip node(s) %s" % (
+        got.size, got, want.size, want)]
+
+
 def refusals(args, work):
     """plot.py on what it does not draw: the failures."""
     empty = os.path.join(work, "not_an_output")
@@ -121,6 +155,9 @@ def main():
                 failures.append("%s is not a valid picture (signature %r, %d bytes, shape %s)" % (
                     name, head, size, image.shape))
         failures += analytic_curve(args, out)
+        if os.path.exists(os.path.join(out, "friction.png")):
+            failures.append("friction.png written for a frictionless output")
+        failures += friction_picture(args, work)
     failures += refusals(args, work)
     if failures:
         print("FAIL " + "\nFAIL ".join(failures) + "\nkept in " + work)

@@ -25,6 +25,7 @@
 #include "signorini/linalg/sparse_row.hpp"
 
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,20 @@ public:
   void Bind(const Mesh &mesh, const DofMap &dofs, const std::vector<char> &fixed,
             const std::vector<ContactPair> &pairs, const std::vector<std::array<double, 3>> &normals,
             const MortarCoupling &mortar);
+  /// The tangent bases and rows again for new normals (svk: the current configuration's), the pairs' sets kept and
+  /// what lives in the tangent plane (slip directions, multipliers) turned with it. Not collective.
+  void Frame(const std::vector<ContactPair> &pairs, const std::vector<std::array<double, 3>> &normals);
+  /// Each pair's friction state by (vertex, facet), to carry across a new set of pairs (Recall after Bind): the set,
+  /// the slip's origin, and the slip direction and multipliers as vectors.
+  struct PairMemory {
+    Grip grip;
+    double origin[3], dir[3], lambda_t[3], mult_t[3];
+  };
+  using Memory = std::map<std::pair<PetscInt, PetscInt>, PairMemory>;
+  Memory Remember(const std::vector<ContactPair> &pairs) const;
+  /// Gives the pairs that persist their remembered state; a new pair (against a rigid obstacle) slips from its node's
+  /// displacement at the start of the step.
+  void Recall(const Memory &mem, const std::vector<ContactPair> &pairs);
   /// Tangential rows per pair (dim - 1).
   int PerPair() const { return dim_ - 1; }
   /// Starts a load step: the relative tangential displacements at u_local (the converged state, whose gaps states
@@ -144,8 +159,10 @@ private:
   std::vector<std::array<std::array<double, 3>, 2>> tangents_; ///< per pair
   std::vector<SparseRow> rows_;   ///< per pair and tangent, on all the free columns of its normal row
   std::vector<char> has_;         ///< per pair and tangent: HasRow
-  std::vector<double> base_;      ///< t_k . r at the start of the step (or where the pair touched)
+  const std::vector<char> *fixed_ = nullptr; ///< Bind's Dirichlet flags
+  std::vector<double> origin_;    ///< per pair (dim values): r at the start of the step, or where the pair touched
   std::vector<double> start_r_, start_gap_; ///< r and the gap at the start of the step
+  std::vector<double> start_u_;   ///< the displacement at the start of the step (dim values per local vertex)
   std::vector<Grip> grip_, next_;
   std::vector<double> dir_, next_dir_; ///< slip directions (PerPair() per pair)
   /// 3D slip pairs: D of the row across the slip, -|s| / (mu lambda_n) (NaN: no such row, lambda_n = 0)
