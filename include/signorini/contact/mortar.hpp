@@ -2,7 +2,8 @@
 // dual mortar basis (Wohlmuth 2000; Popp, Gee, Wall 2009), so that the slave block D is diagonal and the rows stay
 // node-based as for a rigid obstacle. The weighted gap of slave node j, divided by D_jj, is
 //   g_j = n_j . (x_j - sum_l w_jl x_l),   w_jl = M_jl / D_jj,
-// with n_j the slave nodal normal pointing from the master into the slave body, D_jj = int psi_j N_j and
+// with n_j the interface's nodal normal pointing from the master into the slave body (the two surfaces' normals
+// weighted by the bodies' compliances, mortar.cpp's InterfaceNormal: the master's for a rigid master), D_jj = int psi_j N_j and
 // M_jl = int psi_j N_l^master over the slave facets' overlap with the master facets (segment-based integration:
 // each slave facet is cut where the master facets' projections along its normal begin and end, and each piece is
 // integrated exactly by Gauss points). The dual basis psi is built on each slave facet's overlap (biorthogonal to
