@@ -285,3 +285,24 @@ def svk_friction_small_load(runner):
         runner.expect_equal(key, svk.get(key), lin.get(key))
     u = displacement(lin.nodes())
     runner.expect_close("svk displacement = linear", displacement(svk.nodes()), u, 0, 1e-3 * np.abs(u).max())
+
+
+@test("sliding_between_bodies_3d")
+def sliding_between_bodies_3d(runner, mesh):
+    """3D friction between bodies: the upper block of options/patch3d.yml (hexahedra, or tetrahedra on hexahedra)
+    dragged by its top along (2, 1, 0) over the clamped lower one beyond what friction holds: every slave node in
+    contact slips (the slip directions turn in the tangent plane), the friction force on the upper block is mu times
+    its normal force in size (0.1 %) and against the drag (0.5 degrees), and the two sides' forces balance."""
+    r = runner.run(["-options_file", "options/patch3d.yml", "-mesh_file", "meshes/patch3d_%s.msh" % mesh,
+                    "-material_nu", "0", "-bc_dirichlet", "bottom:x:y:z,top:x=0.2:y=0.1",
+                    "-contact_pairs", "upper_bottom:lower_top:0.3"], "3D blocks sliding (%s)" % mesh)
+    expect_friction_certificate(runner, r)
+    runner.expect_true("force balance %.3g <= 1e-10" % r.get("contact.force_balance"),
+                       r.get("contact.force_balance") <= 1e-10)
+    runner.expect_equal("every active slave node slips", r.get("friction.slip_nodes"), r.get("contact.active_nodes"))
+    f = np.array(r.get("contact.friction_force"))
+    normal = np.linalg.norm(np.array(r.get("contact.contact_force")) - f)
+    runner.expect_close("|friction force| = mu N", np.linalg.norm(f), 0.3 * normal, 1e-3)
+    drag = np.array([2.0, 1.0, 0.0]) / np.sqrt(5.0)
+    angle = np.degrees(np.arccos(np.clip(-f.dot(drag) / np.linalg.norm(f), -1, 1)))
+    runner.expect_true("friction force against the drag (%.3f degrees off)" % angle, angle <= 0.5)
