@@ -108,17 +108,22 @@ void Friction::Frame(const std::vector<ContactPair> &pairs, const std::vector<st
   tangents_.assign(n, {});
   rows_.assign(n * m, SparseRow());
   has_.assign(n * m, 0);
+  pairs_vertex_.resize(n);
   for (std::size_t p = 0; p < n; ++p) {
     TangentBasis(dim_, normals[p].data(), tangents_[p]);
     const PetscInt v = pairs[p].vertex;
+    pairs_vertex_[p] = v;
     for (int k = 0; k < m; ++k) {
       // The columns of the normal row (EvaluatePairs, MortarCoupling::ExtendRows) in its order: the node's free
       // components, then the master nodes' with - w_jl t_k (the slip is u_j - sum_l w_jl u_l along t_k).
       SparseRow &row = rows_[p * m + k];
       for (int c = 0; c < dim_; ++c)
         if (!(*fixed_)[v * dim_ + c]) row.Add(dofs_->Row(v, c), tangents_[p][k][c]);
-      if (mortar_ && mortar_->IsMortar(pairs[p])) mortar_->MasterColumns(p, tangents_[p][k].data(), -1, row);
+      // A tangent along which the supports fix the node (a symmetry plane) has no row, whatever its master nodes do:
+      // their weighted motion alone would be a constraint on the master side (singular where slave nodes share
+      // master nodes).
       has_[p * m + k] = HasRow(row);
+      if (mortar_ && mortar_->IsMortar(pairs[p])) mortar_->MasterColumns(p, tangents_[p][k].data(), -1, row);
     }
   }
   if (!turn) return;
@@ -292,17 +297,25 @@ void Friction::SetKey(const std::vector<char> &active, std::vector<char> &key) c
 }
 
 void Friction::TurnedRow(std::size_t p, double a, double b, SparseRow &row) const {
-  // The two rows have the same columns (Bind): their combination is the row along a t_1 + b t_2.
+  // The two rows have the same columns (Bind): their combination is the row along a t_1 + b t_2 (none when its slave
+  // part vanishes, as in Frame).
   row = rows_[p * 2];
   for (PetscInt i = 0; i < row.ncols; ++i) row.coef[i] = a * rows_[p * 2].coef[i] + b * rows_[p * 2 + 1].coef[i];
-  if (!HasRow(row)) row.Clear();
+  double slave2 = 0;
+  for (int c = 0; c < dim_; ++c)
+    if (!(*fixed_)[pairs_vertex_[p] * dim_ + c]) {
+      const double x = a * tangents_[p][0][c] + b * tangents_[p][1][c];
+      slave2 += x * x;
+    }
+  // No row: its columns kept with zeros (SetConstraints then writes zeros over whatever the pattern held there).
+  if (slave2 <= 1e-12) std::fill(row.coef.begin(), row.coef.end(), 0.0);
 }
 
 void Friction::SystemRow(std::size_t p, int k, SparseRow &row) const {
   const int m = PerPair();
   if (m == 1 || grip_[p] != Grip::SLIP) {
     row = rows_[p * m + k];
-    if (!has_[p * m + k]) row.Clear();
+    if (!has_[p * m + k]) std::fill(row.coef.begin(), row.coef.end(), 0.0);
     return;
   }
   // 3D slip: along d, then across it (d_perp = (-d_2, d_1) in the tangent basis).
@@ -328,7 +341,7 @@ void Friction::SystemRows(const std::vector<SparseRow> &normal_rows, const std::
       SystemRow(p, k, rows[i]);
       // Stick rows hold; a 3D slip pair's row across the slip is its spring.
       const bool across = m == 2 && k == 1 && grip_[p] == Grip::SLIP && std::isfinite(across_[p]);
-      flags[i] = (grip_[p] == Grip::STICK || across) && rows[i].ncols > 0;
+      flags[i] = (grip_[p] == Grip::STICK || across) && HasRow(rows[i]);
       if (across) diag[i] = across_[p];
     }
     if (grip_[p] != Grip::SLIP) continue;

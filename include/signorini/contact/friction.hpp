@@ -146,7 +146,8 @@ private:
   /// The row of tangential multiplier k of pair p in the system: its own, or a 3D slip pair's turned one; empty when
   /// the pair has none there.
   void SystemRow(std::size_t p, int k, SparseRow &row) const;
-  /// Whether a row holds anything: a free part of norm above 1e-6 (the supports fix the motion along it otherwise).
+  /// Whether a row holds anything: a free part of norm above 1e-6 (the supports fix the motion along it otherwise);
+  /// judged on the pair's own node.
   static bool HasRow(const SparseRow &row);
 
   double mu_ = 0;
@@ -158,7 +159,8 @@ private:
   std::vector<double> mu_pair_;                                ///< per pair
   std::vector<std::array<std::array<double, 3>, 2>> tangents_; ///< per pair
   std::vector<SparseRow> rows_;   ///< per pair and tangent, on all the free columns of its normal row
-  std::vector<char> has_;         ///< per pair and tangent: HasRow
+  std::vector<char> has_;         ///< per pair and tangent: HasRow of its slave part
+  std::vector<PetscInt> pairs_vertex_; ///< per pair: its node (local vertex)
   const std::vector<char> *fixed_ = nullptr; ///< Bind's Dirichlet flags
   std::vector<double> origin_;    ///< per pair (dim values): r at the start of the step, or where the pair touched
   std::vector<double> start_r_, start_gap_; ///< r and the gap at the start of the step
