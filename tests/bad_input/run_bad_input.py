@@ -325,6 +325,8 @@ CASES = {
     "friction_pair_coefficient": (PATCH + ["-contact_pairs", "upper_bottom:lower_top:rough"],
                                   ["-contact_pairs: item 'upper_bottom:lower_top:rough'", "'rough'",
                                    "SLAVE:MASTER:MU"], {}),
+    "friction_pair_unknown": (PATCH + ["-contact_pairs", "upper_bottom:floor:0.3"],
+                              ["-contact_pairs upper_bottom:floor", "'floor'"], {}),
     "friction_pair_negative": (PATCH + ["-contact_pairs", "upper_bottom:lower_top:-0.2"],
                                ["-contact_pairs: item 'upper_bottom:lower_top:-0.2'", "'-0.2'", ">= 0"], {}),
     "friction_with_cholesky": (SLIDING + ["-options_file", "{root}/options/solver/mumps_cholesky.yml"],
