@@ -113,6 +113,29 @@ void Friction::Frame(const std::vector<ContactPair> &pairs, const std::vector<st
     TangentBasis(dim_, normals[p].data(), tangents_[p]);
     const PetscInt v = pairs[p].vertex;
     pairs_vertex_[p] = v;
+    // The tangents' free parts that the normal's free part (and the tangents before) do not already constrain: on a
+    // symmetry plane (y fixed) a tangent close to y keeps only a sliver along z, a multiple of the normal row, which
+    // made the system singular (two half-balls on a symmetry plane, the node at the contact point).
+    const auto free_part = [&](const double *d, double *f) {
+      for (int c = 0; c < 3; ++c) f[c] = c < dim_ && !(*fixed_)[v * dim_ + c] ? d[c] : 0.0;
+    };
+    std::vector<std::array<double, 3>> basis;
+    bool independent[2] = {false, false};
+    double nf[3];
+    free_part(normals[p].data(), nf);
+    const double nn = std::sqrt(nf[0] * nf[0] + nf[1] * nf[1] + nf[2] * nf[2]);
+    if (nn > 0) basis.push_back({nf[0] / nn, nf[1] / nn, nf[2] / nn});
+    for (int k = 0; k < m; ++k) {
+      double tf[3];
+      free_part(tangents_[p][k].data(), tf);
+      for (const auto &b : basis) {
+        const double dot = tf[0] * b[0] + tf[1] * b[1] + tf[2] * b[2];
+        for (int c = 0; c < 3; ++c) tf[c] -= dot * b[c];
+      }
+      const double tn = std::sqrt(tf[0] * tf[0] + tf[1] * tf[1] + tf[2] * tf[2]);
+      independent[k] = tn > 1e-6;
+      if (independent[k]) basis.push_back({tf[0] / tn, tf[1] / tn, tf[2] / tn});
+    }
     for (int k = 0; k < m; ++k) {
       // The columns of the normal row (EvaluatePairs, MortarCoupling::ExtendRows) in its order: the node's free
       // components, then the master nodes' with - w_jl t_k (the slip is u_j - sum_l w_jl u_l along t_k).
@@ -122,7 +145,7 @@ void Friction::Frame(const std::vector<ContactPair> &pairs, const std::vector<st
       // A tangent along which the supports fix the node (a symmetry plane) has no row, whatever its master nodes do:
       // their weighted motion alone would be a constraint on the master side (singular where slave nodes share
       // master nodes).
-      has_[p * m + k] = HasRow(row);
+      has_[p * m + k] = independent[k] && HasRow(row);
       if (mortar_ && mortar_->IsMortar(pairs[p])) mortar_->MasterColumns(p, tangents_[p][k].data(), -1, row);
     }
   }
@@ -301,14 +324,11 @@ void Friction::TurnedRow(std::size_t p, double a, double b, SparseRow &row) cons
   // part vanishes, as in Frame).
   row = rows_[p * 2];
   for (PetscInt i = 0; i < row.ncols; ++i) row.coef[i] = a * rows_[p * 2].coef[i] + b * rows_[p * 2 + 1].coef[i];
-  double slave2 = 0;
-  for (int c = 0; c < dim_; ++c)
-    if (!(*fixed_)[pairs_vertex_[p] * dim_ + c]) {
-      const double x = a * tangents_[p][0][c] + b * tangents_[p][1][c];
-      slave2 += x * x;
-    }
-  // No row: its columns kept with zeros (SetConstraints then writes zeros over whatever the pattern held there).
-  if (slave2 <= 1e-12) std::fill(row.coef.begin(), row.coef.end(), 0.0);
+  // Independent of the normal row where both tangents are (Frame); with one, only along that one. No row: its columns
+  // kept with zeros (SetConstraints then writes zeros over whatever the pattern held there).
+  const bool h0 = has_[p * 2], h1 = has_[p * 2 + 1];
+  const bool holds = (h0 && h1) || (h0 && std::abs(b) < 1e-9 * std::abs(a)) || (h1 && std::abs(a) < 1e-9 * std::abs(b));
+  if (!holds) std::fill(row.coef.begin(), row.coef.end(), 0.0);
 }
 
 void Friction::SystemRow(std::size_t p, int k, SparseRow &row) const {
