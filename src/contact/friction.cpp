@@ -285,7 +285,12 @@ PetscErrorCode Friction::Next(MPI_Comm comm, const std::vector<ContactPair> &pai
       }
       zn = std::sqrt(zn);
       const double bound = mu_pair_[p] * std::max(0.0, states[p].lambda - c * states[p].gap);
-      if (zn <= bound) {
+      // 3D: a slip pair whose rule turns its direction by more than a right angle slipped against its own friction
+      // force in the last solve (the force overshot): it sticks next. Otherwise the direction swung back and forth
+      // at the edge of a contact without converging (two equal half-balls sheared: three pairs, period 2).
+      double reverse = 0;
+      for (int k = 0; k < m && m == 2 && grip_[p] == Grip::SLIP; ++k) reverse += z[k] * dir_[p * m + k];
+      if (zn <= bound || reverse < 0) {
         next_[p] = Grip::STICK;
       } else {
         next_[p] = Grip::SLIP;
