@@ -226,12 +226,18 @@ PetscErrorCode Friction::BeginStep(const std::vector<ContactPair> &pairs, const 
 
 PetscErrorCode Friction::Slips(const std::vector<ContactPair> &pairs, const double *u_local,
                                std::vector<double> &s) const {
-  const int m = PerPair();
   std::vector<double> r;
   PetscFunctionBeginUser;
   PetscCall(Relative(pairs, u_local, r));
-  s.assign(pairs.size() * m, 0.0);
-  for (std::size_t p = 0; p < pairs.size(); ++p)
+  SlipsOf(r, s);
+  PetscFunctionReturn(0);
+}
+
+void Friction::SlipsOf(const std::vector<double> &r, std::vector<double> &s) const {
+  const int m = PerPair();
+  const std::size_t n = r.size() / dim_;
+  s.assign(n * m, 0.0);
+  for (std::size_t p = 0; p < n; ++p)
     for (int k = 0; k < m; ++k) {
       // Along a tangent the supports fix, the motion is theirs: no slip of friction's.
       if (!has_[p * m + k]) continue;
@@ -239,7 +245,6 @@ PetscErrorCode Friction::Slips(const std::vector<ContactPair> &pairs, const doub
       for (int c = 0; c < dim_; ++c) v += tangents_[p][k][c] * (r[p * dim_ + c] - origin_[p * dim_ + c]);
       s[p * m + k] = v;
     }
-  PetscFunctionReturn(0);
 }
 
 void Friction::First(const std::vector<char> &active) {
@@ -269,7 +274,7 @@ PetscErrorCode Friction::Next(MPI_Comm comm, const std::vector<ContactPair> &pai
     for (int c = 0; c < dim_; ++c)
       origin_[p * dim_ + c] = start_r_[p * dim_ + c] + theta * (r[p * dim_ + c] - start_r_[p * dim_ + c]);
   }
-  PetscCall(Slips(pairs, u_local, s));
+  SlipsOf(r, s);
   next_dir_ = dir_;
   next_across_.assign(pairs.size(), NAN);
   for (std::size_t p = 0; p < pairs.size(); ++p) {

@@ -621,14 +621,19 @@ PetscErrorCode MortarCoupling::Bind(const Mesh &mesh, const DofMap &dofs, const 
   }
   PetscCall(MatCreateAIJ(comm, (PetscInt)pairs.size(), dofs.OwnedRows(), PETSC_DETERMINE, PETSC_DETERMINE, 0,
                          d_nnz.data(), 0, o_nnz.data(), G_.out()));
-  std::vector<PetscInt> wd_nnz(pairs.size() * dim_), wo_nnz(pairs.size() * dim_);
-  for (std::size_t i = 0; i < wd_nnz.size(); ++i) wd_nnz[i] = d_nnz[i / dim_] / dim_, wo_nnz[i] = o_nnz[i / dim_] / dim_;
-  PetscCall(MatCreateAIJ(comm, (PetscInt)pairs.size() * dim_, dofs.OwnedRows(), PETSC_DETERMINE, PETSC_DETERMINE, 0,
-                         wd_nnz.data(), 0, wo_nnz.data(), W_.out()));
+  // W (friction only, KeepWeights): the weights per component, dim rows per pair with G's counts spread over them.
+  PetscInt first_w = 0;
+  if (weights_) {
+    std::vector<PetscInt> wd_nnz(pairs.size() * dim_), wo_nnz(pairs.size() * dim_);
+    for (std::size_t i = 0; i < wd_nnz.size(); ++i)
+      wd_nnz[i] = d_nnz[i / dim_] / dim_, wo_nnz[i] = o_nnz[i / dim_] / dim_;
+    PetscCall(MatCreateAIJ(comm, (PetscInt)pairs.size() * dim_, dofs.OwnedRows(), PETSC_DETERMINE, PETSC_DETERMINE,
+                           0, wd_nnz.data(), 0, wo_nnz.data(), W_.out()));
+    PetscCall(MatGetOwnershipRange(W_, &first_w, nullptr));
+  }
   // G's entries, and each row's free master columns for the system (ExtendRows, at every evaluation of the pairs).
-  PetscInt first_row, first_w;
+  PetscInt first_row;
   PetscCall(MatGetOwnershipRange(G_, &first_row, nullptr));
-  PetscCall(MatGetOwnershipRange(W_, &first_w, nullptr));
   free_columns_.assign(pairs.size(), {});
   free_terms_.assign(pairs.size(), {});
   for (std::size_t p = 0; p < pairs.size(); ++p) {
@@ -642,8 +647,7 @@ PetscErrorCode MortarCoupling::Bind(const Mesh &mesh, const DofMap &dofs, const 
       for (int k = 0; k < dim_; ++k) {
         cols[k] = first + k, vals[k] = -t.w * r.n[k];
         if (!(fixed & (1 << k))) free_columns_[p].emplace_back(first + k, t.w * r.n[k]), free_terms_[p].push_back({t.w, k});
-        const PetscInt wrow = first_w + (PetscInt)p * dim_ + k;
-        PetscCall(MatSetValue(W_, wrow, first + k, t.w, ADD_VALUES));
+        if (weights_) PetscCall(MatSetValue(W_, first_w + (PetscInt)p * dim_ + k, first + k, t.w, ADD_VALUES));
       }
       PetscCall(MatSetValues(G_, 1, &row, dim_, cols, vals, ADD_VALUES));
     }
@@ -651,6 +655,7 @@ PetscErrorCode MortarCoupling::Bind(const Mesh &mesh, const DofMap &dofs, const 
   PetscCall(MatAssemblyBegin(G_, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(G_, MAT_FINAL_ASSEMBLY));
   PetscCall(MatCreateVecs(G_, x_.out(), y_.out()));
+  if (!weights_) PetscFunctionReturn(0);
   PetscCall(MatAssemblyBegin(W_, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(W_, MAT_FINAL_ASSEMBLY));
   PetscCall(MatCreateVecs(W_, wx_.out(), wy_.out()));

@@ -30,6 +30,7 @@ PetscErrorCode ContactSolver::Setup() {
   }
   PetscCall(BuildDirichlet(mesh_, bc_, dirichlet_));
   if (!contact_.pairs.empty()) PetscCall(SetBodyCompliance());
+  if (friction_.On()) mortar_.KeepWeights();
   PetscCall(mortar_.Build(mesh_, contact_, dirichlet_.fixed, (PetscInt)obstacle_.facets.size()));
   PetscCall(FindAllPairs(pairs_, candidate_, nullptr, &held_));
   if (!model_->CurrentConfiguration()) DropOutOfZone(pairs_);

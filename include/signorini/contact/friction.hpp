@@ -141,6 +141,8 @@ private:
   /// The relative displacement of each pair's node, u_j - sum_l w_jl u_l (dim values per pair). Collective.
   [[nodiscard]] PetscErrorCode Relative(const std::vector<ContactPair> &pairs, const double *u_local,
                                         std::vector<double> &r) const;
+  /// The slip increments of the relative displacements r (Relative).
+  void SlipsOf(const std::vector<double> &r, std::vector<double> &s) const;
   /// The row of pair p along the direction a t_1 + b t_2 (3D): the combination of its two rows.
   void TurnedRow(std::size_t p, double a, double b, SparseRow &row) const;
   /// The row of tangential multiplier k of pair p in the system: its own, or a 3D slip pair's turned one; empty when

@@ -75,11 +75,13 @@ public:
   [[nodiscard]] PetscErrorCode AddMasterForces(const std::vector<double> &lambda, double sign,
                                                std::vector<double> &out) const;
 
+  /// Bind builds the weights' matrix W too (MasterDisplacements, AddMasterVectorForces: friction between bodies).
+  void KeepWeights() { weights_ = true; }
   /// Appends to row the free master columns of pair p in ExtendRows' order, with coefficients scale w_jl dir_k (the
   /// master part of a row along the direction dir: friction's tangential rows).
   void MasterColumns(std::size_t p, const double *dir, double scale, SparseRow &row) const;
   /// The weighted master displacement of every pair, m_p = sum_l w_jl u_l (dim values per pair; 0 for an obstacle's
-  /// pair), at u_local (dim values per local vertex). Collective.
+  /// pair), at u_local (dim values per local vertex); needs KeepWeights. Collective.
   [[nodiscard]] PetscErrorCode MasterDisplacements(const Mesh &mesh, const DofMap &dofs, const double *u_local,
                                                    std::vector<double> &m) const;
   /// out[i] += sign times the forces on the master nodes of the forces F (dim values per pair) on the slave nodes,
@@ -120,6 +122,7 @@ private:
 
   PetscInt interfaces_ = 0, facet_base_ = 0;
   std::vector<double> compliance_; ///< per body (SetCompliance)
+  bool weights_ = false;           ///< KeepWeights
   std::vector<Row> rows_;
   std::vector<char> slave_, master_vertex_; ///< local vertices of a slave group, of a master group
   /// Bind: per pair the index of its row in rows_ (-1: an obstacle's pair); per master node its first global row and
