@@ -356,7 +356,8 @@ void Friction::SystemRow(std::size_t p, int k, SparseRow &row) const {
 
 void Friction::SystemRows(const std::vector<SparseRow> &normal_rows, const std::vector<char> &active,
                           std::vector<SparseRow> &rows, std::vector<char> &flags,
-                          std::vector<std::vector<double>> &columns, std::vector<double> &diag) const {
+                          std::vector<std::vector<double>> &columns, std::vector<double> &diag,
+                          std::vector<char> *heavy, double light_weight) const {
   const int m = PerPair();
   const std::size_t n = normal_rows.size();
   rows = normal_rows;
@@ -364,8 +365,11 @@ void Friction::SystemRows(const std::vector<SparseRow> &normal_rows, const std::
   flags.assign(rows.size(), 0);
   columns.assign(rows.size(), {});
   diag.assign(rows.size(), 0.0);
+  if (heavy) heavy->assign(rows.size(), 0);
   for (std::size_t p = 0; p < n; ++p) {
     flags[p] = active[p];
+    if (heavy) (*heavy)[p] = active[p];
+    bool spring_near_light = false;
     for (int k = 0; k < m; ++k) {
       const std::size_t i = n + p * m + k;
       SystemRow(p, k, rows[i]);
@@ -373,7 +377,13 @@ void Friction::SystemRows(const std::vector<SparseRow> &normal_rows, const std::
       const bool across = m == 2 && k == 1 && grip_[p] == Grip::SLIP && std::isfinite(across_[p]);
       flags[i] = (grip_[p] == Grip::STICK || across) && HasRow(rows[i]);
       if (across) diag[i] = across_[p];
+      // A spring k = -1/D near the light weight w would make 1 + w D vanish in the augmented form.
+      if (across) spring_near_light = std::fabs(1.0 + light_weight * across_[p]) < 0.5;
     }
+    // The augmented form's weight: one per pair for its tangential rows (they turn together), the full one while it
+    // sticks.
+    if (heavy)
+      for (int k = 0; k < m; ++k) (*heavy)[n + p * m + k] = grip_[p] == Grip::STICK || spring_near_light;
     if (grip_[p] != Grip::SLIP) continue;
     // The slip pair's normal multiplier also carries its friction force mu lambda_n d: the force on the body per unit
     // lambda_n is n - mu sum_k d_k t_k, and its column -(n - ...) (the row's coefficients are -n).

@@ -315,16 +315,23 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   PetscCall(ReadSaddlePointOptions(comm, opts));
   PetscCall(CheckReuseOptions(comm, opts, constant_k));
   if (!nonsymmetric_.empty()) {
-    // A nonsymmetric matrix: a factorisation with pivoting of the plain form at every change.
-    PetscBool lu;
+    // A nonsymmetric matrix: a factorisation with pivoting of the plain form at every change, or a Krylov method for
+    // nonsymmetric matrices (BiCGStab, GMRES, ...) with a preconditioner that does not assume symmetry.
+    PetscBool symmetric_pc, symmetric_ksp;
     PCType type;
-    PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
+    KSPType ksp_type;
+    PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &symmetric_pc, PCCHOLESKY, PCICC, ""));
+    PetscCall(PetscObjectTypeCompareAny((PetscObject)ksp_.get(), &symmetric_ksp, KSPCG, KSPPIPECG, KSPCR, KSPPIPECR,
+                                        KSPMINRES, KSPSYMMLQ, KSPFCG, KSPPIPEFCG, KSPGROPPCG, KSPNASH, KSPSTCG,
+                                        KSPGLTR, KSPQCG, ""));
     PetscCall(PCGetType(pc, &type));
-    PetscCheck(lu, comm, PETSC_ERR_USER_INPUT,
-               "%s makes the saddle-point matrix nonsymmetric, which the given solver (-contact_pc_type %s) cannot "
-               "solve; expected an LU factorisation: no solver option (MUMPS LU is then the default) or "
-               "-options_file options/solver/mumps_lu.yml",
-               nonsymmetric_.c_str(), type);
+    PetscCall(KSPGetType(ksp_, &ksp_type));
+    PetscCheck(!symmetric_pc && !symmetric_ksp, comm, PETSC_ERR_USER_INPUT,
+               "%s makes the saddle-point matrix nonsymmetric, which the given solver (-contact_ksp_type %s "
+               "-contact_pc_type %s) cannot solve; expected an LU factorisation (no solver option, or -options_file "
+               "options/solver/mumps_lu.yml) or a Krylov method for nonsymmetric matrices (-options_file "
+               "options/solver/fieldsplit_gamg.yml: BiCGStab; or -contact_ksp_type gmres)",
+               nonsymmetric_.c_str(), ksp_type, type);
     PetscCheck(!(opts.reuse_set && opts.reuse_factorization), comm, PETSC_ERR_USER_INPUT,
                "-contact_reuse_factorization with %s: the kept factorisation needs a symmetric saddle-point matrix; "
                "expected -contact_reuse_factorization 0 or no such option",
@@ -507,7 +514,7 @@ PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<SparseRow> &
   // changes the rows whose state changes.
   std::vector<double> weight(rows.size(), aug_);
   for (std::size_t p = 0; p < rows.size() && p < active_.size(); ++p)
-    if (!active_[p]) weight[p] = aug_inactive_;
+    if (!(p < heavy_.size() ? heavy_[p] : active_[p])) weight[p] = aug_inactive_;
   weight_.assign(rows.size(), 0.0);
   PetscCall(Reweight(rows, weight));
   pc_current_ = false; // after an assembly of K
@@ -571,7 +578,7 @@ PetscErrorCode SaddlePointSystem::MultiplierDiagonal(std::vector<PetscScalar> &d
   PetscFunctionBeginUser;
   // The values SetConstraints wrote.
   std::vector<double> owned(dofs_->OwnedLambda());
-  for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) owned[p] = active_[p] ? 0.0 : InactiveDiagonal(0.0);
+  for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) owned[p] = active_[p] ? 0.0 : InactiveDiagonal(0.0, aug_inactive_);
   PetscCall(ToRoot(owned, d));
   PetscFunctionReturn(0);
 }
@@ -580,24 +587,52 @@ PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<SparseRow> &r
                                                  const std::vector<char> &active, double inactive_diag,
                                                  double stabilisation,
                                                  const std::vector<std::vector<double>> *columns,
-                                                 const std::vector<double> *diag) {
+                                                 const std::vector<double> *diag, const std::vector<char> *heavy) {
+  MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   std::vector<PetscScalar> zeros;
   PetscFunctionBeginUser;
-  PetscCheck(stabilisation >= 0 && stabilisation < aug_inactive_, PetscObjectComm((PetscObject)A_.get()),
-             PETSC_ERR_ARG_OUTOFRANGE, "stabilisation weight %.6g outside [0, %.6g)", stabilisation, aug_inactive_);
+  PetscCheck(stabilisation >= 0 && stabilisation < aug_inactive_, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "stabilisation weight %.6g outside [0, %.6g)", stabilisation, aug_inactive_);
   if (active != active_ || stabilisation != stab_) pc_current_ = false;
   stab_ = stabilisation;
+  const std::vector<char> &weighs = heavy ? *heavy : active;
   if (augmented_ && aug_inactive_ != aug_) {
     std::vector<double> weight(rows.size());
-    for (std::size_t p = 0; p < rows.size(); ++p) weight[p] = active[p] ? aug_ : aug_inactive_;
+    for (std::size_t p = 0; p < rows.size(); ++p) weight[p] = weighs[p] ? aug_ : aug_inactive_;
     PetscCall(Reweight(rows, weight));
   }
+  if (heavy) heavy_ = *heavy;
+  else heavy_.clear();
+  // The augmented form's D and column differences (SetConstraints' declaration); a change of them is a new matrix.
+  std::vector<double> aug_diag(augmented_ ? rows.size() : 0, 0.0);
+  std::vector<SparseRow> col_extra(aug_diag.size());
+  for (std::size_t p = 0; p < aug_diag.size(); ++p) {
+    if (!active[p]) continue;
+    if (diag) aug_diag[p] = (*diag)[p];
+    if (!columns || (*columns)[p].empty()) continue;
+    PetscCheck(aug_diag[p] == 0, comm, PETSC_ERR_ARG_WRONG, "an active row with both D and its own column");
+    for (PetscInt i = 0; i < rows[p].ncols; ++i)
+      if ((*columns)[p][i] != rows[p].coef[i]) col_extra[p].Add(rows[p].cols[i], (*columns)[p][i] - rows[p].coef[i]);
+  }
+  for (std::size_t p = 0; p < aug_diag.size(); ++p) {
+    const double w = weight_[p], scale = 1.0 + w * aug_diag[p];
+    // 1 + w D = 1 - w / k for a spring k = -1/D: the caller gives such a row a weight away from k (heavy).
+    PetscCheck(std::fabs(scale) > 1e-8, comm, PETSC_ERR_ARG_WRONG,
+               "an augmentation weight %.6g equal to a row's spring stiffness %.6g", w, -1.0 / aug_diag[p]);
+  }
+  const auto same = [](const SparseRow &a, const SparseRow &b) { return a.cols == b.cols && a.coef == b.coef; };
+  bool changed = aug_diag != aug_diag_ || col_extra.size() != col_extra_.size();
+  for (std::size_t p = 0; p < col_extra.size() && !changed; ++p) changed = !same(col_extra[p], col_extra_[p]);
+  if (changed) pc_current_ = false;
+  aug_diag_ = std::move(aug_diag);
+  col_extra_ = std::move(col_extra);
   for (std::size_t p = 0; p < rows.size(); ++p) {
     const bool keep = active[p] || augmented_ || stab_ > 0;
     if (!keep) zeros.assign(rows[p].ncols, 0.0);
     const bool column = keep && columns && !(*columns)[p].empty();
-    PetscCall(SetRow(rows[p], (PetscInt)p, keep ? rows[p].coef.data() : zeros.data(),
-                     active[p] ? (diag ? (*diag)[p] : 0.0) : InactiveDiagonal(inactive_diag),
+    double d = active[p] ? (diag ? (*diag)[p] : 0.0) : InactiveDiagonal(inactive_diag, augmented_ ? weight_[p] : 0.0);
+    if (augmented_ && active[p]) d /= RowScale(p);
+    PetscCall(SetRow(rows[p], (PetscInt)p, keep ? rows[p].coef.data() : zeros.data(), d,
                      column ? (*columns)[p].data() : nullptr));
   }
   active_ = active;
@@ -606,12 +641,47 @@ PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<SparseRow> &r
   PetscFunctionReturn(0);
 }
 
-double SaddlePointSystem::InactiveDiagonal(double plain) const {
-  // Eliminating an inactive row -B_i du + D mu_i = 0 adds (r - 1/D) B_i^T B_i (augmented form) or -B_i^T B_i / D
-  // (plain form, row kept) to the displacement block: the spring stab_ B_i^T B_i, or nothing in the augmented form
-  // without stabilisation.
-  if (augmented_) return 1.0 / (aug_inactive_ - stab_);
+double SaddlePointSystem::InactiveDiagonal(double plain, double w) const {
+  // Eliminating an inactive row -B_i du + D mu_i = 0 adds (w - 1/D) B_i^T B_i (augmented form, weight w) or
+  // -B_i^T B_i / D (plain form, row kept) to the displacement block: the spring stab_ B_i^T B_i, or nothing in the
+  // augmented form without stabilisation.
+  if (augmented_) return 1.0 / (w - stab_);
   return stab_ > 0 ? -1.0 / stab_ : plain;
+}
+
+PetscErrorCode SaddlePointSystem::ShiftRhs() {
+  PetscFunctionBeginUser;
+  bool any = false;
+  for (std::size_t p = 0; p < aug_diag_.size() && !any; ++p) any = aug_diag_[p] != 0 || col_extra_[p].ncols > 0;
+  PetscBool shift = any ? PETSC_TRUE : PETSC_FALSE;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &shift, 1, MPIU_BOOL, MPI_LOR, PetscObjectComm((PetscObject)b_.get())));
+  if (!shift) PetscFunctionReturn(0);
+  if (!b_given_) PetscCall(VecDuplicate(b_, b_given_.out()));
+  PetscCall(VecCopy(b_, b_given_));
+  // Rows with D: g / (1 + w D); a column B_i^T + e_i: -w g e_i on the displacement rows (the rows' columns are
+  // rows of the whole system, possibly another rank's).
+  PetscScalar *b;
+  PetscCall(VecGetArray(b_, &b));
+  std::vector<std::pair<PetscInt, PetscScalar>> moved;
+  for (std::size_t p = 0; p < aug_diag_.size(); ++p) {
+    const PetscInt i = dofs_->OwnedU() + (PetscInt)p;
+    b[i] /= RowScale(p);
+    const SparseRow &e = col_extra_[p];
+    for (PetscInt k = 0; k < e.ncols; ++k) moved.emplace_back(e.cols[k], -weight_[p] * b[i] * e.coef[k]);
+  }
+  PetscCall(VecRestoreArray(b_, &b));
+  for (const auto &m : moved) PetscCall(VecSetValue(b_, m.first, m.second, ADD_VALUES));
+  PetscCall(VecAssemblyBegin(b_));
+  PetscCall(VecAssemblyEnd(b_));
+  rhs_shifted_ = true;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::RestoreRhs() {
+  PetscFunctionBeginUser;
+  if (rhs_shifted_) PetscCall(VecCopy(b_given_, b_));
+  rhs_shifted_ = false;
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode SaddlePointSystem::FailureAdvice(std::string &advice) const {
@@ -664,7 +734,8 @@ PetscErrorCode SaddlePointSystem::InitialGuess() {
   for (PetscInt i = 0; i < dofs_->OwnedU(); ++i) x[i] = 0;
   for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) {
     const PetscInt i = dofs_->OwnedU() + p;
-    x[i] = active_[p] ? x[i] - (augmented_ ? aug_ * b[i] : 0.0) : 0.0;
+    // Augmented: mu = (1 + w D)(lambda - w g') with g' = g / (1 + w D) the row's right-hand side (SetConstraints).
+    x[i] = active_[p] ? (augmented_ ? RowScale(p) * (x[i] - weight_[p] * b[i]) : x[i]) : 0.0;
   }
   PetscCall(VecRestoreArrayRead(b_, &b));
   PetscCall(VecRestoreArray(x_, &x));
@@ -674,6 +745,15 @@ PetscErrorCode SaddlePointSystem::InitialGuess() {
 
 PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &residual, bool &singular,
                                         double rtol, bool loose) {
+  PetscFunctionBeginUser;
+  PetscCall(ShiftRhs());
+  PetscCall(SolveShifted(krylov_iterations, residual, singular, rtol, loose));
+  PetscCall(RestoreRhs());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::SolveShifted(PetscInt &krylov_iterations, double &residual, bool &singular,
+                                               double rtol, bool loose) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   KSPConvergedReason reason;
   PetscFunctionBeginUser;
@@ -756,6 +836,7 @@ PetscErrorCode SaddlePointSystem::SolveKsp(double rtol, bool loose, KSPConverged
   ProgressBegin("preconditioner set-up (analysis and factorisation)");
   PetscCall(KSPSetUp(ksp_));
   ProgressEnd();
+  PetscCall(SplitMultiplierBlock());
   pc_current_ = augmented_ && !reuse_;
   ksp_set_up_ = true;
   PetscReal ksp_rtol, abstol, dtol;
@@ -891,6 +972,39 @@ PetscErrorCode SaddlePointSystem::KeepDisplacementPreconditioner() {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SaddlePointSystem::SplitMultiplierBlock() {
+  PC pc, spc;
+  PetscBool fieldsplit;
+  PetscFunctionBeginUser;
+  if (!nest_.on || multiplier_split_) PetscFunctionReturn(0);
+  PetscCall(KSPGetPC(ksp_, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
+  if (!fieldsplit) PetscFunctionReturn(0);
+  PCCompositeType type;
+  PetscCall(PCFieldSplitGetType(pc, &type));
+  if (type != PC_COMPOSITE_SCHUR) PetscFunctionReturn(0);
+  KSP *sub;
+  PetscInt n;
+  PetscCall(PCFieldSplitGetSubKSP(pc, &n, &sub));
+  PetscCall(KSPGetPC(sub[n - 1], &spc));
+  PetscCall(PetscFree(sub));
+  PetscCall(PetscObjectTypeCompare((PetscObject)spc, PCFIELDSPLIT, &fieldsplit));
+  if (!fieldsplit) PetscFunctionReturn(0);
+  // The Schur complement's rows are the multiplier block's (global multiplier numbering).
+  MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
+  const PetscInt owned = dofs_->OwnedLambda(), first = tangential_from_ < 0 ? owned : tangential_from_;
+  PetscCheck(tangential_from_ >= 0, comm, PETSC_ERR_USER_INPUT,
+             "-contact_fieldsplit_lambda_pc_type fieldsplit: the multiplier block has one kind of rows (normal) "
+             "without friction; expected a preconditioner of one block (jacobi, the default) or -contact_friction > 0");
+  ISH normal, tangential;
+  PetscCall(ISCreateStride(comm, first, dofs_->LambdaBlockRow(0), 1, normal.out()));
+  PetscCall(ISCreateStride(comm, owned - first, dofs_->LambdaBlockRow(first), 1, tangential.out()));
+  PetscCall(PCFieldSplitSetIS(spc, "lambda_n", normal));
+  PetscCall(PCFieldSplitSetIS(spc, "lambda_t", tangential));
+  multiplier_split_ = true;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SaddlePointSystem::TrueResidual(PetscReal &rnorm, PetscReal &bnorm) {
   PetscFunctionBeginUser;
   PetscCall(MatMult(A_, x_, r_));
@@ -926,15 +1040,16 @@ PetscErrorCode SaddlePointSystem::CheckAndConvert(KSPConvergedReason reason, Pet
   }
   residual = rnorm;
   if (augmented_) {
-    // Augmented form: an active row holds lambda - r g (g: its right-hand side), an inactive one (r - s) B du; the
-    // latter becomes the spring force -s B du of the plain form (0 without stabilisation).
+    // Augmented form: an active row holds (1 + w D) lambda - w g (g: its right-hand side; w: its weight, D: 0 but on
+    // a spring row), an inactive one (w - s) B du; the latter becomes the spring force -s B du of the plain form (0
+    // without stabilisation).
     PetscScalar *x;
     const PetscScalar *b;
     PetscCall(VecGetArray(x_, &x));
     PetscCall(VecGetArrayRead(b_, &b));
     for (PetscInt p = 0; p < dofs_->OwnedLambda(); ++p) {
       const PetscInt i = dofs_->OwnedU() + p;
-      x[i] = active_[p] ? x[i] + aug_ * b[i] : -stab_ * x[i] / (aug_inactive_ - stab_);
+      x[i] = active_[p] ? x[i] / RowScale(p) + weight_[p] * b[i] : -stab_ * x[i] / (weight_[p] - stab_);
     }
     PetscCall(VecRestoreArrayRead(b_, &b));
     PetscCall(VecRestoreArray(x_, &x));

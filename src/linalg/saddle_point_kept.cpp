@@ -181,7 +181,7 @@ PetscErrorCode SaddlePointSystem::SolveCondensed(const std::vector<double> &bm, 
   lambda.assign(nl, 0.0);
   shift.assign(nl, 0.0);
   for (PetscInt p = 0; p < nl; ++p) {
-    const double dp = active_[p] ? 0.0 : InactiveDiagonal(0.0);
+    const double dp = active_[p] ? 0.0 : InactiveDiagonal(0.0, aug_inactive_);
     shift[p] = dp * x[p] - bm[p];
     lambda[p] = active_[p] ? x[p] + aug_ * bm[p] : 0.0;
   }

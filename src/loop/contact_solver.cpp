@@ -105,6 +105,7 @@ PetscErrorCode ContactSolver::CreateSystem() {
     std::vector<double> diag;
     friction_.SystemRows(rows_, std::vector<char>(pairs_.size(), 0), rows, flags, columns, diag);
     system_->UseNonsymmetric(friction_.Describe());
+    system_->UseTangentialRows((PetscInt)pairs_.size());
   }
   PetscCall(system_->Create(dofs_, rows, coords, !model_->Nonlinear(), kscale_, d_nnz, o_nnz, insert_pattern));
   if (opts_.lagged_search_set && opts_.lagged_search) system_->KeepFactorization();
@@ -223,19 +224,6 @@ PetscErrorCode ContactSolver::ChooseSolver() {
     PetscFunctionReturn(0);
   };
   PetscCall(ChooseSolverPath(comm, opts.path, given, factor_pc, problem, stats_.solver));
-  if (friction_.On() && stats_.solver.path == SolverPath::ITERATIVE) {
-    // Friction's slip rows make the matrix nonsymmetric, which the iterative path's Schur fieldsplit (its augmented
-    // form and its kept displacement preconditioner) is not built for: MUMPS LU solves it.
-    PetscCheck(stats_.solver.by == ChosenBy::AUTO, comm, PETSC_ERR_USER_INPUT,
-               "%s: the iterative path (%s) does not solve the nonsymmetric saddle-point matrix of friction yet; "
-               "expected the direct path: -contact_solver direct, no solver option, or -options_file "
-               "options/solver/mumps_lu.yml",
-               friction_.Describe().c_str(),
-               stats_.solver.by == ChosenBy::CONTACT_SOLVER ? "-contact_solver iterative" : "the given solver options");
-    stats_.solver.path = SolverPath::DIRECT;
-    stats_.solver.why = "friction: the slip rows make the matrix nonsymmetric, which MUMPS LU solves (the iterative "
-                        "path does not yet)";
-  }
   stats_.solver_chosen = true;
   ProgressNote("solver: %s (%s: %s)", SOLVER_PATH_NAMES[(int)stats_.solver.path], CHOSEN_BY_NAMES[(int)stats_.solver.by],
                stats_.solver.why.c_str());

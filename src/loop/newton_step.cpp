@@ -86,25 +86,27 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   } else if (st.stabilised || st.newton.exact) {
     st.newton.lagged = false; // the search is left (Condensable): a full solve from the base with the current tangent
   }
+  // With friction, the tangential rows after the normal ones: stick rows active, slip pairs' normal columns with their
+  // friction.
+  std::vector<ConstraintRow> rows;
+  std::vector<char> flags, heavy;
+  std::vector<std::vector<double>> columns;
+  std::vector<double> diag;
+  if (friction_.On())
+    friction_.SystemRows(rows_, st.next, rows, flags, columns, diag, &heavy, system_->AugmentationWeight(false));
   if ((model_->Nonlinear() && !st.newton.lagged) || !k_assembled_) {
     ProgressBegin("stiffness assembly");
     PetscCall(MatZeroEntries(system_->Stiffness()));
     PetscCall(assembler_->Assemble(u_local_.data(), system_->Stiffness(), kscale_, nullptr, nullptr));
     PetscCall(MatAssemblyBegin(system_->Stiffness(), MAT_FLUSH_ASSEMBLY));
     PetscCall(MatAssemblyEnd(system_->Stiffness(), MAT_FLUSH_ASSEMBLY));
-    if (system_->Augmented()) PetscCall(system_->AddAugmentation(rows_));
+    if (system_->Augmented()) PetscCall(system_->AddAugmentation(friction_.On() ? rows : rows_));
     k_assembled_ = true;
     ProgressEnd();
   }
   if (friction_.On()) {
-    // The tangential rows after the normal ones: stick rows active, slip pairs' normal columns with their friction.
-    std::vector<ConstraintRow> rows;
-    std::vector<char> flags;
-    std::vector<std::vector<double>> columns;
-    std::vector<double> diag;
-    friction_.SystemRows(rows_, st.next, rows, flags, columns, diag);
     PetscCall(system_->SetConstraints(rows, flags, -1.0 / kscale_, st.stabilised ? STABILISATION * kscale_ : 0.0,
-                                      &columns, &diag));
+                                      &columns, &diag, &heavy));
   } else {
     PetscCall(
         system_->SetConstraints(rows_, st.next, -1.0 / kscale_, st.stabilised ? STABILISATION * kscale_ : 0.0));
@@ -206,9 +208,10 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
       if (model_->Nonlinear() && !st.newton.lagged) PetscCall(NewtonForcing(st, rtol));
       // Inexact active set (linear material, iterative solver): while the set changes a solve only has to show
       // where it goes; the solve after which it stays is corrected to the certificate's tolerance (JudgeCandidate).
-      // Without multipliers nothing can change: one solve to the KSP's tolerance.
+      // Without multipliers nothing can change: one solve to the KSP's tolerance. Friction's sets follow the slips
+      // and the springs across them (3D) from every solve: loose solves made a cube dragged over a plane cycle.
       const bool loose = !model_->Nonlinear() && st.correction.rtol == 0 && opts_.active_set_rtol > 0 &&
-                         system_->Iterative() && dofs_.GlobalLambda() > 0;
+                         system_->Iterative() && dofs_.GlobalLambda() > 0 && !friction_.On();
       if (loose) rtol = opts_.active_set_rtol;
       const PetscInt fallbacks = system_->KrylovFallbacks();
       PetscCall(system_->Solve(st.krylov, st.solve_residual, st.singular, rtol, loose));

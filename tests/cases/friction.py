@@ -339,3 +339,43 @@ def cattaneo_mindlin_3d(runner):
                        abs(a_fe / a - 1) <= 0.05)
     runner.expect_true("stick radius within 5 %% of Cattaneo's (%.2f %%)" % (100 * (c_fe / (ratio * a_fe) - 1)),
                        abs(c_fe / (ratio * a_fe) - 1) <= 0.05)
+
+
+@test("friction_iterative")
+def friction_iterative(runner):
+    """The iterative path (Schur fieldsplit with GAMG, BiCGStab: -contact_solver iterative) solves friction's
+    nonsymmetric system: against a rigid plane in 3D (stick and slip zones whose directions turn), between bodies in
+    3D (tetrahedra on hexahedra, full slip) and in 2D (the sliding block), and svk dragged in 3D, the same sets, and
+    displacements, multipliers and friction forces within 1e-8 of the direct path's (the run's ranks)."""
+    cases = (("partial slip 3D", PARTIAL_3D),
+             ("3D blocks sliding (tet_on_hex)",
+              ["-options_file", "options/patch3d.yml", "-mesh_file", "meshes/patch3d_tet_on_hex.msh", "-material_nu",
+               "0", "-bc_dirichlet", "bottom:x:y:z,top:x=0.2:y=0.1", "-contact_pairs", "upper_bottom:lower_top:0.3"]),
+             ("sliding block 2D", SLIDING),
+             ("svk cube dragged", ["-options_file", "options/cube_on_plane.yml", "-bc_dirichlet", "top:x=0.05",
+                                   "-contact_friction", "0.3", "-material_model", "svk", "-load_steps", "2"]))
+    for what, args in cases:
+        direct = runner.run(args + ["-contact_solver", "direct"], what + ", direct")
+        # The leak check of the iterative runs on 1 rank only (under it, 2 ranks' GAMG set-ups took 10 s, not 0.8 s).
+        it = runner.run(args + ["-contact_solver", "iterative"], what + ", iterative", heap_check=runner.np == 1)
+        runner.expect_equal("%s: the iterative path ran" % what, it.get("solver.path"), "iterative")
+        expect_friction_certificate(runner, it)
+        expect_same_state(runner, direct, it, keys=("contact.active_nodes", "friction.stick_nodes",
+                                                    "friction.slip_nodes"), tol=1e-8)
+        f, g = direct.nodes(), it.nodes()
+        axes = [a for a in "xyz" if "friction_" + a in f.dtype.names]
+        scale = max(np.abs(f["friction_" + a]).max() for a in axes)
+        runner.expect_true("%s: the same friction states" % what,
+                           np.array_equal(np.nan_to_num(f["friction_state"]), np.nan_to_num(g["friction_state"])))
+        for a in axes:
+            runner.expect_close("%s: friction_%s" % (what, a), g["friction_" + a], f["friction_" + a], 0, 1e-8 * scale)
+    # The multiplier block split into its normal and tangential rows (index sets lambda_n, lambda_t), each addressed by
+    # its own options: the same state.
+    split = runner.run(PARTIAL_3D + ["-contact_solver", "iterative", "-contact_fieldsplit_lambda_pc_type", "fieldsplit",
+                                     "-contact_fieldsplit_lambda_fieldsplit_lambda_t_pc_type", "jacobi",
+                                     "-contact_ksp_view"], "partial slip 3D, multiplier block split",
+                       heap_check=runner.np == 1)
+    runner.expect_true("-contact_ksp_view shows the split lambda_t",
+                       "(contact_fieldsplit_lambda_fieldsplit_lambda_t_)" in split.output)
+    direct = runner.run(PARTIAL_3D, "partial slip 3D, direct")
+    expect_same_state(runner, direct, split, keys=("contact.active_nodes", "friction.stick_nodes"), tol=1e-8)

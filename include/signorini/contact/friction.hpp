@@ -92,10 +92,13 @@ public:
   void SetKey(const std::vector<char> &active, std::vector<char> &key) const;
   /// The constraint rows of the system: the normal ones, then the tangential ones; the active flags (stick rows and
   /// 3D slip rows across the slip); per row the column coefficients where they differ from the row's (slip pairs'
-  /// normal rows; empty otherwise) and D on the active rows (0, or the 3D slip rows' spring).
+  /// normal rows; empty otherwise) and D on the active rows (0, or the 3D slip rows' spring). heavy (if given): the
+  /// augmentation weight class of each row (SaddlePointSystem::SetConstraints): a normal row's is its active flag, a
+  /// pair's tangential rows share one (full while it sticks, or when its spring is near light_weight, the system's
+  /// light weight r_I).
   void SystemRows(const std::vector<SparseRow> &normal_rows, const std::vector<char> &active,
                   std::vector<SparseRow> &rows, std::vector<char> &flags, std::vector<std::vector<double>> &columns,
-                  std::vector<double> &diag) const;
+                  std::vector<double> &diag, std::vector<char> *heavy = nullptr, double light_weight = 0) const;
   /// The directions (3 values each) of the tangential rows active in SystemRows for pair p: what they hold.
   void HeldDirections(std::size_t p, std::vector<std::array<double, 3>> &dirs) const;
   /// The right-hand side of the tangential rows at u_local: -s on stick rows, the spring's on 3D slip rows, 0

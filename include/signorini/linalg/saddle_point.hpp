@@ -94,6 +94,11 @@ public:
   /// factorisation is not kept across active sets (the plain form, refactored at every change). why: the cause, for
   /// the messages.
   void UseNonsymmetric(const std::string &why) { nonsymmetric_ = why; }
+  /// The owned multiplier rows from first on are tangential (friction; before Create): a Schur fieldsplit whose
+  /// multiplier block is preconditioned by a fieldsplit (-contact_fieldsplit_lambda_pc_type fieldsplit) gets that
+  /// block's splits "lambda_n" (normal rows) and "lambda_t" (tangential rows), addressed by
+  /// -contact_fieldsplit_lambda_fieldsplit_lambda_n_ and ..._lambda_t_ options.
+  void UseTangentialRows(PetscInt first) { tangential_from_ = first; }
   [[nodiscard]] PetscErrorCode Create(const DofMap &dofs, const std::vector<SparseRow> &rows,
                                       const std::vector<double> &coords, bool constant_k, double kscale,
                                       const std::vector<PetscInt> &d_nnz_k, const std::vector<PetscInt> &o_nnz_k,
@@ -131,11 +136,20 @@ public:
   /// of A. Collective.
   /// columns (if given): per row, the coefficients of its column B^T where they differ from the row's (empty: the
   /// same), on the row's pattern (a nonsymmetric matrix, UseNonsymmetric); diag (if given): per row, D on an active
-  /// row instead of 0 (a spring 1/|D| on the row's direction: friction's slip rows in 3D).
+  /// row instead of 0 (a spring 1/|D| on the row's direction: friction's slip rows in 3D); heavy (if given): per row,
+  /// whether its augmentation weight is r (else r_I; default: active), so that the caller can give rows that turn
+  /// together one weight (friction's tangential rows of a pair: their sum B_1^T B_1 + B_2^T B_2 is then the same
+  /// however the rows turn in the tangent plane). In the augmented form an active row with D != 0 and weight w is
+  /// solved as B du + D / (1 + w D) mu = g / (1 + w D) with mu = (1 + w D) lambda - w g, and a column that differs
+  /// from its row by e (given on an active row with D = 0) moves -w g e to the displacement rows' right-hand side
+  /// (Solve does both, and gives lambda back).
   [[nodiscard]] PetscErrorCode SetConstraints(const std::vector<SparseRow> &rows, const std::vector<char> &active,
                                               double inactive_diag, double stabilisation = 0,
                                               const std::vector<std::vector<double>> *columns = nullptr,
-                                              const std::vector<double> *diag = nullptr);
+                                              const std::vector<double> *diag = nullptr,
+                                              const std::vector<char> *heavy = nullptr);
+  /// The augmentation weight of a row (SetConstraints' heavy: r, else r_I); 0 when the form is not augmented.
+  double AugmentationWeight(bool heavy) const { return augmented_ ? (heavy ? aug_ : aug_inactive_) : 0.0; }
   /// Solves A x = b; a failed or inaccurate solve is an error naming the likely cause. On return the multiplier
   /// rows of the solution hold, in both forms, the contact multipliers lambda on active rows and the spring forces
   /// -s B du on inactive ones (0 without stabilisation), so that F_int(u + du) = f + B^T x on the free rows.
@@ -300,6 +314,11 @@ private:
   /// rows changed weight since its set-up (and K did not change): KeepDisplacementPreconditioner.
   static constexpr double KEEP_U_PC_FRACTION = 0.1;
   [[nodiscard]] PetscErrorCode KeepDisplacementPreconditioner();
+  /// After the first set-up of a Schur fieldsplit: the multiplier block's fieldsplit (if it is one) gets its splits
+  /// (UseTangentialRows).
+  [[nodiscard]] PetscErrorCode SplitMultiplierBlock();
+  PetscInt tangential_from_ = -1; ///< UseTangentialRows (-1: no tangential rows)
+  bool multiplier_split_ = false; ///< SplitMultiplierBlock gave the multiplier block's fieldsplit its splits
   /// After a Krylov failure (reason < 0): the preconditioner set up again and GMRES from the start's guess; reason and
   /// krylov_iterations become the retry's (iterations added).
   [[nodiscard]] PetscErrorCode RetryKrylov(KSPConvergedReason &reason, PetscInt &krylov_iterations);
@@ -307,8 +326,19 @@ private:
   [[nodiscard]] PetscErrorCode InitialGuess();
   /// What to use instead after a failed KSP solve (": ...; expected ..."), from the preconditioner that failed.
   [[nodiscard]] PetscErrorCode FailureAdvice(std::string &advice) const;
-  /// D on an inactive row (plain: the value of the plain form without stabilisation).
-  double InactiveDiagonal(double plain) const;
+  /// D on an inactive row of augmentation weight w (plain: the value of the plain form without stabilisation).
+  double InactiveDiagonal(double plain, double w) const;
+  /// Augmented form with SetConstraints' diag or columns: the right-hand side the caller wrote, kept in b_given_,
+  /// becomes the augmented system's (SetConstraints above); RestoreRhs puts it back. Collective.
+  [[nodiscard]] PetscErrorCode ShiftRhs();
+  /// Solve on the shifted right-hand side.
+  [[nodiscard]] PetscErrorCode SolveShifted(PetscInt &krylov_iterations, double &residual, bool &singular,
+                                            double rtol, bool loose);
+  [[nodiscard]] PetscErrorCode RestoreRhs();
+  /// The augmented form's scale 1 + w D of owned row p (1 on a row without D).
+  double RowScale(std::size_t p) const {
+    return p < aug_diag_.size() && aug_diag_[p] != 0 ? 1.0 + weight_[p] * aug_diag_[p] : 1.0;
+  }
   const DofMap *dofs_ = nullptr;
   bool reuse_ = false, augmented_ = false, factored_ = false, constant_k_ = true;
   bool released_ = false;              ///< Release() freed the solver
@@ -331,6 +361,14 @@ private:
   double aug_inactive_ = 1; ///< augmentation weight r_I of an inactive row (r, or INACTIVE_WEIGHT r: iterative)
   std::vector<double> weight_; ///< owned multiplier rows: the augmentation weight A holds now (AddAugmentation)
   double stab_ = 0; ///< stabilisation spring s of the current system (0: none)
+  /// Augmented form, owned multiplier rows (SetConstraints): D of an active row (0: none), a column's difference from
+  /// its row on an active row (empty: none), the heavy flags; b_given_ the caller's right-hand side while ShiftRhs has
+  /// changed b_.
+  std::vector<double> aug_diag_;
+  std::vector<SparseRow> col_extra_;
+  std::vector<char> heavy_;
+  VecH b_given_;
+  bool rhs_shifted_ = false;
   std::vector<char> active_;          ///< owned multiplier rows active in the current system
   std::vector<PetscInt> schur_rows_;  ///< rank 0: every multiplier row, in global order
   MumpsSchur mumps_schur_;
