@@ -20,6 +20,9 @@ Families (each run is the executable with a case options file, a solver preset a
          pressed over 5 load steps, then sheared over 5; MUMPS LU refactored at every change of the sets). Its
          reference is not an elastic solve but the frictionless solve of the same path (-contact_friction 0): ratio =
          frictional / frictionless contact solve, with the iterations of both.
+  cattaneo3d  options/cattaneo3d.yml on meshes/cattaneo3d.geo (the 3D Cattaneo-Mindlin case: two equal half balls
+         pressed over 3 load steps, sheared over 3; reference: the frictionless solve of the same path). Levels 12.9k,
+         38k, 159k, 500k dofs; from about 20k dofs the automatic choice takes the iterative path.
   cube   options/cube_under_sphere.yml on meshes/cube_bench.geo (a unit cube of (16/F)^3 hexahedra, bottom clamped,
          sides on rollers, indented by a rigid sphere; its elastic reference: a pressure on the top, the sphere out of
          reach, so no multiplier). Levels 14.7k, 108k, 824k and 3.06M dofs.
@@ -113,6 +116,8 @@ SPHERE_BLOCK_LEVELS = [1.0, 0.7, 0.5, 0.35, 0.28]  # 17k, 45k, 115k, 330k, 640k 
 SPHERE_BLOCK_QUICK = [1.0]
 CATTANEO_LEVELS = [2.0, 1.0, 0.5, 0.29]  # 21k, 83k, 330k, 1M dofs (measured 21,352, 83,368, 329,586)
 CATTANEO_QUICK = [2.0]
+CATTANEO3D_LEVELS = [1.5, 1.0, 0.6, 0.4]  # 12.9k, 38k, 159k, 500k dofs (measured 12,924, 38,274, 159,387)
+CATTANEO3D_QUICK = [2.0]
 
 
 def hertz_dofs(f):
@@ -137,6 +142,10 @@ def sphere_block_dofs(f):
 
 def cattaneo_dofs(f):
     return 83400.0 / (f * f)
+
+
+def cattaneo3d_dofs(f):
+    return 38300.0 / f ** 2.8
 
 
 def cube_dofs(f):
@@ -175,6 +184,8 @@ FAMILIES = {
     # Friction: the reference is the frictionless solve of the same case and path (any number of solves).
     "cattaneo": dict(case="options/cattaneo2d.yml", geo="meshes/cattaneo2d.geo", dofs=cattaneo_dofs, extra=[],
                      elastic=["-contact_friction", "0"], reference_is_frictionless=True),
+    "cattaneo3d": dict(case="options/cattaneo3d.yml", geo="meshes/cattaneo3d.geo", dofs=cattaneo3d_dofs, extra=[],
+                       elastic=["-contact_friction", "0"], reference_is_frictionless=True),
     "svk": dict(case="options/hertz.yml", geo="meshes/hertz.geo", dofs=hertz_dofs,
                 extra=["-material_model", "svk", "-load_steps", "3"], elastic=None),
 }
@@ -627,7 +638,7 @@ def main():
     ap.add_argument("--presets", default="", help="comma list of options/solver/*.yml names (default: all)")
     ap.add_argument("--ranks", default="1,2", help="comma list of MPI rank counts (default 1,2)")
     ap.add_argument("--families", default="hertz,beam,svk,hertz3d", help="comma list of hertz, beam, svk, hertz3d, cube, "
-                    "cylinders, sphere_block, cattaneo")
+                    "cylinders, sphere_block, cattaneo, cattaneo3d")
     ap.add_argument("--out", default=os.path.join(REPO, "scripts", "bench_out"), help="output folder")
     ap.add_argument("--exe", default=os.environ.get("SIGNORINI_EXE", os.path.join(REPO, "build", "signorini")))
     ap.add_argument("--timeout", type=float, default=None, help="seconds per run at most (default 1800, --quick 15)")
@@ -659,7 +670,7 @@ def main():
     for f in families:
         if f not in FAMILIES:
             sys.exit("benchmark: unknown family %s; expected hertz, beam, svk, hertz3d, cube, cylinders, "
-                     "sphere_block, cattaneo" % f)
+                     "sphere_block, cattaneo, cattaneo3d" % f)
     os.makedirs(os.path.join(args.out, "runs"), exist_ok=True)
 
     levels = {"hertz": HERTZ_QUICK if args.quick else HERTZ_LEVELS,
@@ -669,7 +680,8 @@ def main():
               "cube": CUBE_QUICK if args.quick else CUBE_LEVELS,
               "cylinders": CYLINDERS_QUICK if args.quick else CYLINDERS_LEVELS,
               "sphere_block": SPHERE_BLOCK_QUICK if args.quick else SPHERE_BLOCK_LEVELS,
-              "cattaneo": CATTANEO_QUICK if args.quick else CATTANEO_LEVELS}
+              "cattaneo": CATTANEO_QUICK if args.quick else CATTANEO_LEVELS,
+              "cattaneo3d": CATTANEO3D_QUICK if args.quick else CATTANEO3D_LEVELS}
     plan = []
     for fam in families:
         fam_presets = [DEFAULT_PRESET] if fam == "svk" else presets

@@ -51,9 +51,21 @@ std::string FrictionCertificate::Violation() const {
   return text;
 }
 
+void Friction::Configure(const ContactOptions &opts, const Obstacle &obstacle) {
+  mu_ = opts.friction, pair_mu_ = opts.pair_friction;
+  kind_option_ = obstacle.friction_option;
+  facet_mu_.assign(obstacle.facets.size(), -1.0);
+  for (std::size_t f = 0; f < obstacle.facets.size() && f < obstacle.facet_kind.size(); ++f)
+    if ((std::size_t)obstacle.facet_kind[f] < obstacle.kind_friction.size())
+      facet_mu_[f] = obstacle.kind_friction[obstacle.facet_kind[f]];
+}
+
 std::string Friction::Describe() const {
   char text[64];
+  bool kinds = false;
+  for (double m : facet_mu_) kinds = kinds || m > 0;
   if (mu_ > 0) std::snprintf(text, sizeof(text), "-contact_friction %g", mu_);
+  else if (kinds) return "-obstacle_friction " + kind_option_;
   else std::snprintf(text, sizeof(text), "-contact_pairs SLAVE:MASTER:MU with MU > 0");
   return text;
 }
@@ -61,6 +73,7 @@ std::string Friction::Describe() const {
 bool Friction::On() const {
   bool on = mu_ > 0;
   for (double m : pair_mu_) on = on || m > 0;
+  for (double m : facet_mu_) on = on || m > 0;
   return on;
 }
 
@@ -82,6 +95,8 @@ void Friction::Bind(const Mesh &mesh, const DofMap &dofs, const std::vector<char
     if (mortar.IsMortar(pairs[p])) {
       const std::size_t item = (std::size_t)(pairs[p].facet - mortar.FacetBase());
       if (item < pair_mu_.size() && pair_mu_[item] >= 0) mu_pair_[p] = pair_mu_[item];
+    } else if ((std::size_t)pairs[p].facet < facet_mu_.size() && facet_mu_[pairs[p].facet] >= 0) {
+      mu_pair_[p] = facet_mu_[pairs[p].facet];
     }
   tangents_.clear();
   origin_.assign(n * dim_, 0.0);

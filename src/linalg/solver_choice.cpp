@@ -28,6 +28,11 @@ constexpr double BASE_BYTES_PER_DOF_2D = 1000, BASE_BYTES_PER_DOF_3D = 2600;
 constexpr double FLOP_RATE = 2e10;
 // The iterative path's contact solve, seconds per displacement dof on one rank (3D fieldsplit_gamg).
 constexpr double ITERATIVE_SECONDS_PER_DOF = 1e-4;
+// One solve to the certificate's tolerance on the iterative path, seconds per displacement dof on one rank (3D
+// Cattaneo-Mindlin with friction, fieldsplit_gamg with BiCGStab, 25-26 iterations: 1.5e-5 at 13k dofs, 2.6e-5 at 38k).
+constexpr double ITERATIVE_SECONDS_PER_DOF_PER_SOLVE = 2.5e-5;
+// An LU factorisation against the Cholesky's: twice the entries (L and U) and twice the flops.
+constexpr double LU_FACTOR = 2;
 // Active-set changes a kept dense Schur complement is factored for (its m^3/3 flops each).
 constexpr double DENSE_FACTORISATIONS = 4;
 // The measured model of the factor (nested dissection: n^(4/3) entries and n^2 flops in 3D, n log n and n^1.5 in
@@ -47,15 +52,18 @@ FactorEstimate ModelEstimate(const SolverProblem &p) {
 /// Bytes per rank and seconds of the direct path with factor estimate e on size ranks.
 void DirectCost(const SolverProblem &p, const FactorEstimate &e, PetscMPIInt size, double &bytes, double &seconds) {
   const double m = (double)p.multipliers, rows = (double)(p.u_dofs + p.multipliers);
-  const bool cholesky = rows <= (size == 1 ? CHOLESKY_MAX_ROWS : CHOLESKY_MAX_ROWS_GATHERED);
+  // Friction's direct path: MUMPS LU refactored at every solve, no kept Schur complement; seconds per solve.
+  const bool cholesky = !p.refactored && rows <= (size == 1 ? CHOLESKY_MAX_ROWS : CHOLESKY_MAX_ROWS_GATHERED);
   // The Cholesky's factor with its update stack and the gathered entries, on rank 0 (the 108k-dof cube: 1.62 GB peak
   // against 1.61 estimated); MUMPS's with its workspace, shared unevenly by the ranks (2D Hertz at 600k dofs: the
   // estimate 1.35 times MUMPS's factor entries, the peak 0.8 times the estimated memory).
-  const double factor = cholesky ? 8 * 1.45 * e.entries : 8 * 1.2 * e.entries / size * (size > 1 ? 1.2 : 1.0);
-  const bool dense = !MumpsSchur::DenseCostsMore(m, e.flops);
+  const double factor = (cholesky ? 8 * 1.45 * e.entries : 8 * 1.2 * e.entries / size * (size > 1 ? 1.2 : 1.0)) *
+                        (p.refactored ? LU_FACTOR : 1.0);
+  const bool dense = !p.refactored && !MumpsSchur::DenseCostsMore(m, e.flops);
   const double base = p.dim == 3 ? BASE_BYTES_PER_DOF_3D : BASE_BYTES_PER_DOF_2D;
   bytes = base * (double)p.u_dofs / size + factor + (dense ? 8 * m * m : 0);
-  seconds = (e.flops + (dense ? DENSE_FACTORISATIONS * m * m * m / 3 : 0)) / (FLOP_RATE * (cholesky ? 1 : size));
+  seconds = (e.flops * (p.refactored ? LU_FACTOR : 1.0) + (dense ? DENSE_FACTORISATIONS * m * m * m / 3 : 0)) /
+            (FLOP_RATE * (cholesky ? 1 : size));
 }
 
 std::string Bytes(double b) {
@@ -172,7 +180,9 @@ PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bo
   choice.by = ChosenBy::AUTO;
   if (opts.budget_set) choice.budget_bytes = opts.budget;
   else PetscCall(MemoryBudget(comm, choice.budget_bytes));
-  choice.iterative_seconds = ITERATIVE_SECONDS_PER_DOF * (double)problem.u_dofs / size;
+  choice.iterative_seconds =
+      (problem.refactored ? ITERATIVE_SECONDS_PER_DOF_PER_SOLVE : ITERATIVE_SECONDS_PER_DOF) * (double)problem.u_dofs /
+      size;
   // The model first; where it is near a limit, the node graph's symbolic factorisation.
   choice.factor = ModelEstimate(problem);
   DirectCost(problem, choice.factor, size, choice.direct_bytes, choice.direct_seconds);
@@ -198,9 +208,9 @@ PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bo
   } else if (choice.direct_seconds > choice.iterative_seconds) {
     choice.path = SolverPath::ITERATIVE;
     std::snprintf(text, sizeof(text),
-                  "a factorisation (about %s per rank) fits, but would take about %.3g s%s against %.3g s iterative",
+                  "a factorisation (about %s per rank) fits, but would take about %.3g s%s against %.3g s iterative%s",
                   Bytes(choice.direct_bytes).c_str(), choice.direct_seconds, estimate.c_str(),
-                  choice.iterative_seconds);
+                  choice.iterative_seconds, problem.refactored ? " per solve (friction refactors at every solve)" : "");
   } else {
     choice.path = SolverPath::DIRECT;
     // The budget stays out of this sentence (summary.json has it): the machine's free memory varies from run to run.

@@ -209,6 +209,7 @@ PetscErrorCode ContactSolver::ChooseSolver() {
   PetscCall(SolverOptionsGiven(given, factor_pc));
   SolverProblem problem;
   problem.u_dofs = dofs_.GlobalU(), problem.multipliers = dofs_.GlobalLambda(), problem.dim = dim;
+  problem.refactored = friction_.On();
   // The graph of the mesh nodes, numbered by displacement block row: two nodes of a cell are neighbours.
   problem.node_graph = [&](PetscInt &num_nodes, std::vector<idx_t> &edges) -> PetscErrorCode {
     PetscFunctionBeginUser;

@@ -49,10 +49,56 @@ void AppendTriangle(TriangleSoup &out, const std::array<double, 3> &a, const std
   out.insert(out.end(), {a, along ? b : c, along ? c : b});
 }
 
+std::vector<std::string> ObstacleKinds() {
+  std::vector<std::string> kinds;
+  for (const ShapeType &shape : ShapeRegistry()) kinds.push_back(std::string(shape.option).substr(10)); // "-obstacle_"
+  kinds.push_back("mesh");
+  return kinds;
+}
+
+namespace {
+
+/// -obstacle_friction's items KIND:MU into obstacle.kind_friction: known kinds that the run has, each once, MU a
+/// number in [0, 1000].
+PetscErrorCode ParseKindFriction(MPI_Comm comm, const std::vector<std::string> &items, Obstacle &obstacle) {
+  PetscFunctionBeginUser;
+  const std::vector<std::string> kinds = ObstacleKinds();
+  obstacle.kind_friction.assign(kinds.size(), -1.0);
+  obstacle.friction_option = Join(items, ",");
+  std::vector<std::string> given;
+  for (const ShapeType *shape : obstacle.shapes) given.push_back(std::string(shape->option).substr(10));
+  if (!obstacle.meshes.empty()) given.push_back("mesh");
+  for (const std::string &item : items) {
+    const std::size_t colon = item.find(':');
+    const std::string kind = item.substr(0, colon), text = colon == std::string::npos ? "" : item.substr(colon + 1);
+    const auto k = std::find(kinds.begin(), kinds.end(), kind);
+    PetscCheck(colon != std::string::npos && k != kinds.end(), comm, PETSC_ERR_USER_INPUT,
+               "-obstacle_friction: item '%s' is not of the form KIND:MU; expected a kind of obstacle (%s) and its "
+               "friction coefficient, e.g. -obstacle_friction planes:0.2", item.c_str(), Join(kinds, ", ").c_str());
+    PetscCheck(std::find(given.begin(), given.end(), kind) != given.end(), comm, PETSC_ERR_USER_INPUT,
+               "-obstacle_friction: item '%s' names obstacles of kind %s, which the run has none of; expected one of "
+               "the run's kinds (%s)", item.c_str(), kind.c_str(),
+               given.empty() ? "none: no -obstacle_ option" : Join(given, ", ").c_str());
+    const std::optional<double> mu = ParseFinite(text);
+    PetscCheck(mu && *mu >= 0 && *mu <= 1e3, comm, PETSC_ERR_USER_INPUT,
+               "-obstacle_friction: item '%s' has the friction coefficient '%s'; expected a number in [0, 1000]",
+               item.c_str(), text.c_str());
+    double &slot = obstacle.kind_friction[k - kinds.begin()];
+    PetscCheck(slot < 0, comm, PETSC_ERR_USER_INPUT,
+               "-obstacle_friction: kind %s is given twice; expected each kind once", kind.c_str());
+    slot = *mu;
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
 PetscErrorCode ReadObstacle(MPI_Comm comm, Obstacle &obstacle) {
   std::vector<double> values;
   PetscFunctionBeginUser;
   obstacle.facets.clear();
+  obstacle.facet_kind.clear();
+  std::vector<std::string> friction;
   obstacle.shapes.clear();
   obstacle.meshes.clear();
   std::vector<std::string> meshes;
@@ -71,12 +117,17 @@ PetscErrorCode ReadObstacle(MPI_Comm comm, Obstacle &obstacle) {
       const std::string error = shape.build(&values[k * numbers], obstacle.facets);
       PetscCheck(error.empty(), comm, PETSC_ERR_USER_INPUT, "%s item %zu %s", shape.option, k + 1, error.c_str());
     }
+    obstacle.facet_kind.resize(obstacle.facets.size(), (int)(&shape - ShapeRegistry().data()));
   }
   PetscCall(OptionsStringList(PetscOptionsObject, "-obstacle_mesh", "Meshed rigid surfaces FILE[:GROUP],... from gmsh "
                               "files (.msh, .geo): 2-node lines for a 2D body, triangles and quadrilaterals for a 3D "
                               "one, of the physical group GROUP (default: all); the node order orients each facet (left "
                               "normal of P0->P1; right-hand rule) into the body", "no meshed obstacle",
                               "FILE or FILE:GROUP items", meshes));
+  PetscCall(OptionsStringList(PetscOptionsObject, "-obstacle_friction", "Coulomb friction coefficient per kind of "
+                              "obstacle, KIND:MU,... (KIND: segments, arcs, discs, planes, spheres, cylinders, "
+                              "rectangles or mesh; the kinds not given take -contact_friction)",
+                              "-contact_friction on every obstacle", "KIND:MU items", friction));
   PetscOptionsEnd();
   for (const std::string &item : meshes) {
     ObstacleMeshSource source;
@@ -95,6 +146,7 @@ PetscErrorCode ReadObstacle(MPI_Comm comm, Obstacle &obstacle) {
     source.origins = candidates.origins;
     obstacle.meshes.push_back(source);
   }
+  PetscCall(ParseKindFriction(comm, friction, obstacle));
   PetscFunctionReturn(0);
 }
 

@@ -379,3 +379,30 @@ def friction_iterative(runner):
                        "(contact_fieldsplit_lambda_fieldsplit_lambda_t_)" in split.output)
     direct = runner.run(PARTIAL_3D, "partial slip 3D, direct")
     expect_same_state(runner, direct, split, keys=("contact.active_nodes", "friction.stick_nodes"), tol=1e-8)
+
+
+@test("obstacle_kind_friction")
+def obstacle_kind_friction(runner):
+    """A friction coefficient per kind of obstacle (-obstacle_friction KIND:MU): the block of sliding_block.yml dragged
+    in full slip over a floor made of a segment (x < 1, -contact_friction 0.1) and a meshed line (x > 1,
+    -obstacle_friction mesh:0.4): at every slip node the friction traction is its obstacle's mu times the pressure
+    (1e-10), and the kind given alone is -contact_friction on that kind (the same state)."""
+    floor = os.path.join(runner.workdir, "floor_right.geo")
+    with open(floor, "w") as f:
+        f.write('Point(1) = {1, 0, 0, 1}; Point(2) = {3, 0, 0, 1};\nLine(1) = {1, 2};\n'
+                'Physical Curve("floor") = {1};\n')
+    r = runner.run(SLIDING + ["-obstacle_segments", "-1,0,1,0", "-obstacle_mesh", floor, "-contact_friction", "0.1",
+                              "-obstacle_friction", "mesh:0.4"], "block on a segment (mu 0.1) and a mesh (mu 0.4)")
+    expect_friction_certificate(runner, r)
+    runner.expect_equal("every active node slips", r.get("friction.slip_nodes"), r.get("contact.active_nodes"))
+    n = r.nodes()
+    s = n[(n["active"] == 1) & (np.abs(n["x"] - 1) > 1e-9)]  # the node at x = 1 may pair with either
+    mu = np.where(s["x"] < 1, 0.1, 0.4)
+    runner.expect_true("slip nodes on both kinds (%d, %d)" % ((s["x"] < 1).sum(), (s["x"] > 1).sum()),
+                       (s["x"] < 1).sum() > 3 and (s["x"] > 1).sum() > 3)
+    runner.expect_close("|friction traction| = mu of the node's obstacle x pressure",
+                        np.abs(s["friction_traction_x"]), mu * s["pressure"], 0, 1e-10 * s["pressure"].max())
+    a = runner.run(SLIDING + ["-contact_friction", "0", "-obstacle_friction", "segments:0.3"],
+                   "sliding block, -obstacle_friction segments:0.3")
+    b = runner.run(SLIDING, "sliding block, -contact_friction 0.3")
+    expect_same_state(runner, b, a, keys=("contact.active_nodes", "friction.slip_nodes"))

@@ -39,12 +39,14 @@ extern const char *const GRIP_NAMES[]; ///< "open", "slip", "stick"
 /// of bodies are collective.
 class Friction {
 public:
-  /// The run's coefficients: -contact_friction, and the pairs of bodies' own (-contact_pairs SLAVE:MASTER:MU).
-  void Configure(const ContactOptions &opts) { mu_ = opts.friction, pair_mu_ = opts.pair_friction; }
+  /// The run's coefficients: -contact_friction, the pairs of bodies' own (-contact_pairs SLAVE:MASTER:MU) and the
+  /// obstacle kinds' (-obstacle_friction KIND:MU).
+  void Configure(const ContactOptions &opts, const Obstacle &obstacle);
   /// Whether any pair has friction (else nothing below is used).
   bool On() const;
   double Coefficient() const { return mu_; }
-  /// The option that asks for friction, for messages: "-contact_friction 0.3" or "-contact_pairs ...:MU".
+  /// The option that asks for friction, for messages: "-contact_friction 0.3", "-obstacle_friction ..." or
+  /// "-contact_pairs ...:MU".
   std::string Describe() const;
   /// Binds to the pairs (linear material: their normals are fixed): mu, tangent bases and tangential rows per pair,
   /// on the free components of its node (fixed marks the Dirichlet dofs per local vertex dof) and, for a pair of
@@ -157,6 +159,8 @@ private:
 
   double mu_ = 0;
   std::vector<double> pair_mu_; ///< per -contact_pairs item, -1: mu_
+  std::vector<double> facet_mu_; ///< per obstacle facet, its kind's coefficient (-obstacle_friction), -1: mu_
+  std::string kind_option_;      ///< -obstacle_friction as given (empty: none)
   int dim_ = 2;
   const Mesh *mesh_ = nullptr;
   const DofMap *dofs_ = nullptr;

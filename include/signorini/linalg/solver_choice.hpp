@@ -40,6 +40,9 @@ struct FactorEstimate {
 struct SolverProblem {
   PetscInt u_dofs = 0, multipliers = 0;
   int dim = 2;
+  /// The direct path factors at every solve (friction: MUMPS LU of a nonsymmetric matrix, no kept factorisation), and
+  /// the iterative path solves every active-set iteration to its tolerance: the two are compared per solve.
+  bool refactored = false;
   std::function<PetscErrorCode(PetscInt &num_nodes, std::vector<idx_t> &edges)> node_graph;
 };
 

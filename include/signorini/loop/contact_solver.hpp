@@ -42,7 +42,7 @@ public:
         contact_(contact), opts_(solver),
         active_set_(mesh.Comm(), {contact.c, contact.gap_tol, contact.touch_tol, contact.activation_fraction,
                                   contact.length, contact.activation_gap_factor}) {
-    friction_.Configure(contact);
+    friction_.Configure(contact, obstacle);
   }
 
   /// Initial weight of the springs on the normals of the inactive pairs, relative to the stiffness scale, in the

@@ -200,11 +200,20 @@ struct ObstacleMeshSource {
   std::vector<std::string> paths, origins; ///< PathCandidates of the file
 };
 
+/// The kinds of obstacle, as -obstacle_friction names them: each shape type's option without "-obstacle_"
+/// (segments, arcs, ...), in ShapeRegistry's order, then "mesh" (-obstacle_mesh).
+std::vector<std::string> ObstacleKinds();
+
 /// The obstacle: every facet of every shape given by the -obstacle_ options.
 struct Obstacle {
   std::vector<std::unique_ptr<Facet>> facets;
+  std::vector<int> facet_kind;           ///< per facet: its kind (index into ObstacleKinds())
   std::vector<const ShapeType *> shapes; ///< the shape types given
   std::vector<ObstacleMeshSource> meshes; ///< -obstacle_mesh items; their facets are added by LoadObstacleMeshes
+  /// -obstacle_friction KIND:MU,...: per kind (ObstacleKinds()) its friction coefficient, -1: none given (the pairs
+  /// on that kind take -contact_friction)
+  std::vector<double> kind_friction;
+  std::string friction_option; ///< -obstacle_friction as given (empty: not given), for messages
 };
 
 /// Reads the -obstacle_ options (one real array per shape type, and the -obstacle_mesh files). Collective.
