@@ -131,12 +131,13 @@ PetscErrorCode RigidModes::Held(const std::vector<PairKey> &keys, const std::vec
 
 PetscErrorCode RigidModes::FreeMotion(const std::vector<PairKey> &keys,
                                       const std::vector<std::array<double, 3>> &normals,
-                                      const std::vector<char> &active, const double *du, RigidMotion &a) const {
+                                      const std::vector<char> &active, const double *du, RigidMotion &a,
+                                      const std::vector<std::size_t> *pair_of) const {
   const int dim = mesh_->Dim(), n = n_;
   std::vector<double> gg, b(n, 0.0);
   std::vector<std::pair<int, double>> row;
   PetscFunctionBeginUser;
-  PetscCall(Gram(keys, normals, active, gg));
+  PetscCall(Gram(keys, normals, active, gg, pair_of));
   for (PetscInt v = 0; v < mesh_->NumLocalVertices(); ++v) {
     if (!mesh_->Owned(v)) continue;
     for (int k = 0; k < dim; ++k) {

@@ -388,7 +388,11 @@ PetscErrorCode ContactSolver::ExtendAlongFreeMotion(StepState &st, Outcome &outc
   std::vector<double> du(u_local_.size());
   for (std::size_t i = 0; i < du.size(); ++i) du[i] = u_local_[i] - st.u_before[i];
   RigidMotion motion;
-  PetscCall(rigid_.FreeMotion(keys_, normals_, active_set_.Flags(), du.data(), motion));
+  // The motions the active set leaves free: with friction, its stick and slip rows hold too (as in Held, so that
+  // the motion is one that the check found free, not one that friction's rows hold).
+  HoldingSet holding;
+  HoldingRows(active_set_.Flags(), holding);
+  PetscCall(rigid_.FreeMotion(holding.keys, holding.normals, holding.flags, du.data(), motion, &holding.pair_of));
   const double size = rigid_.Magnitude(motion);
   double reach = INFINITY;
   for (std::size_t p = 0; p < pairs_.size(); ++p) {

@@ -508,25 +508,30 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
   PetscFunctionReturn(0);
 }
 
+void ContactSolver::HoldingRows(const std::vector<char> &next, HoldingSet &h) const {
+  h.keys = keys_, h.normals = normals_, h.flags = next;
+  h.pair_of.resize(pairs_.size());
+  for (std::size_t p = 0; p < pairs_.size(); ++p) h.pair_of[p] = p;
+  if (!friction_.On()) return;
+  // A stick pair holds its node along its tangents too, a 3D slip pair across its slip.
+  std::vector<std::array<double, 3>> dirs;
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    if (!next[p]) continue;
+    friction_.HeldDirections(p, dirs);
+    for (const auto &d : dirs)
+      h.keys.push_back(keys_[p]), h.normals.push_back(d), h.flags.push_back(1), h.pair_of.push_back(p);
+  }
+}
+
 PetscErrorCode ContactSolver::Held(const std::vector<char> &next, bool &held) const {
   PetscFunctionBeginUser;
   if (!friction_.On()) {
     PetscCall(rigid_.Held(keys_, normals_, next, held));
     PetscFunctionReturn(0);
   }
-  // A stick pair holds its node along its tangents too, a 3D slip pair across its slip.
-  std::vector<PairKey> keys = keys_;
-  std::vector<std::array<double, 3>> normals = normals_;
-  std::vector<char> flags = next;
-  std::vector<std::array<double, 3>> dirs;
-  std::vector<std::size_t> pair_of(pairs_.size());
-  for (std::size_t p = 0; p < pairs_.size(); ++p) pair_of[p] = p;
-  for (std::size_t p = 0; p < pairs_.size(); ++p) {
-    if (!next[p]) continue;
-    friction_.HeldDirections(p, dirs);
-    for (const auto &d : dirs) keys.push_back(keys_[p]), normals.push_back(d), flags.push_back(1), pair_of.push_back(p);
-  }
-  PetscCall(rigid_.Held(keys, normals, flags, held, &pair_of));
+  HoldingSet h;
+  HoldingRows(next, h);
+  PetscCall(rigid_.Held(h.keys, h.normals, h.flags, held, &h.pair_of));
   PetscFunctionReturn(0);
 }
 

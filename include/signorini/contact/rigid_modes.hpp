@@ -41,10 +41,11 @@ public:
                                     const std::vector<std::size_t> *pair_of = nullptr) const;
   /// The rigid motion nearest to the displacement du (local vertex layout, du[v*dim+k]; least squares over the owned
   /// vertices) among those the Dirichlet rows and the active pairs leave free: its mode coefficients a (zero when
-  /// every mode is held). Collective.
+  /// every mode is held). pair_of: as Held's. Collective.
   [[nodiscard]] PetscErrorCode FreeMotion(const std::vector<PairKey> &keys,
                                           const std::vector<std::array<double, 3>> &normals,
-                                          const std::vector<char> &active, const double *du, RigidMotion &a) const;
+                                          const std::vector<char> &active, const double *du, RigidMotion &a,
+                                          const std::vector<std::size_t> *pair_of = nullptr) const;
   /// The rate at which the gap of pair p changes along the rigid motion a (its row of B applied to the motion,
   /// with the sign of the gap).
   double PairRate(std::size_t p, const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,

@@ -169,7 +169,15 @@ private:
   /// Whether the supports and the next solve's active rows (st.next, with friction the stick rows) hold every rigid
   /// mode (RigidModes::Held). Collective.
   [[nodiscard]] PetscErrorCode Held(const std::vector<char> &next, bool &held) const;
-
+  /// The rows that hold the body for the check of its rigid modes: the active pairs' normals, and with friction a
+  /// stick pair's tangents and a 3D slip pair's direction across its slip (pair_of: each row's pair).
+  struct HoldingSet {
+    std::vector<PairKey> keys;
+    std::vector<std::array<double, 3>> normals;
+    std::vector<char> flags;
+    std::vector<std::size_t> pair_of;
+  };
+  void HoldingRows(const std::vector<char> &next, HoldingSet &h) const;
   [[nodiscard]] PetscErrorCode UpdateSolution(double residual_before, bool stabilised, double &step);
   /// What runs per load step (LoadStep) and per active-set/Newton iteration within it: EvaluateIterate (pairs at the
   /// current iterate, the residual), the active-set update (ActiveSet), StepControl (certificate, stabilisation
