@@ -120,6 +120,29 @@ void MumpsSchur::Release() {
   root_.Reset();
 }
 
+std::string MumpsFailure(int infog1, int infog2, const char *phase) {
+  char text[512];
+  const char *instead = "expected a smaller mesh, more ranks on more memory, or the iterative path (-contact_solver "
+                        "iterative)";
+  if (infog1 == -13) {
+    // An allocation failed; INFOG(2) is its size in entries, or in millions of entries when negative.
+    const double entries = infog2 < 0 ? -1e6 * infog2 : (double)infog2;
+    std::snprintf(text, sizeof(text),
+                  "MUMPS could not allocate %.3g GB in the %s of the saddle-point system (INFOG(1) = -13): the "
+                  "factors do not fit in this machine's memory; %s", 8e-9 * entries, phase, instead);
+  } else if (infog1 == -19) {
+    std::snprintf(text, sizeof(text),
+                  "MUMPS needs more working memory in the %s of the saddle-point system than -contact_mat_mumps_icntl_23 "
+                  "allows (INFOG(1) = -19, INFOG(2) = %d); expected a larger ICNTL(23), 0 (MUMPS's own estimate) or "
+                  "the iterative path (-contact_solver iterative)", phase, infog2);
+  } else {
+    std::snprintf(text, sizeof(text),
+                  "MUMPS failed in the %s of the saddle-point system: INFOG(1) = %d, INFOG(2) = %d (see the MUMPS "
+                  "users' guide; -8/-9/-17/-20: out of workspace, -10: the matrix is singular)", phase, infog1, infog2);
+  }
+  return text;
+}
+
 PetscErrorCode MumpsSchur::Call(int job, const char *phase) {
   PetscFunctionBeginUser;
   id_.job = job;
@@ -134,19 +157,8 @@ PetscErrorCode MumpsSchur::Call(int job, const char *phase) {
                         (int)id_.INFOG(1), (int)id_.ICNTL(14)));
     dmumps_c(&id_);
   }
-  // -13: an allocation failed; INFOG(2) is its size in entries, or in millions of entries when negative.
-  if (id_.INFOG(1) == -13) {
-    const double entries = id_.INFOG(2) < 0 ? -1e6 * id_.INFOG(2) : (double)id_.INFOG(2);
-    SETERRQ(comm_, PETSC_ERR_MEM,
-            "MUMPS could not allocate %.3g GB in the %s of the saddle-point system (INFOG(1) = -13): the factors do "
-            "not fit in this machine's memory; expected a smaller mesh, more ranks on more memory, or an iterative "
-            "preset (-options_file options/solver/fieldsplit_gamg.yml)",
-            8e-9 * entries, phase);
-  }
-  PetscCheck(id_.INFOG(1) >= 0, comm_, PETSC_ERR_LIB,
-             "MUMPS failed in the %s of the saddle-point system: INFOG(1) = %d, INFOG(2) = %d (see the MUMPS users' "
-             "guide; -8/-9/-17/-20: out of workspace, -10: the matrix is singular)",
-             phase, (int)id_.INFOG(1), (int)id_.INFOG(2));
+  PetscCheck(id_.INFOG(1) >= 0, comm_, id_.INFOG(1) == -13 ? PETSC_ERR_MEM : PETSC_ERR_LIB, "%s",
+             MumpsFailure((int)id_.INFOG(1), (int)id_.INFOG(2), phase).c_str());
   PetscFunctionReturn(0);
 }
 

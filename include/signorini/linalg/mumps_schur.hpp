@@ -28,6 +28,9 @@ namespace signorini {
 constexpr int MUMPS_WORKSPACE_INCREASE = 50;
 /// Factorisations run again with twice the extra workspace after MUMPS ran out of it (INFOG(1) = -8 or -9).
 constexpr int MUMPS_WORKSPACE_RETRIES = 4;
+/// The message of a MUMPS failure (INFOG(1) < 0, INFOG(2)) in phase ("analysis", "factorisation", ...) of the
+/// saddle-point system: what it means and what would do instead.
+std::string MumpsFailure(int infog1, int infog2, const char *phase);
 
 /// Rows from which a 2D saddle-point matrix is ordered by METIS (below: by coordinate cuts; 3D: always METIS).
 constexpr PetscInt METIS_MIN_ROWS_2D = 50000;
