@@ -346,7 +346,8 @@ CASES = {
                                 ["-obstacle_friction: kind segments is given twice"], {}),
     # MUMPS out of working memory (ICNTL(23) below its need): one message, whether PETSc's interface factors (the
     # plain form) or the kept factorisation calls MUMPS itself.
-    "mumps_working_memory_refactored": (CUBE + ["-contact_reuse_factorization", "0", "-contact_mat_mumps_icntl_23", "1"],
+    "mumps_working_memory_refactored": (CUBE + ["-contact_reuse_factorization", "0",
+                                                "-contact_mat_mumps_icntl_23", "1"],
                                         ["MUMPS needs more working memory", "INFOG(1) = -19",
                                          "-contact_solver iterative"], {}),
     "mumps_working_memory_kept": (CUBE + ["-contact_kept_solver", "mumps", "-contact_mat_mumps_icntl_23", "1"],
