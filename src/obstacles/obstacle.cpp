@@ -56,6 +56,10 @@ std::vector<std::string> ObstacleKinds() {
   return kinds;
 }
 
+int ShapeKind(const ShapeType &shape) { return (int)(&shape - ShapeRegistry().data()); }
+
+int MeshKind() { return (int)ShapeRegistry().size(); }
+
 namespace {
 
 /// -obstacle_friction's items KIND:MU into obstacle.kind_friction: known kinds that the run has, each once, MU a
@@ -66,8 +70,8 @@ PetscErrorCode ParseKindFriction(MPI_Comm comm, const std::vector<std::string> &
   obstacle.kind_friction.assign(kinds.size(), -1.0);
   obstacle.friction_option = Join(items, ",");
   std::vector<std::string> given;
-  for (const ShapeType *shape : obstacle.shapes) given.push_back(std::string(shape->option).substr(10));
-  if (!obstacle.meshes.empty()) given.push_back("mesh");
+  for (const ShapeType *shape : obstacle.shapes) given.push_back(kinds[ShapeKind(*shape)]);
+  if (!obstacle.meshes.empty()) given.push_back(kinds[MeshKind()]);
   for (const std::string &item : items) {
     const std::size_t colon = item.find(':');
     const std::string kind = item.substr(0, colon), text = colon == std::string::npos ? "" : item.substr(colon + 1);
@@ -117,7 +121,7 @@ PetscErrorCode ReadObstacle(MPI_Comm comm, Obstacle &obstacle) {
       const std::string error = shape.build(&values[k * numbers], obstacle.facets);
       PetscCheck(error.empty(), comm, PETSC_ERR_USER_INPUT, "%s item %zu %s", shape.option, k + 1, error.c_str());
     }
-    obstacle.facet_kind.resize(obstacle.facets.size(), (int)(&shape - ShapeRegistry().data()));
+    obstacle.facet_kind.resize(obstacle.facets.size(), ShapeKind(shape));
   }
   PetscCall(OptionsStringList(PetscOptionsObject, "-obstacle_mesh", "Meshed rigid surfaces FILE[:GROUP],... from gmsh "
                               "files (.msh, .geo): 2-node lines for a 2D body, triangles and quadrilaterals for a 3D "

@@ -184,7 +184,7 @@ PetscErrorCode LoadObstacleMeshes(MPI_Comm comm, int dim, Obstacle &obstacle) {
     error = BuildMeshFacets(set, dim, source.file, obstacle.facets);
     PetscAssert(error.empty(), comm, PETSC_ERR_PLIB, "obstacle mesh checked on rank 0 fails on another: %s",
                 error.c_str());
-    obstacle.facet_kind.resize(obstacle.facets.size(), (int)ObstacleKinds().size() - 1);
+    obstacle.facet_kind.resize(obstacle.facets.size(), MeshKind());
   }
   PetscFunctionReturn(0);
 }

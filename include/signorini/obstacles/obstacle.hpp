@@ -201,8 +201,11 @@ struct ObstacleMeshSource {
 };
 
 /// The kinds of obstacle, as -obstacle_friction names them: each shape type's option without "-obstacle_"
-/// (segments, arcs, ...), in ShapeRegistry's order, then "mesh" (-obstacle_mesh).
+/// (segments, arcs, ...), in ShapeRegistry's order, then "mesh" (-obstacle_mesh, index MeshKind()).
 std::vector<std::string> ObstacleKinds();
+/// The kind of a shape type's facets and of a meshed obstacle's (indices into ObstacleKinds()).
+int ShapeKind(const ShapeType &shape);
+int MeshKind();
 
 /// The obstacle: every facet of every shape given by the -obstacle_ options.
 struct Obstacle {
