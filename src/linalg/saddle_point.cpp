@@ -651,6 +651,8 @@ double SaddlePointSystem::InactiveDiagonal(double plain, double w) const {
 
 PetscErrorCode SaddlePointSystem::ShiftRhs() {
   PetscFunctionBeginUser;
+  // Only friction gives rows a D or their own column (it makes the matrix nonsymmetric): nothing to do per solve else.
+  if (nonsymmetric_.empty()) PetscFunctionReturn(0);
   bool any = false;
   for (std::size_t p = 0; p < aug_diag_.size() && !any; ++p) any = aug_diag_[p] != 0 || col_extra_[p].ncols > 0;
   PetscBool shift = any ? PETSC_TRUE : PETSC_FALSE;
@@ -775,15 +777,6 @@ PetscErrorCode SaddlePointSystem::SolveShifted(PetscInt &krylov_iterations, doub
     PetscCall(SolveKsp(rtol, loose, reason, krylov_iterations, known_residual));
   }
   if (mumps_factor_ && !reuse_) {
-    // PETSc's MUMPS interface leaves a failed factorisation to the solve, which then returns infinities: a failure
-    // for memory (a working-memory limit, ICNTL(23), too low) was reported as a singular system. INFOG(1) stays the
-    // factorisation's (the solve does not call MUMPS after it). -10, a numerically singular matrix, is the singular
-    // case below.
-    PetscInt info[2];
-    PetscCall(MatMumpsGetInfog(mumps_factor_, 1, &info[0]));
-    PetscCall(MatMumpsGetInfog(mumps_factor_, 2, &info[1]));
-    PetscCheck(info[0] >= 0 || info[0] == -10, comm, info[0] == -13 ? PETSC_ERR_MEM : PETSC_ERR_LIB, "%s",
-               MumpsFailure((int)info[0], (int)info[1], "factorisation").c_str());
     PetscCall(MatMumpsGetInfog(mumps_factor_, 28, &null_pivots_));
     singular = null_pivots_ > 0;
     if (singular) PetscFunctionReturn(0);
@@ -845,6 +838,16 @@ PetscErrorCode SaddlePointSystem::SolveKsp(double rtol, bool loose, KSPConverged
   ProgressBegin("preconditioner set-up (analysis and factorisation)");
   PetscCall(KSPSetUp(ksp_));
   ProgressEnd();
+  if (mumps_factor_) {
+    // PETSc's MUMPS interface leaves a failed factorisation to the solve, which then returns infinities: a failure
+    // for memory (a working-memory limit, ICNTL(23), too low) was reported as a singular system. -10, a numerically
+    // singular matrix, is the singular case of Solve.
+    PetscInt info[2];
+    PetscCall(MatMumpsGetInfog(mumps_factor_, 1, &info[0]));
+    PetscCall(MatMumpsGetInfog(mumps_factor_, 2, &info[1]));
+    PetscCheck(info[0] >= 0 || info[0] == -10, comm, info[0] == -13 ? PETSC_ERR_MEM : PETSC_ERR_LIB, "%s",
+               MumpsFailure((int)info[0], (int)info[1], "factorisation").c_str());
+  }
   PetscCall(SplitMultiplierBlock());
   pc_current_ = augmented_ && !reuse_;
   ksp_set_up_ = true;
