@@ -143,6 +143,12 @@ std::string MumpsFailure(int infog1, int infog2, const char *phase) {
   return text;
 }
 
+bool MumpsOutOfMemory(int infog1) {
+  for (int code : {-8, -9, -11, -12, -13, -14, -15, -17, -19, -20})
+    if (infog1 == code) return true;
+  return false;
+}
+
 PetscErrorCode MumpsSchur::Call(int job, const char *phase) {
   PetscFunctionBeginUser;
   id_.job = job;
@@ -156,6 +162,14 @@ PetscErrorCode MumpsSchur::Call(int job, const char *phase) {
     PetscCall(PetscInfo(nullptr, "MUMPS factorisation out of workspace (INFOG(1) = %d): again with ICNTL(14) = %d\n",
                         (int)id_.INFOG(1), (int)id_.ICNTL(14)));
     dmumps_c(&id_);
+  }
+  if (id_.INFOG(1) < 0 && rejectable_ && MumpsOutOfMemory((int)id_.INFOG(1))) {
+    // The automatic solver choice leaves the direct path (FactorChoices::confirm): the caller releases and reports.
+    char text[160];
+    std::snprintf(text, sizeof(text), "MUMPS ran out of memory in the %s (INFOG(1) = %d, INFOG(2) = %d)", phase,
+                  (int)id_.INFOG(1), (int)id_.INFOG(2));
+    rejected_ = text;
+    PetscFunctionReturn(0);
   }
   PetscCheck(id_.INFOG(1) >= 0, comm_, id_.INFOG(1) == -13 ? PETSC_ERR_MEM : PETSC_ERR_LIB, "%s",
              MumpsFailure((int)id_.INFOG(1), (int)id_.INFOG(2), phase).c_str());
@@ -352,6 +366,8 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const SchurLayout &layout, const Factor
   PetscFunctionBeginUser;
   Release(); // an earlier factorisation (one that found null pivots) goes first
   declined_ = false;
+  rejected_.clear();
+  rejectable_ = (bool)how.confirm;
   PetscCall(RegisterEvents());
   symmetric_ = how.symmetric;
   PetscCall(PetscObjectGetComm((PetscObject)A, &comm_));
@@ -381,6 +397,16 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const SchurLayout &layout, const Factor
   }
   double flops, entries;
   PetscCall(Analyse(how, N, m_all, flops, entries));
+  if (rejected_.empty() && how.confirm) {
+    // MUMPS's INFOG(16) is in millions of bytes, the largest rank's.
+    const AnalysedFactor analysed{entries, flops, cholesky_in_use_ ? 0.0 : 1e6 * (double)id_.INFOG(16),
+                                  cholesky_in_use_};
+    if (!how.confirm(analysed, rejected_) && rejected_.empty()) rejected_ = "the analysis' check refused";
+  }
+  if (!rejected_.empty()) {
+    Release();
+    PetscFunctionReturn(0);
+  }
   if (how.may_decline && DenseCostsMore((double)m_all, flops)) {
     PetscCall(
         PetscInfo(nullptr,
@@ -399,6 +425,10 @@ PetscErrorCode MumpsSchur::Factor(Mat A, const SchurLayout &layout, const Factor
   redrhs_.assign(m, 0.0);
   ordering_name_ = id_.ICNTL(7) == 1 ? GRAPH_ORDERING_NAMES[(int)ordering.graph] : "MUMPS's";
   PetscCall(FactorNumeric(layout.d0));
+  if (!rejected_.empty()) {
+    Release();
+    PetscFunctionReturn(0);
+  }
   keep_values_ = how.keep_values;
   if (!how.keep_values) FreeValues();
   PetscFunctionReturn(0);
@@ -543,6 +573,7 @@ PetscErrorCode MumpsSchur::Refactor(Mat A, const std::vector<PetscScalar> &d0) {
              "a refactorisation needs an earlier Factor that kept the pattern");
   PetscCall(ReadValues(A, false));
   PetscCall(FactorNumeric(d0));
+  if (!rejected_.empty()) Release();
   PetscFunctionReturn(0);
 }
 
@@ -578,6 +609,7 @@ PetscErrorCode MumpsSchur::FactorNumeric(const std::vector<PetscScalar> &d0) {
       std::vector<double>().swap(root_val_);
       gathered_ = false;
       PetscCall(MumpsAnalysis());
+      if (!rejected_.empty()) PetscFunctionReturn(0);
       schur_raw_.assign((std::size_t)m * m, 0.0);
     }
   }
@@ -587,6 +619,7 @@ PetscErrorCode MumpsSchur::FactorNumeric(const std::vector<PetscScalar> &d0) {
     PetscCall(PetscLogEventBegin(EV_FACTOR, 0, 0, 0, 0));
     PetscCall(Call(2, "factorisation"));
     PetscCall(PetscLogEventEnd(EV_FACTOR, 0, 0, 0, 0));
+    if (!rejected_.empty()) PetscFunctionReturn(0);
     PetscCall(PetscInfo(nullptr, "MUMPS factors: ordering ICNTL(7) = %d (%s), %.6g entries, %.6g flops in the "
                         "elimination\n", (int)id_.ICNTL(7), ordering_name_,
                         (double)(id_.INFOG(29) >= 0 ? id_.INFOG(29) : -1e6 * id_.INFOG(29)), (double)id_.rinfog[2]));

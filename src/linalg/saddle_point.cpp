@@ -122,7 +122,9 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
                           "The path that solves the saddle-point systems: direct (the kept factorisation: MUMPS or the "
                           "supernodal Cholesky), iterative (options/solver/fieldsplit_gamg.yml: a Schur fieldsplit, "
                           "GAMG on the displacement block), or auto: direct where its factorisation fits in "
-                          "-contact_memory_budget and is estimated faster, else iterative. A run's own "
+                          "-contact_memory_budget and is estimated faster, else iterative (near the limits the "
+                          "analysis of the matrix decides before the factorisation; a MUMPS factorisation out of "
+                          "memory hands the run to the iterative path). A run's own "
                           "-contact_ksp_type, -contact_pc_type or kept-factorisation options decide instead; "
                           "-contact_* options refine either path",
                           "auto, direct or iterative", SOLVER_PATH_NAMES, 3, path, &opts.path.path_set));
@@ -769,12 +771,18 @@ PetscErrorCode SaddlePointSystem::SolveShifted(PetscInt &krylov_iterations, doub
   // The first solve of the reuse mode factors the current matrix (or declines the Schur complement: Factor).
   const bool fresh = reuse_ && !factored_;
   if (fresh) PetscCall(Factor());
+  if (!direct_rejected_.empty()) {
+    singular = true;
+    PetscFunctionReturn(0);
+  }
   if (reuse_) {
     PetscCall(SolveKept(fresh, rtol, krylov_iterations, check_tol, singular));
     if (singular) PetscFunctionReturn(0);
     reason = KSP_CONVERGED_ITS;
   } else {
     PetscCall(SolveKsp(rtol, loose, reason, krylov_iterations, known_residual));
+    singular = !direct_rejected_.empty();
+    if (singular) PetscFunctionReturn(0);
   }
   if (mumps_factor_ && !reuse_) {
     PetscCall(MatMumpsGetInfog(mumps_factor_, 28, &null_pivots_));
@@ -808,7 +816,7 @@ PetscErrorCode SaddlePointSystem::SolveKept(bool fresh, double rtol, PetscInt &k
   std::vector<PetscScalar> d;
   PetscCall(MultiplierDiagonal(d));
   krylov_iterations = 1;
-  singular = null_pivots_ > 0;
+  singular = null_pivots_ > 0 || !direct_rejected_.empty();
   if (singular) PetscFunctionReturn(0);
   if (fresh || constant_k_) {
     // The KSP's PC is the kept factorisation (PCKEPT, UseKeptPc): an exact solve with the current D.
@@ -819,7 +827,7 @@ PetscErrorCode SaddlePointSystem::SolveKept(bool fresh, double rtol, PetscInt &k
     kept_viewed_ = true; // KSPSolve shows the KSP with -contact_ksp_view
   } else
     PetscCall(SolveWithKeptFactor(d, rtol, krylov_iterations, check_tol));
-  singular = null_pivots_ > 0;
+  singular = null_pivots_ > 0 || !direct_rejected_.empty();
   PetscFunctionReturn(0);
 }
 
@@ -845,6 +853,14 @@ PetscErrorCode SaddlePointSystem::SolveKsp(double rtol, bool loose, KSPConverged
     PetscInt info[2];
     PetscCall(MatMumpsGetInfog(mumps_factor_, 1, &info[0]));
     PetscCall(MatMumpsGetInfog(mumps_factor_, 2, &info[1]));
+    if (info[0] < 0 && confirm_direct_ && MumpsOutOfMemory((int)info[0])) {
+      // The automatic choice leaves the direct path: the caller solves again on the iterative one.
+      char text[160];
+      std::snprintf(text, sizeof(text), "MUMPS ran out of memory in the factorisation (INFOG(1) = %d, INFOG(2) = %d)",
+                    (int)info[0], (int)info[1]);
+      direct_rejected_ = text;
+      PetscFunctionReturn(0);
+    }
     PetscCheck(info[0] >= 0 || info[0] == -10, comm, info[0] == -13 ? PETSC_ERR_MEM : PETSC_ERR_LIB, "%s",
                MumpsFailure((int)info[0], (int)info[1], "factorisation").c_str());
   }

@@ -25,8 +25,14 @@ PetscErrorCode SaddlePointSystem::Factor() {
   how.keep_values = !constant_k_;
   how.may_decline = !kept_.forced;
   how.solver = kept_.solver;
+  how.confirm = confirm_direct_;
   PetscCall(mumps_schur_.Factor(A_, {schur_rows_, d, dofs_->OwnedU(), dofs_->Dim(), kept_.coords}, how));
   ProgressEnd();
+  if (!mumps_schur_.Rejected().empty()) {
+    // The automatic choice leaves the direct path: the caller solves again on the iterative one.
+    direct_rejected_ = mumps_schur_.Rejected();
+    PetscFunctionReturn(0);
+  }
   if (mumps_schur_.Declined()) {
     // The dense Schur complement would cost more than it saves (many candidates on a body that factors cheaply, such
     // as a thin plate): the KSP's MUMPS factorises the matrix, which stays in the augmented form, at every change.
@@ -67,6 +73,7 @@ PetscErrorCode SaddlePointSystem::Refactor() {
   ProgressBegin("numerical refactorisation (the Schur complement on the candidates)");
   PetscCall(mumps_schur_.Refactor(A_, d));
   ProgressEnd();
+  direct_rejected_ = mumps_schur_.Rejected();
   null_pivots_ = mumps_schur_.NullPivots();
   PetscFunctionReturn(0);
 }
@@ -141,7 +148,8 @@ PetscErrorCode SaddlePointSystem::SolveWithKeptFactor(const std::vector<PetscSca
   }
   // The tangent has drifted too far from the factored one (or -contact_reuse_max_it 0): factor the current one.
   PetscCall(Refactor());
-  if (null_pivots_ > 0) PetscFunctionReturn(0); // singular: the caller reports it (Solve)
+  // Singular, or out of memory on the automatic path: the caller reports it (Solve).
+  if (null_pivots_ > 0 || !direct_rejected_.empty()) PetscFunctionReturn(0);
   PetscCall(mumps_schur_.Solve(d, b_, x_));
   refactor_next_ = false;
   ++iterations;
@@ -153,7 +161,7 @@ PetscErrorCode SaddlePointSystem::Condense(bool &singular) {
   PetscCheck(reuse_ && !released_, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
              "a condensation needs the kept factorisation");
   PetscCall(Factor());
-  singular = null_pivots_ > 0;
+  singular = null_pivots_ > 0 || !direct_rejected_.empty();
   // Declined: the caller solves in full (ExactFactorization() is false now).
   if (!reuse_ || singular) PetscFunctionReturn(0);
   MumpsSchur *kept;

@@ -51,16 +51,21 @@ FactorEstimate ModelEstimate(const SolverProblem &p) {
   return e;
 }
 
-/// Bytes per rank and seconds of the direct path with factor estimate e on size ranks.
-void DirectCost(const SolverProblem &p, const FactorEstimate &e, PetscMPIInt size, double &bytes, double &seconds) {
+/// Bytes per rank and seconds of the direct path with factor estimate e on size ranks; analysed: the analysis of the
+/// matrix (who factors it, and MUMPS's own memory estimate) where it has been made.
+void DirectCost(const SolverProblem &p, const FactorEstimate &e, PetscMPIInt size, double &bytes, double &seconds,
+                const AnalysedFactor *analysed = nullptr) {
   const double m = (double)p.multipliers, rows = (double)(p.u_dofs + p.multipliers);
   // Friction's direct path: MUMPS LU refactored at every solve, no kept Schur complement; seconds per solve.
-  const bool cholesky = !p.refactored && rows <= (size == 1 ? CHOLESKY_MAX_ROWS : CHOLESKY_MAX_ROWS_GATHERED);
+  const bool cholesky = analysed ? analysed->cholesky
+                                 : !p.refactored && rows <= (size == 1 ? CHOLESKY_MAX_ROWS : CHOLESKY_MAX_ROWS_GATHERED);
   // The Cholesky's factor with its update stack and the gathered entries, on rank 0 (the 108k-dof cube: 1.62 GB peak
   // against 1.61 estimated); MUMPS's with its workspace, shared unevenly by the ranks (2D Hertz at 600k dofs: the
-  // estimate 1.35 times MUMPS's factor entries, the peak 0.8 times the estimated memory).
-  const double factor = (cholesky ? 8 * 1.45 * e.entries : 8 * 1.2 * e.entries / size * (size > 1 ? 1.2 : 1.0)) *
-                        (p.refactored ? LU_ENTRIES : 1.0);
+  // estimate 1.35 times MUMPS's factor entries, the peak 0.8 times the estimated memory); after MUMPS's analysis,
+  // its own estimate of its largest rank's memory (INFOG(16)).
+  double factor = (cholesky ? 8 * 1.45 * e.entries : 8 * 1.2 * e.entries / size * (size > 1 ? 1.2 : 1.0)) *
+                  (p.refactored ? LU_ENTRIES : 1.0);
+  if (analysed && !cholesky && analysed->mumps_bytes > 0) factor = analysed->mumps_bytes;
   const bool dense = !p.refactored && !MumpsSchur::DenseCostsMore(m, e.flops);
   const double base = p.dim == 3 ? BASE_BYTES_PER_DOF_3D : BASE_BYTES_PER_DOF_2D;
   bytes = base * (double)p.u_dofs / size + factor + (dense ? 8 * m * m : 0);
@@ -180,6 +185,7 @@ PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bo
     PetscFunctionReturn(0);
   }
   choice.by = ChosenBy::AUTO;
+  choice.budget_given = opts.budget_set;
   if (opts.budget_set) choice.budget_bytes = opts.budget;
   else PetscCall(MemoryBudget(comm, choice.budget_bytes));
   choice.iterative_seconds =
@@ -192,7 +198,23 @@ PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bo
   const bool too_large = choice.direct_bytes >= MODEL_MARGIN * choice.budget_bytes;
   const bool too_slow = choice.direct_seconds >= MODEL_MARGIN * choice.iterative_seconds;
   const bool fits = MODEL_MARGIN * choice.direct_bytes <= choice.budget_bytes;
-  if (!too_large && !too_slow && !(fits && !near(choice.direct_seconds, choice.iterative_seconds))) {
+  const bool decided = too_large || too_slow || (fits && !near(choice.direct_seconds, choice.iterative_seconds));
+  // Near a limit: the kept factorisation's own analysis decides (ConfirmDirect), before any numerical factorisation
+  // (it orders the matrix anyway; the node graph's estimate would be a second nested dissection). Friction's LU is
+  // analysed and factored in one call of PETSc's interface: there the node graph's symbolic factorisation decides.
+  if (!decided && !problem.refactored) {
+    choice.path = SolverPath::DIRECT;
+    choice.analysis_decides = true;
+    char text[256];
+    std::snprintf(text, sizeof(text), "the measured model puts a factorisation near the limits (about %s per rank): "
+                  "the analysis of the matrix decides", Bytes(choice.direct_bytes).c_str());
+    choice.why = text;
+    PetscCall(PetscInfo(nullptr, "model: direct %.4g bytes per rank, %.4g s; iterative %.4g s; budget %.4g bytes per "
+                        "rank: the analysis decides\n", choice.direct_bytes, choice.direct_seconds,
+                        choice.iterative_seconds, choice.budget_bytes));
+    PetscFunctionReturn(0);
+  }
+  if (!decided) {
     PetscCall(EstimateFactorization(comm, problem, choice.factor));
     DirectCost(problem, choice.factor, size, choice.direct_bytes, choice.direct_seconds);
   }
@@ -221,6 +243,38 @@ PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bo
   }
   choice.why = text;
   PetscFunctionReturn(0);
+}
+
+bool ConfirmDirect(PetscMPIInt size, const SolverProblem &problem, const AnalysedFactor &analysed,
+                   SolverChoice &choice) {
+  choice.factor.entries = analysed.entries, choice.factor.flops = analysed.flops;
+  choice.factor.exact = choice.factor.analysed = true;
+  DirectCost(problem, choice.factor, size, choice.direct_bytes, choice.direct_seconds, &analysed);
+  const std::string bytes = Bytes(choice.direct_bytes);
+  char text[512];
+  if (choice.direct_bytes > choice.budget_bytes) {
+    choice.path = SolverPath::ITERATIVE;
+    std::snprintf(text, sizeof(text), "the analysis of the matrix puts a factorisation at about %s per rank, more "
+                  "than the %s %s", bytes.c_str(), Bytes(choice.budget_bytes).c_str(),
+                  choice.budget_given ? "of -contact_memory_budget" : "this machine has per rank");
+  } else if (choice.direct_seconds > choice.iterative_seconds) {
+    choice.path = SolverPath::ITERATIVE;
+    std::snprintf(text, sizeof(text), "a factorisation (about %s per rank by the analysis of the matrix) fits, but "
+                  "would take about %.3g s against %.3g s iterative", bytes.c_str(), choice.direct_seconds,
+                  choice.iterative_seconds);
+  } else {
+    std::snprintf(text, sizeof(text), "the factorisation fits (about %s per rank by the analysis of the matrix) and is "
+                  "the faster path", bytes.c_str());
+  }
+  choice.why = text;
+  choice.left_direct = choice.path == SolverPath::ITERATIVE;
+  return !choice.left_direct;
+}
+
+void LeaveDirect(const std::string &why, SolverChoice &choice) {
+  choice.path = SolverPath::ITERATIVE;
+  choice.left_direct = true;
+  choice.why = "the direct path stopped: " + why;
 }
 
 PetscErrorCode SolverOptionsGiven(bool &given, bool &factor_pc) {

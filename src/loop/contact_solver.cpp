@@ -94,6 +94,17 @@ PetscErrorCode ContactSolver::CreateSystem() {
   if (!stats_.solver_chosen) PetscCall(ChooseSolver());
   // A path chosen by the run's own solver options takes no defaults of a path.
   system_->UsePath(stats_.solver.by == ChosenBy::SOLVER_OPTIONS ? SolverPath::DIRECT : stats_.solver.path);
+  if (stats_.solver.by == ChosenBy::AUTO && stats_.solver.path == SolverPath::DIRECT) {
+    PetscMPIInt size;
+    PetscCallMPI(MPI_Comm_size(mesh_.Comm(), &size));
+    system_->ConfirmDirectWith([this, size](const AnalysedFactor &analysed, std::string &why) {
+      const bool direct = ConfirmDirect(size, solver_problem_, analysed, stats_.solver);
+      // The decision is news where the model left it to the analysis (the header said so), or where it changes.
+      if (!direct) why = stats_.solver.why;
+      else if (stats_.solver.analysis_decides) ProgressNote("solver: direct (auto: %s)", stats_.solver.why.c_str());
+      return direct;
+    });
+  }
   std::function<PetscErrorCode(Mat)> insert_pattern;
   PetscCall(SystemPattern(d_nnz, o_nnz, insert_pattern));
   std::vector<ConstraintRow> rows = rows_;
@@ -225,6 +236,8 @@ PetscErrorCode ContactSolver::ChooseSolver() {
     PetscFunctionReturn(0);
   };
   PetscCall(ChooseSolverPath(comm, opts.path, given, factor_pc, problem, stats_.solver));
+  solver_problem_ = problem;
+  solver_problem_.node_graph = nullptr;
   stats_.solver_chosen = true;
   ProgressNote("solver: %s (%s: %s)", SOLVER_PATH_NAMES[(int)stats_.solver.path], CHOSEN_BY_NAMES[(int)stats_.solver.by],
                stats_.solver.why.c_str());
@@ -501,6 +514,8 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
     PetscCall(SolveAndUpdate(st));
     if (st.singular) break;
   }
+  // The automatic choice's direct path stopped before it could solve: the step runs again on the iterative path.
+  if (!system_->DirectRejected().empty()) PetscFunctionReturn(0);
   // A factorisation found null pivots: the supports and the candidate pairs do not hold the body, or the MUMPS controls
   // call regular pivots null (the step may be repeated with the pairs of a wider radius, UnpairedAfterFailure).
   if (st.singular) stats_.reason = Reason::DIVERGED_SINGULAR;
@@ -607,6 +622,19 @@ PetscErrorCode ContactSolver::RestoreConverged(const Converged &c) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ContactSolver::LeaveDirectPath(const Converged &saved) {
+  PetscFunctionBeginUser;
+  if (!stats_.solver.left_direct) LeaveDirect(system_->DirectRejected(), stats_.solver);
+  PetscCall(PetscPrintf(mesh_.Comm(), "Solver: the direct path stopped (%s): the iterative path solves the load step "
+                        "again\n", stats_.solver.why.c_str()));
+  ProgressNote("solver: iterative (auto: %s)", stats_.solver.why.c_str());
+  stats_.reason = Reason::NONE;
+  // The last converged state, and a new system (CreateSystem) on the iterative path.
+  PetscCall(RestoreConverged(saved));
+  PetscCall(AdoptPairs(pairs_, lambda_, mult_, active_set_.Flags()));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt, double)> &step_done) {
   MPI_Comm comm = mesh_.Comm();
   PetscFunctionBeginUser;
@@ -620,6 +648,10 @@ PetscErrorCode ContactSolver::Solve(const std::function<PetscErrorCode(PetscInt,
     const double t_try = std::min(1.0, t + dt);
     bool ok;
     PetscCall(LoadStep(step + 1, t, t_try, ok));
+    if (!ok && !system_->DirectRejected().empty()) {
+      PetscCall(LeaveDirectPath(saved));
+      continue;
+    }
     if (contact_.converged_reason)
       PetscCall(PetscPrintf(comm, "Contact solve %s: %s at load factor %.6g after %" PetscInt_FMT " solve(s)\n",
                             ok ? "converged" : "diverged", ReasonName(stats_.reason), t_try, stats_.solves));

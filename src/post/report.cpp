@@ -347,7 +347,8 @@ void SolverJson(JsonWriter &j, const SolverChoice &sc) {
         .Number("iterative_seconds", sc.iterative_seconds)
         .Number("factor_entries", sc.factor.entries)
         .Number("factor_flops", sc.factor.flops)
-        .String("factor_estimate", sc.factor.exact ? "node graph" : "model");
+        .String("factor_estimate", sc.factor.analysed ? "analysis" : sc.factor.exact ? "node graph" : "model")
+        .Bool("left_direct", sc.left_direct);
   j.EndObject();
 }
 

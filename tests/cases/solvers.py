@@ -242,21 +242,38 @@ def solver_choice(runner):
     base = ["-options_file", "options/hertz3d.yml"]
     ref = runner.run(base, "auto, machine's memory")
     runner.expect_equal("auto picks direct", (ref.get("solver.path"), ref.get("solver.chosen_by")), ("direct", "auto"))
-    runner.expect_true("the header says why", "solver: direct (auto: the factorisation fits" in ref.output)
+    # Its time is within a factor 4 of the iterative path's: the header says the analysis decides, summary.json what
+    # it decided.
+    runner.expect_true("the header says why", "solver: direct (auto: the measured model puts a factorisation near "
+                       "the limits" in ref.output and "the analysis of the matrix decides" in ref.output)
+    runner.expect_true("summary.json says why", ref.get("solver.why").startswith("the factorisation fits (about"))
     runner.expect_true("the budget is the machine's", ref.get("solver.budget_bytes") > 1e8)
-    for budget, estimate in (("20M", "model"), ("100M", "node graph")):
+    # 20M: the measured model (178 MB) is 4 times the budget or more and decides alone. 100M: within a factor 4 of
+    # it the model does not decide: the direct path starts, and the analysis of the matrix (the Cholesky's symbolic
+    # factorisation, 132 MB) sends the run to the iterative path before any numerical factorisation; the header says
+    # both, summary.json the final path.
+    for budget, estimate, said in (("20M", "model", "solver: iterative (auto: a factorisation would need about"),
+                                   ("100M", "analysis", "Solver: the direct path stopped (the analysis of the matrix "
+                                                        "puts a factorisation at about")):
         r = runner.run(base + ["-contact_memory_budget", budget], "auto, budget %s" % budget)
         runner.expect_equal("budget %s: iterative" % budget, r.get("solver.path"), "iterative")
-        runner.expect_true("budget %s: the header says the budget" % budget,
-                           "solver: iterative (auto: a factorisation would need about" in r.output and
-                           "of -contact_memory_budget" in r.output)
-        # Within a factor 4 of the budget the model does not decide alone: the node graph's symbolic factorisation
-        # does.
+        runner.expect_true("budget %s: the output says why" % budget,
+                           said in r.output and "of -contact_memory_budget" in r.output)
         runner.expect_equal("budget %s: the estimate by the %s" % (budget, estimate), r.get("solver.factor_estimate"),
                             estimate)
+        runner.expect_equal("budget %s: the direct path left at run time" % budget, r.get("solver.left_direct"),
+                            estimate == "analysis")
         runner.expect_true("budget %s: the estimate exceeds it" % budget,
                            r.get("solver.direct_bytes") > r.get("solver.budget_bytes"))
         expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+    # Within the factor 4 and above the analysed need (132 MB): the analysis confirms the direct path.
+    r = runner.run(base + ["-contact_memory_budget", "300M"], "auto, budget 300M")
+    runner.expect_equal("budget 300M: direct, confirmed by the analysis",
+                        (r.get("solver.path"), r.get("solver.factor_estimate"), r.get("solver.left_direct")),
+                        ("direct", "analysis", False))
+    runner.expect_true("budget 300M: summary.json says why",
+                       "fits (about" in r.get("solver.why") and "by the analysis of the matrix" in r.get("solver.why"))
+    expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-10)
     forced = runner.run(base + ["-contact_solver", "iterative"], "-contact_solver iterative")
     runner.expect_equal("-contact_solver iterative", (forced.get("solver.path"), forced.get("solver.chosen_by")),
                         ("iterative", "-contact_solver"))
@@ -267,6 +284,30 @@ def solver_choice(runner):
                         "a preset decides")
     runner.expect_equal("a preset decides", (preset.get("solver.path"), preset.get("solver.chosen_by")),
                         ("direct", "solver options"))
+
+
+@test("solver_choice_mumps_analysis")
+def solver_choice_mumps_analysis(runner):
+    """The automatic choice near its limits on 2 ranks, where MUMPS factors (52.7k displacement rows, above the
+    gathered Cholesky's 50k): the hexahedral cube under a sphere (25^3 cells) with a budget of 450 MB per rank, above
+    the measured model's 393 MB but below MUMPS's own estimate after its analysis (INFOG(16), 524 MB): the direct path
+    starts, the analysis sends the run to the iterative path before the numerical factorisation, and the state is
+    the direct path's (to 1e-8). Without the budget the analysis confirms the direct path."""
+    base = ["-options_file", "options/cube_under_sphere.yml", "-mesh_size_factor", "0.64"]
+    ref = runner.run(base, "auto, machine's memory")
+    runner.expect_equal("the analysis confirms the direct path",
+                        (ref.get("solver.path"), ref.get("solver.factor_estimate"), ref.get("solver.left_direct")),
+                        ("direct", "analysis", False))
+    r = runner.run(base + ["-contact_memory_budget", "450M"], "auto, budget 450M")
+    runner.expect_true("the model puts the direct path within the budget",
+                       "near the limits (about 393 MB per rank)" in r.output)
+    runner.expect_equal("MUMPS's analysis sends the run to the iterative path",
+                        (r.get("solver.path"), r.get("solver.factor_estimate"), r.get("solver.left_direct")),
+                        ("iterative", "analysis", True))
+    runner.expect_true("the output says why", "Solver: the direct path stopped (the analysis of the matrix puts a "
+                       "factorisation at about 524 MB per rank, more than the 450 MB of -contact_memory_budget)"
+                       in r.output)
+    expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
 @test("krylov_fallback")

@@ -17,6 +17,7 @@
 
 #include <dmumps_c.h>
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -31,6 +32,20 @@ constexpr int MUMPS_WORKSPACE_RETRIES = 4;
 /// The message of a MUMPS failure (INFOG(1) < 0, INFOG(2)) in phase ("analysis", "factorisation", ...) of the
 /// saddle-point system: what it means and what would do instead.
 std::string MumpsFailure(int infog1, int infog2, const char *phase);
+
+/// MUMPS's errors for memory or workspace (INFOG(1)): -8, -9, -11, -12, -14, -15, -17, -20 (a workspace too small),
+/// -13 (an allocation failed), -19 (more than ICNTL(23) allows).
+bool MumpsOutOfMemory(int infog1);
+
+/// The analysis of the matrix that Factor is about to factor: its factor entries and elimination flops, and MUMPS's
+/// own estimate of its memory per rank (INFOG(16), in bytes; 0 for the supernodal Cholesky, whose factor is exact).
+struct AnalysedFactor {
+  double entries = 0, flops = 0, mumps_bytes = 0;
+  bool cholesky = false;
+};
+/// A check of the analysis before the numerical factorisation (the automatic solver choice's, ConfirmDirect): false
+/// with a reason stops the factorisation (MumpsSchur::Rejected).
+using ConfirmFactor = std::function<bool(const AnalysedFactor &analysed, std::string &why)>;
 
 /// Rows from which a 2D saddle-point matrix is ordered by METIS (below: by coordinate cuts; 3D: always METIS).
 constexpr PetscInt METIS_MIN_ROWS_2D = 50000;
@@ -102,6 +117,9 @@ struct FactorChoices {
   bool keep_values = false;              ///< keep the entries in MUMPS's format for Refactor (else freed)
   bool may_decline = false;              ///< decline the Schur complement where it costs more (DenseCostsMore)
   KeptSolver solver = KeptSolver::MUMPS; ///< who factors (CHOLESKY only where it applies, which the caller checked)
+  /// Given: the analysis is checked before the factorisation, and a MUMPS failure for memory (MumpsOutOfMemory) is
+  /// no error: Factor or Refactor return with Rejected() and everything released.
+  ConfirmFactor confirm;
 };
 
 class MumpsSchur {
@@ -120,6 +138,9 @@ public:
   bool UsesCholesky() const { return cholesky_in_use_; }
   /// The last Factor declined the Schur complement.
   bool Declined() const { return declined_; }
+  /// Why the last Factor or Refactor stopped with FactorChoices::confirm given: the analysis' check refused to factor,
+  /// or MUMPS ran out of memory (everything is released); empty when it did not.
+  const std::string &Rejected() const { return rejected_; }
   /// The rule of Factor's may_decline, from the analysis' estimate: a dense LDL^T of the m x m Schur complement, which
   /// every active-set change costs, takes more flops than the whole sparse factorisation (flops), which a
   /// refactorisation at every change would cost instead: a thin plate whose whole face is a candidate declines, a
@@ -214,6 +235,8 @@ private:
   bool cholesky_in_use_ = false; ///< cholesky_ holds the analysis (and factors): MUMPS has not analysed the matrix
   const char *ordering_name_ = "";
   bool initialised_ = false, keep_values_ = false, declined_ = false;
+  bool rejectable_ = false; ///< FactorChoices::confirm was given: a MUMPS failure for memory sets rejected_
+  std::string rejected_;
   MPI_Comm comm_ = MPI_COMM_NULL;
   PetscMPIInt rank_ = 0;
   PetscInt null_pivots_ = 0;

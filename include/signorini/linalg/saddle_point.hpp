@@ -89,6 +89,13 @@ public:
   /// Collective.
   /// The path (SolverChoice) whose default solver Create sets up: direct unless told otherwise before Create.
   void UsePath(SolverPath path) { path_ = path; }
+  /// The automatic solver choice's direct path (before the first factorisation): the kept factorisation's analysis
+  /// is checked by confirm before the numerical factorisation, and a MUMPS failure for memory (MumpsOutOfMemory) in
+  /// any factorisation is no error: the solve that met either returns as singular, with DirectRejected() saying why,
+  /// and the caller solves again on the iterative path.
+  void ConfirmDirectWith(ConfirmFactor confirm) { confirm_direct_ = std::move(confirm); }
+  /// Why the direct path stopped (ConfirmDirectWith); empty while it has not.
+  const std::string &DirectRejected() const { return direct_rejected_; }
   /// The matrix will be nonsymmetric (friction's slip rows; before Create): the default solver is MUMPS LU, a solver
   /// that needs symmetry (a Cholesky factorisation, a fieldsplit preset) is refused naming what would do, and the
   /// factorisation is not kept across active sets (the plain form, refactored at every change). why: the cause, for
@@ -357,6 +364,8 @@ private:
   PetscBool lu_ = PETSC_FALSE; ///< the PC is LU (the mumps_lu preset): the reuse mode factors with LU too
   double aug_ = 1;  ///< augmentation weight r (the stiffness scale)
   SolverPath path_ = SolverPath::DIRECT; ///< UsePath
+  ConfirmFactor confirm_direct_;         ///< ConfirmDirectWith
+  std::string direct_rejected_;          ///< DirectRejected
   std::string nonsymmetric_; ///< UseNonsymmetric's cause (empty: symmetric)
   double aug_inactive_ = 1; ///< augmentation weight r_I of an inactive row (r, or INACTIVE_WEIGHT r: iterative)
   std::vector<double> weight_; ///< owned multiplier rows: the augmentation weight A holds now (AddAugmentation)

@@ -3,6 +3,8 @@
 // from the factorisation's memory and time against the machine's memory and the iterative path's time.
 #pragma once
 
+#include "signorini/linalg/mumps_schur.hpp"
+
 #include <metis.h>
 #include <petscsys.h>
 
@@ -32,6 +34,7 @@ bool ParseMemorySize(const std::string &text, double &bytes);
 struct FactorEstimate {
   double entries = 0, flops = 0;
   bool exact = false;
+  bool analysed = false; ///< from the analysis of the matrix itself (ConfirmDirect)
 };
 
 /// What the choice needs from the problem. node_graph: this rank's edges of the graph of the mesh nodes (pairs of
@@ -56,6 +59,9 @@ struct SolverChoice {
   ChosenBy by = ChosenBy::AUTO;
   std::string why;                      ///< one sentence
   double direct_bytes = -1, budget_bytes = -1;         ///< per rank (auto only)
+  bool budget_given = false;                           ///< budget_bytes is -contact_memory_budget's
+  bool left_direct = false; ///< the direct path was chosen, then left at run time (ConfirmDirect, LeaveDirect)
+  bool analysis_decides = false; ///< the model left the choice to the analysis of the matrix (ConfirmDirect)
   double direct_seconds = -1, iterative_seconds = -1;  ///< the models' estimates (auto only)
   FactorEstimate factor;
 };
@@ -73,6 +79,18 @@ struct SolverChoice {
 /// (factor_pc); else the automatic choice. Collective.
 [[nodiscard]] PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bool given, bool factor_pc,
                                               const SolverProblem &problem, SolverChoice &choice);
+
+/// The automatic choice's direct path, checked against the analysis of the matrix before its factorisation (the
+/// kept factorisation's symbolic analysis: the Cholesky's exact factor, or MUMPS's estimates): the same comparison
+/// as ChooseSolverPath's with the analysed factor. Updates choice (the estimates, and the path and why when the
+/// direct path does not fit or is the slower one) and returns whether the direct path stays. Not collective (the
+/// analysis is the same on every rank).
+bool ConfirmDirect(PetscMPIInt size, const SolverProblem &problem, const AnalysedFactor &analysed,
+                   SolverChoice &choice);
+
+/// The automatic choice's direct path failed at run time (why: MUMPS out of memory): choice turns to the iterative
+/// path and says so.
+void LeaveDirect(const std::string &why, SolverChoice &choice);
 
 /// Whether the run gave a solver of its own: -contact_ksp_type, -contact_pc_type, a factor's solver type, the kept
 /// factorisation's options or MUMPS controls (-contact_mat_mumps_*); factor_pc: its PC factors (LU or Cholesky, the

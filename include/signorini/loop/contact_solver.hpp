@@ -142,6 +142,10 @@ private:
     Friction::Saved friction;
   };
   [[nodiscard]] PetscErrorCode SaveConverged(Converged &c) const;
+  /// The automatic choice's direct path stopped (the analysis found it does not fit or is slower, or MUMPS ran out of
+  /// memory: SaddlePointSystem::DirectRejected): the run goes on on the iterative path, the failed load step again
+  /// from its start (saved). Collective.
+  [[nodiscard]] PetscErrorCode LeaveDirectPath(const Converged &saved);
   /// Goes back to c after a failed attempt (the pairs adopted again where they changed on some rank). Collective.
   [[nodiscard]] PetscErrorCode RestoreConverged(const Converged &c);
   /// Prints why a failed load step is repeated with a wider pair search. Collective.
@@ -358,6 +362,7 @@ private:
     double min_J = 1;
   } fint_at_;
   SolveStats stats_;
+  SolverProblem solver_problem_; ///< ChooseSolver's (without the node graph): ConfirmDirect's
 
 public:
   ~ContactSolver() { (void)VecScatterDestroy(&scatter_); }
