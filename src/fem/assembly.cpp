@@ -82,7 +82,7 @@ void GatherElement(const double *u_local, const PetscInt *v, PetscInt nn, int di
 Assembler::Assembler(const Mesh &mesh, const Material &material, const DofMap &dofs, const DirichletData &dirichlet)
     : mesh_(mesh), material_(material), dofs_(dofs), dirichlet_(dirichlet) {
   if (material.constants.empty()) parts_.push_back(material.With(material.E, material.nu));
-  for (const auto &k : material.constants) parts_.push_back(material.With(k[0], k[1]));
+  for (const auto &k : material.constants) parts_.push_back(material.With(k));
   part_D_.resize(parts_.size());
   for (std::size_t p = 0; p < parts_.size(); ++p) ElasticityMatrix(parts_[p], mesh.Dim(), part_D_[p].D);
 }

@@ -33,7 +33,61 @@ Material Material::With(double E_, double nu_) const {
   return m;
 }
 
+Material Material::With(const std::array<double, 3> &k) const {
+  Material m = With(k[0], k[1]);
+  m.model = k[2] != 0 ? MaterialModel::SVK : MaterialModel::LINEAR;
+  return m;
+}
+
+std::string Material::ModelText() const {
+  std::vector<std::string> items;
+  for (const auto &g : model_groups) items.push_back(g.group + (g.value != 0 ? ":svk" : ":linear"));
+  return model_groups.empty() ? ModelName() : Join(items, ", ");
+}
+
 namespace {
+
+/// Reads -material_model: one model for every cell (OptionsChoice), or a list GROUP:MODEL,... (told by a colon) into
+/// by_group (value 0 linear, 1 svk); model is then svk when some group is.
+PetscErrorCode OptionsModelOrGroups(PetscOptionItems *PetscOptionsObject, MaterialModel &model,
+                                    std::vector<GroupValue> &by_group) {
+  MPI_Comm comm = PetscOptionsObject->comm;
+  const char *models[] = {"linear", "svk"};
+  const char *name = "-material_model";
+  const char *help = "linear (small strain) or svk (St. Venant-Kirchhoff, Green-Lagrange); or GROUP:MODEL,... per "
+                     "physical group of cells covering every cell once (a run with an svk group solves by Newton's "
+                     "method, its linear cells with their constant stiffness)";
+  const char *raw_value = nullptr;
+  PetscBool found = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsFindPair(nullptr, nullptr, name, &raw_value, &found));
+  const std::string raw = found && raw_value ? raw_value : "";
+  by_group.clear();
+  if (raw.find(':') == std::string::npos) {
+    PetscInt m = model == MaterialModel::SVK ? 1 : 0;
+    PetscCall(OptionsChoice(PetscOptionsObject, name, help, "linear or svk", models, 2, m));
+    model = m == 1 ? MaterialModel::SVK : MaterialModel::LINEAR;
+    PetscFunctionReturn(0);
+  }
+  const char *expected = "GROUP:MODEL items such as ball:svk,plate:linear (MODEL linear or svk)";
+  std::vector<std::string> items;
+  PetscCall(OptionsStringList(PetscOptionsObject, name, help, "linear", expected, items));
+  model = MaterialModel::LINEAR;
+  for (const std::string &item : items) {
+    const auto fields = Split(item, ':');
+    const bool ok = fields.size() == 2 && !fields[0].empty() && (fields[1] == "linear" || fields[1] == "svk");
+    PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "%s %s: item '%s' is malformed; expected %s", name, raw.c_str(),
+               item.c_str(), expected);
+    for (const auto &g : by_group)
+      PetscCheck(g.group != fields[0], comm, PETSC_ERR_USER_INPUT,
+                 "%s %s: group '%s' is given twice ('%s' and '%s'); expected each group once", name, raw.c_str(),
+                 fields[0].c_str(), g.item.c_str(), item.c_str());
+    const bool svk = fields[1] == "svk";
+    by_group.push_back({fields[0], svk ? 1.0 : 0.0, item});
+    if (svk) model = MaterialModel::SVK;
+  }
+  PetscFunctionReturn(0);
+}
 
 /// Reads -material_E or -material_nu (name): one value for every cell, read by OptionsReal exactly as a plain real
 /// option, or a list GROUP:VALUE,... (told by a colon in the value) into by_group, each value checked against range.
@@ -106,9 +160,8 @@ PetscErrorCode NoteLocking(MPI_Comm comm, const Material &m, const std::string &
 } // namespace
 
 PetscErrorCode ReadMaterialOptions(MPI_Comm comm, Material &m) {
-  const char *models[] = {"linear", "svk"};
   const char *planes[] = {"strain", "stress"};
-  PetscInt model = m.model == MaterialModel::SVK ? 1 : 0, plane = m.plane_stress ? 1 : 0;
+  PetscInt plane = m.plane_stress ? 1 : 0;
   PetscBool plane_given = PETSC_FALSE, thickness_given = PETSC_FALSE;
   const RealRange positive{0, std::numeric_limits<double>::infinity(), true, true};
   const std::string scale = "; E x thickness in [" + FormatNumber(STIFFNESS_SCALE_MIN) + ", " +
@@ -116,20 +169,27 @@ PetscErrorCode ReadMaterialOptions(MPI_Comm comm, Material &m) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Material options", "signorini");
   const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
-  PetscCall(OptionsChoice(PetscOptionsObject, "-material_model",
-                          "linear (small strain) or svk (St. Venant-Kirchhoff, Green-Lagrange)", "linear or svk",
-                          models, 2, model));
+  PetscCall(OptionsModelOrGroups(PetscOptionsObject, m.model, m.model_groups));
   PetscCall(OptionsRealOrGroups(PetscOptionsObject, "-material_E", "Young's modulus" + scale, "E", positive, m.E,
                                 m.E_groups));
   PetscCall(OptionsRealOrGroups(PetscOptionsObject, "-material_nu", "Poisson's ratio", "NU", {-1, 0.5, true, true},
                                 m.nu, m.nu_groups));
   PetscCall(OptionsChoice(PetscOptionsObject, "-material_plane", "2D assumption: strain or stress (2D meshes only)",
                           "strain or stress", planes, 2, plane, &plane_given));
+  {
+    // Per group it would have to enter the loads, the contact tractions and the mortar integrals body by body: one
+    // value, said so rather than "not a real number".
+    const char *raw = nullptr;
+    PetscBool found = PETSC_FALSE;
+    PetscCall(PetscOptionsFindPair(nullptr, nullptr, "-material_thickness", &raw, &found));
+    PetscCheck(!(found && raw && std::string(raw).find(':') != std::string::npos), comm, PETSC_ERR_USER_INPUT,
+               "-material_thickness %s: the thickness is one value for the whole mesh (not per group); expected a "
+               "positive number", raw);
+  }
   PetscCall(OptionsReal(PetscOptionsObject, "-material_thickness",
                         ("Out-of-plane thickness (2D meshes only)" + scale).c_str(), positive, m.thickness));
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-material_thickness", &thickness_given));
   PetscOptionsEnd();
-  m.model = model == 1 ? MaterialModel::SVK : MaterialModel::LINEAR;
   m.plane_stress = plane == 1;
   m.plane_given = plane_given;
   m.thickness_given = thickness_given;
@@ -239,32 +299,38 @@ PetscErrorCode CellItems(const Mesh &mesh, const GroupOption &o, std::vector<int
 } // namespace
 
 PetscErrorCode AssignCellMaterials(const Mesh &mesh, Material &m) {
-  std::vector<int> cell_E, cell_nu;
+  std::vector<int> cell_E, cell_nu, cell_model;
   PetscFunctionBeginUser;
   m.constants.clear();
   m.cell_constants.clear();
   if (!m.PerGroup()) PetscFunctionReturn(0);
   PetscCall(CellItems(mesh, {"-material_E", m.E_groups}, cell_E));
   PetscCall(CellItems(mesh, {"-material_nu", m.nu_groups}, cell_nu));
-  // Each cell's (E item, nu item) pair; the pairs that occur on some rank, in pair order and with equal constants
-  // merged, are the run's materials (a handful: each gets its elasticity matrix once).
+  PetscCall(CellItems(mesh, {"-material_model", m.model_groups}, cell_model));
+  // Each cell's (E item, nu item, model item) triple; the triples that occur on some rank, in order and with equal
+  // constants merged, are the run's materials (a handful: each gets its elasticity matrix once).
   const int nE = std::max<int>(1, (int)m.E_groups.size()), nnu = std::max<int>(1, (int)m.nu_groups.size());
-  const auto pair_of = [&](PetscInt c) {
-    return (cell_E.empty() ? 0 : cell_E[c]) * nnu + (cell_nu.empty() ? 0 : cell_nu[c]);
+  const int nmodel = std::max<int>(1, (int)m.model_groups.size()), ntriples = nE * nnu * nmodel;
+  const auto triple_of = [&](PetscInt c) {
+    return ((cell_E.empty() ? 0 : cell_E[c]) * nnu + (cell_nu.empty() ? 0 : cell_nu[c])) * nmodel +
+           (cell_model.empty() ? 0 : cell_model[c]);
   };
-  std::vector<int> present(nE * nnu, 0), index(nE * nnu, -1);
-  for (PetscInt c = 0; c < mesh.NumLocalCells(); ++c) present[pair_of(c)] = 1;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, present.data(), nE * nnu, MPI_INT, MPI_MAX, mesh.Comm()));
-  for (int p = 0; p < nE * nnu; ++p) {
+  std::vector<int> present(ntriples, 0), index(ntriples, -1);
+  for (PetscInt c = 0; c < mesh.NumLocalCells(); ++c) present[triple_of(c)] = 1;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, present.data(), ntriples, MPI_INT, MPI_MAX, mesh.Comm()));
+  for (int p = 0; p < ntriples; ++p) {
     if (!present[p]) continue;
-    const std::array<double, 2> k = {m.E_groups.empty() ? m.E : m.E_groups[p / nnu].value,
-                                     m.nu_groups.empty() ? m.nu : m.nu_groups[p % nnu].value};
+    const int e = p / (nnu * nmodel), n = (p / nmodel) % nnu, o = p % nmodel;
+    const std::array<double, 3> k = {m.E_groups.empty() ? m.E : m.E_groups[e].value,
+                                     m.nu_groups.empty() ? m.nu : m.nu_groups[n].value,
+                                     m.model_groups.empty() ? (m.model == MaterialModel::SVK ? 1.0 : 0.0)
+                                                            : m.model_groups[o].value};
     const auto it = std::find(m.constants.begin(), m.constants.end(), k);
     index[p] = (int)(it - m.constants.begin());
     if (it == m.constants.end()) m.constants.push_back(k);
   }
   m.cell_constants.resize(mesh.NumLocalCells());
-  for (PetscInt c = 0; c < mesh.NumLocalCells(); ++c) m.cell_constants[c] = index[pair_of(c)];
+  for (PetscInt c = 0; c < mesh.NumLocalCells(); ++c) m.cell_constants[c] = index[triple_of(c)];
   PetscFunctionReturn(0);
 }
 

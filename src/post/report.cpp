@@ -142,7 +142,7 @@ PetscErrorCode ContactMaterial(const SolvedState &state, const Material &m, cons
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, used.data(), (int)used.size(), MPI_INT, MPI_MAX, mesh.Comm()));
   count = (int)std::count(used.begin(), used.end(), 1);
   const auto first = std::find(used.begin(), used.end(), 1) - used.begin();
-  if (count == 1) contact = m.With(m.constants[first][0], m.constants[first][1]);
+  if (count == 1) contact = m.With(m.constants[first]);
   PetscFunctionReturn(0);
 }
 
@@ -234,10 +234,10 @@ PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m
   PetscCallMPI(MPI_Allreduce(&owned, &candidates, 1, MPIU_INT, MPI_SUM, comm));
   const std::string E = ValueText(m.E, m.E_groups), nu = ValueText(m.nu, m.nu_groups);
   if (mesh.Dim() == 2)
-    PetscCall(PetscPrintf(comm, "signorini: 2D %s, plane %s, E = %s, nu = %s, thickness = %.6g\n", m.ModelName(),
+    PetscCall(PetscPrintf(comm, "signorini: 2D %s, plane %s, E = %s, nu = %s, thickness = %.6g\n", m.ModelText().c_str(),
                           m.plane_stress ? "stress" : "strain", E.c_str(), nu.c_str(), m.thickness));
   else
-    PetscCall(PetscPrintf(comm, "signorini: 3D %s, E = %s, nu = %s\n", m.ModelName(), E.c_str(), nu.c_str()));
+    PetscCall(PetscPrintf(comm, "signorini: 3D %s, E = %s, nu = %s\n", m.ModelText().c_str(), E.c_str(), nu.c_str()));
   if (mesh.NumBodies() > 1)
     PetscCall(PetscPrintf(comm, "  bodies: %" PetscInt_FMT " (connected groups of cells)\n", mesh.NumBodies()));
   PetscCall(PetscPrintf(comm, "  mesh %s: %" PetscInt_FMT " nodes, %" PetscInt_FMT " cells, %d rank(s)\n",
@@ -442,11 +442,15 @@ std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedStat
       .Integer("ranks", info.ranks);
   if (state.mesh.NumBodies() > 1) j.Integer("bodies", state.mesh.NumBodies()); // a one-body summary as it always was
   j.EndObject();
-  j.BeginObject("material")
-      .String("model", m.ModelName())
-      .String("plane", dim == 3         ? "none (3D)"
-                       : m.plane_stress ? "stress"
-                                        : "strain");
+  j.BeginObject("material");
+  // A model given per group is an object of group: model, as -material_model GROUP:MODEL,... gives it.
+  if (m.model_groups.empty()) j.String("model", m.ModelName());
+  else {
+    j.BeginObject("model");
+    for (const auto &g : m.model_groups) j.String(g.group, g.value != 0 ? "svk" : "linear");
+    j.EndObject();
+  }
+  j.String("plane", dim == 3 ? "none (3D)" : m.plane_stress ? "stress" : "strain");
   // A constant given per group is an object of group: value, as -material_E GROUP:VALUE,... gives it.
   const auto constant = [&j](const char *key, double value, const std::vector<GroupValue> &groups) {
     if (groups.empty()) {

@@ -24,18 +24,26 @@ def uniaxial_strain(E, t, model):
 @test("bimaterial_bar")
 def bimaterial_bar(runner, dim):
     """A bar of two materials in series (nu = 0) pulled at one end: every node's axial displacement is the series
-    springs' exact value, linear and svk (uniform strain in each material), to 1e-10 of the end displacement."""
+    springs' exact value, linear and svk (uniform strain in each material), to 1e-10 of the end displacement; also
+    with the model per group (-material_model soft:svk,stiff:linear and the reverse: each part strains by its own
+    law, Newton's method for the whole)."""
     geo, supports, traction = {"2d": ("meshes/bimaterial_bar.geo", "left:x,origin:y", "right:%g:0" % BAR_T),
                                "3d": ("meshes/bimaterial_bar3d.geo", "left:x,origin:yz,corner:z",
                                       "right:%g:0:0" % BAR_T)}[dim]
     E = ",".join("%s:%g" % kv for kv in BAR_E.items())
     # nu per group in 2D, one value in 3D: both forms of the option.
     nu = "soft:0,stiff:0" if dim == "2d" else "0"
-    for model in ("linear", "svk"):
+    for model in ("linear", "svk", "soft:svk,stiff:linear", "soft:linear,stiff:svk"):
         r = runner.run(["-mesh_file", geo, "-material_model", model, "-material_E", E, "-material_nu", nu,
                         "-bc_dirichlet", supports, "-bc_traction", traction], "bimaterial bar %s %s" % (dim, model))
         runner.expect_equal("E per group in summary.json", r.get("material.E"), BAR_E)
-        e1, e2 = (uniaxial_strain(BAR_E[g], BAR_T, model) for g in ("soft", "stiff"))
+        models = dict(item.split(":") for item in model.split(",")) if ":" in model else {"soft": model,
+                                                                                          "stiff": model}
+        if ":" in model:
+            runner.expect_equal("the model per group in summary.json", r.get("material.model"), models)
+            runner.expect_true("the header names each group's model",
+                               "signorini: %s %s," % (dim.upper(), model.replace(",", ", ")) in r.output)
+        e1, e2 = (uniaxial_strain(BAR_E[g], BAR_T, models[g]) for g in ("soft", "stiff"))
         nodes = r.nodes()
         x = nodes["x"]
         exact = np.where(x < BAR_L1, e1 * x, e1 * BAR_L1 + e2 * (x - BAR_L1))

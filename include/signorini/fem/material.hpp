@@ -37,16 +37,23 @@ struct Material {
   bool plane_given = false, thickness_given = false; ///< the 2D-only options were set (an error on a 3D mesh)
   /// -material_E, -material_nu given as GROUP:VALUE,... (each option on its own; empty: E, nu hold for every cell).
   std::vector<GroupValue> E_groups, nu_groups;
-  /// Per group only (AssignCellMaterials): the distinct (E, nu) that cells of the run have, the same on every rank,
-  /// and each local cell's index into them. Empty: one material, E and nu.
-  std::vector<std::array<double, 2>> constants;
+  /// -material_model given as GROUP:MODEL,...: value 0 linear, 1 svk (empty: model holds for every cell; given, model
+  /// is svk when some group is, and the run's loop is Newton's).
+  std::vector<GroupValue> model_groups;
+  /// Per group only (AssignCellMaterials): the distinct (E, nu, model: 0 linear, 1 svk) that cells of the run have,
+  /// the same on every rank, and each local cell's index into them. Empty: one material, E, nu and model.
+  std::vector<std::array<double, 3>> constants;
   std::vector<int> cell_constants;
 
-  bool PerGroup() const { return !E_groups.empty() || !nu_groups.empty(); }
+  bool PerGroup() const { return !E_groups.empty() || !nu_groups.empty() || !model_groups.empty(); }
   /// The largest Young's modulus of the run: E, or the largest of -material_E's groups.
   double MaxE() const;
   /// This material's model, plane and thickness with the constants E, nu (and no per-group data).
   Material With(double E, double nu) const;
+  /// This material's plane and thickness with the constants k of AssignCellMaterials (E, nu, model).
+  Material With(const std::array<double, 3> &k) const;
+  /// The model as given: "linear", "svk", or per group "soft:svk, stiff:linear".
+  std::string ModelText() const;
 
   double Mu() const { return E / (2.0 * (1.0 + nu)); }
   double Lambda3D() const { return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)); }
