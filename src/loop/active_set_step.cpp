@@ -270,7 +270,7 @@ PetscErrorCode ContactSolver::ActiveSetCameBack(StepState &st, PetscInt it, Pets
   // An active set that comes back would cycle. svk with lagged searches first drops them for the rest of the step
   // (their stale tangent can lead the set round); then, as the linear material does at once, the updates switch one
   // pair at a time (ActiveSet::SwitchOneAtATime). A set that comes back after that ends the step (DIVERGED_CYCLING).
-  const bool lagging = model_->Nonlinear() && opts_.lagged_search && system_->ReusesFactorization() && !st.newton.exact;
+  const bool lagging = model_->Nonlinear() && lagged_search_ && system_->ReusesFactorization() && !st.newton.exact;
   if (it > 0 && changes > 0 && std::isfinite(st.r.norm) && (lagging || !active_set_.OneAtATime())) {
     bool back;
     PetscCall(active_set_.Seen(SetKey(st), keys_, model_->CycleRepeats(), back, false));

@@ -38,7 +38,7 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptio
                              "backward pass); once it settles, inexact Newton steps with the current tangent (FGMRES "
                              "to a residual of min(0.1, ||R||/scale) ||R||); the run's first load step that fails "
                              "after lagged searches (not singular) is repeated with exact Newton steps before a cut; "
-                             "false: exact Newton at every iteration",
+                             "false: exact Newton at every iteration (the default with -contact_pairs)",
                              "", opts.lagged_search, &opts.lagged_search, &opts.lagged_search_set));
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_active_set_rtol",
                         "Iterative solvers, linear material: the relative tolerance (to the start's residual) of the "

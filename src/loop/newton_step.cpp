@@ -77,7 +77,7 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   // A lagged step is a condensed search (SolveAndUpdate): its later iterations (st.base.ready) keep it.
   if (!(model_->Nonlinear() && st.base.ready)) {
     const bool contracting = st.newton.lag_rnorm < 0 || st.r.norm <= LAGGED_CONTRACTION * st.newton.lag_rnorm;
-    const bool lag = model_->Nonlinear() && opts_.lagged_search && st.searching && !st.stabilised && !st.newton.exact &&
+    const bool lag = model_->Nonlinear() && lagged_search_ && st.searching && !st.stabilised && !st.newton.exact &&
                      !active_set_.OneAtATime() && system_->ReusesFactorization();
     st.newton.lagged = lag && contracting;
     st.newton.lag_rnorm = st.r.norm;
@@ -162,7 +162,7 @@ PetscErrorCode ContactSolver::NewtonForcing(const StepState &st, double &rtol) c
   // Once the active set has cycled (ActiveSet::SwitchOneAtATime), every step is exact: one pair switches per step,
   // and the gaps and multipliers that choose it must be those of the current set's solution.
   rtol = 0;
-  if (!(opts_.lagged_search && system_->ReusesFactorization()) || active_set_.OneAtATime() || !(st.r.norm > 0) ||
+  if (!(lagged_search_ && system_->ReusesFactorization()) || active_set_.OneAtATime() || !(st.r.norm > 0) ||
       !(st.r.scale > 0))
     PetscFunctionReturn(0);
   const double eta = std::min(

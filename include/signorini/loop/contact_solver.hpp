@@ -316,6 +316,8 @@ private:
   const Obstacle &obstacle_;
   ContactOptions contact_; ///< a copy: a failed load step may widen its search radius (WidenSearch)
   const SolverOptions &opts_;
+  /// -newton_lagged_search as it applies: off by default with pairs of bodies (Setup).
+  bool lagged_search_ = true;
   DirichletData dirichlet_;
   std::vector<ContactPair> pairs_;
   MortarCoupling mortar_; ///< the master terms of the pairs of bodies (-contact_pairs)
