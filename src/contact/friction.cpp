@@ -233,7 +233,18 @@ PetscErrorCode Friction::BeginStep(const std::vector<ContactPair> &pairs, const 
   PetscFunctionBeginUser;
   PetscCall(Relative(pairs, u_local, start_r_));
   origin_ = start_r_;
-  start_u_.assign(u_local, u_local + mesh_->NumLocalVertices() * dim_);
+  // The last step's relative motion of each pair: r now less r at the last step's start, both with these pairs (a
+  // step repeated after a failure starts where it started before: the step before it is still the last one).
+  std::vector<double> u(u_local, u_local + mesh_->NumLocalVertices() * dim_);
+  if (u != start_u_) last_start_u_.swap(start_u_);
+  start_u_ = std::move(u);
+  last_motion_.clear();
+  if (!last_start_u_.empty()) {
+    std::vector<double> before;
+    PetscCall(Relative(pairs, last_start_u_.data(), before));
+    last_motion_.resize(before.size());
+    for (std::size_t i = 0; i < before.size(); ++i) last_motion_[i] = start_r_[i] - before[i];
+  }
   start_gap_.resize(pairs.size());
   for (std::size_t p = 0; p < pairs.size(); ++p) start_gap_[p] = states[p].gap;
   PetscFunctionReturn(0);
@@ -281,13 +292,20 @@ PetscErrorCode Friction::Next(MPI_Comm comm, const std::vector<ContactPair> &pai
   // A pair that closes in this step slips from where it touched, not from where its node was at the start of the step
   // (a point of a curved surface moves along the other before it touches it, which a stick row would undo): the
   // origin of its slip moves to the point of its path from the step's start, where the gap, linear along it, was 0.
+  // That path is the last step's relative motion, repeated (the load ramps in equal increments); in the run's first
+  // step, which has none, the motion to this iterate, where the pair was still open. An iterate of the active-set
+  // search is no point of the load path: two equal cylinders pressed together (Cattaneo-Mindlin) locked a tangential
+  // traction into the stick zone whose pairs closed at iterates far from the converged motion (the profile's rms
+  // error against the contact's own Hertz profile 2.3-2.7 % with it, 1.3-2.3 % with the last step's motion).
   PetscCall(Relative(pairs, u_local, r));
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     const double g0 = start_gap_[p], g = states[p].gap;
     if (!active[p] || grip_[p] != Grip::OPEN || !(g0 > 0 && g < g0)) continue;
     const double theta = std::min(1.0, g0 / (g0 - g));
     for (int c = 0; c < dim_; ++c)
-      origin_[p * dim_ + c] = start_r_[p * dim_ + c] + theta * (r[p * dim_ + c] - start_r_[p * dim_ + c]);
+      origin_[p * dim_ + c] = start_r_[p * dim_ + c] + theta * (last_motion_.size() == r.size()
+                                                                      ? last_motion_[p * dim_ + c]
+                                                                      : r[p * dim_ + c] - start_r_[p * dim_ + c]);
   }
   SlipsOf(r, s);
   next_dir_ = dir_;

@@ -174,6 +174,8 @@ private:
   std::vector<double> origin_;    ///< per pair (dim values): r at the start of the step, or where the pair touched
   std::vector<double> start_r_, start_gap_; ///< r and the gap at the start of the step
   std::vector<double> start_u_;   ///< the displacement at the start of the step (dim values per local vertex)
+  std::vector<double> last_start_u_; ///< the displacement at the start of the last step (empty in the first)
+  std::vector<double> last_motion_;  ///< per pair: r at the step's start less r at the last step's start
   std::vector<Grip> grip_, next_;
   std::vector<double> dir_, next_dir_; ///< slip directions (PerPair() per pair)
   /// 3D slip pairs: D of the row across the slip, -|s| / (mu lambda_n) (NaN: no such row, lambda_n = 0)
