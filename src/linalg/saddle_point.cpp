@@ -520,7 +520,9 @@ PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<SparseRow> &
   weight_.assign(rows.size(), 0.0);
   PetscCall(Reweight(rows, weight));
   pc_current_ = false; // after an assembly of K
-  u_pc_.valid = false;
+  // A new tangent (svk) keeps the displacement block's preconditioner of an earlier one while its solves stay cheap
+  // (SolveKsp, LAGGED_U_PC_GROWTH): the Newton iterations' tangents differ little.
+  if (constant_k_) u_pc_.valid = false;
   PetscFunctionReturn(0);
 }
 
@@ -875,6 +877,11 @@ PetscErrorCode SaddlePointSystem::SolveKsp(double rtol, bool loose, KSPConverged
   PetscCall(KSPGetConvergedReason(ksp_, &reason));
   PetscCall(KSPGetIterationNumber(ksp_, &krylov_iterations));
   if (reason < 0 && !preonly_) PetscCall(RetryKrylov(reason, krylov_iterations));
+  if (!constant_k_ && augmented_ && !reuse_) {
+    // The lagged preconditioner of a changing K: set up again for the next solve once this one took too many.
+    if (u_pc_.first_its < 0) u_pc_.first_its = krylov_iterations;
+    else if (krylov_iterations > LAGGED_U_PC_GROWTH * std::max<PetscInt>(u_pc_.first_its, 5)) u_pc_.valid = false;
+  }
   // A Krylov method stops on its own (preconditioned) residual, which can sit orders of magnitude below the true
   // one (CG with GAMG on 2 ranks: 1e-10 against 3e-6). The solve restarts from where it stopped while that helps;
   // the true residual is what CheckAndConvert accepts or refuses.
@@ -996,6 +1003,7 @@ PetscErrorCode SaddlePointSystem::KeepDisplacementPreconditioner() {
   if (!keep) {
     u_pc_.weight = weight_;
     u_pc_.valid = true;
+    u_pc_.first_its = -1;
   }
   PetscFunctionReturn(0);
 }

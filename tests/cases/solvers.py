@@ -310,6 +310,26 @@ def solver_choice_mumps_analysis(runner):
     expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
+@test("iterative_hierarchy_reuse")
+def iterative_hierarchy_reuse(runner):
+    """The iterative path sets the displacement block's GAMG hierarchy up at most once per load step: across active
+    sets (kept while at most 30 % of the candidate rows changed weight) and, for svk, across Newton iterations (the
+    tangent of an earlier iteration preconditions while a solve takes at most 1.5 times the iterations of the first
+    after its set-up): the set-ups counted from -log_view (PCSetUp_GAMG), the state the direct path's to 1e-8. The
+    octant of options/hertz3d.yml with svk in 3 load steps (22 Newton iterations, 2 set-ups on one rank) and the
+    hexahedral cube under a sphere, linear, in 2."""
+    cases = [("svk octant", ["-options_file", "options/hertz3d.yml", "-material_model", "svk", "-load_steps", "3"]),
+             ("linear cube", ["-options_file", "options/cube_under_sphere.yml", "-mesh_size_factor", "1",
+                              "-load_steps", "2"])]
+    for label, base in cases:
+        ref = runner.run(base, "%s, direct" % label)
+        r = runner.run(base + ["-contact_solver", "iterative", "-log_view"], "%s, iterative" % label)
+        setups, steps = log_event_count(r.output, "PCSetUp_GAMG+"), r.get("iterations.load_steps")
+        runner.expect_true("%s: %d GAMG set-up(s) for %d load steps and %d solves" % (
+            label, setups, steps, r.get("iterations.solves")), 1 <= setups <= steps)
+        expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+
+
 @test("krylov_fallback")
 def krylov_fallback(runner):
     """A Krylov method that fails on the saddle-point system (CG on the indefinite system stops with

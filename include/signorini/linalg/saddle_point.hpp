@@ -360,9 +360,13 @@ private:
   bool ksp_set_up_ = false;         ///< iterative solver: the KSP has been set up (a fieldsplit's sub-KSPs exist)
   /// The displacement block's preconditioner kept across set-ups (KeepDisplacementPreconditioner).
   struct DisplacementPc {
-    bool valid = false;         ///< K is the one the displacement block's preconditioner was set up with
+    bool valid = false;         ///< the displacement block's preconditioner may serve the current K
     std::vector<double> weight; ///< the augmentation weights at that set-up
+    PetscInt first_its = -1;    ///< Krylov iterations of the first solve after the set-up (-1: none yet)
   } u_pc_;
+  /// A changing K (svk): its Newton iterations keep the displacement block's preconditioner of an earlier tangent
+  /// while a solve takes at most this factor times the iterations of the first solve after its set-up.
+  static constexpr double LAGGED_U_PC_GROWTH = 1.5;
   bool kept_viewed_ = false; ///< a KSPSolve with the kept PC showed it (-contact_ksp_view); else Release does
   KSPH ksp_kept_;                      ///< changing K: FGMRES preconditioned by the kept factorisation
   PetscBool lu_ = PETSC_FALSE; ///< the PC is LU (the mumps_lu preset): the reuse mode factors with LU too
