@@ -104,9 +104,15 @@ PetscErrorCode ContactSolver::CreateSystem() {
     PetscCallMPI(MPI_Comm_size(mesh_.Comm(), &size));
     system_->ConfirmDirectWith([this, size](const AnalysedFactor &analysed, std::string &why) {
       const bool direct = ConfirmDirect(size, solver_problem_, analysed, stats_.solver);
-      // The decision is news where the model left it to the analysis (the header said so), or where it changes.
+      // The decision is news where the model left it to the analysis (the header said so), or where it changes
+      // (LeaveDirectPath says that).
       if (!direct) why = stats_.solver.why;
-      else if (stats_.solver.analysis_decides) ProgressNote("solver: direct (auto: %s)", stats_.solver.why.c_str());
+      else if (stats_.solver.analysis_decides) {
+        ProgressNote("solver: direct (auto: %s)", stats_.solver.why.c_str());
+        PetscCallAbort(mesh_.Comm(),
+                       PetscPrintf(mesh_.Comm(), "  solver: direct, confirmed: %s\n", stats_.solver.why.c_str()));
+        stats_.solver.analysis_decides = false; // said once (a new system, e.g. after new pairs, is analysed again)
+      }
       return direct;
     });
   }

@@ -61,7 +61,7 @@ struct SolverChoice {
   double direct_bytes = -1, budget_bytes = -1;         ///< per rank (auto only)
   bool budget_given = false;                           ///< budget_bytes is -contact_memory_budget's
   bool left_direct = false; ///< the direct path was chosen, then left at run time (ConfirmDirect, LeaveDirect)
-  bool analysis_decides = false; ///< the model left the choice to the analysis of the matrix (ConfirmDirect)
+  bool analysis_decides = false; ///< the model left the choice to the analysis of the matrix, not yet said
   double direct_seconds = -1, iterative_seconds = -1;  ///< the models' estimates (auto only)
   FactorEstimate factor;
 };
