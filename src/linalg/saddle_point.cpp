@@ -877,11 +877,6 @@ PetscErrorCode SaddlePointSystem::SolveKsp(double rtol, bool loose, KSPConverged
   PetscCall(KSPGetConvergedReason(ksp_, &reason));
   PetscCall(KSPGetIterationNumber(ksp_, &krylov_iterations));
   if (reason < 0 && !preonly_) PetscCall(RetryKrylov(reason, krylov_iterations));
-  if (!constant_k_ && augmented_ && !reuse_) {
-    // The lagged preconditioner of a changing K: set up again for the next solve once this one took too many.
-    if (u_pc_.first_its < 0) u_pc_.first_its = krylov_iterations;
-    else if (krylov_iterations > LAGGED_U_PC_GROWTH * std::max<PetscInt>(u_pc_.first_its, 5)) u_pc_.valid = false;
-  }
   // A Krylov method stops on its own (preconditioned) residual, which can sit orders of magnitude below the true
   // one (CG with GAMG on 2 ranks: 1e-10 against 3e-6). The solve restarts from where it stopped while that helps;
   // the true residual is what CheckAndConvert accepts or refuses.
@@ -904,6 +899,12 @@ PetscErrorCode SaddlePointSystem::SolveKsp(double rtol, bool loose, KSPConverged
     krylov_iterations += its;
   }
   if (rtol > ksp_rtol) PetscCall(KSPSetTolerances(ksp_, ksp_rtol, abstol, dtol, max_it));
+  if (!constant_k_ && augmented_ && !reuse_) {
+    // The lagged preconditioner of a changing K: set up again for the next solve once this one (its restarts
+    // included) took too many iterations.
+    if (u_pc_.first_its < 0) u_pc_.first_its = krylov_iterations;
+    else if (krylov_iterations > LAGGED_U_PC_GROWTH * std::max<PetscInt>(u_pc_.first_its, 5)) u_pc_.valid = false;
+  }
   PetscFunctionReturn(0);
 }
 
