@@ -247,6 +247,10 @@ def solver_choice(runner):
     runner.expect_true("the header says why", "solver: direct (auto: the measured model puts a factorisation near "
                        "the limits" in ref.output and "the analysis of the matrix decides" in ref.output)
     runner.expect_true("summary.json says why", ref.get("solver.why").startswith("the factorisation fits (about"))
+    runner.expect_equal("the analysis confirmed the direct path",
+                        (ref.get("solver.factor_estimate"), ref.get("solver.left_direct")), ("analysis", False))
+    runner.expect_true("the output says so once", ref.output.count("solver: direct, confirmed: the factorisation "
+                                                                   "fits (about") == 1)
     runner.expect_true("the budget is the machine's", ref.get("solver.budget_bytes") > 1e8)
     # 20M: the measured model (178 MB) is 4 times the budget or more and decides alone. 100M: within a factor 4 of
     # it the model does not decide: the direct path starts, and the analysis of the matrix (the Cholesky's symbolic
@@ -266,14 +270,6 @@ def solver_choice(runner):
         runner.expect_true("budget %s: the estimate exceeds it" % budget,
                            r.get("solver.direct_bytes") > r.get("solver.budget_bytes"))
         expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
-    # Within the factor 4 and above the analysed need (132 MB): the analysis confirms the direct path.
-    r = runner.run(base + ["-contact_memory_budget", "300M"], "auto, budget 300M")
-    runner.expect_equal("budget 300M: direct, confirmed by the analysis",
-                        (r.get("solver.path"), r.get("solver.factor_estimate"), r.get("solver.left_direct")),
-                        ("direct", "analysis", False))
-    runner.expect_true("budget 300M: summary.json says why",
-                       "fits (about" in r.get("solver.why") and "by the analysis of the matrix" in r.get("solver.why"))
-    expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-10)
     forced = runner.run(base + ["-contact_solver", "iterative"], "-contact_solver iterative")
     runner.expect_equal("-contact_solver iterative", (forced.get("solver.path"), forced.get("solver.chosen_by")),
                         ("iterative", "-contact_solver"))
@@ -323,7 +319,8 @@ def iterative_hierarchy_reuse(runner):
                               "-load_steps", "2"])]
     for label, base in cases:
         ref = runner.run(base, "%s, direct" % label)
-        r = runner.run(base + ["-contact_solver", "iterative", "-log_view"], "%s, iterative" % label)
+        r = runner.run(base + ["-contact_solver", "iterative", "-log_view"], "%s, iterative" % label,
+                       heap_check=False)
         setups, steps = log_event_count(r.output, "PCSetUp_GAMG+"), r.get("iterations.load_steps")
         runner.expect_true("%s: %d GAMG set-up(s) for %d load steps and %d solves" % (
             label, setups, steps, r.get("iterations.solves")), 1 <= setups <= steps)
