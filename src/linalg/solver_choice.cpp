@@ -274,7 +274,7 @@ bool ConfirmDirect(PetscMPIInt size, const SolverProblem &problem, const Analyse
 void LeaveDirect(const std::string &why, SolverChoice &choice) {
   choice.path = SolverPath::ITERATIVE;
   choice.left_direct = true;
-  choice.why = "the direct path stopped: " + why;
+  choice.why = why;
 }
 
 PetscErrorCode SolverOptionsGiven(bool &given, bool &factor_pc) {

@@ -88,8 +88,8 @@ struct SolverChoice {
 bool ConfirmDirect(PetscMPIInt size, const SolverProblem &problem, const AnalysedFactor &analysed,
                    SolverChoice &choice);
 
-/// The automatic choice's direct path failed at run time (why: MUMPS out of memory): choice turns to the iterative
-/// path and says so.
+/// The automatic choice's direct path failed at run time (why: MUMPS out of memory, said as it is): choice turns to
+/// the iterative path and says so.
 void LeaveDirect(const std::string &why, SolverChoice &choice);
 
 /// Whether the run gave a solver of its own: -contact_ksp_type, -contact_pc_type, a factor's solver type, the kept
