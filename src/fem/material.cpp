@@ -41,7 +41,7 @@ Material Material::With(const std::array<double, 3> &k) const {
 
 std::string Material::ModelText() const {
   std::vector<std::string> items;
-  for (const auto &g : model_groups) items.push_back(g.group + (g.value != 0 ? ":svk" : ":linear"));
+  for (const auto &g : model_groups) items.push_back(g.group + ":" + ModelNameOf(g.value != 0));
   return model_groups.empty() ? ModelName() : Join(items, ", ");
 }
 

@@ -149,6 +149,13 @@ bool MumpsOutOfMemory(int infog1) {
   return false;
 }
 
+std::string MumpsOutOfMemoryText(int infog1, int infog2, const char *phase) {
+  char text[160];
+  std::snprintf(text, sizeof(text), "MUMPS ran out of memory in the %s (INFOG(1) = %d, INFOG(2) = %d)", phase, infog1,
+                infog2);
+  return text;
+}
+
 PetscErrorCode MumpsSchur::Call(int job, const char *phase) {
   PetscFunctionBeginUser;
   id_.job = job;
@@ -165,10 +172,7 @@ PetscErrorCode MumpsSchur::Call(int job, const char *phase) {
   }
   if (id_.INFOG(1) < 0 && rejectable_ && MumpsOutOfMemory((int)id_.INFOG(1))) {
     // The automatic solver choice leaves the direct path (FactorChoices::confirm): the caller releases and reports.
-    char text[160];
-    std::snprintf(text, sizeof(text), "MUMPS ran out of memory in the %s (INFOG(1) = %d, INFOG(2) = %d)", phase,
-                  (int)id_.INFOG(1), (int)id_.INFOG(2));
-    rejected_ = text;
+    rejected_ = MumpsOutOfMemoryText((int)id_.INFOG(1), (int)id_.INFOG(2), phase);
     PetscFunctionReturn(0);
   }
   PetscCheck(id_.INFOG(1) >= 0, comm_, id_.INFOG(1) == -13 ? PETSC_ERR_MEM : PETSC_ERR_LIB, "%s",

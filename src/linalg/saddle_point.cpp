@@ -818,7 +818,7 @@ PetscErrorCode SaddlePointSystem::SolveKept(bool fresh, double rtol, PetscInt &k
   std::vector<PetscScalar> d;
   PetscCall(MultiplierDiagonal(d));
   krylov_iterations = 1;
-  singular = null_pivots_ > 0 || !direct_rejected_.empty();
+  singular = FactorStopped();
   if (singular) PetscFunctionReturn(0);
   if (fresh || constant_k_) {
     // The KSP's PC is the kept factorisation (PCKEPT, UseKeptPc): an exact solve with the current D.
@@ -829,7 +829,7 @@ PetscErrorCode SaddlePointSystem::SolveKept(bool fresh, double rtol, PetscInt &k
     kept_viewed_ = true; // KSPSolve shows the KSP with -contact_ksp_view
   } else
     PetscCall(SolveWithKeptFactor(d, rtol, krylov_iterations, check_tol));
-  singular = null_pivots_ > 0 || !direct_rejected_.empty();
+  singular = FactorStopped();
   PetscFunctionReturn(0);
 }
 
@@ -857,10 +857,7 @@ PetscErrorCode SaddlePointSystem::SolveKsp(double rtol, bool loose, KSPConverged
     PetscCall(MatMumpsGetInfog(mumps_factor_, 2, &info[1]));
     if (info[0] < 0 && confirm_direct_ && MumpsOutOfMemory((int)info[0])) {
       // The automatic choice leaves the direct path: the caller solves again on the iterative one.
-      char text[160];
-      std::snprintf(text, sizeof(text), "MUMPS ran out of memory in the factorisation (INFOG(1) = %d, INFOG(2) = %d)",
-                    (int)info[0], (int)info[1]);
-      direct_rejected_ = text;
+      direct_rejected_ = MumpsOutOfMemoryText((int)info[0], (int)info[1], "factorisation");
       PetscFunctionReturn(0);
     }
     PetscCheck(info[0] >= 0 || info[0] == -10, comm, info[0] == -13 ? PETSC_ERR_MEM : PETSC_ERR_LIB, "%s",

@@ -149,7 +149,7 @@ PetscErrorCode SaddlePointSystem::SolveWithKeptFactor(const std::vector<PetscSca
   // The tangent has drifted too far from the factored one (or -contact_reuse_max_it 0): factor the current one.
   PetscCall(Refactor());
   // Singular, or out of memory on the automatic path: the caller reports it (Solve).
-  if (null_pivots_ > 0 || !direct_rejected_.empty()) PetscFunctionReturn(0);
+  if (FactorStopped()) PetscFunctionReturn(0);
   PetscCall(mumps_schur_.Solve(d, b_, x_));
   refactor_next_ = false;
   ++iterations;
@@ -161,7 +161,7 @@ PetscErrorCode SaddlePointSystem::Condense(bool &singular) {
   PetscCheck(reuse_ && !released_, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_ORDER,
              "a condensation needs the kept factorisation");
   PetscCall(Factor());
-  singular = null_pivots_ > 0 || !direct_rejected_.empty();
+  singular = FactorStopped();
   // Declined: the caller solves in full (ExactFactorization() is false now).
   if (!reuse_ || singular) PetscFunctionReturn(0);
   MumpsSchur *kept;

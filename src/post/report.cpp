@@ -447,7 +447,7 @@ std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedStat
   if (m.model_groups.empty()) j.String("model", m.ModelName());
   else {
     j.BeginObject("model");
-    for (const auto &g : m.model_groups) j.String(g.group, g.value != 0 ? "svk" : "linear");
+    for (const auto &g : m.model_groups) j.String(g.group, Material::ModelNameOf(g.value != 0));
     j.EndObject();
   }
   j.String("plane", dim == 3 ? "none (3D)" : m.plane_stress ? "stress" : "strain");

@@ -63,7 +63,9 @@ struct Material {
     const double l = Lambda3D(), m = Mu();
     return plane_stress ? 2.0 * l * m / (l + 2.0 * m) : l;
   }
-  const char *ModelName() const { return model == MaterialModel::SVK ? "svk" : "linear"; }
+  const char *ModelName() const { return ModelNameOf(model == MaterialModel::SVK); }
+  /// "svk" or "linear" (a model_groups value: nonzero is svk).
+  static const char *ModelNameOf(bool svk) { return svk ? "svk" : "linear"; }
 };
 
 /// Reads and validates the -material_ options (E and thickness > 0 with E t in [STIFFNESS_SCALE_MIN,

@@ -36,6 +36,8 @@ std::string MumpsFailure(int infog1, int infog2, const char *phase);
 /// MUMPS's errors for memory or workspace (INFOG(1)): -8, -9, -11, -12, -14, -15, -17, -20 (a workspace too small),
 /// -13 (an allocation failed), -19 (more than ICNTL(23) allows).
 bool MumpsOutOfMemory(int infog1);
+/// What a MUMPS failure for memory that ends the automatic choice's direct path says (phase: "factorisation", ...).
+std::string MumpsOutOfMemoryText(int infog1, int infog2, const char *phase);
 
 /// The analysis of the matrix that Factor is about to factor: its factor entries and elimination flops, and MUMPS's
 /// own estimate of its memory per rank (INFOG(16), in bytes; 0 for the supernodal Cholesky, whose factor is exact).

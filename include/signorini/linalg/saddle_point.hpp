@@ -374,6 +374,8 @@ private:
   SolverPath path_ = SolverPath::DIRECT; ///< UsePath
   ConfirmFactor confirm_direct_;         ///< ConfirmDirectWith
   std::string direct_rejected_;          ///< DirectRejected
+  /// The last factorisation gave nothing to solve with: null pivots, or the direct path stopped (DirectRejected).
+  bool FactorStopped() const { return null_pivots_ > 0 || !direct_rejected_.empty(); }
   std::string nonsymmetric_; ///< UseNonsymmetric's cause (empty: symmetric)
   double aug_inactive_ = 1; ///< augmentation weight r_I of an inactive row (r, or INACTIVE_WEIGHT r: iterative)
   std::vector<double> weight_; ///< owned multiplier rows: the augmentation weight A holds now (AddAugmentation)
