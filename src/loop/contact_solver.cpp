@@ -463,6 +463,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
   PetscReal load_scale;
   PetscCall(VecNorm(fext_, NORM_INFINITY, &load_scale));
   active_set_.BeginStep(load_scale);
+  system_->BeginLooseSolves();
   // Friction: the slips of this step count from the converged state.
   if (friction_.On()) PetscCall(friction_.BeginStep(pairs_, states_, u_local_.data()));
   retry_.widen_to = 0;

@@ -192,6 +192,7 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
     // until Materialise.
     if (!st.base.ready && !st.stabilised && !st.moving && search) PetscCall(CondenseBase(st));
     condensed = Condensable(st);
+    st.loose = false;
     if (st.singular) {
       // The condensation found null pivots: nothing to solve (LoadStep ends the step).
     } else if (condensed) {
@@ -207,12 +208,16 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
       double rtol = st.newton.lagged ? SEARCH_RTOL : st.correction.rtol;
       if (model_->Nonlinear() && !st.newton.lagged) PetscCall(NewtonForcing(st, rtol));
       // Inexact active set (linear material, iterative solver): while the set changes a solve only has to show
-      // where it goes; the solve after which it stays is corrected to the certificate's tolerance (JudgeCandidate).
+      // where it goes (to -contact_active_set_rtol of the load step's first residual, SaddlePointSystem::Solve); the
+      // next iterate's residual is evaluated in full (EvaluateIterate), so that each solve also corrects what the
+      // earlier ones left; the solve after which the set stays is corrected to the certificate's tolerance
+      // (JudgeCandidate).
       // Without multipliers nothing can change: one solve to the KSP's tolerance. Friction's sets follow the slips
       // and the springs across them (3D) from every solve: loose solves made a cube dragged over a plane cycle.
       const bool loose = !model_->Nonlinear() && st.correction.rtol == 0 && opts_.active_set_rtol > 0 &&
                          system_->Iterative() && dofs_.GlobalLambda() > 0 && !friction_.On();
       if (loose) rtol = opts_.active_set_rtol;
+      st.loose = loose;
       const PetscInt fallbacks = system_->KrylovFallbacks();
       PetscCall(system_->Solve(st.krylov, st.solve_residual, st.singular, rtol, loose));
       stats_.krylov_fallbacks += system_->KrylovFallbacks() - fallbacks;

@@ -206,12 +206,19 @@ def iterative_on_contact(runner, preset, case="hertz"):
     print("  %s: %d active-set iterations, %d Krylov iterations (%.0f per solve): %s" % (
         preset, its, krylov, krylov / max(its, 1), history))
     # Every solve to the KSP's tolerance (-contact_active_set_rtol 0): the same state, more Krylov iterations than the
-    # inexact active set (solves to 1e-5 of their start's residual while the set changes, then one correction).
+    # inexact active set (solves to 1e-3 of the load step's first residual while the set changes, then one
+    # correction).
     exact = runner.run(base + ["-options_file", "options/solver/%s.yml" % preset, "-contact_active_set_rtol", "0"],
                        "hertz %s, every solve exact" % preset)
     expect_same_state(runner, exact, r, keys=("contact.active_pairs",), tol=1e-8)
     runner.expect_true("inexact active set: %d Krylov iterations < %d solving every set exactly" % (
         krylov, exact.get("iterations.krylov")), krylov < exact.get("iterations.krylov"))
+    # Loose solves decide the sets on states as accurate as the first solve's (their tolerance is relative to the load
+    # step's first residual, and each iterate's residual is evaluated in full): the exact solves' path, and at most
+    # the correction solve more (relative to each solve's own start, the octant at 290k dofs took 9 active-set
+    # iterations against 5).
+    runner.expect_true("inexact active set: %d active-set iterations <= %d + 1 solving every set exactly" % (
+        its, exact.get("iterations.active_set")), its <= exact.get("iterations.active_set") + 1)
     # A solve after an unchanged active set only corrects the equilibrium residual (to a tenth of the certificate's
     # tolerance, not -contact_ksp_rtol relative to its start): far fewer iterations than the solve before it.
     h = exact.get("iterations.history")

@@ -166,12 +166,15 @@ public:
   /// the KSP's own (a correction solve, see ContactSolver::StepControl); it does not apply to direct solves.
   /// singular: a MUMPS factorisation found null pivots (ICNTL(24)): nothing is solved, and SingularReport() says so;
   /// the caller decides what the singularity means (a body that the supports and the candidate pairs do not hold).
-  /// loose (an iterative solver, Iterative()): the solve stops at rtol relative to its start's residual, without the
-  /// restarts and the accepted residual of other solves (an active-set iteration whose set is still changing: the
-  /// caller solves again, to its tolerance, once the set stays).
+  /// loose (an iterative solver, Iterative()): the solve stops at rtol relative to the start's residual of the first
+  /// loose solve since BeginLooseSolves (the load step's: its loads' scale), without the restarts and the accepted
+  /// residual of other solves (an active-set iteration whose set is still changing: the caller solves again, to its
+  /// tolerance, once the set stays). Each loose iterate is then as accurate as the first, whatever its own start.
   /// Collective.
   [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual, bool &singular,
                                      double rtol = 0, bool loose = false);
+  /// Starts a series of loose solves (a load step): the next loose solve's start residual is the series' reference.
+  void BeginLooseSolves() { loose_reference_ = 0; }
   /// Solves that failed in the Krylov method and were solved again by GMRES (RetryKrylov).
   PetscInt KrylovFallbacks() const { return krylov_fallbacks_; }
   /// An iterative solver (a Krylov method with no kept factorisation).
@@ -305,6 +308,8 @@ private:
   /// restarts of a Krylov solve that stopped above it on its preconditioned residual (each must divide the true
   /// residual by 10).
   static constexpr double ACCEPTED_RESIDUAL = 1e-6;
+  /// The largest relative tolerance of a loose solve whose start residual is small against the series' reference.
+  static constexpr double LOOSE_RTOL_MAX = 0.1;
   /// A direct solve that leaves a relative residual above this solved nothing: its matrix is singular to round-off.
   static constexpr double SINGULAR_RESIDUAL = 1e-2;
   /// The mean contraction of the residual per FGMRES iteration on the kept factorisation above which the next solve
@@ -357,6 +362,7 @@ private:
   bool pc_current_ = false; ///< iterative solver: A is the matrix of the last preconditioner set-up (a correction)
   bool preonly_ = false;            ///< the KSP is KSPPREONLY (a direct solve; set once, in SetupKsp)
   PetscInt krylov_fallbacks_ = 0;    ///< RetryKrylov's count
+  PetscReal loose_reference_ = 0;    ///< the start residual of the series' first loose solve (BeginLooseSolves)
   bool ksp_set_up_ = false;         ///< iterative solver: the KSP has been set up (a fieldsplit's sub-KSPs exist)
   /// The displacement block's preconditioner kept across set-ups (KeepDisplacementPreconditioner).
   struct DisplacementPc {

@@ -199,6 +199,7 @@ private:
     std::vector<char> key{};
     PetscInt krylov = 0;
     double last_solve_time = 0, solve_residual = 0;
+    bool loose = false; ///< the last solve was loose (an inexact active-set iteration)
     /// The equilibrium residual at the iterate, its force scale and its round-off (Residual).
     struct ResidualNorms {
       double norm = 0, scale = 0, roundoff = 0;

@@ -22,7 +22,7 @@ struct SolverOptions {
   PetscBool lagged_search = PETSC_TRUE;  ///< -newton_lagged_search (svk, kept factorisation): see ContactSolver
   PetscBool lagged_search_set = PETSC_FALSE;
   static constexpr double ACTIVE_SET_RTOL_MAX = 0.1;
-  double active_set_rtol = 1e-5; ///< -contact_active_set_rtol: iterative solves while the set changes, [0, 0.1]
+  double active_set_rtol = 1e-3; ///< -contact_active_set_rtol: iterative solves while the set changes, [0, 0.1]
 };
 
 /// Reads the -load_ and -newton_ options. The ones that only the nonlinear material's Newton loop uses
