@@ -79,8 +79,11 @@ PetscErrorCode SaddlePointSystem::Refactor() {
 }
 
 std::string SaddlePointSystem::SingularReport(const std::string &cause) const {
-  char found[128];
-  if (null_pivots_ == 0 && singular_residual_ > 0)
+  char found[160];
+  if (unheld_)
+    std::snprintf(found, sizeof(found), "the supports and every candidate pair together leave a rigid-body motion "
+                  "free, so its displacement block is singular for every active set");
+  else if (null_pivots_ == 0 && singular_residual_ > 0)
     std::snprintf(found, sizeof(found), "%s found no null pivot, but its solve left a relative residual of %.6g",
                   mumps_schur_.UsesCholesky() ? "the Cholesky factorisation" : "MUMPS", singular_residual_);
   else std::snprintf(found, sizeof(found), "MUMPS found %d null pivot(s)", (int)null_pivots_);

@@ -183,6 +183,10 @@ public:
   /// body free), with the MUMPS controls given that decide which pivots are null (-contact_mat_mumps_cntl_<k>, ...)
   /// named first as another possible cause.
   std::string SingularReport(const std::string &cause) const;
+  /// An iterative solver's caller found that the supports and every candidate pair together leave a rigid-body
+  /// motion free: the displacement block K + r B_C^T B_C is singular for every active set, so the caller skips the
+  /// solve and reports it as singular (SingularReport says why), as a direct solver finds it by its null pivots.
+  void SetUnheld(bool unheld) { unheld_ = unheld; }
 
   /// Frees the factorisations and preconditioners (MUMPS's factors, the fieldsplit's blocks, GAMG's hierarchy), so
   /// that what follows the last solve (the output of the last load step) does not add to them; the matrix and the
@@ -422,6 +426,7 @@ private:
   Mat mumps_factor_ = nullptr; ///< the MUMPS factor of a direct solve (owned by the PC), for the null-pivot check
   MumpsControls mumps_controls_; ///< -contact_mat_mumps_icntl_<k>, _cntl_<k> (a MUMPS solver only)
   PetscInt null_pivots_ = 0;     ///< null pivots of the last MUMPS factorisation (INFOG(28))
+  bool unheld_ = false;          ///< SetUnheld
   double singular_residual_ = 0; ///< the relative residual of a direct solve that found no null pivot but solved
                                  ///< nothing (a matrix singular to round-off), else 0
 
