@@ -597,7 +597,7 @@ CASES = {
                                  ["DIVERGED_SINGULAR", "null pivot(s)", "the MUMPS controls -contact_mat_mumps_cntl_3 "
                                   "0.5 may count regular pivots as null", "or the body is not held"], {}),
     # A Schur fieldsplit on a body that nothing holds (no Dirichlet condition, no obstacle): the message says why its
-    # block is singular and names the solver that reports it directly.
+    # block is singular (a rigid-body motion that the supports and the candidates leave free), found before any solve.
     "fieldsplit_on_loose_body": (LOOSE_BEAM + ["-options_file", "{root}/options/solver/fieldsplit_gamg.yml",
                                                "-contact_ksp_max_it", "200"],
                                  # Found before any Krylov solve (the rigid modes against the supports and every
