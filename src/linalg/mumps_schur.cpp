@@ -116,6 +116,7 @@ void MumpsSchur::Release() {
   for (auto *v : {&val_, &schur_raw_, &s0_, &d0_, &s_, &d_factored_, &redrhs_, &work_, &condensed_u_, &reduced_})
     std::vector<double>().swap(*v);
   std::vector<PetscBLASInt>().swap(ipiv_);
+  off_.clear(), off_factored_.clear();
   (void)VecScatterDestroy(&to_root_);
   root_.Reset();
 }
@@ -663,14 +664,16 @@ PetscErrorCode MumpsSchur::FactorSchurOnRoot(const std::vector<PetscScalar> &d) 
   const PetscInt m = (PetscInt)d0_.size();
   PetscBLASInt n, lwork = -1, info;
   PetscFunctionBeginUser;
-  if (m == 0 || (s_factored_ && d == d_factored_)) PetscFunctionReturn(0);
+  if (m == 0 || (s_factored_ && d == d_factored_ && off_ == off_factored_)) PetscFunctionReturn(0);
   s_factored_ = false; // s_ is overwritten: until its factorisation succeeds, no factors exist (FactorSchur)
   s_ = s0_;
   for (PetscInt i = 0; i < m; ++i) s_[i + i * m] += d[i] - d0_[i];
+  for (const Coupling &c : off_) s_[c.i + c.j * m] += c.v;
+  dense_lu_ = !symmetric_ || !off_.empty();
   PetscCall(PetscBLASIntCast(m, &n));
   ipiv_.resize(m);
   double query;
-  if (symmetric_) {
+  if (!dense_lu_) {
     LAPACKsytrf_("L", &n, s_.data(), &n, ipiv_.data(), &query, &lwork, &info);
     lwork = std::max<PetscBLASInt>(1, (PetscBLASInt)query);
     work_.resize(lwork);
@@ -683,6 +686,7 @@ PetscErrorCode MumpsSchur::FactorSchurOnRoot(const std::vector<PetscScalar> &d) 
              "body is not held, or two active constraints coincide; add Dirichlet conditions or check that the "
              "obstacle touches it", (int)info);
   d_factored_ = d;
+  off_factored_ = off_;
   PetscFunctionReturn(0);
 }
 
@@ -693,7 +697,7 @@ PetscErrorCode MumpsSchur::DenseSolve(std::vector<PetscScalar> &y) const {
   if (m == 0) PetscFunctionReturn(0);
   PetscCall(PetscBLASIntCast(m, &n));
   std::vector<PetscBLASInt> ipiv(ipiv_);
-  if (symmetric_) LAPACKsytrs_("L", &n, &one, s_.data(), &n, ipiv.data(), y.data(), &n, &info);
+  if (!dense_lu_) LAPACKsytrs_("L", &n, &one, s_.data(), &n, ipiv.data(), y.data(), &n, &info);
   else LAPACKgetrs_("N", &n, &one, s_.data(), &n, ipiv.data(), y.data(), &n, &info);
   PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK solve with the Schur complement failed: info %d",
              (int)info);
@@ -717,6 +721,7 @@ PetscErrorCode MumpsSchur::SolveReducedOnRoot(const std::vector<PetscScalar> &d,
                                               double &residual) {
   const PetscInt m = (PetscInt)d0_.size();
   PetscFunctionBeginUser;
+  PetscCheck(off_.empty(), PETSC_COMM_SELF, PETSC_ERR_ORDER, "a reduced solve with entries off the diagonal of D");
   for (PetscInt i = 0; i < m; ++i) y[i] -= condensed_u_[i];
   const std::vector<PetscScalar> rhs = y;
   PetscCall(DenseSolve(y));
@@ -835,7 +840,7 @@ PetscErrorCode MumpsSchur::View(PetscViewer viewer) const {
   }
   PetscCall(PetscViewerASCIIPrintf(viewer, "rows: %d, of which %d multipliers in the Schur complement (dense %s on "
                                    "rank 0, refactored when D changes)\n", (int)id_.n, (int)id_.size_schur,
-                                   symmetric_ ? "LDL^T" : "LU"));
+                                   dense_lu_ ? "LU" : "LDL^T"));
   if (id_.ICNTL(7) == 1)
     PetscCall(PetscViewerASCIIPrintf(viewer, "ordering: nested dissection of the node graph (%s)\n", ordering_name_));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "ordering: MUMPS's own (ICNTL(7) = %d)\n", (int)id_.ICNTL(7)));

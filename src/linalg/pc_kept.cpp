@@ -14,6 +14,9 @@ struct PcKept {
   MumpsSchur *factor = nullptr;
   std::vector<PetscScalar> d;
   std::string of = "the current matrix";
+  KeptRows *rows = nullptr; ///< friction's rows mapped to the fixed ones (PCKeptSetRows)
+  PetscInt owned_u = 0;
+  Vec work = nullptr;       ///< the right-hand side mapped
 };
 
 PcKept *Data(PC pc) { return static_cast<PcKept *>(pc->data); }
@@ -23,7 +26,20 @@ PetscErrorCode PCApply_Kept(PC pc, Vec b, Vec x) {
   PetscFunctionBeginUser;
   PetscCheck(k->factor, PetscObjectComm((PetscObject)pc), PETSC_ERR_ORDER,
              "the kept factorisation PC has no factorisation (PCKeptSetFactorization)");
-  PetscCall(k->factor->Solve(k->d, b, x));
+  if (!k->rows) {
+    PetscCall(k->factor->Solve(k->d, b, x));
+    PetscFunctionReturn(0);
+  }
+  if (!k->work) PetscCall(VecDuplicate(b, &k->work));
+  PetscCall(VecCopy(b, k->work));
+  PetscScalar *a;
+  PetscCall(VecGetArray(k->work, &a));
+  k->rows->Forward(a + k->owned_u);
+  PetscCall(VecRestoreArray(k->work, &a));
+  PetscCall(k->factor->Solve(k->d, k->work, x));
+  PetscCall(VecGetArray(x, &a));
+  k->rows->Back(a + k->owned_u);
+  PetscCall(VecRestoreArray(x, &a));
   PetscFunctionReturn(0);
 }
 
@@ -35,6 +51,9 @@ PetscErrorCode PCView_Kept(PC pc, PetscViewer viewer) {
   if (!ascii) PetscFunctionReturn(0);
   PetscCall(PetscViewerASCIIPrintf(viewer, "kept factorisation of %s, with the Schur complement on the "
                                    "multipliers\n", k->of.c_str()));
+  if (k->rows)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "friction's rows mapped per pair onto fixed rows (the normal one and "
+                                     "the fixed tangents'), the slip law in the multiplier block (dense LU)\n"));
   if (k->factor) {
     PetscCall(PetscViewerASCIIPushTab(viewer));
     PetscCall(k->factor->View(viewer));
@@ -45,6 +64,7 @@ PetscErrorCode PCView_Kept(PC pc, PetscViewer viewer) {
 
 PetscErrorCode PCDestroy_Kept(PC pc) {
   PetscFunctionBeginUser;
+  PetscCall(VecDestroy(&Data(pc)->work));
   delete Data(pc);
   pc->data = nullptr;
   PetscFunctionReturn(0);
@@ -103,6 +123,14 @@ PetscErrorCode PCKeptSetDiagonal(PC pc, const std::vector<PetscScalar> &d) {
   PetscFunctionBeginUser;
   PetscCall(CheckKept(pc));
   Data(pc)->d = d;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PCKeptSetRows(PC pc, KeptRows *rows, PetscInt owned_u) {
+  PetscFunctionBeginUser;
+  PetscCall(CheckKept(pc));
+  Data(pc)->rows = rows;
+  Data(pc)->owned_u = owned_u;
   PetscFunctionReturn(0);
 }
 

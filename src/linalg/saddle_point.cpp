@@ -334,13 +334,15 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
                "options/solver/mumps_lu.yml) or a Krylov method for nonsymmetric matrices (-options_file "
                "options/solver/fieldsplit_gamg.yml: BiCGStab; or -contact_ksp_type gmres)",
                nonsymmetric_.c_str(), ksp_type, type);
-    PetscCheck(!(opts.reuse_set && opts.reuse_factorization), comm, PETSC_ERR_USER_INPUT,
-               "-contact_reuse_factorization with %s: the kept factorisation needs a symmetric saddle-point matrix; "
-               "expected -contact_reuse_factorization 0 or no such option",
-               nonsymmetric_.c_str());
+    PetscCheck(!(opts.reuse_set && opts.reuse_factorization && !constant_k), comm, PETSC_ERR_USER_INPUT,
+               "-contact_reuse_factorization with %s and -material_model svk: the kept factorisation of friction's "
+               "rows needs a constant stiffness (the linear material); expected -contact_reuse_factorization 0 or no "
+               "such option", nonsymmetric_.c_str());
   }
   const bool possible = mumps_factor_ != nullptr;
-  reuse_ = possible && opts.reuse_factorization && dofs_->GlobalLambda() > 0 && nonsymmetric_.empty();
+  // Friction keeps the factorisation for a constant K: of fixed rows, onto which its rows are mapped (KeptRows).
+  reuse_ = possible && opts.reuse_factorization && dofs_->GlobalLambda() > 0 && (nonsymmetric_.empty() || constant_k);
+  turned_ = reuse_ && !nonsymmetric_.empty();
   // PETSc's MUMPS interface takes no given ordering (it would stop at the factorisation).
   PetscCheck(!(possible && !reuse_ && mumps_controls_.Icntl(7, 7) == 1), comm, PETSC_ERR_USER_INPUT,
              "-contact_mat_mumps_icntl_7 1 (the given nested dissection) applies to the kept factorisation only "
@@ -355,7 +357,8 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   kept_.max_it = opts.reuse_max_it;
   // An iterative solver gets the augmented form too: its displacement block K + r B_C^T B_C is regular when the
   // candidates hold the body, so that a Schur fieldsplit with AMG on that block works for a body held by contact.
-  augmented_ = reuse_ || (!factor && dofs_->GlobalLambda() > 0);
+  // Friction's kept factorisation is of a fixed augmented matrix of its own (FactorFixedRows): A stays plain.
+  augmented_ = (reuse_ && !turned_) || (!factor && dofs_->GlobalLambda() > 0);
   // Its inactive rows get a smaller weight (INACTIVE_WEIGHT); the kept factorisation needs a constant block.
   if (augmented_ && !reuse_) aug_inactive_ = INACTIVE_WEIGHT * aug_;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu_));
@@ -458,7 +461,7 @@ PetscErrorCode SaddlePointSystem::CheckKeptSolver(MPI_Comm comm, const SaddlePoi
              "-contact_kept_solver %s applies to the kept factorisation only (-contact_reuse_factorization with a "
              "MUMPS LU or Cholesky solver, the default)", name);
   if (opts.kept_solver != KeptSolver::CHOLESKY) PetscFunctionReturn(0);
-  PetscCheck(!lu_, comm, PETSC_ERR_USER_INPUT,
+  PetscCheck(!lu_ || turned_, comm, PETSC_ERR_USER_INPUT,
              "-contact_kept_solver cholesky factors a symmetric matrix; expected the Cholesky preset "
              "(-contact_pc_type cholesky, the default), not LU, or -contact_kept_solver mumps");
   PetscCheck(mumps_controls_.icntl.empty() && mumps_controls_.cntl.empty(), comm, PETSC_ERR_USER_INPUT,
@@ -630,6 +633,8 @@ PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<SparseRow> &r
   if (changed) pc_current_ = false;
   aug_diag_ = std::move(aug_diag);
   col_extra_ = std::move(col_extra);
+  std::vector<char> written(rows.size());
+  std::vector<double> written_d(rows.size());
   for (std::size_t p = 0; p < rows.size(); ++p) {
     const bool keep = active[p] || augmented_ || stab_ > 0;
     if (!keep) zeros.assign(rows[p].ncols, 0.0);
@@ -638,7 +643,10 @@ PetscErrorCode SaddlePointSystem::SetConstraints(const std::vector<SparseRow> &r
     if (augmented_ && active[p]) d /= RowScale(p);
     PetscCall(SetRow(rows[p], (PetscInt)p, keep ? rows[p].coef.data() : zeros.data(), d,
                      column ? (*columns)[p].data() : nullptr));
+    written[p] = keep, written_d[p] = d;
   }
+  // Friction on the kept factorisation: the multiplier block of the fixed rows that this system maps onto.
+  if (turned_) PetscCall(kept_rows_.Update(written, written_d, aug_));
   active_ = active;
   PetscCall(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
@@ -821,10 +829,12 @@ PetscErrorCode SaddlePointSystem::SolveKept(bool fresh, double rtol, PetscInt &k
   singular = FactorStopped();
   if (singular) PetscFunctionReturn(0);
   if (fresh || constant_k_) {
-    // The KSP's PC is the kept factorisation (PCKEPT, UseKeptPc): an exact solve with the current D.
+    // The KSP's PC is the kept factorisation (PCKEPT, UseKeptPc): an exact solve with the current D (friction's: the
+    // fixed rows' block X).
     PC pc;
     PetscCall(KSPGetPC(ksp_, &pc));
-    PetscCall(PCKeptSetDiagonal(pc, d));
+    if (turned_) PetscCall(UseFixedRowBlock());
+    else PetscCall(PCKeptSetDiagonal(pc, d));
     PetscCall(KSPSolve(ksp_, b_, x_));
     kept_viewed_ = true; // KSPSolve shows the KSP with -contact_ksp_view
   } else

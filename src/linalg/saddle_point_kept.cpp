@@ -19,14 +19,15 @@ PetscErrorCode SaddlePointSystem::Factor() {
   PetscCall(MultiplierDiagonal(d));
   ProgressBegin("analysis and factorisation (the Schur complement on the candidates)");
   FactorChoices how;
-  how.symmetric = !lu_;
+  how.symmetric = !lu_ || turned_; // friction's fixed matrix is symmetric
   how.ordering = kept_.ordering;
   how.controls = mumps_controls_;
   how.keep_values = !constant_k_;
   how.may_decline = !kept_.forced;
   how.solver = kept_.solver;
   how.confirm = confirm_direct_;
-  PetscCall(mumps_schur_.Factor(A_, {schur_rows_, d, dofs_->OwnedU(), dofs_->Dim(), kept_.coords}, how));
+  if (turned_) PetscCall(FactorFixedRows(how));
+  else PetscCall(mumps_schur_.Factor(A_, {schur_rows_, d, dofs_->OwnedU(), dofs_->Dim(), kept_.coords}, how));
   ProgressEnd();
   if (!mumps_schur_.Rejected().empty()) {
     // The automatic choice leaves the direct path: the caller solves again on the iterative one.
@@ -63,6 +64,81 @@ PetscErrorCode SaddlePointSystem::Factor() {
   null_pivots_ = mumps_schur_.NullPivots();
   factored_ = null_pivots_ == 0;
   PetscCall(UseKeptPc());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::FactorFixedRows(const FactorChoices &how) {
+  MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
+  const std::vector<SparseRow> &fixed = kept_rows_.Fixed();
+  const double w = aug_;
+  PetscFunctionBeginUser;
+  PetscCheck(!nest_.on && (PetscInt)fixed.size() == dofs_->OwnedLambda(), comm, PETSC_ERR_ORDER,
+             "friction's kept factorisation needs the fixed rows of every multiplier row (SetRowGroups)");
+  // [K + w B^T B, B^T; B, 1/w] on A's pattern (B: the fixed rows; A holds K and the current rows, whose columns are
+  // the fixed rows'): symmetric whatever the sets, and regular where the candidates hold the body, as the augmented
+  // matrix of frictionless contact.
+  MatH fixed_matrix;
+  PetscCall(MatDuplicate(A_, MAT_COPY_VALUES, fixed_matrix.out()));
+  for (std::size_t p = 0; p < fixed.size(); ++p) {
+    const SparseRow &row = fixed[p];
+    const PetscInt r = dofs_->LambdaRow((PetscInt)p);
+    PetscCall(MatSetValues(fixed_matrix, 1, &r, row.ncols, row.cols.data(), row.coef.data(), INSERT_VALUES));
+    PetscCall(MatSetValues(fixed_matrix, row.ncols, row.cols.data(), 1, &r, row.coef.data(), INSERT_VALUES));
+    PetscCall(MatSetValue(fixed_matrix, r, r, 1.0 / w, INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(fixed_matrix, MAT_FLUSH_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(fixed_matrix, MAT_FLUSH_ASSEMBLY));
+  for (const SparseRow &row : fixed) {
+    std::vector<PetscScalar> v(row.ncols * row.ncols);
+    for (PetscInt i = 0; i < row.ncols; ++i)
+      for (PetscInt j = 0; j < row.ncols; ++j) v[i * row.ncols + j] = w * row.coef[i] * row.coef[j];
+    PetscCall(MatSetValues(fixed_matrix, row.ncols, row.cols.data(), row.ncols, row.cols.data(), v.data(),
+                           ADD_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(fixed_matrix, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(fixed_matrix, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatSetOption(fixed_matrix, MAT_SYMMETRIC, PETSC_TRUE));
+  std::vector<PetscScalar> d0;
+  PetscCall(ToRoot(std::vector<double>(fixed.size(), 1.0 / w), d0));
+  PetscCall(mumps_schur_.Factor(fixed_matrix, {schur_rows_, d0, dofs_->OwnedU(), dofs_->Dim(), kept_.coords}, how));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::UseFixedRowBlock() {
+  PC pc;
+  PetscFunctionBeginUser;
+  // X's diagonal to rank 0 in the Schur order, and its entries off the diagonal by the global rows of both ends
+  // (each sent from its row's owner, at most MAX_ROW_COUPLINGS per row: a pair's other rows).
+  std::vector<PetscScalar> d;
+  PetscCall(ToRoot(kept_rows_.Diagonal(), d));
+  const PetscInt nl = dofs_->OwnedLambda();
+  std::vector<std::vector<double>> col(MAX_ROW_COUPLINGS, std::vector<double>(nl, -1.0)),
+      val(MAX_ROW_COUPLINGS, std::vector<double>(nl, 0.0));
+  std::vector<int> used(nl, 0);
+  for (const auto &[i, j, v] : kept_rows_.Couplings()) {
+    PetscCheck(used[i] < MAX_ROW_COUPLINGS, PETSC_COMM_SELF, PETSC_ERR_PLIB, "more than %d couplings of row %d",
+               MAX_ROW_COUPLINGS, (int)i);
+    col[used[i]][i] = (double)dofs_->LambdaRow(j), val[used[i]][i] = v;
+    used[i]++;
+  }
+  std::vector<MumpsSchur::Coupling> off;
+  for (int k = 0; k < MAX_ROW_COUPLINGS; ++k) {
+    std::vector<PetscScalar> col_root, val_root;
+    PetscCall(ToRoot(col[k], col_root));
+    PetscCall(ToRoot(val[k], val_root));
+    for (std::size_t i = 0; i < col_root.size(); ++i) {
+      if (col_root[i] < 0) continue;
+      const PetscInt g = (PetscInt)col_root[i];
+      const auto it = std::lower_bound(schur_rows_.begin(), schur_rows_.end(), g);
+      PetscCheck(it != schur_rows_.end() && *it == g, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+                 "a coupling to row %" PetscInt_FMT ", not a multiplier row", g);
+      off.push_back({(PetscInt)i, (PetscInt)(it - schur_rows_.begin()), val_root[i]});
+    }
+  }
+  mumps_schur_.SetCoupling(std::move(off));
+  PetscCall(KSPGetPC(ksp_, &pc));
+  PetscCall(PCKeptSetDiagonal(pc, d));
+  PetscCall(PCKeptSetRows(pc, &kept_rows_, dofs_->OwnedU()));
   PetscFunctionReturn(0);
 }
 

@@ -231,7 +231,9 @@ PetscErrorCode ContactSolver::ChooseSolver() {
   PetscCall(SolverOptionsGiven(given, factor_pc));
   SolverProblem problem;
   problem.u_dofs = dofs_.GlobalU(), problem.multipliers = dofs_.GlobalLambda(), problem.dim = dim;
-  problem.refactored = friction_.On();
+  // Friction's LU is refactored at every solve where K changes (svk); with the linear material the kept factorisation
+  // maps its rows onto fixed ones (KeptRows) and costs what frictionless contact does.
+  problem.refactored = friction_.On() && model_->Nonlinear();
   // The graph of the mesh nodes, numbered by displacement block row: two nodes of a cell are neighbours.
   problem.node_graph = [&](PetscInt &num_nodes, std::vector<idx_t> &edges) -> PetscErrorCode {
     PetscFunctionBeginUser;

@@ -92,8 +92,17 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   std::vector<char> flags, heavy;
   std::vector<std::vector<double>> columns;
   std::vector<double> diag;
-  if (friction_.On())
-    friction_.SystemRows(rows_, st.next, rows, flags, columns, diag, &heavy, system_->AugmentationWeight(false));
+  if (friction_.On()) {
+    friction_.SystemRows(rows_, st.next, rows, flags, columns, diag, &heavy, system_->AugmentationWeight(false),
+                         system_->FixedRowWeight());
+    // On the kept factorisation: the fixed rows and this system's rows and columns in them.
+    if (system_->TurnsRows()) {
+      std::vector<ConstraintRow> fixed;
+      std::vector<RowGroup> groups;
+      friction_.KeptGroups(rows_, fixed, groups);
+      system_->SetRowGroups(std::move(fixed), std::move(groups));
+    }
+  }
   if ((model_->Nonlinear() && !st.newton.lagged) || !k_assembled_) {
     ProgressBegin("stiffness assembly");
     PetscCall(MatZeroEntries(system_->Stiffness()));

@@ -7,7 +7,7 @@ import os
 
 import numpy as np
 
-from harness import displacement, expect_balance, expect_same_state, test
+from harness import displacement, expect_balance, expect_same_state, log_event_count, test
 
 SLIDING = ["-options_file", "options/sliding_block.yml"]
 # The cube of options/cube_on_plane.yml dragged by its top (nu = 0: every slice y = const is the same plane problem,
@@ -406,6 +406,45 @@ def friction_iterative(runner):
                        "(contact_fieldsplit_lambda_fieldsplit_lambda_t_)" in split.output)
     direct = runner.run(PARTIAL_3D, "partial slip 3D, direct")
     expect_same_state(runner, direct, split, keys=("contact.active_nodes", "friction.stick_nodes"), tol=1e-8)
+
+
+@test("friction_kept")
+def friction_kept(runner):
+    """With the linear material friction keeps its factorisation across the sets, as frictionless contact does: the
+    turned rows and slip columns are mapped per pair onto fixed rows (KeptRows, docs/solver.md), and one factorisation
+    serves the whole run (-info: one numerical factorisation), giving the same sets and states, within 1e-10, as MUMPS
+    LU of the plain form refactored at every solve (-contact_reuse_factorization 0), for partial slip on a plane in 3D
+    (slip directions that turn, the springs across them), full slip between bodies in 3D (tetrahedra on hexahedra),
+    the sliding block in 2D and Cattaneo-Mindlin's partial slip between two cylinders pressed, then sheared (the run's
+    ranks). -contact_ksp_view names the mapping. The 3D blocks are compared to 1e-8: there MUMPS LU of the plain form
+    leaves an equilibrium residual of 3.4e-10 (the kept path 4.8e-13; the certificate's tolerance 1.5e-9)."""
+    cases = (("partial slip 3D", PARTIAL_3D, 1e-10),
+             ("3D blocks sliding (tet_on_hex)",
+              ["-options_file", "options/patch3d.yml", "-mesh_file", "meshes/patch3d_tet_on_hex.msh", "-material_nu",
+               "0", "-bc_dirichlet", "bottom:x:y:z,top:x=0.2:y=0.1", "-contact_pairs", "upper_bottom:lower_top:0.3"],
+              1e-8),
+             ("sliding block 2D", SLIDING + ["-bc_dirichlet", "top:x=5e-4"], 1e-10),
+             ("Cattaneo-Mindlin 2D", CATTANEO + ["-mesh_size_factor", "2", "-bc_dirichlet", CATTANEO_PATH,
+                                                 "-load_steps", "6"], 1e-10))
+    for what, args, tol in cases:
+        kept = runner.run(args + ["-log_view", "-contact_ksp_view"], what + ", kept factorisation")
+        lu = runner.run(args + ["-contact_reuse_factorization", "0"], what + ", LU refactored")
+        expect_friction_certificate(runner, kept)
+        factored = log_event_count(kept.output, "SigMumpsFactor") + log_event_count(kept.output, "SigCholFactor")
+        runner.expect_equal("%s: numerical factorisations of the kept path" % what, factored, 1)
+        runner.expect_true("%s: -contact_ksp_view names the mapping of friction's rows" % what,
+                           "friction's rows mapped per pair onto fixed rows" in kept.output)
+        runner.expect_true("%s: more solves than factorisations (%d)" % (what, kept.get("iterations.solves")),
+                           kept.get("iterations.solves") > 1)
+        expect_same_state(runner, lu, kept, keys=("iterations.active_set", "contact.active_nodes",
+                                                  "friction.stick_nodes", "friction.slip_nodes"), tol=tol)
+        f, g = lu.nodes(), kept.nodes()
+        runner.expect_true("%s: the same friction states" % what,
+                           np.array_equal(np.nan_to_num(f["friction_state"]), np.nan_to_num(g["friction_state"])))
+        axes = [a for a in "xyz" if "friction_" + a in f.dtype.names]
+        scale = max(np.abs(f["friction_" + a]).max() for a in axes)
+        for a in axes:
+            runner.expect_close("%s: friction_%s" % (what, a), g["friction_" + a], f["friction_" + a], 0, tol * scale)
 
 
 @test("obstacle_kind_friction")

@@ -22,6 +22,7 @@
 #include "signorini/contact/contact_set.hpp"
 #include "signorini/contact/mortar.hpp"
 #include "signorini/fem/dof_map.hpp"
+#include "signorini/linalg/kept_rows.hpp"
 #include "signorini/linalg/sparse_row.hpp"
 
 #include <array>
@@ -97,10 +98,19 @@ public:
   /// normal rows; empty otherwise) and D on the active rows (0, or the 3D slip rows' spring). heavy (if given): the
   /// augmentation weight class of each row (SaddlePointSystem::SetConstraints): a normal row's is its active flag, a
   /// pair's tangential rows share one (full while it sticks, or when its spring is near light_weight, the system's
-  /// light weight r_I).
+  /// light weight r_I). kept_weight (if > 0, the kept factorisation's fixed weight w): a 3D slip row's spring with
+  /// |1 + w D| < KEPT_SPRING_MARGIN moves to that margin (KeptRows' map would be singular at 1 + w D = 0).
+  /// See SystemRows' kept_weight: KeptRows' map of such a group has a condition number of about 1/KEPT_SPRING_MARGIN.
+  static constexpr double KEPT_SPRING_MARGIN = 1e-3;
   void SystemRows(const std::vector<SparseRow> &normal_rows, const std::vector<char> &active,
                   std::vector<SparseRow> &rows, std::vector<char> &flags, std::vector<std::vector<double>> &columns,
-                  std::vector<double> &diag, std::vector<char> *heavy = nullptr, double light_weight = 0) const;
+                  std::vector<double> &diag, std::vector<char> *heavy = nullptr, double light_weight = 0,
+                  double kept_weight = 0) const;
+  /// The rows of SystemRows on the kept factorisation (SaddlePointSystem::SetRowGroups, KeptRows): the fixed rows
+  /// (the normal ones, then each pair's along its fixed tangents t_k; zero where the supports fix a tangent) and per
+  /// pair its rows and columns in them (the current sets).
+  void KeptGroups(const std::vector<SparseRow> &normal_rows, std::vector<SparseRow> &fixed,
+                  std::vector<RowGroup> &groups) const;
   /// The directions (3 values each) of the tangential rows active in SystemRows for pair p: what they hold.
   void HeldDirections(std::size_t p, std::vector<std::array<double, 3>> &dirs) const;
   /// The right-hand side of the tangential rows at u_local: -s on stick rows, the spring's on 3D slip rows, 0

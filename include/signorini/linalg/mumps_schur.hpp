@@ -154,6 +154,16 @@ public:
   /// Solves with the factored matrix whose multiplier diagonal is replaced by d (rank 0, Schur order): Condense,
   /// the reduced system, Expand. Collective.
   [[nodiscard]] PetscErrorCode Solve(const std::vector<PetscScalar> &d, Vec b, Vec x);
+  /// An entry of the multiplier block off its diagonal (rank 0, Schur order: row i, column j).
+  struct Coupling {
+    PetscInt i, j;
+    double v;
+    bool operator==(const Coupling &o) const { return i == o.i && j == o.j && v == o.v; }
+  };
+  /// The multiplier block's entries off the diagonal for the next solves (rank 0; empty elsewhere): S = S0 + (D - D0)
+  /// + these, factored by LU (LAPACK getrf) when there are any. Friction's rows in the kept factorisation
+  /// (KeptRows). Not collective.
+  void SetCoupling(std::vector<Coupling> off) { off_ = std::move(off); }
   /// The forward elimination of the right-hand side b (MUMPS keeps it for Expand) and its part A21 A11^-1 b_u that
   /// SolveReduced takes off. Collective.
   [[nodiscard]] PetscErrorCode Condense(Vec b);
@@ -250,6 +260,8 @@ private:
   bool condensed_ = false;          ///< MUMPS holds a forward elimination (Condense) that Expand has not used yet
   std::vector<PetscBLASInt> ipiv_;
   bool s_factored_ = false, symmetric_ = true;
+  std::vector<Coupling> off_, off_factored_; ///< SetCoupling's entries, and those of the factored S (rank 0)
+  bool dense_lu_ = false;                    ///< S is factored by LU (not symmetric, or entries off the diagonal)
   VecScatter to_root_ = nullptr;
   VecH root_; ///< the whole right-hand side / solution on rank 0
 };

@@ -3,6 +3,7 @@
 // other PC and -contact_ksp_view shows which factorisation ran, its ordering and its sizes.
 #pragma once
 
+#include "signorini/linalg/kept_rows.hpp"
 #include "signorini/linalg/mumps_schur.hpp"
 
 #include <petscksp.h>
@@ -25,5 +26,9 @@ namespace signorini {
 /// The multipliers' diagonal D (rank 0, in the Schur complement's order) of the operator the next applications solve
 /// with. Logically collective.
 [[nodiscard]] PetscErrorCode PCKeptSetDiagonal(PC pc, const std::vector<PetscScalar> &d);
+/// Friction's rows (KeptRows, not owned; null: none): the operator's multiplier rows (from row owned_u of each rank's
+/// part) are mapped to the factored fixed rows before the solve and its multipliers back after it. Logically
+/// collective.
+[[nodiscard]] PetscErrorCode PCKeptSetRows(PC pc, KeptRows *rows, PetscInt owned_u);
 
 } // namespace signorini

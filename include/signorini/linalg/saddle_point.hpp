@@ -37,6 +37,7 @@
 
 #include "signorini/core/handle.hpp"
 #include "signorini/fem/dof_map.hpp"
+#include "signorini/linalg/kept_rows.hpp"
 #include "signorini/linalg/lcp.hpp"
 #include "signorini/linalg/mumps_schur.hpp"
 #include "signorini/linalg/sparse_row.hpp"
@@ -96,11 +97,22 @@ public:
   void ConfirmDirectWith(ConfirmFactor confirm) { confirm_direct_ = std::move(confirm); }
   /// Why the direct path stopped (ConfirmDirectWith); empty while it has not.
   const std::string &DirectRejected() const { return direct_rejected_; }
-  /// The matrix will be nonsymmetric (friction's slip rows; before Create): the default solver is MUMPS LU, a solver
-  /// that needs symmetry (a Cholesky factorisation, a fieldsplit preset) is refused naming what would do, and the
-  /// factorisation is not kept across active sets (the plain form, refactored at every change). why: the cause, for
-  /// the messages.
+  /// The matrix will be nonsymmetric (friction's slip rows; before Create): the default solver is MUMPS LU, and a
+  /// solver that needs symmetry (a Cholesky factorisation, a fieldsplit preset) is refused naming what would do. With
+  /// a constant K the factorisation is kept across the sets all the same, of the fixed rows that SetRowGroups gives
+  /// (KeptRows: friction's turned rows and slip columns mapped onto them); with a changing K it is the plain form,
+  /// refactored at every change. why: the cause, for the messages.
   void UseNonsymmetric(const std::string &why) { nonsymmetric_ = why; }
+  /// Friction on the kept factorisation (TurnsRows()): every owned multiplier row's fixed row and the groups that map
+  /// the current rows onto them (KeptRows), given before each SetConstraints.
+  void SetRowGroups(std::vector<SparseRow> fixed, std::vector<RowGroup> groups) {
+    kept_rows_.Set(std::move(fixed), std::move(groups));
+  }
+  /// The kept factorisation is of fixed rows that the current ones are mapped onto (friction with a constant K).
+  bool TurnsRows() const { return turned_; }
+  /// The augmentation weight of the fixed rows' factorisation (TurnsRows(); else 0): a row's spring 1/|D| near it
+  /// would make the map singular (Friction::SystemRows' kept_weight keeps springs away from it).
+  double FixedRowWeight() const { return turned_ ? aug_ : 0.0; }
   /// The owned multiplier rows from first on are tangential (friction; before Create): a Schur fieldsplit whose
   /// multiplier block is preconditioned by a fieldsplit (-contact_fieldsplit_lambda_pc_type fieldsplit) gets that
   /// block's splits "lambda_n" (normal rows) and "lambda_t" (tangential rows), addressed by
@@ -127,7 +139,7 @@ public:
   /// complement is never declined (Factor).
   void KeepFactorization() { kept_.forced = kept_.forced || reuse_; }
   /// Whether the kept factorisation is exact for every solve (constant K: the condensed solves below are possible).
-  bool ExactFactorization() const { return reuse_ && constant_k_; }
+  bool ExactFactorization() const { return reuse_ && constant_k_ && !turned_; }
   /// Whether the system is in the augmented form (the reuse mode, and every solver that is not a factorisation).
   bool Augmented() const { return augmented_; }
   /// Adds r B_C^T B_C over every candidate row to the displacement block (ADD_VALUES, flush assembly); an iterative
@@ -387,6 +399,15 @@ private:
   /// The last factorisation gave nothing to solve with: null pivots, or the direct path stopped (DirectRejected).
   bool FactorStopped() const { return null_pivots_ > 0 || !direct_rejected_.empty(); }
   std::string nonsymmetric_; ///< UseNonsymmetric's cause (empty: symmetric)
+  bool turned_ = false;      ///< the kept factorisation is of fixed rows (TurnsRows)
+  KeptRows kept_rows_;       ///< SetRowGroups' rows and groups, and their maps (SetConstraints)
+  /// TurnsRows(): the fixed matrix [K + w B^T B, B^T; B, 1/w] factored with its Schur complement (Factor).
+  [[nodiscard]] PetscErrorCode FactorFixedRows(const FactorChoices &how);
+  /// A row of X couples with at most this many others (a 3D pair's other two rows).
+  static constexpr int MAX_ROW_COUPLINGS = 2;
+  /// TurnsRows(): the multiplier block X of the current sets to the kept PC (its diagonal, and the entries off it to
+  /// MumpsSchur on rank 0). Collective.
+  [[nodiscard]] PetscErrorCode UseFixedRowBlock();
   double aug_inactive_ = 1; ///< augmentation weight r_I of an inactive row (r, or INACTIVE_WEIGHT r: iterative)
   std::vector<double> weight_; ///< owned multiplier rows: the augmentation weight A holds now (AddAugmentation)
   double stab_ = 0; ///< stabilisation spring s of the current system (0: none)
