@@ -37,6 +37,10 @@ constexpr double ITERATIVE_SECONDS_PER_DOF_PER_SOLVE = 2.5e-5;
 constexpr double LU_ENTRIES = 2, LU_TIME = 4;
 // Active-set changes a kept dense Schur complement is factored for (its m^3/3 flops each).
 constexpr double DENSE_FACTORISATIONS = 4;
+// Friction on the kept factorisation: the solves its one factorisation serves (Cattaneo-Mindlin: 34-71 in 2D, 47-60
+// in 3D), and the rate of a dense LU of the Schur complement with its solves (3D Cattaneo-Mindlin at 38k dofs, 3342
+// multipliers: 0.59 s per solve for 2 m^3/3 = 2.5e10 flops).
+constexpr double FRICTION_SOLVES = 50, DENSE_LU_RATE = 4e10;
 // The measured model of the factor (nested dissection: n^(4/3) entries and n^2 flops in 3D, n log n and n^1.5 in
 // 2D); it decides alone when its memory is this factor or more above the budget, its time this factor or more above
 // the iterative path's, or its memory this factor below the budget with the times this factor apart; else the node
@@ -71,6 +75,18 @@ void DirectCost(const SolverProblem &p, const FactorEstimate &e, PetscMPIInt siz
   bytes = base * (double)p.u_dofs / size + factor + (dense ? 8 * m * m : 0);
   seconds = (e.flops * (p.refactored ? LU_TIME : 1.0) + (dense ? DENSE_FACTORISATIONS * m * m * m / 3 : 0)) /
             (FLOP_RATE * (cholesky ? 1 : size));
+  // Friction on the kept factorisation, per solve: its share of the one factorisation and a dense LU (declined: LU
+  // refactored at every solve).
+  if (p.friction_kept)
+    seconds = dense ? e.flops / (FLOP_RATE * (cholesky ? 1 : size)) / FRICTION_SOLVES + 2 * m * m * m / 3 / DENSE_LU_RATE
+                    : e.flops * LU_TIME / (FLOP_RATE * size);
+}
+
+/// What the compared times are for friction (per solve), else nothing.
+const char *PerSolve(const SolverProblem &p) {
+  if (p.refactored) return " per solve (friction refactors at every solve)";
+  if (p.friction_kept) return " per solve (friction: a dense LU of the multipliers' Schur complement at every solve)";
+  return "";
 }
 
 std::string Bytes(double b) {
@@ -189,8 +205,8 @@ PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bo
   if (opts.budget_set) choice.budget_bytes = opts.budget;
   else PetscCall(MemoryBudget(comm, choice.budget_bytes));
   choice.iterative_seconds =
-      (problem.refactored ? ITERATIVE_SECONDS_PER_DOF_PER_SOLVE : ITERATIVE_SECONDS_PER_DOF) * (double)problem.u_dofs /
-      size;
+      (problem.refactored || problem.friction_kept ? ITERATIVE_SECONDS_PER_DOF_PER_SOLVE : ITERATIVE_SECONDS_PER_DOF) *
+      (double)problem.u_dofs / size;
   // The model first; where it is near a limit, the node graph's symbolic factorisation.
   choice.factor = ModelEstimate(problem);
   DirectCost(problem, choice.factor, size, choice.direct_bytes, choice.direct_seconds);
@@ -234,7 +250,7 @@ PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bo
     std::snprintf(text, sizeof(text),
                   "a factorisation (about %s per rank) fits, but would take about %.3g s%s against %.3g s iterative%s",
                   Bytes(choice.direct_bytes).c_str(), choice.direct_seconds, estimate.c_str(),
-                  choice.iterative_seconds, problem.refactored ? " per solve (friction refactors at every solve)" : "");
+                  choice.iterative_seconds, PerSolve(problem));
   } else {
     choice.path = SolverPath::DIRECT;
     // The budget stays out of this sentence (summary.json has it): the machine's free memory varies from run to run.
@@ -260,8 +276,8 @@ bool ConfirmDirect(PetscMPIInt size, const SolverProblem &problem, const Analyse
   } else if (choice.direct_seconds > choice.iterative_seconds) {
     choice.path = SolverPath::ITERATIVE;
     std::snprintf(text, sizeof(text), "a factorisation (about %s per rank by the analysis of the matrix) fits, but "
-                  "would take about %.3g s against %.3g s iterative", bytes.c_str(), choice.direct_seconds,
-                  choice.iterative_seconds);
+                  "would take about %.3g s against %.3g s iterative%s", bytes.c_str(), choice.direct_seconds,
+                  choice.iterative_seconds, PerSolve(problem));
   } else {
     std::snprintf(text, sizeof(text), "the factorisation fits (about %s per rank by the analysis of the matrix) and is "
                   "the faster path", bytes.c_str());

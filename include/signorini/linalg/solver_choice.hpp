@@ -46,6 +46,9 @@ struct SolverProblem {
   /// The direct path factors at every solve (friction: MUMPS LU of a nonsymmetric matrix, no kept factorisation), and
   /// the iterative path solves every active-set iteration to its tolerance: the two are compared per solve.
   bool refactored = false;
+  /// Friction on the kept factorisation (the linear material): one factorisation for the run, a dense LU of the
+  /// multipliers' Schur complement at every solve; compared per solve too.
+  bool friction_kept = false;
   std::function<PetscErrorCode(PetscInt &num_nodes, std::vector<idx_t> &edges)> node_graph;
 };
 
