@@ -23,7 +23,10 @@ PetscErrorCode SaddlePointSystem::Factor() {
   how.ordering = kept_.ordering;
   how.controls = mumps_controls_;
   how.keep_values = !constant_k_;
-  how.may_decline = !kept_.forced;
+  // Friction's kept factorisation is never declined: its alternative, MUMPS LU of the plain form refactored at every
+  // change, stopped with INFOG(1) = -9 (workspace) at the second factorisation of a one-layer strip with 804
+  // multipliers (meshes/strip.geo, -contact_friction 0.3: delayed pivots), where the dense LU costs 5 ms per change.
+  how.may_decline = !kept_.forced && !turned_;
   how.solver = kept_.solver;
   how.confirm = confirm_direct_;
   if (turned_) PetscCall(FactorFixedRows(how));
@@ -38,7 +41,7 @@ PetscErrorCode SaddlePointSystem::Factor() {
     // The dense Schur complement would cost more than it saves (many candidates on a body that factors cheaply, such
     // as a thin plate): the KSP's MUMPS factorises the matrix, which stays in the augmented form, at every change.
     // PETSc's interface takes no given pivot order, so an ordering the user asked for is said not to apply.
-    reuse_ = false;
+    reuse_ = turned_ = false;
     PetscCheck(mumps_controls_.Icntl(7, 7) != 1, PetscObjectComm((PetscObject)A_.get()), PETSC_ERR_USER_INPUT,
                "-contact_mat_mumps_icntl_7 1 (the given nested dissection) does not apply: the kept factorisation "
                "declined its dense Schur complement on the %" PetscInt_FMT " candidates, and PETSc's MUMPS, which "
