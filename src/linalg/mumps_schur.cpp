@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <map>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -116,7 +117,10 @@ void MumpsSchur::Release() {
   for (auto *v : {&val_, &schur_raw_, &s0_, &d0_, &s_, &d_factored_, &redrhs_, &work_, &condensed_u_, &reduced_})
     std::vector<double>().swap(*v);
   std::vector<PetscBLASInt>().swap(ipiv_);
-  off_.clear(), off_factored_.clear();
+  off_.clear(), off_factored_.clear(), off_current_.clear(), d_current_.clear();
+  update_rows_.clear(), update_entries_.clear(), update_c_.clear(), update_ipiv_.clear();
+  w_index_.clear(), std::vector<double>().swap(w_cache_);
+  coupled_ = false;
   (void)VecScatterDestroy(&to_root_);
   root_.Reset();
 }
@@ -664,8 +668,17 @@ PetscErrorCode MumpsSchur::FactorSchurOnRoot(const std::vector<PetscScalar> &d) 
   const PetscInt m = (PetscInt)d0_.size();
   PetscBLASInt n, lwork = -1, info;
   PetscFunctionBeginUser;
-  if (m == 0 || (s_factored_ && d == d_factored_ && off_ == off_factored_)) PetscFunctionReturn(0);
+  if (m == 0 || (s_factored_ && d == d_current_ && off_ == off_current_)) PetscFunctionReturn(0);
+  if (coupled_ && s_factored_) {
+    bool updated;
+    PetscCall(UpdateSchur(d, updated));
+    if (updated) {
+      d_current_ = d, off_current_ = off_;
+      PetscFunctionReturn(0);
+    }
+  }
   s_factored_ = false; // s_ is overwritten: until its factorisation succeeds, no factors exist (FactorSchur)
+  update_rows_.clear(), w_index_.clear(), w_cache_.clear();
   s_ = s0_;
   for (PetscInt i = 0; i < m; ++i) s_[i + i * m] += d[i] - d0_[i];
   for (const Coupling &c : off_) s_[c.i + c.j * m] += c.v;
@@ -685,22 +698,132 @@ PetscErrorCode MumpsSchur::FactorSchurOnRoot(const std::vector<PetscScalar> &d) 
              "the saddle-point system is singular (zero pivot %d in the Schur complement on the multipliers): the "
              "body is not held, or two active constraints coincide; add Dirichlet conditions or check that the "
              "obstacle touches it", (int)info);
-  d_factored_ = d;
-  off_factored_ = off_;
+  s_factored_ = true;
+  d_factored_ = d_current_ = d;
+  off_factored_ = off_current_ = off_;
+  dense_factorisations_++;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::UpdateSchur(const std::vector<PetscScalar> &d, bool &updated) {
+  const PetscInt m = (PetscInt)d0_.size();
+  PetscFunctionBeginUser;
+  updated = false;
+  // The change from the factored S: D - D_f on the diagonal, the entries off it now less those factored.
+  std::map<std::pair<PetscInt, PetscInt>, double> delta;
+  for (PetscInt i = 0; i < m; ++i)
+    if (d[i] != d_factored_[i]) delta[{i, i}] += d[i] - d_factored_[i];
+  for (const Coupling &c : off_) delta[{c.i, c.j}] += c.v;
+  for (const Coupling &c : off_factored_) delta[{c.i, c.j}] -= c.v;
+  std::vector<PetscInt> rows;
+  std::vector<std::vector<std::pair<PetscInt, double>>> entries;
+  for (const auto &[ij, v] : delta) {
+    if (v == 0) continue;
+    if (rows.empty() || rows.back() != ij.first) rows.push_back(ij.first), entries.emplace_back();
+    entries.back().emplace_back(ij.second, v);
+  }
+  // W = S_f^-1 E_R column by column: a row's column stays while S_f does (cached), so that only the rows new to the
+  // update cost solves with the factors (2 m^2 flops each); taken while the new solves and the LU of the k x k
+  // capacitance matrix cost at most half a new LU of S, and the cache holds at most half of S's columns.
+  std::vector<PetscInt> fresh;
+  for (PetscInt r : rows)
+    if (!w_index_.count(r)) fresh.push_back(r);
+  const double k = (double)rows.size(), mm = (double)m, kf = (double)fresh.size();
+  if (2 * mm * mm * kf + 2 * k * k * k / 3 > 0.5 * 2 * mm * mm * mm / 3 ||
+      (double)(w_index_.size() + fresh.size()) > 0.5 * mm)
+    PetscFunctionReturn(0);
+  if (!fresh.empty()) {
+    const PetscInt kf_int = (PetscInt)fresh.size();
+    std::vector<double> w((std::size_t)m * kf_int, 0.0);
+    for (PetscInt a = 0; a < kf_int; ++a) w[fresh[a] + a * m] = 1.0;
+    PetscCall(ReferenceSolve(w.data(), kf_int));
+    for (PetscInt a = 0; a < kf_int; ++a) w_index_[fresh[a]] = (PetscInt)(w_cache_.size() / m) + a;
+    w_cache_.insert(w_cache_.end(), w.begin(), w.end());
+  }
+  const PetscInt kk = (PetscInt)rows.size();
+  std::vector<const double *> col(kk);
+  for (PetscInt b = 0; b < kk; ++b) col[b] = &w_cache_[(std::size_t)w_index_[rows[b]] * m];
+  std::vector<double> c((std::size_t)kk * kk, 0.0);
+  for (PetscInt a = 0; a < kk; ++a)
+    for (PetscInt b = 0; b < kk; ++b) {
+      double v = a == b ? 1.0 : 0.0;
+      for (const auto &[j, x] : entries[a]) v += x * col[b][j];
+      c[a + b * kk] = v;
+    }
+  std::vector<PetscBLASInt> ipiv(kk);
+  PetscBLASInt n, info = 0;
+  PetscCall(PetscBLASIntCast(kk, &n));
+  if (kk > 0) LAPACKgetrf_(&n, &n, c.data(), &n, ipiv.data(), &info);
+  if (info != 0) PetscFunctionReturn(0); // a singular capacitance matrix: a new LU decides
+  update_rows_ = std::move(rows), update_entries_ = std::move(entries);
+  update_c_ = std::move(c), update_ipiv_ = std::move(ipiv);
+  updated = true;
+  dense_updates_++;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::ReferenceSolve(double *y, PetscInt nrhs) const {
+  const PetscInt m = (PetscInt)d0_.size();
+  PetscBLASInt n, k, info;
+  PetscFunctionBeginUser;
+  if (m == 0 || nrhs == 0) PetscFunctionReturn(0);
+  PetscCall(PetscBLASIntCast(m, &n));
+  PetscCall(PetscBLASIntCast(nrhs, &k));
+  std::vector<PetscBLASInt> ipiv(ipiv_);
+  if (!dense_lu_) LAPACKsytrs_("L", &n, &k, s_.data(), &n, ipiv.data(), y, &n, &info);
+  else LAPACKgetrs_("N", &n, &k, s_.data(), &n, ipiv.data(), y, &n, &info);
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK solve with the Schur complement failed: info %d",
+             (int)info);
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode MumpsSchur::DenseSolve(std::vector<PetscScalar> &y) const {
   const PetscInt m = (PetscInt)d0_.size();
-  PetscBLASInt n, one = 1, info;
   PetscFunctionBeginUser;
   if (m == 0) PetscFunctionReturn(0);
-  PetscCall(PetscBLASIntCast(m, &n));
-  std::vector<PetscBLASInt> ipiv(ipiv_);
-  if (!dense_lu_) LAPACKsytrs_("L", &n, &one, s_.data(), &n, ipiv.data(), y.data(), &n, &info);
-  else LAPACKgetrs_("N", &n, &one, s_.data(), &n, ipiv.data(), y.data(), &n, &info);
-  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK solve with the Schur complement failed: info %d",
+  PetscCall(ReferenceSolve(y.data(), 1));
+  if (update_rows_.empty()) PetscFunctionReturn(0);
+  // Woodbury: S = S_f + E_R Delta_R, so S^-1 y = z - W C^-1 Delta_R z with z = S_f^-1 y, W = S_f^-1 E_R and
+  // C = I + Delta_R W.
+  const PetscInt kk = (PetscInt)update_rows_.size();
+  std::vector<double> t(kk, 0.0);
+  for (PetscInt a = 0; a < kk; ++a)
+    for (const auto &[j, x] : update_entries_[a]) t[a] += x * y[j];
+  PetscBLASInt n, one = 1, info;
+  PetscCall(PetscBLASIntCast(kk, &n));
+  std::vector<PetscBLASInt> ipiv(update_ipiv_);
+  LAPACKgetrs_("N", &n, &one, update_c_.data(), &n, ipiv.data(), t.data(), &n, &info);
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK solve with the capacitance matrix failed: info %d",
              (int)info);
+  for (PetscInt b = 0; b < kk; ++b) {
+    const double *w = &w_cache_[(std::size_t)w_index_.at(update_rows_[b]) * m];
+    for (PetscInt j = 0; j < m; ++j) y[j] -= w[j] * t[b];
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MumpsSchur::CheckedDenseSolve(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y) {
+  const PetscInt m = (PetscInt)d0_.size();
+  PetscFunctionBeginUser;
+  const std::vector<PetscScalar> rhs = y;
+  PetscCall(DenseSolve(y));
+  if (update_rows_.empty()) PetscFunctionReturn(0);
+  // An updated solve is checked against S = S0 + (D - D0) + the entries off the diagonal; a residual above
+  // UPDATE_RESIDUAL of the right-hand side refactors S and solves again.
+  std::vector<double> r(rhs.begin(), rhs.end());
+  for (PetscInt j = 0; j < m; ++j)
+    for (PetscInt i = 0; i < m; ++i) r[i] -= s0_[i + j * m] * y[j];
+  for (PetscInt i = 0; i < m; ++i) r[i] -= (d[i] - d0_[i]) * y[i];
+  for (const Coupling &c : off_) r[c.i] -= c.v * y[c.j];
+  double r2 = 0, b2 = 0;
+  for (PetscInt i = 0; i < m; ++i) r2 += r[i] * r[i], b2 += rhs[i] * rhs[i];
+  if (std::isfinite(r2) && std::sqrt(r2) <= UPDATE_RESIDUAL * std::sqrt(b2)) PetscFunctionReturn(0);
+  PetscCall(PetscInfo(nullptr, "dense update of the Schur complement: residual %.3g of the right-hand side; "
+                      "refactored\n", std::sqrt(r2 / std::max(b2, 1e-300))));
+  s_factored_ = false;
+  PetscCall(FactorSchurOnRoot(d_current_));
+  y = rhs;
+  PetscCall(DenseSolve(y));
   PetscFunctionReturn(0);
 }
 
@@ -817,7 +940,7 @@ PetscErrorCode MumpsSchur::Solve(const std::vector<PetscScalar> &d, Vec b, Vec x
   PetscCall(Condense(b));
   // The reduced system with the reduced right-hand side of the condensation as it is, then the expansion.
   reduced_ = redrhs_;
-  PetscCall(RunOnRoot(comm_, [&] { return DenseSolve(reduced_); }));
+  PetscCall(RunOnRoot(comm_, [&] { return CheckedDenseSolve(d, reduced_); }));
   PetscCall(Expand(x));
   PetscFunctionReturn(0);
 }
@@ -846,6 +969,9 @@ PetscErrorCode MumpsSchur::View(PetscViewer viewer) const {
   else PetscCall(PetscViewerASCIIPrintf(viewer, "ordering: MUMPS's own (ICNTL(7) = %d)\n", (int)id_.ICNTL(7)));
   PetscCall(PetscViewerASCIIPrintf(viewer, "factor entries: %.6g, elimination flops: %.6g, null pivots: %d\n", entries,
                                    flops, (int)null_pivots_));
+  if (coupled_)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "Schur complement: %d dense LU(s), %d low-rank update(s) so far\n",
+                                     (int)dense_factorisations_, (int)dense_updates_));
   PetscFunctionReturn(0);
 }
 

@@ -4,6 +4,7 @@ byte, a small mu converges to it, a block dragged over a floor in full slip carr
 
 import filecmp
 import os
+import re
 
 import numpy as np
 
@@ -434,6 +435,14 @@ def friction_kept(runner):
         runner.expect_equal("%s: numerical factorisations of the kept path" % what, factored, 1)
         runner.expect_true("%s: -contact_ksp_view names the mapping of friction's rows" % what,
                            "friction's rows mapped per pair onto fixed rows" in kept.output)
+        # Set changes after the first are low-rank updates of the dense Schur complement's factors (Woodbury).
+        counts = re.findall(r"Schur complement: (\d+) dense LU\(s\), (\d+) low-rank update\(s\)", kept.output)
+        lus, updates = (int(v) for v in counts[-1]) if counts else (0, 0)
+        solves = kept.get("iterations.solves")
+        runner.expect_true("%s: %d dense LU(s) and %d low-rank update(s) of the Schur complement for %d solves" % (
+            what, lus, updates, solves), lus >= 1 and lus + updates <= solves)
+        if what.startswith("Cattaneo"):  # 562 multipliers: the updates cost less than LUs
+            runner.expect_true("%s: low-rank updates (%d)" % (what, updates), updates > 0)
         runner.expect_true("%s: more solves than factorisations (%d)" % (what, kept.get("iterations.solves")),
                            kept.get("iterations.solves") > 1)
         expect_same_state(runner, lu, kept, keys=("iterations.active_set", "contact.active_nodes",

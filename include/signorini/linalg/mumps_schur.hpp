@@ -18,6 +18,7 @@
 #include <dmumps_c.h>
 
 #include <functional>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -163,7 +164,15 @@ public:
   /// The multiplier block's entries off the diagonal for the next solves (rank 0; empty elsewhere): S = S0 + (D - D0)
   /// + these, factored by LU (LAPACK getrf) when there are any. Friction's rows in the kept factorisation
   /// (KeptRows). Not collective.
-  void SetCoupling(std::vector<Coupling> off) { off_ = std::move(off); }
+  /// Once given, a change of D or of these entries is solved by a low-rank update of the factored S (Woodbury: the
+  /// factors' solves for the changed rows and an LU of their capacitance matrix) while that costs at most half a new
+  /// LU, each such solve checked against S (UPDATE_RESIDUAL).
+  void SetCoupling(std::vector<Coupling> off) { off_ = std::move(off), coupled_ = true; }
+  /// An updated dense solve whose residual exceeds this fraction of its right-hand side refactors S.
+  static constexpr double UPDATE_RESIDUAL = 1e-11;
+  /// New dense factorisations of S and low-rank updates of it so far (rank 0).
+  PetscInt DenseFactorisations() const { return dense_factorisations_; }
+  PetscInt DenseUpdates() const { return dense_updates_; }
   /// The forward elimination of the right-hand side b (MUMPS keeps it for Expand) and its part A21 A11^-1 b_u that
   /// SolveReduced takes off. Collective.
   [[nodiscard]] PetscErrorCode Condense(Vec b);
@@ -214,8 +223,17 @@ private:
   [[nodiscard]] PetscErrorCode FactorSchur(const std::vector<PetscScalar> &d);
   /// See FactorSchur; raises PETSC_ERR_NOT_CONVERGED for a singular S. Rank 0 (RunOnRoot).
   [[nodiscard]] PetscErrorCode FactorSchurOnRoot(const std::vector<PetscScalar> &d);
-  /// y = S^-1 y with the factored Schur complement (nothing for no multipliers). Rank 0 (RunOnRoot).
+  /// y = S^-1 y with the factored Schur complement and its low-rank update, if any (nothing for no multipliers).
+  /// Rank 0 (RunOnRoot).
   [[nodiscard]] PetscErrorCode DenseSolve(std::vector<PetscScalar> &y) const;
+  /// DenseSolve, checked against S for D = d when an update is in use (refactored and solved again above
+  /// UPDATE_RESIDUAL). Rank 0.
+  [[nodiscard]] PetscErrorCode CheckedDenseSolve(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y);
+  /// The nrhs columns of y (m rows each) times the factored S^-1 (no update). Rank 0.
+  [[nodiscard]] PetscErrorCode ReferenceSolve(double *y, PetscInt nrhs) const;
+  /// The low-rank update of the factored S to D = d and the entries off_ (updated: taken; else a new LU is due).
+  /// Rank 0.
+  [[nodiscard]] PetscErrorCode UpdateSchur(const std::vector<PetscScalar> &d, bool &updated);
   /// See SolveReduced: y, and the residual of the reduced system. Rank 0 (RunOnRoot).
   [[nodiscard]] PetscErrorCode SolveReducedOnRoot(const std::vector<PetscScalar> &d, std::vector<PetscScalar> &y,
                                                   double &residual);
@@ -261,6 +279,18 @@ private:
   std::vector<PetscBLASInt> ipiv_;
   bool s_factored_ = false, symmetric_ = true;
   std::vector<Coupling> off_, off_factored_; ///< SetCoupling's entries, and those of the factored S (rank 0)
+  std::vector<Coupling> off_current_;        ///< the entries of S that the solves use (factored or updated)
+  std::vector<double> d_current_;            ///< the diagonal D of S that the solves use
+  bool coupled_ = false;                     ///< SetCoupling was called: changes are low-rank updates
+  /// The update in use (rank 0): the changed rows R, their entries of Delta (column, value) and the LU of
+  /// C = I + Delta_R W, W = S_f^-1 E_R; the columns of W computed since S_f was factored (w_cache_, m each, at
+  /// w_index_[row]).
+  std::vector<PetscInt> update_rows_;
+  std::vector<std::vector<std::pair<PetscInt, double>>> update_entries_;
+  std::vector<double> update_c_, w_cache_;
+  std::map<PetscInt, PetscInt> w_index_;
+  std::vector<PetscBLASInt> update_ipiv_;
+  PetscInt dense_factorisations_ = 0, dense_updates_ = 0;
   bool dense_lu_ = false;                    ///< S is factored by LU (not symmetric, or entries off the diagonal)
   VecScatter to_root_ = nullptr;
   VecH root_; ///< the whole right-hand side / solution on rank 0
