@@ -28,9 +28,10 @@ constexpr double BASE_BYTES_PER_DOF_2D = 1000, BASE_BYTES_PER_DOF_3D = 2600;
 constexpr double FLOP_RATE = 2e10;
 // The iterative path's contact solve, seconds per displacement dof on one rank (3D fieldsplit_gamg).
 constexpr double ITERATIVE_SECONDS_PER_DOF = 1e-4;
-// One solve to the certificate's tolerance on the iterative path, seconds per displacement dof on one rank (3D
-// Cattaneo-Mindlin with friction, fieldsplit_gamg with BiCGStab, 25-26 iterations: 1.5e-5 at 13k dofs, 2.6e-5 at 38k).
-constexpr double ITERATIVE_SECONDS_PER_DOF_PER_SOLVE = 2.5e-5;
+// One solve to the certificate's tolerance on the iterative path, seconds per displacement dof on one rank at
+// ITERATIVE_SOLVE_DOFS dofs, growing with the square root of the dofs (3D Cattaneo-Mindlin with friction,
+// fieldsplit_gamg with BiCGStab: 1.3e-5 at 13k dofs, 2.5e-5 at 38k, 5.5e-5 at 159k).
+constexpr double ITERATIVE_SECONDS_PER_DOF_PER_SOLVE = 2.5e-5, ITERATIVE_SOLVE_DOFS = 38000;
 // An LU factorisation against the Cholesky's: twice the entries (L and U); its time four times the Cholesky's at
 // FLOP_RATE (twice the flops, and MUMPS's LU with pivoting of the indefinite saddle-point matrix measured at half that
 // rate: 3D Cattaneo-Mindlin at 12.9k dofs, 0.52 s per iteration against 0.21 s for twice the node graph's flops).
@@ -38,9 +39,14 @@ constexpr double LU_ENTRIES = 2, LU_TIME = 4;
 // Active-set changes a kept dense Schur complement is factored for (its m^3/3 flops each).
 constexpr double DENSE_FACTORISATIONS = 4;
 // Friction on the kept factorisation: the solves its one factorisation serves (Cattaneo-Mindlin: 34-71 in 2D, 47-60
-// in 3D), and the rate of a dense LU of the Schur complement with its solves (3D Cattaneo-Mindlin at 38k dofs, 3342
-// multipliers: 0.59 s per solve for 2 m^3/3 = 2.5e10 flops).
-constexpr double FRICTION_SOLVES = 50, DENSE_LU_RATE = 4e10;
+// in 3D), the rate of a dense LU of the Schur complement with its solves (3D Cattaneo-Mindlin at 38k dofs, 3342
+// multipliers: 0.59 s per solve for 2 m^3/3 = 2.5e10 flops), and the cost of a solve after a low-rank update of that
+// LU (MumpsSchur::UpdateSchur) as a fraction of a new LU (3D Cattaneo-Mindlin: 0.12 at 3342 multipliers, 0.14 at
+// 8853), with one new LU per run.
+constexpr double FRICTION_SOLVES = 50, DENSE_LU_RATE = 4e10, DENSE_UPDATE_SHARE = 0.15;
+// The dense Schur complement's memory with friction: S, and the cached columns of S_f^-1 and the capacitance matrix
+// of its updates (at most half of S's columns each).
+constexpr double DENSE_UPDATE_MEMORY = 1.75;
 // The measured model of the factor (nested dissection: n^(4/3) entries and n^2 flops in 3D, n log n and n^1.5 in
 // 2D); it decides alone when its memory is this factor or more above the budget, its time this factor or more above
 // the iterative path's, or its memory this factor below the budget with the times this factor apart; else the node
@@ -72,20 +78,21 @@ void DirectCost(const SolverProblem &p, const FactorEstimate &e, PetscMPIInt siz
   if (analysed && !cholesky && analysed->mumps_bytes > 0) factor = analysed->mumps_bytes;
   const bool dense = !p.refactored && !MumpsSchur::DenseCostsMore(m, e.flops);
   const double base = p.dim == 3 ? BASE_BYTES_PER_DOF_3D : BASE_BYTES_PER_DOF_2D;
-  bytes = base * (double)p.u_dofs / size + factor + (dense ? 8 * m * m : 0);
+  bytes = base * (double)p.u_dofs / size + factor + (dense ? 8 * m * m * (p.friction_kept ? DENSE_UPDATE_MEMORY : 1) : 0);
   seconds = (e.flops * (p.refactored ? LU_TIME : 1.0) + (dense ? DENSE_FACTORISATIONS * m * m * m / 3 : 0)) /
             (FLOP_RATE * (cholesky ? 1 : size));
-  // Friction on the kept factorisation, per solve: its share of the one factorisation and a dense LU (declined: LU
-  // refactored at every solve).
+  // Friction on the kept factorisation, per solve: its share of the one factorisation and of one dense LU, and a
+  // low-rank update of that LU (declined: LU refactored at every solve).
   if (p.friction_kept)
-    seconds = dense ? e.flops / (FLOP_RATE * (cholesky ? 1 : size)) / FRICTION_SOLVES + 2 * m * m * m / 3 / DENSE_LU_RATE
+    seconds = dense ? e.flops / (FLOP_RATE * (cholesky ? 1 : size)) / FRICTION_SOLVES +
+                          2 * m * m * m / 3 / DENSE_LU_RATE * (1 / FRICTION_SOLVES + DENSE_UPDATE_SHARE)
                     : e.flops * LU_TIME / (FLOP_RATE * size);
 }
 
 /// What the compared times are for friction (per solve), else nothing.
 const char *PerSolve(const SolverProblem &p) {
   if (p.refactored) return " per solve (friction refactors at every solve)";
-  if (p.friction_kept) return " per solve (friction: a dense LU of the multipliers' Schur complement at every solve)";
+  if (p.friction_kept) return " per solve (friction: a low-rank update of the dense Schur complement's LU per solve)";
   return "";
 }
 
@@ -204,9 +211,11 @@ PetscErrorCode ChooseSolverPath(MPI_Comm comm, const SolverPathOptions &opts, bo
   choice.budget_given = opts.budget_set;
   if (opts.budget_set) choice.budget_bytes = opts.budget;
   else PetscCall(MemoryBudget(comm, choice.budget_bytes));
-  choice.iterative_seconds =
-      (problem.refactored || problem.friction_kept ? ITERATIVE_SECONDS_PER_DOF_PER_SOLVE : ITERATIVE_SECONDS_PER_DOF) *
-      (double)problem.u_dofs / size;
+  const double n = (double)problem.u_dofs;
+  choice.iterative_seconds = (problem.refactored || problem.friction_kept
+                                  ? ITERATIVE_SECONDS_PER_DOF_PER_SOLVE * std::sqrt(n / ITERATIVE_SOLVE_DOFS)
+                                  : ITERATIVE_SECONDS_PER_DOF) *
+                             n / size;
   // The model first; where it is near a limit, the node graph's symbolic factorisation.
   choice.factor = ModelEstimate(problem);
   DirectCost(problem, choice.factor, size, choice.direct_bytes, choice.direct_seconds);
