@@ -39,10 +39,6 @@ PetscErrorCode ContactSolver::Setup() {
   lagged_search_ = opts_.lagged_search && (mortar_.Empty() || opts_.lagged_search_set);
   PetscCall(FindAllPairs(pairs_, candidate_, nullptr, &held_));
   if (!model_->CurrentConfiguration()) DropOutOfZone(pairs_);
-  PetscCheck(!(friction_.On() && model_->Nonlinear() && !contact_.pairs.empty()), comm, PETSC_ERR_USER_INPUT,
-             "%s with -material_model svk and -contact_pairs: friction between bodies is implemented for the linear "
-             "material only so far (svk has friction against rigid obstacles); expected -material_model linear, or "
-             "no friction", friction_.Describe().c_str());
   PetscCall(dofs_.Create(mesh_, (PetscInt)pairs_.size() * RowsPerPair()));
   assembler_ = std::make_unique<Assembler>(mesh_, material_, dofs_, dirichlet_);
   PetscCall(assembler_->CheckCells());

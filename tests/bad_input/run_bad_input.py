@@ -367,9 +367,6 @@ CASES = {
     "multiplier_split_without_friction": (CUBE + ["-contact_solver", "iterative", "-contact_fieldsplit_lambda_pc_type",
                                                   "fieldsplit"],
                                           ["-contact_fieldsplit_lambda_pc_type fieldsplit", "without friction"], {}),
-    "friction_with_svk_between_bodies": (PATCH + ["-material_model", "svk", "-contact_friction", "0.3"],
-                                         ["-contact_friction 0.3 with -material_model svk and -contact_pairs",
-                                          "linear material only"], {}),
     # Pairs of bodies (-contact_pairs).
     "contact_pairs_malformed": (PATCH + ["-contact_pairs", "upper_bottom"],
                                 ["-contact_pairs: item 'upper_bottom'", "SLAVE:MASTER"], {}),

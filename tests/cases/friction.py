@@ -314,6 +314,44 @@ def svk_friction_small_load(runner):
     runner.expect_close("svk displacement = linear", displacement(svk.nodes()), u, 0, 1e-3 * np.abs(u).max())
 
 
+@test("svk_friction_between_bodies")
+def svk_friction_between_bodies(runner):
+    """St. Venant-Kirchhoff with friction between bodies (the patch blocks of options/patch2d.yml): at a small load (a
+    drag of 2e-5 under a pressure of 0.01: stick and slip zones) the linear material's stick and slip nodes and
+    displacements within 1e-3 of the largest; dragged by 0.3 (pressed over the first 2 of 10 load steps, so that the
+    slave side slides over the master side's elements in the current configuration), every slave node slips, the
+    friction force is mu times the normal force (1e-8) and normal to it, against the drag, and the two sides' forces
+    balance."""
+    base = ["-options_file", "options/patch2d.yml", "-contact_pairs", "upper_bottom:lower_top:0.3"]
+    small = base + ["-bc_dirichlet", "bottom:y,lower_left:x,upper_top:x=2e-5", "-bc_pressure", "upper_top:0.01"]
+    lin = runner.run(small, "linear, small drag")
+    svk = runner.run(small + ["-material_model", "svk"], "svk, small drag")
+    for r in (lin, svk):
+        expect_friction_certificate(runner, r)
+    runner.expect_true("stick and slip zones (%d, %d)" % (lin.get("friction.stick_nodes"), lin.get("friction.slip_nodes")),
+                       lin.get("friction.stick_nodes") > 0 and lin.get("friction.slip_nodes") > 0)
+    for key in ("friction.stick_nodes", "friction.slip_nodes"):
+        runner.expect_equal(key, svk.get(key), lin.get(key))
+    u = displacement(lin.nodes())
+    runner.expect_close("svk displacement = linear", displacement(svk.nodes()), u, 0, 1e-3 * np.abs(u).max())
+    r = runner.run(base + ["-material_model", "svk", "-load_steps", "10", "-bc_dirichlet",
+                           "bottom:y,lower_left:x,upper_top:y=-0.001@0:0.2,upper_top:x=0.3@0.2:1"],
+                   "svk, dragged by 0.3")
+    expect_friction_certificate(runner, r)
+    runner.expect_equal("every active slave node slips", r.get("friction.slip_nodes"), r.get("contact.active_nodes"))
+    t = np.array(r.get("contact.friction_force"))
+    n = np.array(r.get("contact.contact_force")) - t
+    runner.expect_close("|friction force| = mu |normal force|", np.linalg.norm(t), 0.3 * np.linalg.norm(n), 1e-8)
+    runner.expect_true("friction force normal to the normal force (cosine %.2g)" % (t @ n / np.linalg.norm(t) /
+                                                                                  np.linalg.norm(n)),
+                       abs(t @ n) <= 1e-8 * np.linalg.norm(t) * np.linalg.norm(n))
+    runner.expect_true("friction force against the drag (%.4g)" % t[0], t[0] < 0)
+    runner.expect_true("force balance of both sides %.3g <= 1e-10" % r.get("contact.force_balance"),
+                       r.get("contact.force_balance") <= 1e-10)
+    runner.expect_close("master side = - slave side", r.get("contact.master_contact_force"),
+                        -np.array(r.get("contact.contact_force")), 0, 1e-10 * np.linalg.norm(n))
+
+
 @test("sliding_between_bodies_3d")
 def sliding_between_bodies_3d(runner, mesh):
     """3D friction between bodies: the upper block of options/patch3d.yml (hexahedra, or tetrahedra on hexahedra)
