@@ -297,13 +297,11 @@ def svk_sliding_block(runner):
                        r.nodes()["u_x"].min() > 2.0)
 
 
-@test("svk_friction_small_load")
-def svk_friction_small_load(runner):
-    """At a small load (a drag of 5e-5: stick and slip zones), svk with friction is the linear material with friction:
+def expect_svk_is_linear(runner, args, what):
+    """At a small load svk with friction is the linear material with friction: both certified, stick and slip zones,
     the same stick and slip nodes, displacements within 1e-3 of the largest (the strains are about 1e-3)."""
-    args = SLIDING + ["-bc_pressure", "top:0.2", "-bc_dirichlet", "top:x=5e-5"]
-    lin = runner.run(args, "linear, small load")
-    svk = runner.run(args + ["-material_model", "svk"], "svk, small load")
+    lin = runner.run(args, "linear, " + what)
+    svk = runner.run(args + ["-material_model", "svk"], "svk, " + what)
     for r in (lin, svk):
         expect_friction_certificate(runner, r)
     runner.expect_true("stick and slip zones (%d, %d)" % (lin.get("friction.stick_nodes"), lin.get("friction.slip_nodes")),
@@ -312,6 +310,13 @@ def svk_friction_small_load(runner):
         runner.expect_equal(key, svk.get(key), lin.get(key))
     u = displacement(lin.nodes())
     runner.expect_close("svk displacement = linear", displacement(svk.nodes()), u, 0, 1e-3 * np.abs(u).max())
+
+
+@test("svk_friction_small_load")
+def svk_friction_small_load(runner):
+    """At a small load (a drag of 5e-5: stick and slip zones), svk with friction is the linear material with friction:
+    the same stick and slip nodes, displacements within 1e-3 of the largest (the strains are about 1e-3)."""
+    expect_svk_is_linear(runner, SLIDING + ["-bc_pressure", "top:0.2", "-bc_dirichlet", "top:x=5e-5"], "small load")
 
 
 @test("svk_friction_between_bodies")
@@ -323,17 +328,8 @@ def svk_friction_between_bodies(runner):
     friction force is mu times the normal force (1e-8) and normal to it, against the drag, and the two sides' forces
     balance."""
     base = ["-options_file", "options/patch2d.yml", "-contact_pairs", "upper_bottom:lower_top:0.3"]
-    small = base + ["-bc_dirichlet", "bottom:y,lower_left:x,upper_top:x=2e-5", "-bc_pressure", "upper_top:0.01"]
-    lin = runner.run(small, "linear, small drag")
-    svk = runner.run(small + ["-material_model", "svk"], "svk, small drag")
-    for r in (lin, svk):
-        expect_friction_certificate(runner, r)
-    runner.expect_true("stick and slip zones (%d, %d)" % (lin.get("friction.stick_nodes"), lin.get("friction.slip_nodes")),
-                       lin.get("friction.stick_nodes") > 0 and lin.get("friction.slip_nodes") > 0)
-    for key in ("friction.stick_nodes", "friction.slip_nodes"):
-        runner.expect_equal(key, svk.get(key), lin.get(key))
-    u = displacement(lin.nodes())
-    runner.expect_close("svk displacement = linear", displacement(svk.nodes()), u, 0, 1e-3 * np.abs(u).max())
+    expect_svk_is_linear(runner, base + ["-bc_dirichlet", "bottom:y,lower_left:x,upper_top:x=2e-5", "-bc_pressure",
+                                          "upper_top:0.01"], "small drag")
     r = runner.run(base + ["-material_model", "svk", "-load_steps", "10", "-bc_dirichlet",
                            "bottom:y,lower_left:x,upper_top:y=-0.001@0:0.2,upper_top:x=0.3@0.2:1"],
                    "svk, dragged by 0.3")
