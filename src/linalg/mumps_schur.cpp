@@ -10,9 +10,9 @@
 
 #include <algorithm>
 #include <climits>
-#include <map>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <string>
 
 namespace signorini {
@@ -962,8 +962,9 @@ PetscErrorCode MumpsSchur::View(PetscViewer viewer) const {
     entries = id_.INFOG(29) >= 0 ? id_.INFOG(29) : -1e6 * id_.INFOG(29), flops = id_.rinfog[2];
   }
   PetscCall(PetscViewerASCIIPrintf(viewer, "rows: %d, of which %d multipliers in the Schur complement (dense %s on "
-                                   "rank 0, refactored when D changes)\n", (int)id_.n, (int)id_.size_schur,
-                                   dense_lu_ ? "LU" : "LDL^T"));
+                                   "rank 0, %s when D changes)\n", (int)id_.n, (int)id_.size_schur,
+                                   dense_lu_ ? "LU" : "LDL^T", coupled_ ? "updated at low rank or refactored" :
+                                   "refactored"));
   if (id_.ICNTL(7) == 1)
     PetscCall(PetscViewerASCIIPrintf(viewer, "ordering: nested dissection of the node graph (%s)\n", ordering_name_));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "ordering: MUMPS's own (ICNTL(7) = %d)\n", (int)id_.ICNTL(7)));

@@ -53,7 +53,7 @@ PetscErrorCode PCView_Kept(PC pc, PetscViewer viewer) {
                                    "multipliers\n", k->of.c_str()));
   if (k->rows)
     PetscCall(PetscViewerASCIIPrintf(viewer, "friction's rows mapped per pair onto fixed rows (the normal one and "
-                                     "the fixed tangents'), the slip law in the multiplier block (dense LU)\n"));
+                                     "the fixed tangents'), the slip law in the multiplier block\n"));
   if (k->factor) {
     PetscCall(PetscViewerASCIIPushTab(viewer));
     PetscCall(k->factor->View(viewer));

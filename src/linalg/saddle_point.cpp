@@ -76,8 +76,8 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
                              "factorisation of the Schur complement would take more flops than the sparse one: then "
                              "MUMPS refactorises at each change; giving the option keeps it); svk: the kept "
                              "factorisation preconditions FGMRES on the current tangent; friction (linear material): "
-                             "of fixed rows onto which its rows are mapped, the dense Schur complement updated per change. The kept factorisation calls "
-                             "MUMPS itself with ICNTL(7) = 1 (the ordering below), ICNTL(14) = 50, ICNTL(24) = 1 and "
+                             "of fixed rows onto which its rows are mapped, the dense Schur complement updated per "
+                             "change. The kept factorisation calls MUMPS itself with ICNTL(7) = 1 (the ordering below), ICNTL(14) = 50, ICNTL(24) = 1 and "
                              "CNTL(3) = 1e-12 unless -contact_mat_mumps_icntl_<k> / _cntl_<k> say otherwise; PETSc's "
                              "MUMPS options listed further down show PETSc's own defaults, which apply without it",
                              "", opts.reuse_factorization, &opts.reuse_factorization, &opts.reuse_set));

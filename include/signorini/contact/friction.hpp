@@ -93,6 +93,9 @@ public:
   void Adopt() { grip_ = next_, dir_ = next_dir_, across_ = next_across_; }
   /// Flags for cycle detection: 0 open, 1 slip, 2 stick, 3 slip backwards (2D) per pair (the proposed sets).
   void SetKey(const std::vector<char> &active, std::vector<char> &key) const;
+  /// SystemRows' kept_weight: KeptRows' map of a group with such a spring has a condition number of about
+  /// 1/KEPT_SPRING_MARGIN.
+  static constexpr double KEPT_SPRING_MARGIN = 1e-3;
   /// The constraint rows of the system: the normal ones, then the tangential ones; the active flags (stick rows and
   /// 3D slip rows across the slip); per row the column coefficients where they differ from the row's (slip pairs'
   /// normal rows; empty otherwise) and D on the active rows (0, or the 3D slip rows' spring). heavy (if given): the
@@ -100,8 +103,6 @@ public:
   /// pair's tangential rows share one (full while it sticks, or when its spring is near light_weight, the system's
   /// light weight r_I). kept_weight (if > 0, the kept factorisation's fixed weight w): a 3D slip row's spring with
   /// |1 + w D| < KEPT_SPRING_MARGIN moves to that margin (KeptRows' map would be singular at 1 + w D = 0).
-  /// See SystemRows' kept_weight: KeptRows' map of such a group has a condition number of about 1/KEPT_SPRING_MARGIN.
-  static constexpr double KEPT_SPRING_MARGIN = 1e-3;
   void SystemRows(const std::vector<SparseRow> &normal_rows, const std::vector<char> &active,
                   std::vector<SparseRow> &rows, std::vector<char> &flags, std::vector<std::vector<double>> &columns,
                   std::vector<double> &diag, std::vector<char> *heavy = nullptr, double light_weight = 0,
