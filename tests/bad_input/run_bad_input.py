@@ -367,6 +367,10 @@ CASES = {
     "multiplier_split_without_friction": (CUBE + ["-contact_solver", "iterative", "-contact_fieldsplit_lambda_pc_type",
                                                   "fieldsplit"],
                                           ["-contact_fieldsplit_lambda_pc_type fieldsplit", "without friction"], {}),
+    # The kept factorisation with friction needs a constant stiffness: svk refactors at every change.
+    "friction_kept_with_svk": (SLIDING + ["-material_model", "svk", "-contact_reuse_factorization", "true"],
+                               ["-contact_reuse_factorization with", "-material_model svk",
+                                "expected -contact_reuse_factorization 0"], {}),
     # Pairs of bodies (-contact_pairs).
     "contact_pairs_malformed": (PATCH + ["-contact_pairs", "upper_bottom"],
                                 ["-contact_pairs: item 'upper_bottom'", "SLAVE:MASTER"], {}),
