@@ -33,7 +33,8 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS
 export OMPI_MCA_odls_base_sigkill_timeout=0
 # nproc honours OMP_NUM_THREADS (set to 1 above for the runs): the cores without it, for the build and CTest.
 jobs=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)
-if [ ! -f "$build_dir/CMakeCache.txt" ]; then
+# Configure where nothing was generated yet (also after a configure that failed, say before the packages were there).
+if [ ! -f "$build_dir/CMakeCache.txt" ] || [ ! -f "$build_dir/Makefile" ]; then
   cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release
 fi
 cmake --build "$build_dir" -j "$jobs"
