@@ -310,6 +310,7 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   if (fieldsplit) {
     PetscCall(PCFieldSplitSetIS(pc, "u", dofs_->IsU()));
     PetscCall(PCFieldSplitSetIS(pc, "lambda", dofs_->IsLambda()));
+    if (dofs_->Dim() == 3) PetscCall(SetGamgDefaults3d());
   }
   PetscBool factor;
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, ""));

@@ -104,4 +104,9 @@ void LeaveDirect(const std::string &why, SolverChoice &choice);
 /// prefix contact_: each one that the run did not give. Returns the names set, so that they can be taken out again.
 [[nodiscard]] PetscErrorCode SetIterativeDefaults(std::vector<std::string> &set);
 
+/// 3D, a fieldsplit whose displacement block is GAMG's (the iterative path, or a preset such as
+/// options/solver/fieldsplit_gamg.yml): GAMG squares the graph on its first two levels unless the run gave
+/// -contact_fieldsplit_u_pc_gamg_square_graph (PETSc's default: one level).
+[[nodiscard]] PetscErrorCode SetGamgDefaults3d();
+
 } // namespace signorini
