@@ -351,6 +351,30 @@ def iterative_hierarchy_reuse(runner):
         expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
+@test("iterative_hierarchy_update")
+def iterative_hierarchy_update(runner):
+    """The linear material's GAMG hierarchy follows the active set without a new set-up (-contact_hierarchy_update,
+    the default): each coarse operator gets the Galerkin image of the rows that changed weight. On the octant of
+    options/hertz3d.yml (5 active-set iterations, the first update changing 224 of 597 rows, more than the 30 % after
+    which the hierarchy was set up again): one GAMG set-up (PCSetUp_GAMG in -log_view), every update exact (the first
+    coarse operator against a new Galerkin product, -contact_hierarchy_check: 1e-12 of its norm at most), the direct
+    path's state to 1e-8; with -contact_hierarchy_update false two set-ups and the same state."""
+    base = ["-options_file", "options/hertz3d.yml"]
+    ref = runner.run(base, "direct")
+    it = base + ["-contact_solver", "iterative", "-log_view"]
+    r = runner.run(it + ["-contact_hierarchy_check", "-info", ":sys"], "iterative, updates checked", heap_check=False)
+    runner.expect_equal("one GAMG set-up", log_event_count(r.output, "PCSetUp_GAMG+"), 1)
+    checks = [float(x) for x in re.findall(r"hierarchy check: the first coarse operator differs from a new Galerkin "
+                                           r"product by (\S+) of its norm", r.output)]
+    updates = r.output.count("updated (the changed rows' Galerkin images added to the coarse operators)")
+    runner.expect_true("%d updates, each checked (%s)" % (updates, checks), updates >= 2 and len(checks) == updates)
+    runner.expect_true("every update exact (largest difference %.3g)" % max(checks or [1]), max(checks or [1]) <= 1e-12)
+    expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+    off = runner.run(it + ["-contact_hierarchy_update", "false"], "iterative, set up again", heap_check=False)
+    runner.expect_equal("without updates: two set-ups", log_event_count(off.output, "PCSetUp_GAMG+"), 2)
+    expect_same_state(runner, ref, off, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+
+
 @test("krylov_fallback")
 def krylov_fallback(runner):
     """A Krylov method that fails on the saddle-point system (CG on the indefinite system stops with

@@ -70,6 +70,8 @@ struct SaddlePointOptions {
   KeptSolver kept_solver = KeptSolver::AUTO; ///< -contact_kept_solver
   PetscBool kept_solver_set = PETSC_FALSE;
   SolverPathOptions path; ///< -contact_solver, -contact_memory_budget
+  PetscBool hierarchy_update = PETSC_TRUE; ///< -contact_hierarchy_update (UpdateGalerkin)
+  PetscBool hierarchy_check = PETSC_FALSE; ///< -contact_hierarchy_check
 };
 [[nodiscard]] PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts);
 
@@ -346,6 +348,12 @@ private:
   /// first hierarchy, built on the start's few active rows, kept) took the octant to 12 active-set iterations and 80 s.
   static constexpr double KEEP_U_PC_FRACTION = 0.3;
   [[nodiscard]] PetscErrorCode KeepDisplacementPreconditioner();
+  /// The displacement block's GAMG hierarchy (mg) follows the weights that changed since its set-up: each coarse
+  /// operator gets the Galerkin image of the rank-k change (why: in saddle_point.cpp); updated: false for a
+  /// hierarchy of one level (to be set up again). Collective.
+  [[nodiscard]] PetscErrorCode UpdateGalerkin(PC mg, bool &updated);
+  std::vector<SparseRow> aug_rows_; ///< the augmented rows of the last AddAugmentation (UpdateGalerkin)
+  bool hierarchy_update_ = true, hierarchy_check_ = false; ///< -contact_hierarchy_update, -contact_hierarchy_check
   /// After the first set-up of a Schur fieldsplit: the multiplier block's fieldsplit (if it is one) gets its splits
   /// (UseTangentialRows).
   [[nodiscard]] PetscErrorCode SplitMultiplierBlock();
