@@ -1054,8 +1054,10 @@ PetscErrorCode SaddlePointSystem::KeepDisplacementPreconditioner() {
     PetscCall(KSPSetReusePreconditioner(sub[0], keep));
     PetscCall(PetscFree(sub));
   }
-  PetscCall(PetscInfo(nullptr, "displacement block: %" PetscInt_FMT " of %" PetscInt_FMT " weights changed since its "
-                      "preconditioner's set-up: %s\n", counts[0], counts[1], how));
+  PetscCall(PetscInfo(nullptr,
+                      "displacement block: %" PetscInt_FMT " of %" PetscInt_FMT " weights changed since its "
+                      "preconditioner's set-up: %s\n",
+                      counts[0], counts[1], how));
   if (!keep) {
     u_pc_.weight = weight_;
     u_pc_.valid = true;
@@ -1105,7 +1107,8 @@ PetscErrorCode SaddlePointSystem::UpdateGalerkin(PC mg, bool &updated) {
     s[i] = dw > 0 ? 1.0 : -1.0;
     std::vector<PetscInt> cols(b.ncols);
     std::vector<PetscScalar> v(b.ncols);
-    for (PetscInt j = 0; j < b.ncols; ++j) cols[j] = dofs_->UBlockRow(b.cols[j]), v[j] = scale * b.coef[j];
+    for (PetscInt j = 0; j < b.ncols; ++j)
+      cols[j] = dofs_->UBlockRow(b.cols[j]), v[j] = scale * b.coef[j];
     PetscCall(MatSetValues(G, 1, &row, b.ncols, cols.data(), v.data(), INSERT_VALUES));
   }
   PetscCall(VecRestoreArray(sign, &s));
@@ -1142,8 +1145,10 @@ PetscErrorCode SaddlePointSystem::UpdateGalerkin(PC mg, bool &updated) {
     PetscCall(MatNorm(fresh, NORM_FROBENIUS, &nf));
     PetscCall(MatAXPY(fresh, -1.0, Ac, DIFFERENT_NONZERO_PATTERN));
     PetscCall(MatNorm(fresh, NORM_FROBENIUS, &nd));
-    PetscCall(PetscInfo(nullptr, "hierarchy check: the first coarse operator differs from a new Galerkin product by "
-                        "%.3g of its norm\n", (double)(nd / nf)));
+    PetscCall(PetscInfo(nullptr,
+                        "hierarchy check: the first coarse operator differs from a new Galerkin product by "
+                        "%.3g of its norm\n",
+                        (double)(nd / nf)));
   }
   // The finest level's operator is the block itself, changed in place: its smoother's Jacobi diagonal too.
   KSP fine;
