@@ -900,6 +900,13 @@ PetscErrorCode SaddlePointSystem::SolveKsp(double rtol, bool loose, KSPConverged
     // times the loads' residual (octant Hertz, 290k dofs), and rtol of that left multipliers wrong by 0.5 % of the
     // load: 457 of 1550 pairs released that an exact solve keeps (1530), and 9 active-set iterations instead of 5.
     // The later solves, whose start is small, stop earlier.
+    // The KSP's test is relative to the solve's own start residual (KSPConvergedDefaultSetUIRNorm): rtol scaled by
+    // the step's first ||b|| over this ||b|| (about the loads' whatever the start) asks a solve that starts small for
+    // as many decades as one that starts at the loads. Measured and not kept (twelfth session): the target 1e-3 of
+    // the step's first start residual itself (rtol scaled by that residual over this start's) made the later solves
+    // cheaper (2-5 Krylov iterations instead of 6-10) but misled the active set: the octant Hertz at 1.07M dofs 13
+    // active-set iterations instead of 9 (83.3 s against 80.6 s), the ball on a block 9 instead of 5 (7.2 s against
+    // 5.4 s).
     PetscReal bnorm;
     PetscCall(VecNorm(b_, NORM_2, &bnorm));
     if (!(loose_reference_ > 0)) loose_reference_ = bnorm;
