@@ -536,7 +536,7 @@ PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<SparseRow> &
     if (!(p < heavy_.size() ? heavy_[p] : active_[p])) weight[p] = aug_inactive_;
   weight_.assign(rows.size(), 0.0);
   PetscCall(Reweight(rows, weight));
-  if (nest_.on) aug_rows_ = rows;
+  if (nest_.on && constant_k_ && hierarchy_update_) aug_rows_ = rows; // UpdateGalerkin's (a K that stays)
   pc_current_ = false; // after an assembly of K
   // A new tangent (svk) keeps the displacement block's preconditioner of an earlier one while its solves stay cheap
   // (SolveKsp, LAGGED_U_PC_GROWTH): the Newton iterations' tangents differ little.
@@ -1085,10 +1085,13 @@ PetscErrorCode SaddlePointSystem::UpdateGalerkin(PC mg, bool &updated) {
   // matrix for a new set-up. The prolongators stay (the aggregates and their smoothing are those of K + w0 terms).
   PetscCall(PCMGGetLevels(mg, &levels));
   if (levels < 2) PetscFunctionReturn(0); // one level: GAMG's factorisation of the block, to be set up again
-  Mat P;
-  PetscCall(PCMGGetInterpolation(mg, levels - 1, &P));
+  Mat P_fine, A_fine, Ap_fine;
+  KSP fine;
+  PetscCall(PCMGGetInterpolation(mg, levels - 1, &P_fine));
+  PetscCall(PCMGGetSmoother(mg, levels - 1, &fine));
+  PetscCall(KSPGetOperators(fine, &A_fine, &Ap_fine));
   PetscInt fine_start, fine_end;
-  PetscCall(MatGetOwnershipRange(P, &fine_start, &fine_end));
+  PetscCall(MatGetOwnershipRange(P_fine, &fine_start, &fine_end));
   std::vector<std::size_t> changed;
   for (std::size_t p = 0; p < weight_.size(); ++p)
     if (weight_[p] != u_pc_.weight[p]) changed.push_back(p);
@@ -1123,6 +1126,7 @@ PetscErrorCode SaddlePointSystem::UpdateGalerkin(PC mg, bool &updated) {
   PetscCall(MatAssemblyEnd(G, MAT_FINAL_ASSEMBLY));
   for (PetscInt l = levels - 1; l >= 1; --l) {
     MatH coarse, scaled, delta;
+    Mat P;
     PetscCall(PCMGGetInterpolation(mg, l, &P));
     PetscCall(MatMatMult(G, P, MAT_INITIAL_MATRIX, PETSC_DEFAULT, coarse.out()));
     PetscCall(MatDuplicate(coarse, MAT_COPY_VALUES, scaled.out()));
@@ -1139,15 +1143,12 @@ PetscErrorCode SaddlePointSystem::UpdateGalerkin(PC mg, bool &updated) {
     G = std::move(coarse);
   }
   if (hierarchy_check_) {
-    Mat Pf, Af, Ac;
-    KSP kf, kc;
-    PetscCall(PCMGGetInterpolation(mg, levels - 1, &Pf));
-    PetscCall(PCMGGetSmoother(mg, levels - 1, &kf));
+    Mat Ac;
+    KSP kc;
     PetscCall(PCMGGetSmoother(mg, levels - 2, &kc));
-    PetscCall(KSPGetOperators(kf, &Af, nullptr));
     PetscCall(KSPGetOperators(kc, &Ac, nullptr));
     MatH fresh;
-    PetscCall(MatPtAP(Af, Pf, MAT_INITIAL_MATRIX, PETSC_DEFAULT, fresh.out()));
+    PetscCall(MatPtAP(A_fine, P_fine, MAT_INITIAL_MATRIX, PETSC_DEFAULT, fresh.out()));
     PetscReal nf, nd;
     PetscCall(MatNorm(fresh, NORM_FROBENIUS, &nf));
     PetscCall(MatAXPY(fresh, -1.0, Ac, DIFFERENT_NONZERO_PATTERN));
@@ -1158,11 +1159,7 @@ PetscErrorCode SaddlePointSystem::UpdateGalerkin(PC mg, bool &updated) {
                         (double)(nd / nf)));
   }
   // The finest level's operator is the block itself, changed in place: its smoother's Jacobi diagonal too.
-  KSP fine;
-  Mat A, Ap;
-  PetscCall(PCMGGetSmoother(mg, levels - 1, &fine));
-  PetscCall(KSPGetOperators(fine, &A, &Ap));
-  PetscCall(KSPSetOperators(fine, A, Ap));
+  PetscCall(KSPSetOperators(fine, A_fine, Ap_fine));
   updated = true;
   PetscFunctionReturn(0);
 }

@@ -41,9 +41,10 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptio
                              "false: exact Newton at every iteration (the default with -contact_pairs)",
                              "", opts.lagged_search, &opts.lagged_search, &opts.lagged_search_set));
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_active_set_rtol",
-                        "Iterative solvers, linear material: the relative tolerance (to the load step's first "
-                        "residual) of the saddle-point solves of the active-set iterations; the solve after which the "
-                        "set stays is corrected to the certificate's tolerance. 0: every solve to -contact_ksp_rtol",
+                        "Iterative solvers, linear material: the saddle-point solves of the active-set iterations "
+                        "stop when their residual fell by this times the load step's first right-hand side over "
+                        "their own; the solve after which the set stays is corrected to the certificate's "
+                        "tolerance. 0: every solve to -contact_ksp_rtol",
                         {0, SolverOptions::ACTIVE_SET_RTOL_MAX}, opts.active_set_rtol));
   PetscOptionsEnd();
   // A linear material solves a load step by the active-set loop alone (-contact_max_it) and never cuts one: these
