@@ -375,6 +375,24 @@ def iterative_hierarchy_update(runner):
     expect_same_state(runner, ref, off, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
+@test("gamg_square_graph_3d")
+def gamg_square_graph_3d(runner):
+    """In 3D the iterative path's GAMG squares the graph on its first two levels (PETSc's default: one), unless the
+    run gives -contact_fieldsplit_u_pc_gamg_square_graph; in 2D PETSc's default stays (-contact_ksp_view shows the
+    number of levels). The 3D state is the direct path's to 1e-8."""
+    levels = r"Number of levels to square graph (\d+)"
+    ref = runner.run(["-options_file", "options/hertz3d.yml"], "3D direct")
+    r = runner.run(["-options_file", "options/hertz3d.yml", "-contact_solver", "iterative", "-contact_ksp_view"],
+                   "3D iterative")
+    runner.expect_equal("3D: squared on two levels", sorted(set(re.findall(levels, r.output))), ["2"])
+    expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+    given = runner.run(["-options_file", "options/hertz3d.yml", "-contact_solver", "iterative", "-contact_ksp_view",
+                        "-contact_fieldsplit_u_pc_gamg_square_graph", "1"], "3D iterative, one level given")
+    runner.expect_equal("the option given decides", sorted(set(re.findall(levels, given.output))), ["1"])
+    two = runner.run(["-contact_solver", "iterative", "-contact_ksp_view"], "2D iterative")
+    runner.expect_equal("2D: PETSc's default", sorted(set(re.findall(levels, two.output))), ["1"])
+
+
 @test("krylov_fallback")
 def krylov_fallback(runner):
     """A Krylov method that fails on the saddle-point system (CG on the indefinite system stops with
