@@ -7,6 +7,7 @@
 #include "signorini/core/parse.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <cstdio>
@@ -173,8 +174,11 @@ PetscErrorCode ComputeHertz(const SolvedState &state, const Material &material, 
   // The model carries the fraction 1, 1/2 or 1/4 (one or two symmetry planes) of P: the power of two nearest to
   // |contact force| / P. Johnson's values are those of the load it carries, P_model = |contact force| / fraction
   // (a pressure on a faceted curved boundary falls short of the nominal load by the area the facets cut off).
-  // In 2D P is per unit thickness, and the model's contact force that of its thickness.
-  const auto &f = s.contact_force;
+  // In 2D P is per unit thickness, and the model's contact force that of its thickness. With friction P is the
+  // normal part: the contact force less the friction force (Cattaneo and Mindlin's tangential load leaves Hertz's
+  // normal solution as it is).
+  std::array<double, 3> f;
+  for (int k = 0; k < 3; ++k) f[k] = s.contact_force[k] - (s.friction ? s.friction_force[k] : 0.0);
   const double force = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / (dim == 2 ? m.thickness : 1.0);
   const int halvings = std::clamp((int)std::lround(std::log2(h.P / force)), 0, 2);
   h.fraction = std::ldexp(1.0, -halvings);

@@ -171,10 +171,12 @@ CATTANEO_PATH = "lower_bottom:x:y,upper_top:y=-0.2@0:0.5,upper_top:x=0.05@0.5:1"
 
 
 def cattaneo_profile(r, mu=0.3, E=200.0, nu=0.3, R=4.0):
-    """Johnson's values for the run's P and Q against the computed ones: the contact and stick half-widths from the
-    active and stick slave nodes (midway between the outermost one and the next on each side), and the tangential
-    traction at the active nodes against q(x) = mu p0 [sqrt(1 - x^2/a^2) - (c/a) sqrt(1 - x^2/c^2)], x from the
-    contact's centre."""
+    """Johnson's values for the run's P and Q against the computed ones, in the reference configuration (the
+    coordinates of Hertz's and Cattaneo's small-strain theory: the current ones add the surfaces' inward displacement
+    under the pressure, about 2 % of a here): the contact and stick half-widths from the active and stick slave nodes
+    (midway between the outermost one and the next on each side), Hertz's profile p^2 = p0^2 (1 - (x - x0)^2 / a^2)
+    fitted to the nodal pressures within 0.8 of the contact half-width (a_fit and the centre x0), and the nodal
+    tangential traction against q(x) = mu p0 [sqrt(1 - x^2/a^2) - (c/a) sqrt(1 - x^2/c^2)], x from x0."""
     P = r.get("contact.contact_force.1") - r.get("contact.friction_force.1")
     Q = abs(r.get("contact.friction_force.0"))
     a = np.sqrt(4 * P * R / (np.pi * E / (2 * (1 - nu * nu))))
@@ -183,7 +185,7 @@ def cattaneo_profile(r, mu=0.3, E=200.0, nu=0.3, R=4.0):
     n = r.nodes()
     s = n[~np.isnan(n["gap"])]
     s = s[np.argsort(s["x"])]
-    x = s["x"] + s["u_x"]
+    x = s["x"]
 
     def half_width(flags):
         i = np.where(flags)[0]
@@ -191,40 +193,34 @@ def cattaneo_profile(r, mu=0.3, E=200.0, nu=0.3, R=4.0):
         return (hi - lo) / 2, (hi + lo) / 2
 
     active = s["active"] == 1
-    a_fe, x0 = half_width(active)
+    a_fe, x_mid = half_width(active)
     c_fe, _ = half_width(active & (s["friction_state"] == 2))
+    # p^2 = k0 + k1 x + k2 x^2 by least squares over the inner nodes (the outer ones average the pressure over the
+    # contact's edge): x0 = -k1 / (2 k2), p0^2 = k0 - k1^2 / (4 k2), a^2 = -p0^2 / k2.
+    inner = active & (np.abs(x - x_mid) <= 0.8 * a_fe)
+    k0, k1, k2 = np.linalg.lstsq(np.vstack([np.ones(inner.sum()), x[inner], x[inner] ** 2]).T,
+                                 s["pressure"][inner] ** 2, rcond=None)[0]
+    x0 = -k1 / (2 * k2)
+    a_fit = np.sqrt(-(k0 - k1 * k1 / (4 * k2)) / k2)
     xi = x[active] - x0
-
-    def profile_error(a, p0, c):
-        q_th = mu * p0 * (np.sqrt(np.clip(1 - xi ** 2 / a ** 2, 0, None)) -
-                          (c / a) * np.sqrt(np.clip(1 - xi ** 2 / c ** 2, 0, None)))
-        return (np.abs(s["friction_traction_x"][active]) - q_th) / (mu * p0)
-
-    err = profile_error(a, p0, c)
-    # The contact's own Hertz profile: p^2 = p0^2 (1 - xi^2 / a^2) fitted to the nodal pressures (least squares), the
-    # normal solution of these finite cylinders, on which Cattaneo and Mindlin build the tangential one.
-    p = s["pressure"][active]
-    k0, k1 = np.linalg.lstsq(np.vstack([np.ones_like(xi), xi ** 2]).T, p ** 2, rcond=None)[0]
-    a_fit, p0_fit = np.sqrt(-k0 / k1), np.sqrt(k0)
-    err_fit = profile_error(a_fit, p0_fit, a_fit * np.sqrt(1 - Q / (mu * P)))
-    return {"P": P, "Q": Q, "a": a, "c": c, "a_fe": a_fe, "c_fe": c_fe, "rms": np.sqrt(np.mean(err ** 2)),
-            "max": np.abs(err).max(), "slip": r.get("friction.slip_nodes"), "a_fit": a_fit, "p0_fit": p0_fit,
-            "rms_fit": np.sqrt(np.mean(err_fit ** 2)), "max_fit": np.abs(err_fit).max()}
+    q_th = mu * p0 * (np.sqrt(np.clip(1 - xi ** 2 / a ** 2, 0, None)) -
+                      (c / a) * np.sqrt(np.clip(1 - xi ** 2 / c ** 2, 0, None)))
+    err = (np.abs(s["friction_traction_x"][active]) - q_th) / (mu * p0)
+    return {"P": P, "Q": Q, "a": a, "c": c, "a_fe": a_fe, "c_fe": c_fe, "a_fit": a_fit, "x0": x0,
+            "rms": np.sqrt(np.mean(err ** 2)), "max": np.abs(err).max(), "slip": r.get("friction.slip_nodes")}
 
 
 @test("cattaneo_mindlin_2d")
 def cattaneo_mindlin_2d(runner):
-    """Partial slip of two equal cylinders pressed, then sheared (Q < mu P), on three meshes (size factors 2, 1.4, 1).
-    Against the contact's own Hertz solution (a and p0 fitted to its nodal pressures: these finite cylinders' contact
-    is 2 % narrower than Johnson's half-spaces'), on which Cattaneo and Mindlin build the tangential one: the stick
-    zone's half-width c = a sqrt(1 - Q/(mu P)) within 2 % (of c / a computed from the active and stick nodes) and the
-    tangential traction's profile within 2 % of mu p0 in the root mean square over the contact on the finest mesh
-    (20 load steps: 10 pressing, 10 shearing), the first error falling with the mesh. Against Johnson's half-space
-    values: c within 2 % of a on the finest mesh, the
-    profile's rms within 5 % of mu p0 (the 2 % narrower contact: docs/verification.md). Each half-width is measured by
-    whole nodes (midway between the outermost node and the next), so its error against Johnson's c moves by the mesh's
-    steps and is not asserted to fall."""
-    errors, ratios, fits = [], [], []
+    """Partial slip of two equal cylinders pressed, then sheared (Q < mu P), on three meshes (size factors 2, 1.4, 1;
+    20 load steps: 10 pressing, 10 shearing), against Johnson's half-space values for the run's P and Q in the
+    reference configuration (cattaneo_profile): Hertz's half-width fitted to the pressures within 0.5 % of Johnson's
+    a on every mesh; the stick zone's half-width c = a sqrt(1 - Q/(mu P)) within 2 % of a on the finest mesh, and
+    c/a against Cattaneo's (both from the nodes) falling with the mesh; the tangential traction's profile within 2 %
+    of mu p0 in the root mean square over the active nodes on the finest mesh, falling with the mesh. Each half-width
+    is measured by whole nodes (midway between the outermost node and the next), so its error against Johnson's c
+    moves by the mesh's steps and is not asserted to fall."""
+    errors, ratios, rms = [], [], []
     for factor in ("2", "1.4", "1"):
         r = runner.run(CATTANEO + ["-mesh_size_factor", factor, "-bc_dirichlet", CATTANEO_PATH, "-load_steps", "20"],
                        "Cattaneo-Mindlin, size factor %s" % factor, heap_check=False)
@@ -232,28 +228,27 @@ def cattaneo_mindlin_2d(runner):
         k = cattaneo_profile(r)
         runner.expect_true("factor %s: Q/(mu P) = %.3f in the partial-slip range [0.3, 0.7]" % (factor, k["Q"] / (0.3 * k["P"])),
                            0.3 <= k["Q"] / (0.3 * k["P"]) <= 0.7)
+        runner.expect_true("factor %s: Hertz's half-width fitted to the pressures %.4f within 0.5 %% of Johnson's %.4f "
+                           "(%+.2f %%)" % (factor, k["a_fit"], k["a"], 100 * (k["a_fit"] / k["a"] - 1)),
+                           abs(k["a_fit"] / k["a"] - 1) <= 0.005)
         errors.append(abs(k["c_fe"] - k["c"]) / k["a"])
-        # Also against the computed contact half-width: c / a = sqrt(1 - Q/(mu P)) alone, without the Hertz half-width
-        # of the finite bodies (within 2.5 % of Johnson's half-spaces' here).
+        # c / a = sqrt(1 - Q/(mu P)) from the nodes alone, the contact half-width measured as the stick zone's.
         ratio = k["c_fe"] / k["a_fe"] / np.sqrt(1 - k["Q"] / (0.3 * k["P"])) - 1
         ratios.append(abs(ratio))
-        fits.append(k["rms_fit"])
-        print("  factor %s: P %.4f Q %.4f a %.4f (computed %.4f, fitted %.4f) c %.4f (computed %.4f, %.2f %% of a; "
-              "c/a %+.2f %% of Cattaneo's); q: rms %.2f %%, max %.2f %% of mu p0 (against the fitted Hertz profile: "
-              "rms %.2f %%, max %.2f %%)" % (
-                  factor, k["P"], k["Q"], k["a"], k["a_fe"], k["a_fit"], k["c"], k["c_fe"], 100 * errors[-1],
-                  100 * ratio, 100 * k["rms"], 100 * k["max"], 100 * k["rms_fit"], 100 * k["max_fit"]))
+        rms.append(k["rms"])
+        print("  factor %s: P %.4f Q %.4f a %.4f (nodes %.4f, fitted %.4f, centre %+.1e) c %.4f (nodes %.4f, %.2f %% "
+              "of a; c/a %+.2f %% of Cattaneo's); q: rms %.2f %%, max %.2f %% of mu p0" % (
+                  factor, k["P"], k["Q"], k["a"], k["a_fe"], k["a_fit"], k["x0"], k["c"], k["c_fe"], 100 * errors[-1],
+                  100 * ratio, 100 * k["rms"], 100 * k["max"]))
     listed = lambda v: ", ".join("%.2f %%" % (100 * e) for e in v)  # noqa: E731
     runner.expect_true("c/a within 2 %% of Cattaneo's on the finest mesh, falling (%s)" % listed(ratios),
                        ratios[-1] <= 0.02 and ratios[0] > ratios[1] > ratios[2])
-    # Not asserted to fall: single nodes of the stick zone are 3-7 % of mu p0 off, alternately (the dual mortar's
-    # tangential multipliers between non-matching meshes), and the outermost active node, barely touching, is up to
-    # 16 % off: the mid mesh's rms is the largest (2.4, 2.8, 1.4 %).
-    runner.expect_true("traction profile against the contact's own Hertz profile: rms within 2 %% of mu p0 on the "
-                       "finest mesh (%s)" % listed(fits), fits[-1] <= 0.02)
     runner.expect_true("stick half-width within 2 %% of Johnson's a on the finest mesh (%.2f %%; %s)" % (
         100 * errors[-1], listed(errors)), errors[-1] <= 0.02)
-    runner.expect_true("traction profile rms %.2f %% <= 5 %% of Johnson's mu p0" % (100 * k["rms"]), k["rms"] <= 0.05)
+    # The largest nodal errors (about 10 % of mu p0 on the finest mesh) are at the contact's edges, whose nodes'
+    # tributary lengths are only partly in contact, and next to the stick zone's edges (the theory's cusp).
+    runner.expect_true("traction profile against Johnson's: rms within 2 %% of mu p0 on the finest mesh, falling "
+                       "(%s)" % listed(rms), rms[-1] <= 0.02 and rms[0] > rms[1] > rms[2])
 
 
 @test("cattaneo_load_path")
