@@ -475,12 +475,14 @@ PetscErrorCode DeepestUnpaired(const Mesh &mesh, const Obstacle &obstacle, const
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode TributaryLengths(const Mesh &mesh, const std::vector<char> &candidate, std::vector<double> &length) {
+PetscErrorCode TributaryLengths(const Mesh &mesh, const std::vector<char> &candidate, std::vector<double> &length,
+                                const std::vector<double> *face_thickness, std::vector<double> *area) {
   const int dim = mesh.Dim();
   std::vector<Face> faces;
   PetscFunctionBeginUser;
   PetscCall(mesh.BoundaryFaces(faces));
   length.assign(mesh.NumLocalVertices(), 0.0);
+  if (area) area->assign(mesh.NumLocalVertices(), 0.0);
   for (const auto &f : faces) {
     bool all = true;
     for (int a = 0; a < f.n; ++a) all = all && candidate[f.v[a]];
@@ -490,8 +492,11 @@ PetscErrorCode TributaryLengths(const Mesh &mesh, const std::vector<char> &candi
       for (int d = 0; d < dim; ++d) X[a * dim + d] = mesh.X(f.v[a])[d];
     FaceIntegrals(dim, f.n, X, w, an);
     for (int a = 0; a < f.n; ++a) length[f.v[a]] += w[a];
+    if (area)
+      for (int a = 0; a < f.n; ++a) (*area)[f.v[a]] += w[a] * (face_thickness ? (*face_thickness)[f.cell] : 1.0);
   }
   PetscCall(mesh.SumShared(length));
+  if (area) PetscCall(mesh.SumShared(*area));
   PetscFunctionReturn(0);
 }
 

@@ -93,7 +93,7 @@ bool Assembler::Geometry(PetscInt c, ElementGeometry &g, PetscInt &nn, const Pet
   double X[MAX_NODES * MAX_DIM];
   for (PetscInt a = 0; a < nn; ++a)
     for (int d = 0; d < dim; ++d) X[a * dim + d] = mesh_.X(vertices[a])[d];
-  return ComputeGeometry(dim, (int)nn, X, material_.thickness, g);
+  return ComputeGeometry(dim, (int)nn, X, parts_[Part(c)].thickness, g);
 }
 
 PetscErrorCode Assembler::CheckCells() const {
@@ -442,7 +442,6 @@ PetscErrorCode Assembler::AddStiffnessTimes(const double *u_local, const double 
 
 PetscErrorCode Assembler::AssembleLoads(const BoundaryConditions &bc, double time, Vec f) const {
   const int dim = mesh_.Dim();
-  const double t = material_.thickness;
   std::vector<Face> faces;
   std::vector<PetscInt> vertices;
   double factor = 0; // the ramp of the item being added, at time
@@ -464,6 +463,7 @@ PetscErrorCode Assembler::AssembleLoads(const BoundaryConditions &bc, double tim
         for (int a = 0; a < face.n; ++a)
           for (int d = 0; d < dim; ++d) X[a * dim + d] = mesh_.X(face.v[a])[d];
         FaceIntegrals(dim, face.n, X, w, an);
+        const double t = parts_[Part(face.cell)].thickness; // the face's cell's (2D; 1 in 3D)
         for (int a = 0; a < face.n; ++a) {
           if (pressure) {
             const double force[3] = {-load.value[0] * an[a][0], -load.value[0] * an[a][1], -load.value[0] * an[a][2]};

@@ -33,9 +33,10 @@ Material Material::With(double E_, double nu_) const {
   return m;
 }
 
-Material Material::With(const std::array<double, 3> &k) const {
+Material Material::With(const std::array<double, 4> &k) const {
   Material m = With(k[0], k[1]);
   m.model = k[2] != 0 ? MaterialModel::SVK : MaterialModel::LINEAR;
+  m.thickness = k[3];
   return m;
 }
 
@@ -131,13 +132,14 @@ PetscErrorCode OptionsRealOrGroups(PetscOptionItems *PetscOptionsObject, const c
 /// The stiffness scale E t within [STIFFNESS_SCALE_MIN, STIFFNESS_SCALE_MAX]. E t is the scale of the stiffness and
 /// 1 / (E t) that of the multipliers' diagonal: outside these bounds the discrete system is numerically singular (the
 /// Hertz case fails at E t = 2e-8) or overflows. E_text: -material_E's value or item.
-PetscErrorCode CheckStiffnessScale(MPI_Comm comm, const std::string &E_text, double E, double t) {
+PetscErrorCode CheckStiffnessScale(MPI_Comm comm, const std::string &E_text, double E, const std::string &t_text,
+                                   double t) {
   const double k = E * t;
   PetscFunctionBeginUser;
   PetscCheck(k >= STIFFNESS_SCALE_MIN && k <= STIFFNESS_SCALE_MAX, comm, PETSC_ERR_USER_INPUT,
              "-material_E %s with -material_thickness %s gives a stiffness scale E x thickness of %s; expected it in "
              "[%s, %s], outside which the discrete system is numerically singular or overflows (rescale the units)",
-             E_text.c_str(), FormatNumber(t).c_str(), FormatNumber(k).c_str(),
+             E_text.c_str(), t_text.c_str(), FormatNumber(k).c_str(),
              FormatNumber(STIFFNESS_SCALE_MIN).c_str(), FormatNumber(STIFFNESS_SCALE_MAX).c_str());
   PetscFunctionReturn(0);
 }
@@ -176,18 +178,8 @@ PetscErrorCode ReadMaterialOptions(MPI_Comm comm, Material &m) {
                                 m.nu, m.nu_groups));
   PetscCall(OptionsChoice(PetscOptionsObject, "-material_plane", "2D assumption: strain or stress (2D meshes only)",
                           "strain or stress", planes, 2, plane, &plane_given));
-  {
-    // Per group it would have to enter the loads, the contact tractions and the mortar integrals body by body: one
-    // value, said so rather than "not a real number".
-    const char *raw = nullptr;
-    PetscBool found = PETSC_FALSE;
-    PetscCall(PetscOptionsFindPair(nullptr, nullptr, "-material_thickness", &raw, &found));
-    PetscCheck(!(found && raw && std::string(raw).find(':') != std::string::npos), comm, PETSC_ERR_USER_INPUT,
-               "-material_thickness %s: the thickness is one value for the whole mesh (not per group); expected a "
-               "positive number", raw);
-  }
-  PetscCall(OptionsReal(PetscOptionsObject, "-material_thickness",
-                        ("Out-of-plane thickness (2D meshes only)" + scale).c_str(), positive, m.thickness));
+  PetscCall(OptionsRealOrGroups(PetscOptionsObject, "-material_thickness", "Out-of-plane thickness (2D meshes only)" +
+                                scale, "T", positive, m.thickness, m.thickness_groups));
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-material_thickness", &thickness_given));
   PetscOptionsEnd();
   m.plane_stress = plane == 1;
@@ -195,8 +187,20 @@ PetscErrorCode ReadMaterialOptions(MPI_Comm comm, Material &m) {
   m.thickness_given = thickness_given;
   if (m.nu_groups.empty()) PetscCall(NoteLocking(comm, m, FormatNumber(m.nu), m.nu));
   for (const auto &g : m.nu_groups) PetscCall(NoteLocking(comm, m, g.item, g.value));
-  if (m.E_groups.empty()) PetscCall(CheckStiffnessScale(comm, FormatNumber(m.E), m.E, m.thickness));
-  for (const auto &g : m.E_groups) PetscCall(CheckStiffnessScale(comm, g.item, g.value, m.thickness));
+  // E x thickness: each value of one option against the other's single value; with both per group, for the
+  // materials that cells have (AssignCellMaterials).
+  if (m.thickness_groups.empty()) {
+    if (m.E_groups.empty())
+      PetscCall(CheckStiffnessScale(comm, FormatNumber(m.E), m.E, FormatNumber(m.thickness), m.thickness));
+    for (const auto &g : m.E_groups)
+      PetscCall(CheckStiffnessScale(comm, g.item, g.value, FormatNumber(m.thickness), m.thickness));
+  } else {
+    m.thickness = 0; // the largest, for the scales of the run (the cells' own come from AssignCellMaterials)
+    for (const auto &g : m.thickness_groups) {
+      if (m.E_groups.empty()) PetscCall(CheckStiffnessScale(comm, FormatNumber(m.E), m.E, g.item, g.value));
+      m.thickness = std::max(m.thickness, g.value);
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -299,7 +303,7 @@ PetscErrorCode CellItems(const Mesh &mesh, const GroupOption &o, std::vector<int
 } // namespace
 
 PetscErrorCode AssignCellMaterials(const Mesh &mesh, Material &m) {
-  std::vector<int> cell_E, cell_nu, cell_model;
+  std::vector<int> cell_E, cell_nu, cell_model, cell_t;
   PetscFunctionBeginUser;
   m.constants.clear();
   m.cell_constants.clear();
@@ -307,30 +311,35 @@ PetscErrorCode AssignCellMaterials(const Mesh &mesh, Material &m) {
   PetscCall(CellItems(mesh, {"-material_E", m.E_groups}, cell_E));
   PetscCall(CellItems(mesh, {"-material_nu", m.nu_groups}, cell_nu));
   PetscCall(CellItems(mesh, {"-material_model", m.model_groups}, cell_model));
-  // Each cell's (E item, nu item, model item) triple; the triples that occur on some rank, in order and with equal
-  // constants merged, are the run's materials (a handful: each gets its elasticity matrix once).
+  PetscCall(CellItems(mesh, {"-material_thickness", m.thickness_groups}, cell_t));
+  // Each cell's (E item, nu item, model item, thickness item) tuple; the tuples that occur on some rank, in order and
+  // with equal constants merged, are the run's materials (a handful: each gets its elasticity matrix once).
   const int nE = std::max<int>(1, (int)m.E_groups.size()), nnu = std::max<int>(1, (int)m.nu_groups.size());
-  const int nmodel = std::max<int>(1, (int)m.model_groups.size()), ntriples = nE * nnu * nmodel;
-  const auto triple_of = [&](PetscInt c) {
-    return ((cell_E.empty() ? 0 : cell_E[c]) * nnu + (cell_nu.empty() ? 0 : cell_nu[c])) * nmodel +
-           (cell_model.empty() ? 0 : cell_model[c]);
+  const int nmodel = std::max<int>(1, (int)m.model_groups.size());
+  const int nt = std::max<int>(1, (int)m.thickness_groups.size()), ntuples = nE * nnu * nmodel * nt;
+  const auto tuple_of = [&](PetscInt c) {
+    return (((cell_E.empty() ? 0 : cell_E[c]) * nnu + (cell_nu.empty() ? 0 : cell_nu[c])) * nmodel +
+            (cell_model.empty() ? 0 : cell_model[c])) * nt + (cell_t.empty() ? 0 : cell_t[c]);
   };
-  std::vector<int> present(ntriples, 0), index(ntriples, -1);
-  for (PetscInt c = 0; c < mesh.NumLocalCells(); ++c) present[triple_of(c)] = 1;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, present.data(), ntriples, MPI_INT, MPI_MAX, mesh.Comm()));
-  for (int p = 0; p < ntriples; ++p) {
+  std::vector<int> present(ntuples, 0), index(ntuples, -1);
+  for (PetscInt c = 0; c < mesh.NumLocalCells(); ++c) present[tuple_of(c)] = 1;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, present.data(), ntuples, MPI_INT, MPI_MAX, mesh.Comm()));
+  for (int p = 0; p < ntuples; ++p) {
     if (!present[p]) continue;
-    const int e = p / (nnu * nmodel), n = (p / nmodel) % nnu, o = p % nmodel;
-    const std::array<double, 3> k = {m.E_groups.empty() ? m.E : m.E_groups[e].value,
+    const int e = p / (nnu * nmodel * nt), n = (p / (nmodel * nt)) % nnu, o = (p / nt) % nmodel, t = p % nt;
+    const std::array<double, 4> k = {m.E_groups.empty() ? m.E : m.E_groups[e].value,
                                      m.nu_groups.empty() ? m.nu : m.nu_groups[n].value,
                                      m.model_groups.empty() ? (m.model == MaterialModel::SVK ? 1.0 : 0.0)
-                                                            : m.model_groups[o].value};
+                                                            : m.model_groups[o].value,
+                                     m.thickness_groups.empty() ? m.thickness : m.thickness_groups[t].value};
+    if (!m.E_groups.empty() && !m.thickness_groups.empty())
+      PetscCall(CheckStiffnessScale(mesh.Comm(), m.E_groups[e].item, k[0], m.thickness_groups[t].item, k[3]));
     const auto it = std::find(m.constants.begin(), m.constants.end(), k);
     index[p] = (int)(it - m.constants.begin());
     if (it == m.constants.end()) m.constants.push_back(k);
   }
   m.cell_constants.resize(mesh.NumLocalCells());
-  for (PetscInt c = 0; c < mesh.NumLocalCells(); ++c) m.cell_constants[c] = index[triple_of(c)];
+  for (PetscInt c = 0; c < mesh.NumLocalCells(); ++c) m.cell_constants[c] = index[tuple_of(c)];
   PetscFunctionReturn(0);
 }
 

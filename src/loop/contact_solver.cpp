@@ -59,7 +59,8 @@ PetscErrorCode ContactSolver::Setup() {
 
 PetscErrorCode ContactSolver::SetBodyCompliance() {
   PetscFunctionBeginUser;
-  // Per body the mean over its cells of (1 - nu^2) / E (plane stress: 1 / E), the same on every rank.
+  // Per body the mean over its cells of (1 - nu^2) / (E t) (plane stress: 1 / (E t); t the thickness in 2D, 1 in
+  // 3D: a line force indents a thinner body more), the same on every rank.
   const PetscInt nb = mesh_.NumBodies();
   std::vector<double> sum(2 * nb, 0.0);
   for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
@@ -69,7 +70,7 @@ PetscErrorCode ContactSolver::SetBodyCompliance() {
       E = k[0], nu = k[1];
     }
     // Each cell lives on one rank (the partition has no overlap of cells).
-    sum[2 * mesh_.CellBody(c)] += (material_.plane_stress ? 1.0 : 1.0 - nu * nu) / E;
+    sum[2 * mesh_.CellBody(c)] += (material_.plane_stress ? 1.0 : 1.0 - nu * nu) / (E * material_.CellThickness(c));
     sum[2 * mesh_.CellBody(c) + 1] += 1;
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sum.data(), (int)sum.size(), MPI_DOUBLE, MPI_SUM, mesh_.Comm()));

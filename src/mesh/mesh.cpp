@@ -696,6 +696,7 @@ PetscErrorCode Mesh::BuildLocalArrays() {
       const PetscInt code = cell_face_codes_[k], lf = code / nlabels;
       Face f;
       f.n = cf.size[lf];
+      f.cell = c;
       for (int j = 0; j < f.n; ++j) f.v[j] = cv[cf.v[lf][j]];
       label_faces_[code % nlabels].push_back(f);
     }

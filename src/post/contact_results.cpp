@@ -18,10 +18,10 @@ struct Partial {
   PetscInt count[4] = {0, 0, 0, 0}; ///< candidate nodes, pairs, active pairs, active nodes
 };
 
-/// The friction force F = -sum_k t_k lambda_t,k per node, its traction F / (w t), the slip and the set, and the total
-/// friction force (part of the contact force).
-PetscErrorCode FrictionResults(const SolvedState &state, const Material &material, const std::vector<double> &w,
-                               NodeContact &nodes, Partial &part) {
+/// The friction force F = -sum_k t_k lambda_t,k per node, its traction F / area (the tributary area: length times
+/// thickness in 2D), the slip and the set, and the total friction force (part of the contact force).
+PetscErrorCode FrictionResults(const SolvedState &state, const std::vector<double> &area, NodeContact &nodes,
+                               Partial &part) {
   const Friction &friction = *state.friction;
   const int dim = state.mesh.Dim(), m = friction.PerPair();
   const PetscInt nv = state.mesh.NumLocalVertices();
@@ -46,16 +46,15 @@ PetscErrorCode FrictionResults(const SolvedState &state, const Material &materia
     if (state.states[p].active) nodes.friction_state[v] = std::max(nodes.friction_state[v], (double)friction.State(p));
   }
   for (PetscInt v = 0; v < nv; ++v)
-    if (w[v] > 0)
-      for (int c = 0; c < dim; ++c)
-        nodes.friction_traction[v * dim + c] = nodes.friction[v * dim + c] / (w[v] * material.thickness);
+    if (area[v] > 0)
+      for (int c = 0; c < dim; ++c) nodes.friction_traction[v * dim + c] = nodes.friction[v * dim + c] / area[v];
   PetscFunctionReturn(0);
 }
 
 /// The multipliers, pressures, gaps and active flags per node (nodes) from the pairs, with the contact force, length
-/// and the maxima of the pairs (w: the tributary lengths or areas).
-void NodeResults(const SolvedState &state, const Material &material, const std::vector<double> &w, NodeContact &nodes,
-                 Partial &part) {
+/// and the maxima of the pairs (w: the tributary lengths or areas; area: in 2D the lengths times the thickness).
+void NodeResults(const SolvedState &state, const std::vector<double> &w, const std::vector<double> &area,
+                 NodeContact &nodes, Partial &part) {
   const Mesh &mesh = state.mesh;
   const int dim = mesh.Dim();
   const PetscInt nv = mesh.NumLocalVertices();
@@ -87,7 +86,7 @@ void NodeResults(const SolvedState &state, const Material &material, const std::
   for (PetscInt v = 0; v < nv; ++v) {
     if (!mesh.Owned(v)) continue;
     counts[0] += state.candidates[v];
-    if (w[v] > 0) nodes.pressure[v] = nodes.lambda[v] / (w[v] * material.thickness);
+    if (area[v] > 0) nodes.pressure[v] = nodes.lambda[v] / area[v];
     if (nodes.active[v]) {
       counts[3]++;
       local[3] += w[v];
@@ -186,11 +185,13 @@ PetscErrorCode Summarise(MPI_Comm comm, Partial &part, ContactSummary &s) {
 PetscErrorCode ComputeContactResults(const SolvedState &state, const Material &material, NodeContact &nodes,
                                      ContactSummary &s) {
   PetscFunctionBeginUser;
-  std::vector<double> w;
-  PetscCall(TributaryLengths(state.mesh, state.candidates, w));
+  // The pressure is per tributary area: the length times the thickness of the faces' cells (2D).
+  std::vector<double> w, area, thickness(state.mesh.NumLocalCells());
+  for (PetscInt c = 0; c < state.mesh.NumLocalCells(); ++c) thickness[c] = material.CellThickness(c);
+  PetscCall(TributaryLengths(state.mesh, state.candidates, w, &thickness, &area));
   Partial part;
-  NodeResults(state, material, w, nodes, part);
-  if (state.friction) PetscCall(FrictionResults(state, material, w, nodes, part));
+  NodeResults(state, w, area, nodes, part);
+  if (state.friction) PetscCall(FrictionResults(state, area, nodes, part));
   PetscCall(BodyResults(state, part));
   PetscCall(Summarise(state.mesh.Comm(), part, s));
   s.bodies = state.mortar && !state.mortar->Empty();

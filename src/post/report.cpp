@@ -238,8 +238,9 @@ PetscErrorCode PrintHeader(MPI_Comm comm, const RunInfo &info, const Material &m
   PetscCallMPI(MPI_Allreduce(&owned, &candidates, 1, MPIU_INT, MPI_SUM, comm));
   const std::string E = ValueText(m.E, m.E_groups), nu = ValueText(m.nu, m.nu_groups);
   if (mesh.Dim() == 2)
-    PetscCall(PetscPrintf(comm, "signorini: 2D %s, plane %s, E = %s, nu = %s, thickness = %.6g\n", m.ModelText().c_str(),
-                          m.plane_stress ? "stress" : "strain", E.c_str(), nu.c_str(), m.thickness));
+    PetscCall(PetscPrintf(comm, "signorini: 2D %s, plane %s, E = %s, nu = %s, thickness = %s\n", m.ModelText().c_str(),
+                          m.plane_stress ? "stress" : "strain", E.c_str(), nu.c_str(),
+                          ValueText(m.thickness, m.thickness_groups).c_str()));
   else
     PetscCall(PetscPrintf(comm, "signorini: 3D %s, E = %s, nu = %s\n", m.ModelText().c_str(), E.c_str(), nu.c_str()));
   if (mesh.NumBodies() > 1)
@@ -467,7 +468,8 @@ std::string SummaryJson(const RunInfo &info, const Material &m, const SolvedStat
   };
   constant("E", m.E, m.E_groups);
   constant("nu", m.nu, m.nu_groups);
-  j.Number("thickness", m.thickness).EndObject();
+  constant("thickness", m.thickness, m.thickness_groups);
+  j.EndObject();
   j.BeginObject("problem")
       .Integer("displacement_dofs", dofs.GlobalU())
       .Integer("multipliers", dofs.GlobalLambda())

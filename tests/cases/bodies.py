@@ -150,6 +150,51 @@ def patch(runner, kind):
                             tol * np.abs(exact).max())
 
 
+@test("thickness_per_group")
+def thickness_per_group(runner):
+    """-material_thickness per physical group (2D). A bar of two thicknesses in series (meshes/bimaterial_bar.geo, plane
+    stress, nu = 0, the traction T on the end of the part of thickness t2): the force T h t2 strains each part by
+    T t2 / (t E), exactly, to 1e-10 of the end displacement. Two blocks of thicknesses 0.5 (upper, the slave side) and
+    2 (lower) in the contact patch test under the pressure q on the top: every slave node active with the pressure q
+    (lambda over the tributary length times the slave's thickness) to 1e-10, the two sides' forces q w t_upper, equal
+    and opposite, and each block's exact linear field (the lower one's stress q t_upper / t_lower)."""
+    t = {"soft": 0.5, "stiff": 2.0}
+    r = runner.run(["-mesh_file", "meshes/bimaterial_bar.geo", "-material_plane", "stress", "-material_E",
+                    ",".join("%s:%g" % kv for kv in BAR_E.items()), "-material_nu", "0", "-material_thickness",
+                    ",".join("%s:%g" % kv for kv in t.items()), "-bc_dirichlet", "left:x,origin:y", "-bc_traction",
+                    "right:%g:0" % BAR_T], "bar of two thicknesses")
+    runner.expect_equal("thickness per group in summary.json", r.get("material.thickness"), t)
+    runner.expect_true("the header names each group's thickness", "thickness = soft:0.5, stiff:2" in r.output)
+    e1, e2 = (BAR_T * t["stiff"] / (t[g] * BAR_E[g]) for g in ("soft", "stiff"))
+    nodes = r.nodes()
+    x = nodes["x"]
+    end = e1 * BAR_L1 + e2 * BAR_L2
+    exact = np.where(x < BAR_L1, e1 * x, e1 * BAR_L1 + e2 * (x - BAR_L1))
+    runner.expect_close("axial displacement of the stepped bar (end %.12g)" % end, nodes["u_x"], exact, 0, 1e-10 * end)
+    runner.expect_close("u_y", nodes["u_y"], 0 * x, 0, 1e-10 * end)
+    runner.expect_close("reaction = T h t2", r.get("contact.reaction_force.0"), -BAR_T * 0.4 * t["stiff"], 1e-10)
+
+    q, tu, tl = 2.0, 0.5, 2.0
+    r = runner.run(["-options_file", "options/patch2d.yml", "-mesh_file", PATCH_MESHES["tri"],
+                    "-material_thickness", "upper:%g,lower:%g" % (tu, tl)], "patch test, thicknesses 0.5 and 2")
+    nodes = r.nodes()
+    slave = nodes[(nodes["y"] == 1.0) & np.isfinite(nodes["gap"])]
+    n = len(slave)
+    runner.expect_equal("active slave nodes", int(slave["active"].sum()), n)
+    runner.expect_close("contact pressure = q at every slave node", slave["pressure"], np.full(n, q), 1e-10)
+    force = [0, q * 2.0 * tu]
+    runner.expect_close("slave side force q w t_upper", r.get("contact.contact_force"), force, 1e-10, 1e-10 * q)
+    runner.expect_close("master side force", r.get("contact.master_contact_force"), -np.array(force), 1e-10, 1e-10 * q)
+    E, nu = r.get("material.E"), r.get("material.nu")
+    upper = nodes["body"] == nodes["body"][nodes["y"] > 1.5][0]
+    s = np.where(upper, q, q * tu / tl)  # each block's vertical compression
+    uy_top_of_lower = -(1 - nu * nu) * q * tu / tl / E
+    exact = np.column_stack([nu * (1 + nu) * s / E * nodes["x"],
+                             np.where(upper, uy_top_of_lower - (1 - nu * nu) * q / E * (nodes["y"] - 1),
+                                      -(1 - nu * nu) * s / E * nodes["y"])])
+    runner.expect_close("each block's exact linear field", displacement(nodes), exact, 0, 1e-10 * np.abs(exact).max())
+
+
 def combined_modulus(runner, case, first, second):
     """Johnson's E* of two bodies (physical groups first and second) of the case's materials per group:
     1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2."""

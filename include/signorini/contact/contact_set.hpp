@@ -124,8 +124,12 @@ struct Penetration {
 
 /// Tributary length (2D) or area (3D) of every local candidate vertex: the integral of its shape function over each
 /// adjacent boundary face whose every vertex is a candidate (half of an edge, a third of a triangle, a quarter of a
-/// parallelogram), summed over ranks. Collective.
+/// parallelogram), summed over ranks; with face_thickness (the thickness of each local cell's faces, 2D) also area,
+/// the same integrals times the thickness (a node between faces of two thicknesses takes each face's share).
+/// Collective.
 [[nodiscard]] PetscErrorCode TributaryLengths(const Mesh &mesh, const std::vector<char> &candidate,
-                                              std::vector<double> &length);
+                                              std::vector<double> &length,
+                                              const std::vector<double> *face_thickness = nullptr,
+                                              std::vector<double> *area = nullptr);
 
 } // namespace signorini

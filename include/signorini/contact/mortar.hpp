@@ -39,7 +39,7 @@ public:
   /// Collective.
   [[nodiscard]] PetscErrorCode Build(const Mesh &mesh, const ContactOptions &opts, const std::vector<char> &fixed,
                                      PetscInt facet_base, const double *u_local = nullptr);
-  /// The compliance (1 - nu^2) / E (plane stress: 1 / E) of every body, before Build: the rows' normals weight the two
+  /// The compliance (1 - nu^2) / (E t) (plane stress: 1 / (E t); t the thickness in 2D) of every body, before Build: the rows' normals weight the two
   /// surfaces' by it (mortar.cpp, InterfaceNormal). Without it the master's normal alone.
   void SetCompliance(std::vector<double> compliance) { compliance_ = std::move(compliance); }
   /// svk: the rows again in the configuration of u_local; changed: the pairs or the master nodes of a row changed

@@ -22,6 +22,7 @@ constexpr int MAX_CELL_VERTICES = 8;
 struct Face {
   int n = 0;
   std::array<PetscInt, 4> v{};
+  PetscInt cell = -1; ///< the local cell whose face it is
 };
 
 /// Mesh options (prefix -mesh_), read by Mesh::Create.
