@@ -51,7 +51,7 @@ PetscErrorCode CheckContactInputs(const Mesh &mesh, const Obstacle &obstacle, co
     const auto key = [](const Face &f) {
       std::array<PetscInt, 4> k{-1, -1, -1, -1};
       std::copy(f.v.begin(), f.v.begin() + f.n, k.begin());
-      std::sort(k.begin(), k.begin() + f.n);
+      std::sort(k.begin(), k.end()); // the whole array, padding first (of a variable length GCC 12 warns falsely)
       return k;
     };
     for (const Face &f : boundary) on_boundary.insert(key(f));
