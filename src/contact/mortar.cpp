@@ -13,12 +13,7 @@ namespace signorini {
 
 namespace {
 
-/// One face of a group, as every rank sees it after the gather: its nodes (file numbering) and coordinates.
-struct GatheredFace {
-  int n = 0;
-  std::array<PetscInt, 4> node{}, body{};
-  std::array<std::array<double, 3>, 4> x{}, X{}; ///< current and reference positions
-};
+using GatheredFace = MortarCoupling::Facet;
 
 /// Every rank's faces of the group `name` (input: the option item, for messages), gathered on every rank: the
 /// interface is a surface of the mesh, small beside the volume. u_local (dim values per local vertex; null: none):
@@ -394,6 +389,60 @@ void OverlapIntegrals(const GatheredFace &s, double measure, const std::vector<G
   }
 }
 
+/// The integrals of the slave facets `slaves` (2D: segments) with the master facets `masters`: D, M and the rows'
+/// normals per slave node (OverlapIntegrals), each slave node's tributary measure (if given), and per slave facet the
+/// master facets its overlap meets (if given).
+void SlaveIntegrals(int dim, const std::vector<GatheredFace> &slaves, const std::vector<GatheredFace> &masters,
+                    double radius, const std::vector<double> &compliance, Integrals &in,
+                    std::map<PetscInt, double> *tributary, std::vector<std::vector<std::size_t>> *hit) {
+  std::vector<OverlapPoint> points;
+  const MasterBoxes boxes(masters);
+  if (hit) hit->assign(slaves.size(), {});
+  for (std::size_t i = 0; i < slaves.size(); ++i) {
+    const GatheredFace &s = slaves[i];
+    double measure, ns[3] = {0, 0, 0};
+    if (dim == 2) {
+      const SegmentFrame f(s);
+      measure = f.length, ns[0] = f.n[0], ns[1] = f.n[1];
+    } else {
+      const FacetPlane f(s);
+      measure = f.area, ns[0] = f.n[0], ns[1] = f.n[1], ns[2] = f.n[2];
+    }
+    if (tributary)
+      for (int a = 0; a < s.n; ++a) (*tributary)[s.node[a]] += measure / s.n;
+    if (dim == 2) SegmentOverlap(s, masters, boxes, radius, points);
+    else FacetOverlap(s, masters, boxes, radius, points);
+    OverlapIntegrals(s, measure, masters, boxes, points, ns, compliance, in);
+    if (hit)
+      for (const OverlapPoint &o : points)
+        if ((*hit)[i].empty() || (*hit)[i].back() != o.master) (*hit)[i].push_back(o.master);
+  }
+}
+
+/// The row of slave node j from the integrals: its unit normal n, and its coefficients c (dim values per node of
+/// `nodes`: -n on j, w_jl n = M_jl / D_jj n on a master node l, 0 elsewhere) and weighted gap g = n . (x_j - sum_l
+/// w_jl x_l) at the positions x (dim values per node of `nodes`); false if j has no integrals.
+bool RowOf(int dim, PetscInt j, const Integrals &in, const std::vector<PetscInt> &nodes, const std::vector<double> &x,
+           std::vector<double> &c, double &g) {
+  const auto d_it = in.D.find(j);
+  if (d_it == in.D.end() || !(d_it->second > 0)) return false;
+  const auto &nv = in.normal.at(j);
+  const double len = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
+  double n[3] = {nv[0] / len, nv[1] / len, nv[2] / len};
+  c.assign(nodes.size() * dim, 0.0);
+  g = 0;
+  const auto m_it = in.M.find(j);
+  for (std::size_t a = 0; a < nodes.size(); ++a) {
+    double w = nodes[a] == j ? -1.0 : 0.0;
+    if (nodes[a] != j && m_it != in.M.end()) {
+      const auto l = m_it->second.find(nodes[a]);
+      if (l != m_it->second.end()) w = l->second / d_it->second;
+    }
+    for (int k = 0; k < dim; ++k) c[a * dim + k] = w * n[k], g -= w * n[k] * x[a * dim + k];
+  }
+  return true;
+}
+
 } // namespace
 
 PetscErrorCode MortarCoupling::Build(const Mesh &mesh, const ContactOptions &opts, const std::vector<char> &fixed,
@@ -485,25 +534,15 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
   // area.
   Integrals in;
   std::map<PetscInt, double> tributary;
-  std::vector<OverlapPoint> points;
-  const MasterBoxes boxes(mf);
+  std::vector<GatheredFace> mine;
   for (const GatheredFace &s : sf) {
-    bool mine = false;
-    for (int a = 0; a < s.n; ++a) mine = mine || owned.count(s.node[a]);
-    if (!mine) continue;
-    double measure, ns[3] = {0, 0, 0};
-    if (dim_ == 2) {
-      const SegmentFrame f(s);
-      measure = f.length, ns[0] = f.n[0], ns[1] = f.n[1];
-    } else {
-      const FacetPlane f(s);
-      measure = f.area, ns[0] = f.n[0], ns[1] = f.n[1], ns[2] = f.n[2];
-    }
-    for (int a = 0; a < s.n; ++a) tributary[s.node[a]] += measure / s.n;
-    if (dim_ == 2) SegmentOverlap(s, mf, boxes, opts.search_radius, points);
-    else FacetOverlap(s, mf, boxes, opts.search_radius, points);
-    OverlapIntegrals(s, measure, mf, boxes, points, ns, compliance_, in);
+    bool touches = false;
+    for (int a = 0; a < s.n; ++a) touches = touches || owned.count(s.node[a]);
+    if (touches) mine.push_back(s);
   }
+  std::vector<std::vector<std::size_t>> hit;
+  radius_ = opts.search_radius;
+  SlaveIntegrals(dim_, mine, mf, opts.search_radius, compliance_, in, &tributary, tangent_ ? &hit : nullptr);
   std::unordered_map<PetscInt, std::pair<const double *, PetscInt>> master_x; // reference position, body
   for (const GatheredFace &f : mf)
     for (int a = 0; a < f.n; ++a) master_x[f.node[a]] = {f.X[a].data(), f.body[a]};
@@ -512,7 +551,7 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
     // A node whose overlap is a vanishing part of its tributary length has no row worth its conditioning.
     if (it == owned.end() || !(Dj > 1e-6 * tributary[node])) continue;
     const PetscInt v = it->second;
-    Row row{v, facet_base_ + item, {0, 0, 0}, 0, Dj, {}};
+    Row row{v, facet_base_ + item, {0, 0, 0}, 0, Dj, {}, {}, {}, {}};
     // The interface's normal (from the master into the slave body, InterfaceNormal; the obstacle's of a rigid
     // master): a node on a flat master has the rows a rigid plane gives it.
     const auto &n = in.normal[node];
@@ -531,6 +570,21 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
       MasterTerm t{l, Mjl / Dj, {x[0], x[1], x[2]}, body};
       for (int d = 0; d < dim_; ++d) row.g0 -= t.w * row.n[d] * x[d];
       row.terms.push_back(t);
+    }
+    if (tangent_) {
+      // The row's own integrals, for Linearise: the slave facets around the node and the master facets they meet.
+      std::set<std::size_t> masters;
+      std::set<PetscInt> neighbours;
+      for (std::size_t i = 0; i < mine.size(); ++i) {
+        const GatheredFace &s = mine[i];
+        if (std::find(s.node.begin(), s.node.begin() + s.n, node) == s.node.begin() + s.n) continue;
+        row.near_slave.push_back(s);
+        masters.insert(hit[i].begin(), hit[i].end());
+        for (int a = 0; a < s.n; ++a)
+          if (s.node[a] != node) neighbours.insert(s.node[a]);
+      }
+      for (std::size_t m : masters) row.near_master.push_back(mf[m]);
+      row.neighbours.assign(neighbours.begin(), neighbours.end());
     }
     rows_.push_back(std::move(row));
   }
@@ -591,8 +645,11 @@ PetscErrorCode MortarCoupling::Bind(const Mesh &mesh, const DofMap &dofs, const 
   }
   // The master nodes' first rows and fixed components, from their owners to every rank (the interfaces' nodes only).
   std::vector<PetscInt> needed;
-  for (const Row &r : rows_)
+  for (const Row &r : rows_) {
     for (const MasterTerm &t : r.terms) needed.push_back(t.node);
+    needed.insert(needed.end(), r.neighbours.begin(), r.neighbours.end());
+    for (const GatheredFace &f : r.near_master) needed.insert(needed.end(), f.node.begin(), f.node.begin() + f.n);
+  }
   std::sort(needed.begin(), needed.end());
   needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
   std::vector<PetscInt> all_needed;
@@ -636,9 +693,15 @@ PetscErrorCode MortarCoupling::Bind(const Mesh &mesh, const DofMap &dofs, const 
   PetscCall(MatGetOwnershipRange(G_, &first_row, nullptr));
   free_columns_.assign(pairs.size(), {});
   free_terms_.assign(pairs.size(), {});
+  neighbour_columns_.assign(pairs.size(), {});
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     if (pair_row_[p] < 0) continue;
     const Row &r = rows_[pair_row_[p]];
+    for (PetscInt node : r.neighbours) {
+      const auto &[first, fixed] = master_.at(node);
+      for (int k = 0; k < dim_; ++k)
+        if (!(fixed & (1 << k))) neighbour_columns_[p].push_back(first + k);
+    }
     const PetscInt row = first_row + (PetscInt)p;
     for (const MasterTerm &t : r.terms) {
       const auto &[first, fixed] = master_.at(t.node);
@@ -714,7 +777,11 @@ const std::vector<MortarCoupling::MasterTerm> *MortarCoupling::Terms(std::size_t
 
 void MortarCoupling::ExtendRows(std::vector<ConstraintRow> &rows) const {
   for (std::size_t p = 0; p < rows.size() && p < free_columns_.size(); ++p)
+  {
     for (const auto &[col, coef] : free_columns_[p]) rows[p].Add(col, coef);
+    if (p < neighbour_columns_.size())
+      for (PetscInt col : neighbour_columns_[p]) rows[p].Add(col, 0.0);
+  }
 }
 
 PetscErrorCode MortarCoupling::AddMasterGaps(const Mesh &mesh, const DofMap &dofs, const double *u_local,
@@ -752,6 +819,117 @@ PetscErrorCode MortarCoupling::MasterForces(const Mesh &mesh, const DofMap &dofs
   for (PetscInt v = 0; v < mesh.NumLocalVertices(); ++v)
     if (mesh.Owned(v))
       for (int k = 0; k < dim_; ++k) sum[k] += master[dofs.LocalOffset(v, k)];
+  PetscFunctionReturn(0);
+}
+
+} // namespace signorini
+
+namespace signorini {
+
+PetscErrorCode MortarCoupling::Linearise(const Mesh &mesh, const DofMap &dofs, const std::vector<char> &fixed,
+                                         const std::vector<double> &lambda, const std::vector<char> &active, Mat K,
+                                         bool block, std::vector<ConstraintRow> &rows,
+                                         std::vector<std::vector<double>> &columns) const {
+  static PetscLogEvent event = 0;
+  const int dim = dim_;
+  PetscFunctionBeginUser;
+  if (!event) {
+    PetscClassId id;
+    PetscCall(PetscClassIdRegister("signorini mortar", &id));
+    PetscCall(PetscLogEventRegister("SigMortarTangent", id, &event));
+  }
+  PetscCall(PetscLogEventBegin(event, 0, 0, 0, 0));
+  columns.assign(rows.size(), {});
+  std::vector<PetscInt> nodes, cols, kcols;
+  std::vector<double> x, c0, cp, cm, dc, dg, vals;
+  for (std::size_t p = 0; p < rows.size() && p < pair_row_.size(); ++p) {
+    if (pair_row_[p] < 0 || !(active[p] || lambda[p] != 0)) continue;
+    const Row &r = rows_[pair_row_[p]];
+    if (r.near_slave.empty()) continue;
+    // The row's nodes: the slave node, its neighbours on the slave facets around it, the master facets' nodes; their
+    // positions and free columns (-1: a Dirichlet dof).
+    const PetscInt j = mesh.VertexOriginal(r.vertex);
+    nodes.assign(1, j);
+    nodes.insert(nodes.end(), r.neighbours.begin(), r.neighbours.end());
+    for (const Facet &f : r.near_master)
+      for (int a = 0; a < f.n; ++a)
+        if (std::find(nodes.begin(), nodes.end(), f.node[a]) == nodes.end()) nodes.push_back(f.node[a]);
+    const std::size_t n = nodes.size() * dim;
+    x.assign(n, 0.0);
+    cols.assign(n, -1);
+    double length = 0;
+    for (const std::vector<Facet> *side : {&r.near_slave, &r.near_master})
+      for (const Facet &f : *side)
+        for (int a = 0; a < f.n; ++a) {
+          const std::size_t i = std::find(nodes.begin(), nodes.end(), f.node[a]) - nodes.begin();
+          for (int k = 0; k < dim; ++k) x[i * dim + k] = f.x[a][k];
+          if (side == &r.near_slave)
+            for (int k = 0; k < dim; ++k) length = std::max(length, std::abs(f.x[(a + 1) % f.n][k] - f.x[a][k]));
+        }
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      for (int k = 0; k < dim; ++k) {
+        if (i == 0) {
+          if (!fixed[r.vertex * dim + k]) cols[k] = dofs.Row(r.vertex, k);
+          continue;
+        }
+        const auto &[first, bits] = master_.at(nodes[i]);
+        if (!(bits & (1 << k))) cols[i * dim + k] = first + k;
+      }
+    // Central differences of the row's integrals over its own facets: a step of 1e-6 of the slave facets' size
+    // (truncation ~1e-12, round-off ~1e-10 relative for coordinates up to 1e3 facet sizes from the origin).
+    const double h = 1e-6 * length;
+    Integrals in;
+    double g0, gp, gm;
+    SlaveIntegrals(dim, r.near_slave, r.near_master, radius_, compliance_, in, nullptr, nullptr);
+    if (!RowOf(dim, j, in, nodes, x, c0, g0)) continue;
+    dc.assign(n * n, 0.0); // dc[e * n + b]: d c_e / d x_b
+    dg.assign(n, 0.0);
+    bool ok = true;
+    for (std::size_t b = 0; b < n && ok; ++b) {
+      if (cols[b] < 0) continue;
+      for (const double step : {h, -h}) {
+        std::vector<Facet> S = r.near_slave, M = r.near_master;
+        for (std::vector<Facet> *side : {&S, &M})
+          for (Facet &f : *side)
+            for (int a = 0; a < f.n; ++a)
+              if (f.node[a] == nodes[b / dim]) f.x[a][b % dim] += step;
+        std::vector<double> xs = x;
+        xs[b] += step;
+        Integrals ins;
+        SlaveIntegrals(dim, S, M, radius_, compliance_, ins, nullptr, nullptr);
+        ok = RowOf(dim, j, ins, nodes, xs, step > 0 ? cp : cm, step > 0 ? gp : gm);
+      }
+      if (!ok) break;
+      for (std::size_t e = 0; e < n; ++e) dc[e * n + b] = (cp[e] - cm[e]) / (2 * h);
+      dg[b] = (gp - gm) / (2 * h);
+    }
+    if (!ok) continue; // a row that a step of 1e-6 of a facet makes or unmakes keeps its frozen tangent
+    // lambda_p dc/du into K: rows the coefficients' free dofs, columns every free dof of the row.
+    if (lambda[p] != 0) {
+      kcols.clear();
+      for (std::size_t b = 0; b < n; ++b)
+        if (cols[b] >= 0) kcols.push_back(block ? dofs.UBlockRow(cols[b]) : cols[b]);
+      for (std::size_t e = 0; e < n; ++e) {
+        if (cols[e] < 0) continue;
+        vals.clear();
+        bool any = false;
+        for (std::size_t b = 0; b < n; ++b)
+          if (cols[b] >= 0) vals.push_back(lambda[p] * dc[e * n + b]), any = any || dc[e * n + b] != 0;
+        if (!any) continue;
+        const PetscInt row = block ? dofs.UBlockRow(cols[e]) : cols[e];
+        PetscCall(MatSetValues(K, 1, &row, (PetscInt)kcols.size(), kcols.data(), vals.data(), ADD_VALUES));
+      }
+    }
+    // The active row: the linearised weighted gap, -dg/du (the row of B is -grad g), its column the frozen one.
+    if (active[p]) {
+      columns[p] = rows[p].coef;
+      for (PetscInt i = 0; i < rows[p].ncols; ++i) {
+        const std::size_t b = std::find(cols.begin(), cols.end(), rows[p].cols[i]) - cols.begin();
+        if (b < n) rows[p].coef[i] = -dg[b];
+      }
+    }
+  }
+  PetscCall(PetscLogEventEnd(event, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

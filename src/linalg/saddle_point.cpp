@@ -243,7 +243,7 @@ PetscErrorCode SaddlePointSystem::CreateNest(const std::vector<SparseRow> &rows,
     PetscCall(MatSetOption(M, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
     PetscCall(MatSetOption(M, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
   }
-  PetscCall(MatSetOption(nest_.K, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(nest_.K, MAT_SYMMETRIC, nonsymmetric_k_ ? PETSC_FALSE : PETSC_TRUE));
   PetscCall(MatSetOption(nest_.K, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
   IS is[2] = {dofs_->IsU(), dofs_->IsLambda()};
   Mat blocks[4] = {nest_.K, nest_.Bt, nest_.B, nest_.D};

@@ -31,6 +31,17 @@ PetscErrorCode ContactSolver::Setup() {
   PetscCall(BuildDirichlet(mesh_, bc_, dirichlet_));
   if (!contact_.pairs.empty()) PetscCall(SetBodyCompliance());
   if (friction_.On()) mortar_.KeepWeights();
+  // svk between bodies: the variation of the mortar rows enters the Newton tangent (-newton_mortar_tangent; friction
+  // keeps the rows of the current iterate).
+  const bool consistent = opts_.mortar_tangent == (PetscInt)SolverOptions::MortarTangent::CONSISTENT;
+  PetscCheck(!opts_.mortar_tangent_set || !contact_.pairs.empty(), comm, PETSC_ERR_USER_INPUT,
+             "-newton_mortar_tangent %s applies to pairs of bodies (-contact_pairs) only",
+             SolverOptions::MORTAR_TANGENT_NAMES[opts_.mortar_tangent]);
+  PetscCheck(!(opts_.mortar_tangent_set && consistent && friction_.On()), comm, PETSC_ERR_USER_INPUT,
+             "-newton_mortar_tangent consistent: with friction the mortar rows' tangent is the frozen one (the "
+             "tangential rows' variation is not built); expected -newton_mortar_tangent frozen or no such option");
+  if (model_->CurrentConfiguration() && !contact_.pairs.empty() && !friction_.On() && consistent)
+    mortar_.UseConsistentTangent();
   PetscCall(mortar_.Build(mesh_, contact_, dirichlet_.fixed, (PetscInt)obstacle_.facets.size()));
   // Pairs of bodies with svk: their mortar rows follow the configuration at every Newton iteration, which the lagged
   // searches in the multiplier space of the factored tangent do not see, and cycled (the 2D cylinders of
@@ -126,6 +137,9 @@ PetscErrorCode ContactSolver::CreateSystem() {
     system_->UseNonsymmetric(friction_.Describe());
     system_->UseTangentialRows((PetscInt)pairs_.size());
   }
+  if (mortar_.ConsistentTangent())
+    system_->UseNonsymmetric("svk between bodies with the mortar rows' consistent tangent (-newton_mortar_tangent "
+                             "consistent; frozen keeps the matrix symmetric)", true);
   PetscCall(system_->Create(dofs_, rows, coords, !model_->Nonlinear(), kscale_, d_nnz, o_nnz, insert_pattern));
   if (opts_.lagged_search_set && opts_.lagged_search) system_->KeepFactorization();
   k_assembled_ = false;

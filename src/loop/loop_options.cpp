@@ -40,6 +40,13 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptio
                              "after lagged searches (not singular) is repeated with exact Newton steps before a cut; "
                              "false: exact Newton at every iteration (the default with -contact_pairs)",
                              "", opts.lagged_search, &opts.lagged_search, &opts.lagged_search_set));
+  PetscCall(OptionsChoice(PetscOptionsObject, "-newton_mortar_tangent",
+                          "svk between bodies (-contact_pairs): consistent: the Newton tangent holds the variation of "
+                          "the mortar rows (their normals and weights) with the displacement, so that Newton converges "
+                          "superlinearly (a nonsymmetric matrix: MUMPS LU, or BiCGStab on the iterative path); frozen: "
+                          "the rows of the current iterate only (linear convergence, a symmetric matrix); with "
+                          "friction always frozen", "consistent or frozen", SolverOptions::MORTAR_TANGENT_NAMES, 2,
+                          opts.mortar_tangent, &opts.mortar_tangent_set));
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_active_set_rtol",
                         "Iterative solvers, linear material: the saddle-point solves of the active-set iterations "
                         "stop when their residual fell by this times the load step's first right-hand side over "
@@ -58,6 +65,9 @@ PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptio
                "iterations are bounded by -contact_max_it)", opts.newton_max_it);
     PetscCheck(!line_search_set, comm, PETSC_ERR_USER_INPUT,
                "-newton_linesearch %s applies to -material_model svk only", opts.line_search ? "true" : "false");
+    PetscCheck(!opts.mortar_tangent_set, comm, PETSC_ERR_USER_INPUT,
+               "-newton_mortar_tangent %s applies to -material_model svk only (the linear material's mortar rows are "
+               "those of the reference configuration)", SolverOptions::MORTAR_TANGENT_NAMES[opts.mortar_tangent]);
     PetscCheck(!opts.lagged_search_set, comm, PETSC_ERR_USER_INPUT,
                "-newton_lagged_search %s applies to -material_model svk only, with the kept factorisation "
                "(-contact_reuse_factorization with a MUMPS LU or Cholesky solver)",

@@ -335,6 +335,59 @@ def slide_svk(runner):
     expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-4)
 
 
+def settled_residuals(result):
+    """Per accepted load step, the Newton residuals from the first iteration whose active set stayed (changed 0) on,
+    relative to the applied force."""
+    scale = np.linalg.norm(result.get("contact.applied_force"))
+    steps = {}
+    for r in result.get("iterations.history"):
+        if r["iteration"] == 1:
+            steps[r["step"]] = []
+        steps[r["step"]].append(r)
+    out = []
+    for records in steps.values():
+        first = next((i for i, r in enumerate(records) if r["changed"] == 0), len(records))
+        out.append([r["residual"] / scale for r in records[first:]])
+    return out
+
+
+def superlinear(residuals, floor=1e-9):
+    """Whether each Newton step's contraction r_k+1 / r_k is at most a tenth of the step before's, while the residual
+    is above the floor (the certificate's 1e-9 of the load): an order above 1 (a linear rate keeps the ratio)."""
+    for r in residuals:
+        r = [x for x in r if x > floor]
+        q = [b / a for a, b in zip(r, r[1:])]
+        if any(b > 0.1 * a for a, b in zip(q, q[1:])):
+            return False
+    return True
+
+
+@test("svk_mortar_tangent")
+def svk_mortar_tangent(runner):
+    """svk between bodies: the Newton tangent holds the mortar rows' variation (-newton_mortar_tangent consistent, the
+    default): on the two cylinders of options/cylinders_2d.yml (a curved interface) each Newton step's contraction is
+    at most a tenth of the one before once the active set stays (superlinear), where the frozen rows' contractions
+    stay flat (linear); on the block sliding along a floor (options/slide2d.yml, 10 load steps) every step reaches
+    the certificate's residual within 2 Newton steps of the set staying (the frozen rows take 4 to 5); both tangents
+    end in the same state (1e-8)."""
+    for args, what in ((["-options_file", "options/cylinders_2d.yml", "-material_model", "svk"], "cylinders"),
+                       (["-options_file", "options/slide2d.yml"], "sliding block")):
+        r = runner.run(args, "svk %s, consistent tangent" % what)
+        f = runner.run(args + ["-newton_mortar_tangent", "frozen"], "svk %s, frozen tangent" % what)
+        expect_same_state(runner, f, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+        runner.expect_true("%s: fewer Newton iterations with the consistent tangent (%d against %d)" % (
+            what, r.get("iterations.active_set"), f.get("iterations.active_set")),
+            r.get("iterations.active_set") < f.get("iterations.active_set"))
+        settled = settled_residuals(r)
+        runner.expect_true("%s: superlinear once the set stays: %s" % (what, settled), superlinear(settled))
+        if what == "cylinders":
+            runner.expect_true("%s: the frozen tangent's contractions are linear: %s" % (what, settled_residuals(f)),
+                               not superlinear(settled_residuals(f)))
+        else:
+            runner.expect_true("%s: every step within 2 Newton steps of the set staying: %s" % (what, settled),
+                               all(len(s) <= 3 for s in settled))
+
+
 @test("stack3")
 def stack3(runner):
     """Three blocks stacked (options/stack3.yml): the middle one is held only through both interfaces, each body's

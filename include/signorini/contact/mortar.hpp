@@ -11,7 +11,8 @@
 // With this scaling the multiplier is the normal force on the slave node and pressure = lambda / tributary length,
 // as for a rigid obstacle, and the master carries - w_jl lambda_j n_j. Linear material: the integrals and normals of
 // the reference configuration, fixed through the run; svk: those of the current configuration, computed again at
-// every iterate (Update), their variation left out of the tangent (docs/theory.md §8).
+// every iterate (Update), and by default their variation enters the Newton tangent (UseConsistentTangent, Linearise:
+// docs/theory.md §8).
 #pragma once
 
 #include "signorini/contact/active_set.hpp"
@@ -20,6 +21,7 @@
 #include "signorini/core/handle.hpp"
 #include "signorini/fem/dof_map.hpp"
 
+#include <array>
 #include <map>
 #include <string>
 #include <unordered_map>
@@ -42,6 +44,11 @@ public:
   /// The compliance (1 - nu^2) / (E t) (plane stress: 1 / (E t); t the thickness in 2D) of every body, before Build: the rows' normals weight the two
   /// surfaces' by it (mortar.cpp, InterfaceNormal). Without it the master's normal alone.
   void SetCompliance(std::vector<double> compliance) { compliance_ = std::move(compliance); }
+  /// svk (before Build): the rows keep what their consistent tangent needs (Linearise): the slave facets around each
+  /// slave node and the master facets they overlap, and each row gets the columns of its neighbouring slave nodes
+  /// (ExtendRows, coefficient 0), so that the displacement block's pattern holds the tangent's entries.
+  void UseConsistentTangent() { tangent_ = true; }
+  bool ConsistentTangent() const { return tangent_; }
   /// svk: the rows again in the configuration of u_local; changed: the pairs or the master nodes of a row changed
   /// (the system's pattern with them), on any rank. Collective.
   [[nodiscard]] PetscErrorCode Update(const Mesh &mesh, const ContactOptions &opts, const std::vector<char> &fixed,
@@ -75,6 +82,27 @@ public:
   [[nodiscard]] PetscErrorCode AddMasterForces(const std::vector<double> &lambda, double sign,
                                                std::vector<double> &out) const;
 
+  /// The consistent Newton tangent of the mortar rows at the configuration of the last Update (UseConsistentTangent):
+  /// the rows' coefficients c_j (-n_j on the slave node j, w_jl n_j on its master nodes l) and weighted gaps g_j
+  /// depend on the slave and master nodes around j through n_j and w_jl. For every owned pair p with a row that is
+  /// active or carries a multiplier, by central differences of the row's own integrals over its local facets: adds
+  /// lambda_p dc_p/du (the variation of the contact forces B^T lambda) to K (rows and columns: the free dofs of the
+  /// row's pattern; block: K is the displacement block of a nested matrix, numbered by DofMap::UBlockRow), and on an
+  /// active pair replaces rows[p]'s coefficients by -dg_p/du (the linearised gap), its frozen coefficients given back
+  /// in columns[p] (the column of B^T: the residual's forces keep them). Collective (K's off-rank entries).
+  [[nodiscard]] PetscErrorCode Linearise(const Mesh &mesh, const DofMap &dofs, const std::vector<char> &fixed,
+                                         const std::vector<double> &lambda, const std::vector<char> &active, Mat K,
+                                         bool block, std::vector<ConstraintRow> &rows,
+                                         std::vector<std::vector<double>> &columns) const;
+
+  /// A facet of a slave or master group as every rank sees it after the gather: its nodes (file numbering), bodies,
+  /// and current and reference positions.
+  struct Facet {
+    int n = 0;
+    std::array<PetscInt, 4> node{}, body{};
+    std::array<std::array<double, 3>, 4> x{}, X{};
+  };
+
   /// Bind builds the weights' matrix W too (MasterDisplacements, AddMasterVectorForces: friction between bodies).
   void KeepWeights() { weights_ = true; }
   /// Appends to row the free master columns of pair p in ExtendRows' order, with coefficients scale w_jl dir_k (the
@@ -104,6 +132,10 @@ private:
     PetscInt vertex, facet; ///< the slave node (local vertex) and the pair's facet index
     double n[3], g0, D;
     std::vector<MasterTerm> terms;
+    /// UseConsistentTangent: the slave facets that hold the slave node and the master facets that they overlap (the
+    /// row's integrals), and the other nodes of those slave facets.
+    std::vector<Facet> near_slave, near_master;
+    std::vector<PetscInt> neighbours;
   };
   /// The most that two bodies may overlap at the start, in body diagonals (a faceted curved interface overlaps by
   /// about h^2 / R; more is a wrong mesh).
@@ -123,6 +155,8 @@ private:
   PetscInt interfaces_ = 0, facet_base_ = 0;
   std::vector<double> compliance_; ///< per body (SetCompliance)
   bool weights_ = false;           ///< KeepWeights
+  bool tangent_ = false;           ///< UseConsistentTangent
+  double radius_ = 0;              ///< the search radius of the last Build
   std::vector<Row> rows_;
   std::vector<char> slave_, master_vertex_; ///< local vertices of a slave group, of a master group
   /// Bind: per pair the index of its row in rows_ (-1: an obstacle's pair); per master node its first global row and
@@ -131,6 +165,8 @@ private:
   std::unordered_map<PetscInt, std::pair<PetscInt, int>> master_;
   /// Bind: per pair its master nodes' free columns in the system and their coefficients w_jl n_j (ExtendRows).
   std::vector<std::vector<std::pair<PetscInt, double>>> free_columns_;
+  /// Bind, UseConsistentTangent: per pair its neighbouring slave nodes' free columns (ExtendRows, coefficient 0).
+  std::vector<std::vector<PetscInt>> neighbour_columns_;
   /// Bind: per pair its free master columns' weights w_jl and components, in free_columns_' order.
   struct FreeTerm {
     double w;

@@ -104,7 +104,11 @@ public:
   /// a constant K the factorisation is kept across the sets all the same, of the fixed rows that SetRowGroups gives
   /// (KeptRows: friction's turned rows and slip columns mapped onto them); with a changing K it is the plain form,
   /// refactored at every change. why: the cause, for the messages.
-  void UseNonsymmetric(const std::string &why) { nonsymmetric_ = why; }
+  /// stiffness: the displacement block itself is nonsymmetric (svk's consistent mortar tangent), not only B^T and B.
+  void UseNonsymmetric(const std::string &why, bool stiffness = false) {
+    nonsymmetric_ = why, nonsymmetric_k_ = stiffness;
+  }
+  bool Nested() const { return nest_.on; }
   /// Friction on the kept factorisation (TurnsRows()): every owned multiplier row's fixed row and the groups that map
   /// the current rows onto them (KeptRows), given before each SetConstraints.
   void SetRowGroups(std::vector<SparseRow> fixed, std::vector<RowGroup> groups) {
@@ -407,6 +411,7 @@ private:
   /// The last factorisation gave nothing to solve with: null pivots, or the direct path stopped (DirectRejected).
   bool FactorStopped() const { return null_pivots_ > 0 || !direct_rejected_.empty(); }
   std::string nonsymmetric_; ///< UseNonsymmetric's cause (empty: symmetric)
+  bool nonsymmetric_k_ = false; ///< UseNonsymmetric's stiffness
   bool turned_ = false;      ///< the kept factorisation is of fixed rows (TurnsRows)
   KeptRows kept_rows_;       ///< SetRowGroups' rows and groups, and their maps (SetConstraints)
   /// TurnsRows(): the fixed matrix [K + w B^T B, B^T; B, 1/w] factored with its Schur complement (Factor).

@@ -21,12 +21,17 @@ struct SolverOptions {
   PetscBool line_search = PETSC_FALSE; ///< -newton_linesearch (Crisfield's line search; det F <= 0 always backtracks)
   PetscBool lagged_search = PETSC_TRUE;  ///< -newton_lagged_search (svk, kept factorisation): see ContactSolver
   PetscBool lagged_search_set = PETSC_FALSE;
+  enum class MortarTangent { CONSISTENT, FROZEN };
+  static constexpr const char *MORTAR_TANGENT_NAMES[2] = {"consistent", "frozen"};
+  /// -newton_mortar_tangent (svk between bodies): the mortar rows' variation in the Newton tangent or not
+  PetscInt mortar_tangent = (PetscInt)MortarTangent::CONSISTENT;
+  PetscBool mortar_tangent_set = PETSC_FALSE;
   static constexpr double ACTIVE_SET_RTOL_MAX = 0.1;
   double active_set_rtol = 1e-3; ///< -contact_active_set_rtol: iterative solves while the set changes, [0, 0.1]
 };
 
 /// Reads the -load_ and -newton_ options. The ones that only the nonlinear material's Newton loop uses
-/// (-load_max_cuts, -newton_max_it, -newton_linesearch, -newton_lagged_search) are an error when given with another
+/// (-load_max_cuts, -newton_max_it, -newton_linesearch, -newton_lagged_search, -newton_mortar_tangent) are an error when given with another
 /// model, so that none is ignored silently (-newton_rtol and -newton_atol bound the equilibrium residual of every
 /// model). Then checks the values of the saddle-point solver's PETSc options (CheckSolverOptionValues).
 [[nodiscard]] PetscErrorCode ReadSolverOptions(MPI_Comm comm, MaterialModel model, SolverOptions &opts);
