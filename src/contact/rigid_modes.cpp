@@ -1,7 +1,9 @@
 // Rigid-body modes left free by the supports and the active contact constraints.
 #include "signorini/contact/rigid_modes.hpp"
 
+#include "signorini/core/blocks.hpp"
 #include "signorini/core/symmetric_eigen.hpp"
+#include "signorini/linalg/lcp.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -180,6 +182,59 @@ PetscErrorCode RigidModes::FreeMotion(const std::vector<PairKey> &keys,
   a.assign(n, 0.0);
   for (int i = 0; i < f; ++i)
     for (int r = 0; r < n; ++r) a[r] += vec[r * n + free[i]] * rhs[i];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode RigidModes::Unbalanced(const std::vector<PairKey> &keys,
+                                      const std::vector<std::array<double, 3>> &normals, const double *f,
+                                      double &unbalanced) const {
+  const int dim = mesh_->Dim(), n = n_;
+  std::vector<double> load(n, 0.0);
+  std::vector<std::pair<int, double>> row;
+  PetscFunctionBeginUser;
+  unbalanced = 0;
+  // The load's generalised forces on the modes.
+  for (PetscInt v = 0; v < mesh_->NumLocalVertices(); ++v) {
+    if (!mesh_->Owned(v)) continue;
+    row.clear();
+    AppendModes(mesh_->NumBodies() > 0 ? mesh_->VertexBody(v) : 0, mesh_->X(v), f + v * dim, 1, row);
+    for (const auto &[i, m] : row) load[i] += m;
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, load.data(), n, MPI_DOUBLE, MPI_SUM, mesh_->Comm()));
+  // The modes that the supports leave free (as in FreeMotion, the Dirichlet rows alone).
+  std::vector<double> vec;
+  const std::vector<double> eig = SymmetricEigen(g_dirichlet_, n, &vec);
+  double top = 0;
+  for (double e : eig) top = std::max(top, std::abs(e));
+  std::vector<int> free;
+  for (int j = 0; j < n; ++j)
+    if (eig[j] <= FREE_MODE * top) free.push_back(j);
+  const int k = (int)free.size();
+  std::vector<double> b(k, 0.0);
+  double bnorm = 0;
+  for (int i = 0; i < k; ++i) {
+    for (int r = 0; r < n; ++r) b[i] -= vec[r * n + free[i]] * load[r];
+    bnorm += b[i] * b[i];
+  }
+  bnorm = std::sqrt(bnorm);
+  double fnorm = 0;
+  for (double l : load) fnorm += l * l;
+  if (k == 0 || !(bnorm > 1e-12 * std::sqrt(fnorm))) PetscFunctionReturn(0);
+  // Every pair's forces on the free modes, gathered in rank order (k values per pair: linear in the pairs).
+  std::vector<double> mine, A;
+  for (std::size_t p = 0; p < keys.size(); ++p) {
+    PairRow(p, keys, normals, row);
+    std::vector<double> dense(n, 0.0);
+    for (const auto &[i, m] : row) dense[i] += m;
+    for (int i = 0; i < k; ++i) {
+      double a = 0;
+      for (int r = 0; r < n; ++r) a += vec[r * n + free[i]] * dense[r];
+      mine.push_back(a);
+    }
+  }
+  PetscCall(AllGather(mesh_->Comm(), mine, A));
+  std::vector<double> lambda;
+  unbalanced = NonNegativeLeastSquares(k, (int)(A.size() / k), A, b, lambda) / bnorm;
   PetscFunctionReturn(0);
 }
 

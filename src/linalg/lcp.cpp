@@ -182,3 +182,116 @@ LcpStatus SolveLcp(int m, const std::vector<double> &M, const std::vector<double
 }
 
 } // namespace signorini
+
+namespace signorini {
+
+namespace {
+
+/// The least-squares solution s of min |A_P s - b| (A_P: the columns cols of the k-row column-major A), by Householder
+/// QR; a column whose pivot vanishes (dependent on those before it) gets 0.
+void LeastSquares(int k, const std::vector<double> &A, const std::vector<int> &cols, const std::vector<double> &b,
+                  std::vector<double> &s) {
+  const int n = (int)cols.size();
+  std::vector<double> R(k * n), y(b);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < k; ++i) R[i + j * k] = A[i + (std::size_t)cols[j] * k];
+  std::vector<double> diag(n, 0.0);
+  double top = 0;
+  for (int j = 0; j < n && j < k; ++j) {
+    double norm = 0;
+    for (int i = j; i < k; ++i) norm += R[i + j * k] * R[i + j * k];
+    norm = std::sqrt(norm);
+    top = std::max(top, norm);
+    if (norm == 0) continue;
+    const double alpha = R[j + j * k] > 0 ? -norm : norm;
+    std::vector<double> v(k, 0.0);
+    for (int i = j; i < k; ++i) v[i] = R[i + j * k];
+    v[j] -= alpha;
+    double vv = 0;
+    for (int i = j; i < k; ++i) vv += v[i] * v[i];
+    if (vv == 0) continue;
+    for (int c = j; c < n; ++c) {
+      double d = 0;
+      for (int i = j; i < k; ++i) d += v[i] * R[i + c * k];
+      for (int i = j; i < k; ++i) R[i + c * k] -= 2 * d / vv * v[i];
+    }
+    double d = 0;
+    for (int i = j; i < k; ++i) d += v[i] * y[i];
+    for (int i = j; i < k; ++i) y[i] -= 2 * d / vv * v[i];
+  }
+  s.assign(n, 0.0);
+  for (int j = std::min(n, k) - 1; j >= 0; --j) {
+    if (!(std::abs(R[j + j * k]) > 1e-13 * top)) continue;
+    double v = y[j];
+    for (int c = j + 1; c < std::min(n, k); ++c) v -= R[j + c * k] * s[c];
+    s[j] = v / R[j + j * k];
+  }
+}
+
+} // namespace
+
+double NonNegativeLeastSquares(int k, int m, const std::vector<double> &A, const std::vector<double> &b,
+                               std::vector<double> &x) {
+  x.assign(m, 0.0);
+  std::vector<char> passive(m, 0);
+  std::vector<double> r(b), s;
+  std::vector<int> cols;
+  const auto residual = [&] {
+    r = b;
+    for (int j = 0; j < m; ++j)
+      if (x[j] != 0)
+        for (int i = 0; i < k; ++i) r[i] -= A[i + (std::size_t)j * k] * x[j];
+  };
+  double bnorm = 0, amax = 0;
+  for (double v : b) bnorm += v * v;
+  bnorm = std::sqrt(bnorm);
+  for (int j = 0; j < m; ++j) {
+    double c = 0;
+    for (int i = 0; i < k; ++i) c += A[i + (std::size_t)j * k] * A[i + (std::size_t)j * k];
+    amax = std::max(amax, std::sqrt(c));
+  }
+  // A column enters while it would reduce the residual by more than round-off: its gradient A_j^T r above 1e-12 of
+  // |A_j| |b| (the scale of the terms).
+  const double tol = 1e-12 * amax * bnorm;
+  for (int outer = 0; outer < 3 * m + 30; ++outer) {
+    int t = -1;
+    double best = tol;
+    for (int j = 0; j < m; ++j) {
+      if (passive[j]) continue;
+      double w = 0;
+      for (int i = 0; i < k; ++i) w += A[i + (std::size_t)j * k] * r[i];
+      if (w > best) best = w, t = j;
+    }
+    if (t < 0) break;
+    passive[t] = 1;
+    for (int inner = 0; inner <= m; ++inner) {
+      cols.clear();
+      for (int j = 0; j < m; ++j)
+        if (passive[j]) cols.push_back(j);
+      LeastSquares(k, A, cols, b, s);
+      bool positive = true;
+      for (double v : s) positive = positive && v > 0;
+      if (positive) {
+        for (std::size_t c = 0; c < cols.size(); ++c) x[cols[c]] = s[c];
+        break;
+      }
+      // Back along the segment from x to s to where the first passive variable reaches 0; it leaves the set.
+      double alpha = 1;
+      std::size_t first = 0;
+      for (std::size_t c = 0; c < cols.size(); ++c)
+        if (s[c] <= 0 && x[cols[c]] / (x[cols[c]] - s[c]) <= alpha) alpha = x[cols[c]] / (x[cols[c]] - s[c]), first = c;
+      for (std::size_t c = 0; c < cols.size(); ++c) {
+        const int j = cols[c];
+        x[j] += alpha * (s[c] - x[j]);
+        if (c == first || x[j] <= 0) x[j] = 0, passive[j] = 0;
+      }
+    }
+    residual();
+  }
+  residual();
+  double norm = 0;
+  for (double v : r) norm += v * v;
+  return std::sqrt(norm);
+}
+
+} // namespace signorini

@@ -73,6 +73,39 @@ PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ContactSolver::UnbalancedLoad(bool &unheld) {
+  const int dim = mesh_.Dim();
+  PetscFunctionBeginUser;
+  unheld = false;
+  if (friction_.On() || !system_->Iterative() || dofs_.GlobalLambda() == 0) PetscFunctionReturn(0);
+  // A rigid motion that the supports and every candidate pair leave free is the singular system's verdict, as on the
+  // direct path (DIVERGED_SINGULAR, SolveAndUpdate's check).
+  bool held;
+  PetscCall(rigid_.Held(keys_, normals_, std::vector<char>(pairs_.size(), 1), held));
+  if (!held) PetscFunctionReturn(0);
+  std::vector<double> f(u_local_.size(), 0.0);
+  const PetscScalar *fe;
+  PetscCall(VecGetArrayRead(fext_, &fe));
+  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+    if (mesh_.Owned(v))
+      for (int k = 0; k < dim; ++k) f[v * dim + k] = fe[dofs_.LocalOffset(v, k)];
+  PetscCall(VecRestoreArrayRead(fext_, &fe));
+  double unbalanced;
+  PetscCall(rigid_.Unbalanced(keys_, normals_, f.data(), unbalanced));
+  PetscCall(PetscInfo(nullptr, "load step start: %.6g of the load along the free rigid motions unbalanced by any "
+                      "non-negative forces on the %" PetscInt_FMT " candidate pairs\n", unbalanced,
+                      dofs_.GlobalLambda()));
+  if (!(unbalanced > LCP_UNHELD)) PetscFunctionReturn(0);
+  unheld = true;
+  char text[256];
+  std::snprintf(text, sizeof(text),
+                "no non-negative contact forces on its %" PetscInt_FMT " candidate pairs balance the load (%.2g of it "
+                "along rigid-body motions that the supports leave free is left unbalanced)",
+                dofs_.GlobalLambda(), unbalanced);
+  retry_.unheld_detail = text;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ContactSolver::UnpairedAfterFailure(StepState &st, PetscInt it) {
   PetscFunctionBeginUser;
   retry_.widen_to = 0;

@@ -490,6 +490,15 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
   for (;; ++it) {
     PetscInt changes = 0;
     PetscCall(EvaluateIterate(st, it));
+    if (it == 0) {
+      // The iterative path's verdict on a body that no forces on its pairs can hold (UnbalancedLoad).
+      bool unheld;
+      PetscCall(UnbalancedLoad(unheld));
+      if (unheld) {
+        stats_.reason = Reason::DIVERGED_NOT_HELD;
+        break;
+      }
+    }
     {
       // Active-set update: first the pairs touching at the start, then the complementarity rule (ActiveSet).
       ScopedTimer t(stats_.time_active_set);

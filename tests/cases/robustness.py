@@ -51,6 +51,40 @@ def free_along_floor(runner):
                       keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
+@test("unbalanced_iterative")
+def unbalanced_iterative(runner):
+    """The iterative path has no complementarity problem for a body that seems free (PivotedActiveSet needs the direct
+    path's Schur complement); at the start of each load step it checks that some non-negative forces on the candidate
+    pairs balance the load along the rigid motions that the supports leave free (RigidModes::Unbalanced). Three cases
+    of the 3D survey (scripts/random_outcomes.py --dim 3 --seed 777, docs/survey.md) that the direct path ends
+    DIVERGED_NOT_HELD ended on the iterative path out of iterations (case 12: a cube on a sphere pulled away from its
+    wall, linear) or with a non-invertible deformation after five cuts (cases 35 and 111, svk): now DIVERGED_NOT_HELD
+    on both paths, the iterative one saying which part of the load nothing balances (0.095, 0.19, 0.18; the direct
+    path's complementarity problem leaves 0.096 of case 12's). Held bodies pass the check at every load step of the
+    suite's iterative runs (the verdict is a necessary condition of equilibrium: a body that some state holds has a
+    balance)."""
+    cube = ["-mesh_file", "meshes/cube.msh", "-contact_groups", "bottom,front,left"]
+    cases = {
+        12: ["-material_E", "132.455", "-material_nu", "0.336", "-bc_traction", "top:-0.00607614:0.00404879:-0.0295612",
+             "-obstacle_planes", "0,0,0,1,0,0,0,0,0,0,1,0", "-obstacle_spheres", "0.631854,0.597755,-1.03464,1"],
+        35: ["-material_E", "360.487", "-material_nu", "0.166", "-material_model", "svk", "-bc_traction",
+             "top:0.0176601:0.553755:-2.51641", "-obstacle_planes",
+             "0,0,0,0,1,0,0.981005,0,-0.0469906,-0.780322,0,1", "-obstacle_spheres", "0.323881,0.518852,-1.04699,1"],
+        111: ["-material_E", "458.356", "-material_nu", "0.236", "-material_model", "svk", "-bc_traction",
+              "top:0.24869:-0.0376946:-1.01561", "-obstacle_planes", "0,0,0,1,0,0,0,0,0,0,1,0",
+              "-obstacle_spheres", "0.646932,0.544932,-1.03581,1"],
+    }
+    for case, args in cases.items():
+        for solver in ("direct", "iterative"):
+            status, out, _ = runner.run_any(cube + args + ["-contact_solver", solver], "case %d, %s" % (case, solver))
+            errors = [line for line in out.splitlines() if line.startswith("signorini: error:")]
+            runner.expect_true("case %d, %s: one error line, DIVERGED_NOT_HELD (exit %d): %s" % (
+                case, solver, status, errors), status != 0 and len(errors) == 1 and "DIVERGED_NOT_HELD" in errors[0])
+            if solver == "iterative":
+                runner.expect_true("case %d: the unbalanced part named: %s" % (case, errors),
+                                   len(errors) == 1 and "no non-negative contact forces" in errors[0])
+
+
 @test("cycling_set_pivoted")
 def cycling_set_pivoted(runner):
     """The linear material's last resort when its active sets cycle or it finds the body free: the contact problem

@@ -46,6 +46,14 @@ public:
                                           const std::vector<std::array<double, 3>> &normals,
                                           const std::vector<char> &active, const double *du, RigidMotion &a,
                                           const std::vector<std::size_t> *pair_of = nullptr) const;
+  /// The part of the load f (dim values per local vertex, the owned ones counted) along the rigid motions that the
+  /// Dirichlet rows leave free which no non-negative forces of the pairs (along their normals, less their master
+  /// terms' for a pair of bodies) balance: min over lambda >= 0 of |Z^T (F + A lambda)| / |Z^T F|, F the load's and A
+  /// the pairs' generalised forces on the modes, Z an orthonormal basis of the free modes (NonNegativeLeastSquares).
+  /// 0 when the supports hold every mode or the load has no part along the free ones. Collective.
+  [[nodiscard]] PetscErrorCode Unbalanced(const std::vector<PairKey> &keys,
+                                          const std::vector<std::array<double, 3>> &normals, const double *f,
+                                          double &unbalanced) const;
   /// The rate at which the gap of pair p changes along the rigid motion a (its row of B applied to the motion,
   /// with the sign of the gap).
   double PairRate(std::size_t p, const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,

@@ -261,6 +261,14 @@ private:
   /// -info. Collective.
   enum class Pivot { NONE, SET, UNHELD };
   [[nodiscard]] PetscErrorCode PivotedActiveSet(StepState &st, PetscInt it, const char *why, Pivot &pivot);
+  /// The iterative path's verdict on a body that its pairs cannot hold (it has no Schur complement for
+  /// PivotedActiveSet's problem, and its Krylov solves of such a step ran out of iterations, or svk's Newton iterates
+  /// deformed the body until det F vanished, where the direct path ends DIVERGED_NOT_HELD): at the start of a load
+  /// step without friction, the part of the load along the rigid motions that the supports leave free which no
+  /// non-negative forces on the candidate pairs balance (RigidModes::Unbalanced: a necessary condition of any
+  /// equilibrium, so never a body that some state holds). Above LCP_UNHELD: unheld, with retry_.unheld_detail.
+  /// Collective.
+  [[nodiscard]] PetscErrorCode UnbalancedLoad(bool &unheld);
   /// See PivotedActiveSet and SaddlePointSystem::ContactLcp: the unbalanced fraction does not depend on the spring's
   /// stiffness, so not on E / load or the mesh (the spring itself carried 0.004 of the load of a block held between a
   /// floor and a wall under a small load). A body that its pairs hold leaves round-off (3e-8 at most in the tests), one

@@ -181,5 +181,101 @@ TEST(Lcp, NoSolutionEndsOnARay) {
   EXPECT_EQ(SolveLcp(2, {0, 0, 0, 0}, {-1, 1}, z, w), LcpStatus::RAY);
 }
 
+/// The residual |A x - b| (A k x m column major).
+double NnlsResidual(int k, int m, const std::vector<double> &A, const std::vector<double> &b,
+                    const std::vector<double> &x) {
+  double r2 = 0;
+  for (int i = 0; i < k; ++i) {
+    double r = -b[i];
+    for (int j = 0; j < m; ++j) r += A[i + (std::size_t)j * k] * x[j];
+    r2 += r * r;
+  }
+  return std::sqrt(r2);
+}
+
+/// Brute force: the least residual over every subset of columns whose unconstrained least-squares solution (normal
+/// equations) is non-negative, and 0 columns.
+double NnlsBruteForce(int k, int m, const std::vector<double> &A, const std::vector<double> &b) {
+  double best = NnlsResidual(k, m, A, b, std::vector<double>(m, 0.0));
+  for (int mask = 1; mask < (1 << m); ++mask) {
+    std::vector<int> c;
+    for (int j = 0; j < m; ++j)
+      if (mask & (1 << j)) c.push_back(j);
+    const int n = (int)c.size();
+    if (n > k) continue;
+    std::vector<double> G(n * n, 0.0), y(n, 0.0);
+    for (int a = 0; a < n; ++a)
+      for (int i = 0; i < k; ++i) {
+        y[a] += A[i + (std::size_t)c[a] * k] * b[i];
+        for (int d = 0; d < n; ++d) G[a * n + d] += A[i + (std::size_t)c[a] * k] * A[i + (std::size_t)c[d] * k];
+      }
+    bool ok = true;
+    for (int a = 0; a < n && ok; ++a) { // Gaussian elimination (G positive definite for independent columns)
+      ok = G[a * n + a] > 1e-12;
+      for (int r = a + 1; r < n && ok; ++r) {
+        const double f = G[r * n + a] / G[a * n + a];
+        for (int d = a; d < n; ++d) G[r * n + d] -= f * G[a * n + d];
+        y[r] -= f * y[a];
+      }
+    }
+    if (!ok) continue;
+    std::vector<double> x(m, 0.0), s(n);
+    for (int a = n - 1; a >= 0; --a) {
+      double v = y[a];
+      for (int d = a + 1; d < n; ++d) v -= G[a * n + d] * s[d];
+      s[a] = v / G[a * n + a];
+    }
+    for (int a = 0; a < n; ++a) ok = ok && s[a] >= 0, x[c[a]] = s[a];
+    if (ok) best = std::min(best, NnlsResidual(k, m, A, b, x));
+  }
+  return best;
+}
+
+TEST(Nnls, MatchesBruteForceAndKkt) {
+  std::mt19937 gen(11);
+  std::normal_distribution<double> n(0, 1);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int k = 1 + trial % 6, m = 1 + (trial / 6) % 10;
+    std::vector<double> A((std::size_t)k * m), b(k), x;
+    for (double &v : A) v = n(gen);
+    for (double &v : b) v = n(gen);
+    const double r = NonNegativeLeastSquares(k, m, A, b, x);
+    EXPECT_NEAR(r, NnlsResidual(k, m, A, b, x), 1e-12 * (1 + r));
+    EXPECT_NEAR(r, NnlsBruteForce(k, m, A, b), 1e-10 * (1 + r)) << "trial " << trial;
+    // KKT: x >= 0, the gradient A^T (b - A x) <= 0 off the support and 0 on it.
+    for (int j = 0; j < m; ++j) {
+      double w = 0;
+      for (int i = 0; i < k; ++i) {
+        double ri = b[i];
+        for (int l = 0; l < m; ++l) ri -= A[i + (std::size_t)l * k] * x[l];
+        w += A[i + (std::size_t)j * k] * ri;
+      }
+      EXPECT_GE(x[j], 0);
+      EXPECT_LE(w, 1e-9);
+      if (x[j] > 0) {
+        EXPECT_NEAR(w, 0, 1e-9);
+      }
+    }
+  }
+}
+
+TEST(Nnls, ManyColumnsLoadInsideAndOutsideTheCone) {
+  // Six rigid modes, 2000 contact columns of one sign pattern: a load inside their cone is balanced (residual
+  // round-off), its opposite is not (the residual is the load's part that no column reaches).
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> u(0.1, 1);
+  const int k = 6, m = 2000;
+  std::vector<double> A((std::size_t)k * m), x;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < k; ++i) A[i + (std::size_t)j * k] = i == 0 ? u(gen) : u(gen) - 0.55;
+  std::vector<double> inside(k, 0.0), outside(k);
+  for (int j = 0; j < m; j += 7)
+    for (int i = 0; i < k; ++i) inside[i] += 0.3 * A[i + (std::size_t)j * k];
+  EXPECT_LT(NonNegativeLeastSquares(k, m, A, inside, x), 1e-10 * inside[0]);
+  for (int i = 0; i < k; ++i) outside[i] = -inside[i];
+  const double r = NonNegativeLeastSquares(k, m, A, outside, x);
+  EXPECT_GT(r, 0.9 * std::abs(outside[0])); // the first mode's columns are all positive: its load stays unbalanced
+}
+
 } // namespace
 } // namespace signorini
