@@ -14,6 +14,18 @@ namespace signorini {
 using namespace detail;
 
 
+namespace {
+
+/// The finding that the pairs cannot hold the body, for the DIVERGED_NOT_HELD message: format with the candidate pairs'
+/// count and the unbalanced fraction.
+std::string UnheldDetail(const char *format, PetscInt pairs, double unbalanced) {
+  char text[256];
+  std::snprintf(text, sizeof(text), format, pairs, unbalanced);
+  return text;
+}
+
+} // namespace
+
 PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const char *why, Pivot &pivot) {
   PetscFunctionBeginUser;
   pivot = Pivot::NONE;
@@ -59,12 +71,9 @@ PetscErrorCode ContactSolver::PivotedActiveSet(StepState &st, PetscInt it, const
   if (unbalanced > LCP_UNHELD) {
     pivot = Pivot::UNHELD;
     st.pivoted = 2; // the verdict stands for this step
-    char text[256];
-    std::snprintf(text, sizeof(text),
-                  "no contact forces on its %" PetscInt_FMT " candidate pairs balance the load (the complementarity "
-                  "problem leaves %.2g of it along rigid-body motions unbalanced)",
-                  dofs_.GlobalLambda(), unbalanced);
-    retry_.unheld_detail = text;
+    retry_.unheld_detail = UnheldDetail("no contact forces on its %" PetscInt_FMT " candidate pairs balance the load (the "
+                                        "complementarity problem leaves %.2g of it along rigid-body motions "
+                                        "unbalanced)", dofs_.GlobalLambda(), unbalanced);
     PetscFunctionReturn(0);
   }
   // The step goes on from that set with the usual rule, its earlier sets forgotten.
@@ -97,12 +106,9 @@ PetscErrorCode ContactSolver::UnbalancedLoad(bool &unheld) {
                       dofs_.GlobalLambda()));
   if (!(unbalanced > LCP_UNHELD)) PetscFunctionReturn(0);
   unheld = true;
-  char text[256];
-  std::snprintf(text, sizeof(text),
-                "no non-negative contact forces on its %" PetscInt_FMT " candidate pairs balance the load (%.2g of it "
-                "along rigid-body motions that the supports leave free is left unbalanced)",
-                dofs_.GlobalLambda(), unbalanced);
-  retry_.unheld_detail = text;
+  retry_.unheld_detail = UnheldDetail("no non-negative contact forces on its %" PetscInt_FMT " candidate pairs balance "
+                                      "the load (%.2g of it along rigid-body motions that the supports leave free is "
+                                      "left unbalanced)", dofs_.GlobalLambda(), unbalanced);
   PetscFunctionReturn(0);
 }
 
