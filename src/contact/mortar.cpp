@@ -419,24 +419,46 @@ void SlaveIntegrals(int dim, const std::vector<GatheredFace> &slaves, const std:
   }
 }
 
-/// The row of slave node j from the integrals: its unit normal n, and its coefficients c (dim values per node of
-/// `nodes`: -n on j, w_jl n = M_jl / D_jj n on a master node l, 0 elsewhere) and weighted gap g = n . (x_j - sum_l
-/// w_jl x_l) at the positions x (dim values per node of `nodes`); false if j has no integrals.
-bool RowOf(int dim, PetscInt j, const Integrals &in, const std::vector<PetscInt> &nodes, const std::vector<double> &x,
+/// Slave node j's share of the integrals (D_jj, M_jl, the normal's sum), summed over slave facets.
+struct RowSums {
+  double D = 0;
+  std::map<PetscInt, double> M;
+  std::array<double, 3> normal{0, 0, 0};
+  void Add(const RowSums &o) {
+    D += o.D;
+    for (const auto &[l, m] : o.M) M[l] += m;
+    for (int d = 0; d < 3; ++d) normal[d] += o.normal[d];
+  }
+};
+
+/// Node j's share of the integrals of slave facet s with the master facets `masters` (SlaveIntegrals).
+RowSums FacetShare(int dim, PetscInt j, const GatheredFace &s, const std::vector<GatheredFace> &masters, double radius,
+                   const std::vector<double> &compliance) {
+  Integrals in;
+  SlaveIntegrals(dim, {s}, masters, radius, compliance, in, nullptr, nullptr);
+  RowSums r;
+  if (const auto it = in.D.find(j); it != in.D.end()) r.D = it->second;
+  if (const auto it = in.M.find(j); it != in.M.end()) r.M = it->second;
+  if (const auto it = in.normal.find(j); it != in.normal.end()) r.normal = it->second;
+  return r;
+}
+
+/// The row of slave node j from its sums: its unit normal n, and its coefficients c (dim values per node of `nodes`:
+/// -n on j, w_jl n = M_jl / D_jj n on a master node l, 0 elsewhere) and weighted gap g = n . (x_j - sum_l w_jl x_l) at
+/// the positions x (dim values per node of `nodes`); false if j has no integrals.
+bool RowOf(int dim, PetscInt j, const RowSums &in, const std::vector<PetscInt> &nodes, const std::vector<double> &x,
            std::vector<double> &c, double &g) {
-  const auto d_it = in.D.find(j);
-  if (d_it == in.D.end() || !(d_it->second > 0)) return false;
-  const auto &nv = in.normal.at(j);
+  const auto &nv = in.normal;
   const double len = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
+  if (!(in.D > 0) || !(len > 0)) return false;
   double n[3] = {nv[0] / len, nv[1] / len, nv[2] / len};
   c.assign(nodes.size() * dim, 0.0);
   g = 0;
-  const auto m_it = in.M.find(j);
   for (std::size_t a = 0; a < nodes.size(); ++a) {
     double w = nodes[a] == j ? -1.0 : 0.0;
-    if (nodes[a] != j && m_it != in.M.end()) {
-      const auto l = m_it->second.find(nodes[a]);
-      if (l != m_it->second.end()) w = l->second / d_it->second;
+    if (nodes[a] != j) {
+      const auto l = in.M.find(nodes[a]);
+      if (l != in.M.end()) w = l->second / in.D;
     }
     for (int k = 0; k < dim; ++k) c[a * dim + k] = w * n[k], g -= w * n[k] * x[a * dim + k];
   }
@@ -551,7 +573,7 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
     // A node whose overlap is a vanishing part of its tributary length has no row worth its conditioning.
     if (it == owned.end() || !(Dj > 1e-6 * tributary[node])) continue;
     const PetscInt v = it->second;
-    Row row{v, facet_base_ + item, {0, 0, 0}, 0, Dj, {}, {}, {}, {}};
+    Row row{v, facet_base_ + item, {0, 0, 0}, 0, Dj, {}, {}, {}, {}, {}};
     // The interface's normal (from the master into the slave body, InterfaceNormal; the obstacle's of a rigid
     // master): a node on a flat master has the rows a rigid plane gives it.
     const auto &n = in.normal[node];
@@ -575,15 +597,21 @@ PetscErrorCode MortarCoupling::BuildInterface(const Mesh &mesh, const ContactOpt
       // The row's own integrals, for Linearise: the slave facets around the node and the master facets they meet.
       std::set<std::size_t> masters;
       std::set<PetscInt> neighbours;
+      std::vector<std::size_t> facets;
       for (std::size_t i = 0; i < mine.size(); ++i) {
         const GatheredFace &s = mine[i];
         if (std::find(s.node.begin(), s.node.begin() + s.n, node) == s.node.begin() + s.n) continue;
         row.near_slave.push_back(s);
+        facets.push_back(i);
         masters.insert(hit[i].begin(), hit[i].end());
         for (int a = 0; a < s.n; ++a)
           if (s.node[a] != node) neighbours.insert(s.node[a]);
       }
       for (std::size_t m : masters) row.near_master.push_back(mf[m]);
+      for (std::size_t i : facets) {
+        row.near_hits.emplace_back();
+        for (std::size_t m : hit[i]) row.near_hits.back().push_back((int)std::distance(masters.begin(), masters.find(m)));
+      }
       row.neighbours.assign(neighbours.begin(), neighbours.end());
     }
     rows_.push_back(std::move(row));
@@ -876,28 +904,51 @@ PetscErrorCode MortarCoupling::Linearise(const Mesh &mesh, const DofMap &dofs, c
         if (!(bits & (1 << k))) cols[i * dim + k] = first + k;
       }
     // Central differences of the row's integrals over its own facets: a step of 1e-6 of the slave facets' size
-    // (truncation ~1e-12, round-off ~1e-10 relative for coordinates up to 1e3 facet sizes from the origin).
+    // (truncation ~1e-12, round-off ~1e-10 relative for coordinates up to 1e3 facet sizes from the origin). A node's
+    // step changes only the shares of the slave facets that hold it or whose master facets do: the others' shares
+    // are summed from the unperturbed ones.
     const double h = 1e-6 * length;
-    Integrals in;
+    const std::size_t nf = r.near_slave.size();
+    std::vector<std::vector<Facet>> masters_of(nf);
+    std::vector<RowSums> share(nf);
+    RowSums sums;
     double g0, gp, gm;
-    SlaveIntegrals(dim, r.near_slave, r.near_master, radius_, compliance_, in, nullptr, nullptr);
-    if (!RowOf(dim, j, in, nodes, x, c0, g0)) continue;
+    for (std::size_t i = 0; i < nf; ++i) {
+      for (int m : r.near_hits[i]) masters_of[i].push_back(r.near_master[m]);
+      share[i] = FacetShare(dim, j, r.near_slave[i], masters_of[i], radius_, compliance_);
+      sums.Add(share[i]);
+    }
+    if (!RowOf(dim, j, sums, nodes, x, c0, g0)) continue;
     dc.assign(n * n, 0.0); // dc[e * n + b]: d c_e / d x_b
     dg.assign(n, 0.0);
     bool ok = true;
+    const auto holds = [](const Facet &f, PetscInt node) {
+      return std::find(f.node.begin(), f.node.begin() + f.n, node) != f.node.begin() + f.n;
+    };
     for (std::size_t b = 0; b < n && ok; ++b) {
       if (cols[b] < 0) continue;
+      const PetscInt node = nodes[b / dim];
       for (const double step : {h, -h}) {
-        std::vector<Facet> S = r.near_slave, M = r.near_master;
-        for (std::vector<Facet> *side : {&S, &M})
-          for (Facet &f : *side)
+        RowSums moved;
+        for (std::size_t i = 0; i < nf; ++i) {
+          bool touched = holds(r.near_slave[i], node);
+          for (const Facet &m : masters_of[i]) touched = touched || holds(m, node);
+          if (!touched) {
+            moved.Add(share[i]);
+            continue;
+          }
+          Facet S = r.near_slave[i];
+          std::vector<Facet> M = masters_of[i];
+          for (int a = 0; a < S.n; ++a)
+            if (S.node[a] == node) S.x[a][b % dim] += step;
+          for (Facet &f : M)
             for (int a = 0; a < f.n; ++a)
-              if (f.node[a] == nodes[b / dim]) f.x[a][b % dim] += step;
+              if (f.node[a] == node) f.x[a][b % dim] += step;
+          moved.Add(FacetShare(dim, j, S, M, radius_, compliance_));
+        }
         std::vector<double> xs = x;
         xs[b] += step;
-        Integrals ins;
-        SlaveIntegrals(dim, S, M, radius_, compliance_, ins, nullptr, nullptr);
-        ok = RowOf(dim, j, ins, nodes, xs, step > 0 ? cp : cm, step > 0 ? gp : gm);
+        ok = RowOf(dim, j, moved, nodes, xs, step > 0 ? cp : cm, step > 0 ? gp : gm);
       }
       if (!ok) break;
       for (std::size_t e = 0; e < n; ++e) dc[e * n + b] = (cp[e] - cm[e]) / (2 * h);

@@ -135,6 +135,7 @@ private:
     /// UseConsistentTangent: the slave facets that hold the slave node and the master facets that they overlap (the
     /// row's integrals), and the other nodes of those slave facets.
     std::vector<Facet> near_slave, near_master;
+    std::vector<std::vector<int>> near_hits; ///< per slave facet of near_slave, its master facets in near_master
     std::vector<PetscInt> neighbours;
   };
   /// The most that two bodies may overlap at the start, in body diagonals (a faceted curved interface overlaps by
