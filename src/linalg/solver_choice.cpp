@@ -66,7 +66,8 @@ FactorEstimate ModelEstimate(const SolverProblem &p) {
 void DirectCost(const SolverProblem &p, const FactorEstimate &e, PetscMPIInt size, double &bytes, double &seconds,
                 const AnalysedFactor *analysed = nullptr) {
   const double m = (double)p.multipliers, rows = (double)(p.u_dofs + p.multipliers);
-  // Friction's direct path: MUMPS LU refactored at every solve, no kept Schur complement; seconds per solve.
+  // Friction's direct path (and svk's consistent mortar tangent): MUMPS LU refactored at every solve, no kept Schur
+  // complement; seconds per solve.
   const bool cholesky = analysed ? analysed->cholesky
                                  : !p.refactored && rows <= (size == 1 ? CHOLESKY_MAX_ROWS : CHOLESKY_MAX_ROWS_GATHERED);
   // The Cholesky's factor with its update stack and the gathered entries, on rank 0 (the 108k-dof cube: 1.62 GB peak
@@ -91,7 +92,7 @@ void DirectCost(const SolverProblem &p, const FactorEstimate &e, PetscMPIInt siz
 
 /// What the compared times are for friction (per solve), else nothing.
 const char *PerSolve(const SolverProblem &p) {
-  if (p.refactored) return " per solve (friction refactors at every solve)";
+  if (p.refactored) return " per solve (an LU refactored at every solve: friction, or svk's consistent tangent between bodies)";
   if (p.friction_kept) return " per solve (friction: a low-rank update of the dense Schur complement's LU per solve)";
   return "";
 }

@@ -244,7 +244,7 @@ PetscErrorCode ContactSolver::ChooseSolver() {
   problem.u_dofs = dofs_.GlobalU(), problem.multipliers = dofs_.GlobalLambda(), problem.dim = dim;
   // Friction's LU is refactored at every solve where K changes (svk); with the linear material the kept factorisation
   // maps its rows onto fixed ones (KeptRows) and costs what frictionless contact does.
-  problem.refactored = friction_.On() && model_->Nonlinear();
+  problem.refactored = (friction_.On() || mortar_.ConsistentTangent()) && model_->Nonlinear();
   problem.friction_kept = friction_.On() && !model_->Nonlinear();
   // The graph of the mesh nodes, numbered by displacement block row: two nodes of a cell are neighbours.
   problem.node_graph = [&](PetscInt &num_nodes, std::vector<idx_t> &edges) -> PetscErrorCode {

@@ -43,7 +43,8 @@ struct FactorEstimate {
 struct SolverProblem {
   PetscInt u_dofs = 0, multipliers = 0;
   int dim = 2;
-  /// The direct path factors at every solve (friction: MUMPS LU of a nonsymmetric matrix, no kept factorisation), and
+  /// The direct path factors at every solve (friction, svk's consistent tangent between bodies: MUMPS LU of a
+  /// nonsymmetric matrix, no kept factorisation), and
   /// the iterative path solves every active-set iteration to its tolerance: the two are compared per solve.
   bool refactored = false;
   /// Friction on the kept factorisation (the linear material): one factorisation for the run, a dense LU of the
