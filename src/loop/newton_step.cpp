@@ -135,7 +135,7 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
                                       &columns, &diag, &heavy));
   } else {
     PetscCall(system_->SetConstraints(normal_rows, st.next, -1.0 / kscale_,
-                                      st.stabilised ? STABILISATION * kscale_ : 0.0, consistent ? &frozen : nullptr));
+                                      st.stabilised ? STABILISATION * kscale_ : 0.0, frozen.empty() ? nullptr : &frozen));
   }
   if (Condensable(st)) {
     // The base's right-hand side with the new active set: its displacement rows stay, the gaps are the base's.
