@@ -351,25 +351,28 @@ def settled_residuals(result):
     return out
 
 
-def superlinear(residuals, floor=1e-9):
-    """Whether each Newton step's contraction r_k+1 / r_k is at most a tenth of the step before's, while the residual
-    is above the floor (the certificate's 1e-9 of the load): an order above 1 (a linear rate keeps the ratio)."""
+def quadratic(residuals, constant=10.0, floor=1e-12):
+    """(whether, checked): whether each Newton step, once the set stays, ends at most constant r_k^2 (residuals relative
+    to the load), while it ends above round-off (floor); checked: how many steps were compared. The consistent tangent
+    measures constants of 0.02-0.035 on the sliding block and 1.7 on the cylinders; the frozen rows, whose rate is
+    linear, 3 to 1e7 (the cylinders: 7.2, then 2.2e3 to 4.9e7)."""
+    ok, checked = True, 0
     for r in residuals:
-        r = [x for x in r if x > floor]
-        q = [b / a for a, b in zip(r, r[1:])]
-        if any(b > 0.1 * a for a, b in zip(q, q[1:])):
-            return False
-    return True
+        for a, b in zip(r, r[1:]):
+            if b > floor:
+                checked += 1
+                ok = ok and b <= constant * a * a
+    return ok, checked
 
 
 @test("svk_mortar_tangent")
 def svk_mortar_tangent(runner):
     """svk between bodies: the Newton tangent holds the mortar rows' variation (-newton_mortar_tangent consistent, the
-    default): on the two cylinders of options/cylinders_2d.yml (a curved interface) each Newton step's contraction is
-    at most a tenth of the one before once the active set stays (superlinear), where the frozen rows' contractions
-    stay flat (linear); on the block sliding along a floor (options/slide2d.yml, 10 load steps) every step reaches
-    the certificate's residual within 2 Newton steps of the set staying (the frozen rows take 4 to 5); both tangents
-    end in the same state (1e-8)."""
+    default): once the active set stays, each Newton step ends within 10 r^2 of its start r (quadratic; residuals
+    relative to the load) on the two cylinders of options/cylinders_2d.yml (a curved interface) and on every step of
+    the block sliding along a floor (options/slide2d.yml, 10 load steps), where the frozen rows' steps on the cylinders
+    do not (linear); every slide step reaches the certificate's residual within 2 Newton steps of the set staying
+    (the frozen rows take 4 to 5); both tangents end in the same state (1e-8)."""
     for args, what in ((["-options_file", "options/cylinders_2d.yml", "-material_model", "svk"], "cylinders"),
                        (["-options_file", "options/slide2d.yml"], "sliding block")):
         r = runner.run(args, "svk %s, consistent tangent" % what)
@@ -379,10 +382,13 @@ def svk_mortar_tangent(runner):
             what, r.get("iterations.active_set"), f.get("iterations.active_set")),
             r.get("iterations.active_set") < f.get("iterations.active_set"))
         settled = settled_residuals(r)
-        runner.expect_true("%s: superlinear once the set stays: %s" % (what, settled), superlinear(settled))
+        ok, checked = quadratic(settled)
+        runner.expect_true("%s: quadratic once the set stays (%d Newton steps compared): %s" % (what, checked, settled),
+                           ok and checked >= 1)
         if what == "cylinders":
-            runner.expect_true("%s: the frozen tangent's contractions are linear: %s" % (what, settled_residuals(f)),
-                               not superlinear(settled_residuals(f)))
+            frozen_ok, frozen_checked = quadratic(settled_residuals(f))
+            runner.expect_true("%s: the frozen tangent's steps are not (%d compared): %s" % (
+                what, frozen_checked, settled_residuals(f)), frozen_checked >= 1 and not frozen_ok)
         else:
             runner.expect_true("%s: every step within 2 Newton steps of the set staying: %s" % (what, settled),
                                all(len(s) <= 3 for s in settled))
