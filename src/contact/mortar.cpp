@@ -465,18 +465,25 @@ bool RowOf(int dim, PetscInt j, const RowSums &in, const std::vector<PetscInt> &
   return true;
 }
 
+/// The mortar log events: the rows (Build) and svk's consistent tangent (Linearise), of one class.
+PetscLogEvent EV_MORTAR = 0, EV_TANGENT = 0;
+PetscErrorCode RegisterEvents() {
+  PetscFunctionBeginUser;
+  if (EV_MORTAR) PetscFunctionReturn(0);
+  PetscClassId id;
+  PetscCall(PetscClassIdRegister("signorini mortar", &id));
+  PetscCall(PetscLogEventRegister("SigMortar", id, &EV_MORTAR));
+  PetscCall(PetscLogEventRegister("SigMortarTangent", id, &EV_TANGENT));
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode MortarCoupling::Build(const Mesh &mesh, const ContactOptions &opts, const std::vector<char> &fixed,
                                      PetscInt facet_base, const double *u_local) {
-  static PetscLogEvent event = 0;
   PetscFunctionBeginUser;
-  if (!event) {
-    PetscClassId id;
-    PetscCall(PetscClassIdRegister("signorini mortar", &id));
-    PetscCall(PetscLogEventRegister("SigMortar", id, &event));
-  }
-  PetscCall(PetscLogEventBegin(event, 0, 0, 0, 0));
+  PetscCall(RegisterEvents());
+  PetscCall(PetscLogEventBegin(EV_MORTAR, 0, 0, 0, 0));
   dim_ = mesh.Dim();
   interfaces_ = (PetscInt)opts.pairs.size();
   facet_base_ = facet_base;
@@ -488,7 +495,7 @@ PetscErrorCode MortarCoupling::Build(const Mesh &mesh, const ContactOptions &opt
     PetscCall(BuildInterface(mesh, opts, fixed, i, u_local));
     if (!u_local) PetscCall(CheckInterface(mesh, opts, i, first));
   }
-  PetscCall(PetscLogEventEnd(event, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(EV_MORTAR, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -850,23 +857,14 @@ PetscErrorCode MortarCoupling::MasterForces(const Mesh &mesh, const DofMap &dofs
   PetscFunctionReturn(0);
 }
 
-} // namespace signorini
-
-namespace signorini {
-
 PetscErrorCode MortarCoupling::Linearise(const Mesh &mesh, const DofMap &dofs, const std::vector<char> &fixed,
                                          const std::vector<double> &lambda, const std::vector<char> &active, Mat K,
                                          bool block, std::vector<ConstraintRow> &rows,
                                          std::vector<std::vector<double>> &columns) const {
-  static PetscLogEvent event = 0;
   const int dim = dim_;
   PetscFunctionBeginUser;
-  if (!event) {
-    PetscClassId id;
-    PetscCall(PetscClassIdRegister("signorini mortar", &id));
-    PetscCall(PetscLogEventRegister("SigMortarTangent", id, &event));
-  }
-  PetscCall(PetscLogEventBegin(event, 0, 0, 0, 0));
+  PetscCall(RegisterEvents());
+  PetscCall(PetscLogEventBegin(EV_TANGENT, 0, 0, 0, 0));
   columns.assign(rows.size(), {});
   std::vector<PetscInt> nodes, cols, kcols;
   std::vector<double> x, c0, cp, cm, dc, dg, vals;
@@ -929,6 +927,10 @@ PetscErrorCode MortarCoupling::Linearise(const Mesh &mesh, const DofMap &dofs, c
       if (cols[b] < 0) continue;
       const PetscInt node = nodes[b / dim];
       for (const double step : {h, -h}) {
+        const auto shift = [&](Facet &f) {
+          for (int a = 0; a < f.n; ++a)
+            if (f.node[a] == node) f.x[a][b % dim] += step;
+        };
         RowSums moved;
         for (std::size_t i = 0; i < nf; ++i) {
           bool touched = holds(r.near_slave[i], node);
@@ -939,18 +941,14 @@ PetscErrorCode MortarCoupling::Linearise(const Mesh &mesh, const DofMap &dofs, c
           }
           Facet S = r.near_slave[i];
           std::vector<Facet> M = masters_of[i];
-          for (int a = 0; a < S.n; ++a)
-            if (S.node[a] == node) S.x[a][b % dim] += step;
-          for (Facet &f : M)
-            for (int a = 0; a < f.n; ++a)
-              if (f.node[a] == node) f.x[a][b % dim] += step;
+          shift(S);
+          for (Facet &f : M) shift(f);
           moved.Add(FacetShare(dim, j, S, M, radius_, compliance_));
         }
         std::vector<double> xs = x;
         xs[b] += step;
-        ok = RowOf(dim, j, moved, nodes, xs, step > 0 ? cp : cm, step > 0 ? gp : gm);
+        ok = ok && RowOf(dim, j, moved, nodes, xs, step > 0 ? cp : cm, step > 0 ? gp : gm);
       }
-      if (!ok) break;
       for (std::size_t e = 0; e < n; ++e) dc[e * n + b] = (cp[e] - cm[e]) / (2 * h);
       dg[b] = (gp - gm) / (2 * h);
     }
@@ -980,7 +978,7 @@ PetscErrorCode MortarCoupling::Linearise(const Mesh &mesh, const DofMap &dofs, c
       }
     }
   }
-  PetscCall(PetscLogEventEnd(event, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(EV_TANGENT, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
