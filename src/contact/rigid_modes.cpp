@@ -121,6 +121,31 @@ PetscErrorCode RigidModes::Gram(const std::vector<PairKey> &keys, const std::vec
   PetscFunctionReturn(0);
 }
 
+std::vector<int> RigidModes::FreeModes(const std::vector<double> &gram, std::vector<double> &vec) const {
+  const std::vector<double> eig = SymmetricEigen(gram, n_, &vec);
+  double top = 0;
+  for (double e : eig) top = std::max(top, std::abs(e));
+  std::vector<int> free;
+  for (int j = 0; j < n_; ++j)
+    if (eig[j] <= FREE_MODE * top) free.push_back(j);
+  return free;
+}
+
+PetscErrorCode RigidModes::OnModes(const double *field, std::vector<double> &out) const {
+  const int dim = mesh_->Dim();
+  std::vector<std::pair<int, double>> row;
+  PetscFunctionBeginUser;
+  out.assign(n_, 0.0);
+  for (PetscInt v = 0; v < mesh_->NumLocalVertices(); ++v) {
+    if (!mesh_->Owned(v)) continue;
+    row.clear();
+    AppendModes(mesh_->NumBodies() > 0 ? mesh_->VertexBody(v) : 0, mesh_->X(v), field + v * dim, 1, row);
+    for (const auto &[i, m] : row) out[i] += m;
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, out.data(), n_, MPI_DOUBLE, MPI_SUM, mesh_->Comm()));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode RigidModes::Held(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
                                 const std::vector<char> &active, bool &held,
                                 const std::vector<std::size_t> *pair_of) const {
@@ -135,31 +160,15 @@ PetscErrorCode RigidModes::FreeMotion(const std::vector<PairKey> &keys,
                                       const std::vector<std::array<double, 3>> &normals,
                                       const std::vector<char> &active, const double *du, RigidMotion &a,
                                       const std::vector<std::size_t> *pair_of) const {
-  const int dim = mesh_->Dim(), n = n_;
-  std::vector<double> gg, b(n, 0.0);
-  std::vector<std::pair<int, double>> row;
+  const int n = n_;
+  std::vector<double> gg, b;
   PetscFunctionBeginUser;
   PetscCall(Gram(keys, normals, active, gg, pair_of));
-  for (PetscInt v = 0; v < mesh_->NumLocalVertices(); ++v) {
-    if (!mesh_->Owned(v)) continue;
-    for (int k = 0; k < dim; ++k) {
-      double e[3] = {0, 0, 0};
-      e[k] = 1;
-      row.clear();
-      AppendModes(mesh_->NumBodies() > 0 ? mesh_->VertexBody(v) : 0, mesh_->X(v), e, 1, row);
-      for (const auto &[i, m] : row) b[i] += m * du[v * dim + k];
-    }
-  }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, b.data(), n, MPI_DOUBLE, MPI_SUM, mesh_->Comm()));
-  // The free modes: the eigenvectors of the Gram matrix whose eigenvalues are below FREE_MODE of the largest (as in
-  // Held). The fit a = F c minimises sum_v |du(v) - m(v) F c|^2: (F^T M F) c = F^T b, M the vertices' Gram matrix.
+  PetscCall(OnModes(du, b));
+  // The free modes of the Gram matrix (as in Held). The fit a = F c minimises sum_v |du(v) - m(v) F c|^2:
+  // (F^T M F) c = F^T b, M the vertices' Gram matrix.
   std::vector<double> vec;
-  const std::vector<double> eig = SymmetricEigen(gg, n, &vec);
-  double top = 0;
-  for (double e : eig) top = std::max(top, std::abs(e));
-  std::vector<int> free;
-  for (int j = 0; j < n; ++j)
-    if (eig[j] <= FREE_MODE * top) free.push_back(j);
+  const std::vector<int> free = FreeModes(gg, vec);
   const int f = (int)free.size();
   std::vector<double> lhs(f * f, 0.0), rhs(f, 0.0);
   for (int i = 0; i < f; ++i) {
@@ -188,27 +197,15 @@ PetscErrorCode RigidModes::FreeMotion(const std::vector<PairKey> &keys,
 PetscErrorCode RigidModes::Unbalanced(const std::vector<PairKey> &keys,
                                       const std::vector<std::array<double, 3>> &normals, const double *f,
                                       double &unbalanced) const {
-  const int dim = mesh_->Dim(), n = n_;
-  std::vector<double> load(n, 0.0);
+  const int n = n_;
+  std::vector<double> load;
   std::vector<std::pair<int, double>> row;
   PetscFunctionBeginUser;
   unbalanced = 0;
-  // The load's generalised forces on the modes.
-  for (PetscInt v = 0; v < mesh_->NumLocalVertices(); ++v) {
-    if (!mesh_->Owned(v)) continue;
-    row.clear();
-    AppendModes(mesh_->NumBodies() > 0 ? mesh_->VertexBody(v) : 0, mesh_->X(v), f + v * dim, 1, row);
-    for (const auto &[i, m] : row) load[i] += m;
-  }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, load.data(), n, MPI_DOUBLE, MPI_SUM, mesh_->Comm()));
-  // The modes that the supports leave free (as in FreeMotion, the Dirichlet rows alone).
+  // The load's generalised forces on the modes, and the modes that the supports leave free.
+  PetscCall(OnModes(f, load));
   std::vector<double> vec;
-  const std::vector<double> eig = SymmetricEigen(g_dirichlet_, n, &vec);
-  double top = 0;
-  for (double e : eig) top = std::max(top, std::abs(e));
-  std::vector<int> free;
-  for (int j = 0; j < n; ++j)
-    if (eig[j] <= FREE_MODE * top) free.push_back(j);
+  const std::vector<int> free = FreeModes(g_dirichlet_, vec);
   const int k = (int)free.size();
   std::vector<double> b(k, 0.0);
   double bnorm = 0;

@@ -78,6 +78,12 @@ private:
   /// Appends the modes of body b at x in direction dir, times scale, to row.
   void AppendModes(PetscInt b, const double *x, const double *dir, double scale,
                    std::vector<std::pair<int, double>> &row) const;
+  /// The free modes of a Gram matrix (n_ x n_): the indices of its eigenvectors (vec, n_ x n_ row major, column j the
+  /// j-th) whose eigenvalues are at most FREE_MODE of the largest.
+  std::vector<int> FreeModes(const std::vector<double> &gram, std::vector<double> &vec) const;
+  /// out[i] = sum over the owned vertices of field(v) . m_i(v) (field: dim values per local vertex), summed over the
+  /// ranks: a displacement's or a load's projection on the modes. Collective.
+  [[nodiscard]] PetscErrorCode OnModes(const double *field, std::vector<double> &out) const;
   /// The Gram matrix of the Dirichlet rows and the active pairs' rows (n_ x n_). Collective.
   [[nodiscard]] PetscErrorCode Gram(const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
                                     const std::vector<char> &active, std::vector<double> &gram,
