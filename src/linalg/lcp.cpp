@@ -1,5 +1,8 @@
-// Lemke's method on a dense tableau.
+// Lemke's method on a dense tableau; Lawson and Hanson's non-negative least squares.
 #include "signorini/linalg/lcp.hpp"
+
+#include <petscsys.h>
+#include <petscblaslapack.h>
 
 #include <algorithm>
 #include <cmath>
@@ -187,45 +190,35 @@ namespace signorini {
 
 namespace {
 
-/// The least-squares solution s of min |A_P s - b| (A_P: the columns cols of the k-row column-major A), by Householder
-/// QR; a column whose pivot vanishes (dependent on those before it) gets 0.
-void LeastSquares(int k, const std::vector<double> &A, const std::vector<int> &cols, const std::vector<double> &b,
+/// The least-squares solution s of min |A_P s - b| (A_P: the columns cols of the k-row column-major A) by LAPACK's
+/// gelss (SVD; singular values below 1e-13 of the largest count as 0, so dependent columns share the minimum-norm
+/// solution); false if the SVD did not converge.
+/// The Euclidean norm.
+double Norm(const std::vector<double> &v) {
+  double s = 0;
+  for (double x : v) s += x * x;
+  return std::sqrt(s);
+}
+
+bool LeastSquares(int k, const std::vector<double> &A, const std::vector<int> &cols, const std::vector<double> &b,
                   std::vector<double> &s) {
   const int n = (int)cols.size();
-  std::vector<double> R(k * n), y(b);
+  const PetscBLASInt rows = k, ncols = n, nrhs = 1, ldb = std::max(k, n);
+  std::vector<double> a((std::size_t)k * n), y(ldb, 0.0), sv(std::min(k, n));
   for (int j = 0; j < n; ++j)
-    for (int i = 0; i < k; ++i) R[i + j * k] = A[i + (std::size_t)cols[j] * k];
-  std::vector<double> diag(n, 0.0);
-  double top = 0;
-  for (int j = 0; j < n && j < k; ++j) {
-    double norm = 0;
-    for (int i = j; i < k; ++i) norm += R[i + j * k] * R[i + j * k];
-    norm = std::sqrt(norm);
-    top = std::max(top, norm);
-    if (norm == 0) continue;
-    const double alpha = R[j + j * k] > 0 ? -norm : norm;
-    std::vector<double> v(k, 0.0);
-    for (int i = j; i < k; ++i) v[i] = R[i + j * k];
-    v[j] -= alpha;
-    double vv = 0;
-    for (int i = j; i < k; ++i) vv += v[i] * v[i];
-    if (vv == 0) continue;
-    for (int c = j; c < n; ++c) {
-      double d = 0;
-      for (int i = j; i < k; ++i) d += v[i] * R[i + c * k];
-      for (int i = j; i < k; ++i) R[i + c * k] -= 2 * d / vv * v[i];
-    }
-    double d = 0;
-    for (int i = j; i < k; ++i) d += v[i] * y[i];
-    for (int i = j; i < k; ++i) y[i] -= 2 * d / vv * v[i];
-  }
-  s.assign(n, 0.0);
-  for (int j = std::min(n, k) - 1; j >= 0; --j) {
-    if (!(std::abs(R[j + j * k]) > 1e-13 * top)) continue;
-    double v = y[j];
-    for (int c = j + 1; c < std::min(n, k); ++c) v -= R[j + c * k] * s[c];
-    s[j] = v / R[j + j * k];
-  }
+    for (int i = 0; i < k; ++i) a[i + (std::size_t)j * k] = A[i + (std::size_t)cols[j] * k];
+  std::copy(b.begin(), b.end(), y.begin());
+  const PetscReal rcond = 1e-13;
+  PetscBLASInt rank, info, lwork = -1;
+  double query;
+  LAPACKgelss_(&rows, &ncols, &nrhs, a.data(), &rows, y.data(), &ldb, sv.data(), &rcond, &rank, &query, &lwork,
+               &info);
+  lwork = (PetscBLASInt)query;
+  std::vector<double> work(std::max<PetscBLASInt>(lwork, 1));
+  LAPACKgelss_(&rows, &ncols, &nrhs, a.data(), &rows, y.data(), &ldb, sv.data(), &rcond, &rank, work.data(), &lwork,
+               &info);
+  s.assign(y.begin(), y.begin() + n);
+  return info == 0;
 }
 
 } // namespace
@@ -242,9 +235,8 @@ double NonNegativeLeastSquares(int k, int m, const std::vector<double> &A, const
       if (x[j] != 0)
         for (int i = 0; i < k; ++i) r[i] -= A[i + (std::size_t)j * k] * x[j];
   };
-  double bnorm = 0, amax = 0;
-  for (double v : b) bnorm += v * v;
-  bnorm = std::sqrt(bnorm);
+  const double bnorm = Norm(b);
+  double amax = 0;
   for (int j = 0; j < m; ++j) {
     double c = 0;
     for (int i = 0; i < k; ++i) c += A[i + (std::size_t)j * k] * A[i + (std::size_t)j * k];
@@ -268,7 +260,10 @@ double NonNegativeLeastSquares(int k, int m, const std::vector<double> &A, const
       cols.clear();
       for (int j = 0; j < m; ++j)
         if (passive[j]) cols.push_back(j);
-      LeastSquares(k, A, cols, b, s);
+      if (!LeastSquares(k, A, cols, b, s)) {
+        residual(); // no verdict better than the current point's
+        return Norm(r);
+      }
       bool positive = true;
       for (double v : s) positive = positive && v > 0;
       if (positive) {
@@ -289,9 +284,7 @@ double NonNegativeLeastSquares(int k, int m, const std::vector<double> &A, const
     residual();
   }
   residual();
-  double norm = 0;
-  for (double v : r) norm += v * v;
-  return std::sqrt(norm);
+  return Norm(r);
 }
 
 } // namespace signorini

@@ -31,7 +31,7 @@ LcpStatus SolveLcp(int m, const std::vector<double> &M, const std::vector<double
 /// min |A x - b| over x >= 0 for a k x m matrix A (column major: A[i + j k]) with few rows and any number of columns
 /// (the rigid motions against the candidate pairs): Lawson and Hanson's active-set method (Solving Least Squares
 /// Problems, 1974, ch. 23), finite; at most k columns are ever positive together, each step a k x (at most k) least
-/// squares problem (Householder QR). x gets the solution; returns |A x - b|. No package of Debian's offers it for
+/// squares problem (LAPACK's gelss). x gets the solution; returns |A x - b|. No package of Debian's offers it for
 /// C or C++ (PETSc's TAO has iterative bound-constrained solvers, which would give the verdict a tolerance of theirs).
 double NonNegativeLeastSquares(int k, int m, const std::vector<double> &A, const std::vector<double> &b,
                                std::vector<double> &x);
