@@ -90,7 +90,7 @@ PetscErrorCode ContactSolver::UnbalancedLoad(bool &unheld) {
   // A rigid motion that the supports and every candidate pair leave free is the singular system's verdict, as on the
   // direct path (DIVERGED_SINGULAR, SolveAndUpdate's check).
   bool held;
-  PetscCall(rigid_.Held(keys_, normals_, std::vector<char>(pairs_.size(), 1), held));
+  PetscCall(Held(std::vector<char>(pairs_.size(), 1), held));
   if (!held) PetscFunctionReturn(0);
   std::vector<double> f(u_local_.size(), 0.0);
   const PetscScalar *fe;

@@ -372,7 +372,8 @@ def svk_mortar_tangent(runner):
     relative to the load) on the two cylinders of options/cylinders_2d.yml (a curved interface) and on every step of
     the block sliding along a floor (options/slide2d.yml, 10 load steps), where the frozen rows' steps on the cylinders
     do not (linear); every slide step reaches the certificate's residual within 2 Newton steps of the set staying
-    (the frozen rows take 4 to 5); both tangents end in the same state (1e-8)."""
+    (the frozen rows take 4 to 5); both tangents end in the same state (1e-8). On one rank also in 3D (the ball on a
+    block of options/sphere_on_block.yml), where the automatic choice takes the iterative path."""
     for args, what in ((["-options_file", "options/cylinders_2d.yml", "-material_model", "svk"], "cylinders"),
                        (["-options_file", "options/slide2d.yml"], "sliding block")):
         r = runner.run(args, "svk %s, consistent tangent" % what)
@@ -392,6 +393,21 @@ def svk_mortar_tangent(runner):
         else:
             runner.expect_true("%s: every step within 2 Newton steps of the set staying: %s" % (what, settled),
                                all(len(s) <= 3 for s in settled))
+    if runner.np != 1:
+        return
+    # 3D (one rank: the suite's time): the octant of a ball on a block, whose rows are clipped polygons. The automatic
+    # choice counts the consistent tangent as an LU refactored at every solve and compares per solve: the iterative
+    # path (BiCGStab) at this size.
+    args = ["-options_file", "options/sphere_on_block.yml", "-material_model", "svk"]
+    r = runner.run(args, "svk ball on a block, consistent tangent", heap_check=False)
+    f = runner.run(args + ["-newton_mortar_tangent", "frozen", "-contact_solver", "direct"],
+                   "svk ball on a block, frozen tangent", heap_check=False)
+    expect_same_state(runner, f, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+    ok, checked = quadratic(settled_residuals(r))
+    runner.expect_true("3D: quadratic once the set stays (%d Newton steps compared): %s" % (
+        checked, settled_residuals(r)), ok and checked >= 1)
+    runner.expect_true("3D: the iterative path, compared per solve: %s" % r.get("solver.why"),
+                       r.get("solver.path") == "iterative" and "refactored at every solve" in r.get("solver.why"))
 
 
 @test("stack3")
