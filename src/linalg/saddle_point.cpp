@@ -17,10 +17,11 @@
 
 namespace signorini {
 
-void SaddlePointSystem::RowCounts(const std::vector<SparseRow> &rows, const std::vector<PetscInt> &d_nnz_k,
-                                  const std::vector<PetscInt> &o_nnz_k, std::vector<PetscInt> &d_nnz,
-                                  std::vector<PetscInt> &o_nnz) const {
+PetscErrorCode SaddlePointSystem::RowCounts(const std::vector<SparseRow> &rows, const std::vector<PetscInt> &d_nnz_k,
+                                            const std::vector<PetscInt> &o_nnz_k, std::vector<PetscInt> &d_nnz,
+                                            std::vector<PetscInt> &o_nnz) const {
   const PetscInt start = dofs_->RowStart(), end = start + dofs_->OwnedRows();
+  PetscFunctionBeginUser;
   d_nnz.assign(d_nnz_k.begin(), d_nnz_k.end());
   o_nnz.assign(o_nnz_k.begin(), o_nnz_k.end());
   d_nnz.resize(dofs_->OwnedRows(), 1); // a multiplier row: its diagonal, then its columns below
@@ -31,9 +32,38 @@ void SaddlePointSystem::RowCounts(const std::vector<SparseRow> &rows, const std:
       const PetscInt c = rows[p].cols[i];
       const bool mine = c >= start && c < end;
       (mine ? d_nnz[r] : o_nnz[r]) += 1;
-      if (mine) d_nnz[c - start] += 1; // the transposed entry; a row of another rank gets room when it is set
+      if (mine) d_nnz[c - start] += 1; // the transposed entry
     }
   }
+  std::vector<PetscInt> remote;
+  PetscCall(RemoteTransposed(rows, remote));
+  for (PetscInt i = 0; i < dofs_->OwnedRows(); ++i)
+    o_nnz[i] += remote[i];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::RemoteTransposed(const std::vector<SparseRow> &rows,
+                                                   std::vector<PetscInt> &counts) const {
+  const PetscInt start = dofs_->RowStart(), end = start + dofs_->OwnedRows();
+  PetscFunctionBeginUser;
+  // A count vector in the system's layout, summed on the rows' owners (as ContactSolver::SystemPattern counts the
+  // mortar rows' couplings): without it the transposed entries of a pair on the partition's interface were allocated
+  // one by one during the assembly (137 reallocations of B^T's off-diagonal block, the 2D cylinders on 2 ranks).
+  VecH extra;
+  PetscCall(
+      VecCreateMPI(PetscObjectComm((PetscObject)dofs_->IsU()), dofs_->OwnedRows(), dofs_->GlobalRows(), extra.out()));
+  for (const SparseRow &row : rows)
+    for (PetscInt i = 0; i < row.ncols; ++i)
+      if (row.cols[i] < start || row.cols[i] >= end) PetscCall(VecSetValue(extra, row.cols[i], 1.0, ADD_VALUES));
+  PetscCall(VecAssemblyBegin(extra));
+  PetscCall(VecAssemblyEnd(extra));
+  const PetscScalar *e;
+  PetscCall(VecGetArrayRead(extra, &e));
+  counts.resize(dofs_->OwnedRows());
+  for (PetscInt i = 0; i < dofs_->OwnedRows(); ++i)
+    counts[i] = (PetscInt)PetscRealPart(e[i]);
+  PetscCall(VecRestoreArrayRead(extra, &e));
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode SaddlePointSystem::CreatePattern(const std::vector<SparseRow> &rows, Mat P) const {
@@ -180,11 +210,11 @@ PetscErrorCode SaddlePointSystem::Create(const DofMap &dofs, const std::vector<S
     // (test elastic_gamg), against 1e-10 unblocked.
     if (fieldsplit) PetscCall(MatSetBlockSizes(A_, dofs.Dim(), dofs.Dim()));
     std::vector<PetscInt> d_nnz, o_nnz;
-    RowCounts(rows, d_nnz_k, o_nnz_k, d_nnz, o_nnz);
+    PetscCall(RowCounts(rows, d_nnz_k, o_nnz_k, d_nnz, o_nnz));
     PetscCall(MatSeqAIJSetPreallocation(A_, 0, d_nnz.data()));
     PetscCall(MatMPIAIJSetPreallocation(A_, 0, d_nnz.data(), 0, o_nnz.data()));
-    // The pattern: zeros inserted at every entry of K and of the constraint rows (an entry beyond the counts, possible
-    // only in rows shared between ranks, is allocated then), compressed by the final assembly and fixed from then on.
+    // The pattern: zeros inserted at every entry of K and of the constraint rows (the counts hold them all; an entry
+    // beyond them would be allocated then), compressed by the final assembly and fixed from then on.
     PetscCall(MatSetOption(A_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
     PetscCall(insert_k(A_.get()));
     PetscCall(CreatePattern(rows, A_));
@@ -224,7 +254,7 @@ PetscErrorCode SaddlePointSystem::CreateNest(const std::vector<SparseRow> &rows,
   PetscCall(create(nu, nu, gu, gu, d_nnz_k, o_nnz_k, nest_.K));
   PetscCall(MatSetBlockSizes(nest_.K, dofs_->Dim(), dofs_->Dim()));
   PetscCall(insert_k(nest_.K.get()));
-  // B (rows: this rank's multipliers) and B^T (rows: displacement rows; a row of another rank gets room when set).
+  // B (rows: this rank's multipliers) and B^T (rows: displacement rows, the entries of other ranks' rows counted).
   std::vector<PetscInt> b_d(nl, 0), b_o(nl, 0), bt_d(nu, 0), bt_o(nu, 0), d_d(nl, 1), d_o(nl, 0);
   for (std::size_t p = 0; p < rows.size(); ++p)
     for (PetscInt i = 0; i < rows[p].ncols; ++i) {
@@ -232,6 +262,10 @@ PetscErrorCode SaddlePointSystem::CreateNest(const std::vector<SparseRow> &rows,
       (mine(c) ? b_d[p] : b_o[p]) += 1;
       if (mine(c)) bt_d[c - start] += 1;
     }
+  std::vector<PetscInt> remote;
+  PetscCall(RemoteTransposed(rows, remote));
+  for (PetscInt i = 0; i < nu; ++i)
+    bt_o[i] = remote[i];
   PetscCall(create(nl, nu, gl, gu, b_d, b_o, nest_.B));
   PetscCall(create(nu, nl, gu, gl, bt_d, bt_o, nest_.Bt));
   PetscCall(create(nl, nl, gl, gl, d_d, d_o, nest_.D));

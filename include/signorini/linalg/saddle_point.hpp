@@ -261,10 +261,14 @@ private:
   /// column (if given): the coefficients of its column B^T instead of coef.
   [[nodiscard]] PetscErrorCode SetRow(const SparseRow &row, PetscInt p, const PetscScalar *coef, PetscScalar d,
                                       const PetscScalar *column = nullptr);
-  /// Nonzeros per owned row of the whole matrix: K's counts plus the constraint entries.
-  void RowCounts(const std::vector<SparseRow> &rows, const std::vector<PetscInt> &d_nnz_k,
-                 const std::vector<PetscInt> &o_nnz_k, std::vector<PetscInt> &d_nnz,
-                 std::vector<PetscInt> &o_nnz) const;
+  /// Nonzeros per owned row of the whole matrix: K's counts plus the constraint entries. Collective.
+  [[nodiscard]] PetscErrorCode RowCounts(const std::vector<SparseRow> &rows, const std::vector<PetscInt> &d_nnz_k,
+                                         const std::vector<PetscInt> &o_nnz_k, std::vector<PetscInt> &d_nnz,
+                                         std::vector<PetscInt> &o_nnz) const;
+  /// For each owned row of the whole matrix: the entries of B^T that other ranks' constraint rows put there (their
+  /// columns of this rank's displacement rows), all in the off-diagonal block. Collective.
+  [[nodiscard]] PetscErrorCode RemoteTransposed(const std::vector<SparseRow> &rows,
+                                                std::vector<PetscInt> &counts) const;
   /// The KSP's operators and what depends on them (near-null space, fieldsplit index sets, MUMPS controls, the reuse
   /// mode). Collective.
   [[nodiscard]] PetscErrorCode SetupKsp(const std::vector<double> &coords, bool constant_k);
