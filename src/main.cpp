@@ -1,6 +1,7 @@
 // signorini: frictionless contact of elastic bodies against rigid obstacles. Initialise, run, finalise.
 #include "signorini/app/run.hpp"
 #include "signorini/core/errors.hpp"
+#include "signorini/core/memory.hpp"
 #include "signorini/options/command_line.hpp"
 #include "signorini/options/help.hpp"
 #include "signorini/options/options_files.hpp"
@@ -37,7 +38,8 @@ int main(int argc, char **argv) {
   // A closed pipe on stdout (`signorini ... | head -1` in a batch script) is no reason to lose the results: PETSc's
   // handler would abort on SIGPIPE and leave no output; ignored, the writes to the pipe fail and the run goes on.
   std::signal(SIGPIPE, SIG_IGN);
-  PetscErrorCode ierr = signorini::CheckCommandLine(argc, argv);
+  PetscErrorCode ierr = signorini::UseHugePages();
+  if (!ierr) ierr = signorini::CheckCommandLine(argc, argv);
   if (!ierr) ierr = signorini::Run();
   if (ierr) {
     // No half-written output: the staging directory of a run that failed goes (an earlier good output stays).
