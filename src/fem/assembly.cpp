@@ -126,48 +126,74 @@ PetscErrorCode Assembler::FirstRows(Mat A, const PetscInt *&first) const {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::InsertPattern(Mat A) const {
-  const int dim = mesh_.Dim();
-  std::array<PetscInt, MAX_EDOF> idx;
-  std::array<PetscScalar, MAX_EDOF * MAX_EDOF> zeros{};
-  const PetscInt *first;
-  PetscFunctionBeginUser;
-  PetscCall(FirstRows(A, first));
-  for (PetscInt c = 0; c < mesh_.NumLocalCells(); ++c) {
+void Assembler::VertexCells(std::vector<PetscInt> &first, std::vector<PetscInt> &cells) const {
+  const PetscInt nv = mesh_.NumLocalVertices(), nc = mesh_.NumLocalCells();
+  first.assign(nv + 1, 0);
+  for (PetscInt c = 0; c < nc; ++c) {
     PetscInt nn;
     const PetscInt *v = mesh_.CellVertices(c, nn);
     for (PetscInt a = 0; a < nn; ++a)
-      for (int k = 0; k < dim; ++k) idx[a * dim + k] = dirichlet_.fixed[v[a] * dim + k] ? -1 : first[v[a]] + k;
-    PetscCall(MatSetValues(A, nn * dim, idx.data(), nn * dim, idx.data(), zeros.data(), ADD_VALUES));
+      ++first[v[a] + 1];
   }
-  for (PetscInt v = 0; v < mesh_.NumLocalVertices(); ++v)
+  for (PetscInt v = 0; v < nv; ++v)
+    first[v + 1] += first[v];
+  cells.resize(first[nv]);
+  std::vector<PetscInt> next(first.begin(), first.end() - 1);
+  for (PetscInt c = 0; c < nc; ++c) {
+    PetscInt nn;
+    const PetscInt *v = mesh_.CellVertices(c, nn);
+    for (PetscInt a = 0; a < nn; ++a)
+      cells[next[v[a]]++] = c;
+  }
+}
+
+PetscErrorCode Assembler::InsertPattern(Mat A) const {
+  const int dim = mesh_.Dim();
+  const PetscInt nv = mesh_.NumLocalVertices();
+  const PetscInt *row_of;
+  PetscFunctionBeginUser;
+  PetscCall(FirstRows(A, row_of));
+  // Row by row: each vertex's rows get the sorted free columns of the vertices its local cells share with it, once.
+  // Cell by cell, every entry was set by each cell holding both its nodes (a 3D tetrahedral vertex: about 24 cells),
+  // 2.1M calls of 12 x 12 at 1.07M dofs, 4.9 s of a 7 s set-up (perf). A ghost vertex's rows go to their owner as
+  // before (the owner's counts hold every rank's columns, PatternCounts).
+  std::vector<PetscInt> first, cells, cols, seen(nv, -1);
+  VertexCells(first, cells);
+  std::vector<PetscScalar> zeros;
+  for (PetscInt v = 0; v < nv; ++v) {
+    cols.clear();
+    for (PetscInt i = first[v]; i < first[v + 1]; ++i) {
+      PetscInt nn;
+      const PetscInt *w = mesh_.CellVertices(cells[i], nn);
+      for (PetscInt a = 0; a < nn; ++a) {
+        if (seen[w[a]] == v) continue;
+        seen[w[a]] = v;
+        for (int k = 0; k < dim; ++k)
+          if (!dirichlet_.fixed[w[a] * dim + k]) cols.push_back(row_of[w[a]] + k);
+      }
+    }
+    if (cols.empty()) continue;
+    std::sort(cols.begin(), cols.end());
+    if (zeros.size() < cols.size()) zeros.resize(cols.size(), 0.0);
+    for (int k = 0; k < dim; ++k) {
+      if (dirichlet_.fixed[v * dim + k]) continue;
+      const PetscInt row = row_of[v] + k;
+      PetscCall(MatSetValues(A, 1, &row, (PetscInt)cols.size(), cols.data(), zeros.data(), ADD_VALUES));
+    }
+  }
+  for (PetscInt v = 0; v < nv; ++v)
     for (int k = 0; k < dim; ++k)
       if (mesh_.Owned(v) && dirichlet_.fixed[v * dim + k])
-        PetscCall(MatSetValue(A, first[v] + k, first[v] + k, 0.0, ADD_VALUES));
+        PetscCall(MatSetValue(A, row_of[v] + k, row_of[v] + k, 0.0, ADD_VALUES));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode Assembler::PatternCounts(std::vector<PetscInt> &d_nnz, std::vector<PetscInt> &o_nnz) const {
   const int dim = mesh_.Dim();
-  const PetscInt nv = mesh_.NumLocalVertices(), nc = mesh_.NumLocalCells();
+  const PetscInt nv = mesh_.NumLocalVertices();
   PetscFunctionBeginUser;
-  // The local cells of every vertex (compressed rows).
-  std::vector<PetscInt> first(nv + 1, 0), cells;
-  for (PetscInt c = 0; c < nc; ++c) {
-    PetscInt nn;
-    const PetscInt *v = mesh_.CellVertices(c, nn);
-    for (PetscInt a = 0; a < nn; ++a) ++first[v[a] + 1];
-  }
-  for (PetscInt v = 0; v < nv; ++v) first[v + 1] += first[v];
-  cells.resize(first[nv]);
-  {
-    std::vector<PetscInt> next(first.begin(), first.end() - 1);
-    for (PetscInt c = 0; c < nc; ++c) {
-      PetscInt nn;
-      const PetscInt *v = mesh_.CellVertices(c, nn);
-      for (PetscInt a = 0; a < nn; ++a) cells[next[v[a]]++] = c;
-    }
-  }
+  std::vector<PetscInt> first, cells; // the local cells of every vertex (compressed rows)
+  VertexCells(first, cells);
   // The rank that owns each local vertex: this one, or the root's of its leaf in the vertex SF.
   PetscMPIInt rank;
   PetscCallMPI(MPI_Comm_rank(mesh_.Comm(), &rank));

@@ -47,9 +47,9 @@ public:
   /// Assemble.
   [[nodiscard]] PetscErrorCode InsertPattern(Mat A) const;
   /// Bounds of the nonzeros of K per owned displacement row (local row order, dofs.OwnedU() values) in the columns
-  /// this rank owns (d_nnz) and in the others (o_nnz), from the local cells around each vertex: exact for a vertex
-  /// whose cells are all on this rank; a vertex shared with other ranks, whose rows also get entries from their
-  /// cells, is given room for as many again. Collective.
+  /// this rank owns (d_nnz) and in the others (o_nnz), from the cells around each vertex: exact for a vertex whose
+  /// cells are all on this rank; a vertex shared with other ranks gets the sum of every rank's count of its row (an
+  /// upper bound: the columns of the interface that both sides' cells hold count twice). Collective.
   [[nodiscard]] PetscErrorCode PatternCounts(std::vector<PetscInt> &d_nnz, std::vector<PetscInt> &o_nnz) const;
   /// Adds K(u) to A (free rows and columns, plus dirichlet_diag on the Dirichlet diagonal) when A is given, and
   /// F_int(u) to fint (every displacement row, Dirichlet rows included) when fint is given. u_local holds dim values
@@ -79,6 +79,8 @@ private:
   /// The first row in A of each local vertex (component k: + k): DofMap::FirstRows of the whole saddle-point matrix or
   /// of its displacement block, told by A's size (InsertPattern). Not collective.
   [[nodiscard]] PetscErrorCode FirstRows(Mat A, const PetscInt *&first) const;
+  /// The local cells of every local vertex: cells[first[v]] to cells[first[v + 1] - 1]. Not collective.
+  void VertexCells(std::vector<PetscInt> &first, std::vector<PetscInt> &cells) const;
   bool Geometry(PetscInt c, ElementGeometry &g, PetscInt &nn, const PetscInt *&vertices) const;
   /// The index into parts_ of local cell c.
   int Part(PetscInt c) const { return material_.cell_constants.empty() ? 0 : material_.cell_constants[c]; }
