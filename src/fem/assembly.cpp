@@ -126,6 +126,24 @@ PetscErrorCode Assembler::FirstRows(Mat A, const PetscInt *&first) const {
   PetscFunctionReturn(0);
 }
 
+namespace {
+
+/// Calls f(w) once for each vertex w that the local cells of vertex v hold (v included); first and cells: the cells
+/// of every vertex (Assembler::VertexCells); seen: one entry per local vertex, none of them v yet (-1 at the start of
+/// a loop over increasing v).
+template <class F>
+void ForEachNeighbour(const Mesh &mesh, const std::vector<PetscInt> &first, const std::vector<PetscInt> &cells,
+                      PetscInt v, std::vector<PetscInt> &seen, F &&f) {
+  for (PetscInt i = first[v]; i < first[v + 1]; ++i) {
+    PetscInt nn;
+    const PetscInt *w = mesh.CellVertices(cells[i], nn);
+    for (PetscInt a = 0; a < nn; ++a)
+      if (seen[w[a]] != v) seen[w[a]] = v, f(w[a]);
+  }
+}
+
+} // namespace
+
 void Assembler::VertexCells(std::vector<PetscInt> &first, std::vector<PetscInt> &cells) const {
   const PetscInt nv = mesh_.NumLocalVertices(), nc = mesh_.NumLocalCells();
   first.assign(nv + 1, 0);
@@ -162,16 +180,10 @@ PetscErrorCode Assembler::InsertPattern(Mat A) const {
   std::vector<PetscScalar> zeros;
   for (PetscInt v = 0; v < nv; ++v) {
     cols.clear();
-    for (PetscInt i = first[v]; i < first[v + 1]; ++i) {
-      PetscInt nn;
-      const PetscInt *w = mesh_.CellVertices(cells[i], nn);
-      for (PetscInt a = 0; a < nn; ++a) {
-        if (seen[w[a]] == v) continue;
-        seen[w[a]] = v;
-        for (int k = 0; k < dim; ++k)
-          if (!dirichlet_.fixed[w[a] * dim + k]) cols.push_back(row_of[w[a]] + k);
-      }
-    }
+    ForEachNeighbour(mesh_, first, cells, v, seen, [&](PetscInt w) {
+      for (int k = 0; k < dim; ++k)
+        if (!dirichlet_.fixed[w * dim + k]) cols.push_back(row_of[w] + k);
+    });
     if (cols.empty()) continue;
     std::sort(cols.begin(), cols.end());
     if (zeros.size() < cols.size()) zeros.resize(cols.size(), 0.0);
@@ -219,17 +231,9 @@ PetscErrorCode Assembler::PatternCounts(std::vector<PetscInt> &d_nnz, std::vecto
   // assembly (the rows of the interface were counted as twice this rank's before: 555 and 6 reallocations of the
   // blocks of rank 1 at the 824k-dof cube on 2 ranks, 5 s of the set-up).
   std::vector<PetscInt> counts(2 * nv, 0), seen(nv, -1);
-  for (PetscInt v = 0; v < nv; ++v) {
-    for (PetscInt i = first[v]; i < first[v + 1]; ++i) {
-      PetscInt nn;
-      const PetscInt *w = mesh_.CellVertices(cells[i], nn);
-      for (PetscInt a = 0; a < nn; ++a) {
-        if (seen[w[a]] == v) continue;
-        seen[w[a]] = v;
-        counts[2 * v + (owner[w[a]] == owner[v] ? 0 : 1)] += free_dofs(w[a]);
-      }
-    }
-  }
+  for (PetscInt v = 0; v < nv; ++v)
+    ForEachNeighbour(mesh_, first, cells, v, seen,
+                     [&](PetscInt w) { counts[2 * v + (owner[w] == owner[v] ? 0 : 1)] += free_dofs(w); });
   {
     // Leaves send their counts (zeroed on the leaf side afterwards: only the owner's rows are preallocated here).
     MPI_Datatype pair;
