@@ -12,8 +12,8 @@ namespace signorini {
 /// into transparent huge pages (madvise MADV_HUGEPAGE on its 2 MiB-aligned interior) before anything touches it.
 /// A first write to fresh memory costs about 1.7 us per 4 KiB page on the virtual machines measured, and the large
 /// blocks (the matrices, GAMG's levels, the vectors) are written first in the set-up and the solves; with huge pages
-/// the 824k-dof cube under a sphere (one rank) took 4.4-4.7 s of set-up against 6.4-8.0 s and 32.8-34.7 s of contact
-/// solve against 35.4-43.8 s, about 1 % more peak memory (docs/performance.md, fifteenth session). The C library's own
+/// the 824k-dof cube under a sphere (one rank) took 4.0-4.9 s of set-up against 4.7-7.8 s, its contact solve no
+/// clearly different, 0.3 % more peak memory (docs/performance.md, fifteenth session). The C library's own
 /// switch (GLIBC_TUNABLES=glibc.malloc.hugetlb=1) is read at the process's start, before a program can set it.
 /// Nothing is changed when PETSc traces its allocations (-malloc_debug, -malloc_dump, -malloc_view: their checks
 /// keep PETSc's allocator) or when the kernel gives no huge pages on advice. Call after PetscInitialize. Not
