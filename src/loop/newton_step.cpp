@@ -256,10 +256,15 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
       const bool loose = !model_->Nonlinear() && st.correction.rtol == 0 && opts_.active_set_rtol > 0 &&
                          system_->Iterative() && dofs_.GlobalLambda() > 0 && !friction_.On();
       if (loose) rtol = opts_.active_set_rtol;
+      // The first solve of the first step, held at the touching pairs, only shows which pairs go in: the iterative
+      // path restarts from the step's start after it where that is nearer (RestartFromStepStart). The octant Hertz at
+      // 1.07M dofs: 10 Krylov iterations instead of 15, the same first activation and the same later solves.
+      if (loose && st.first && st.solves == 0) rtol = std::max(rtol, FIRST_SOLVE_RTOL);
       st.loose = loose;
       const PetscInt fallbacks = system_->KrylovFallbacks();
       PetscCall(system_->Solve(st.krylov, st.solve_residual, st.singular, rtol, loose));
       stats_.krylov_fallbacks += system_->KrylovFallbacks() - fallbacks;
+      st.solves++;
       st.correction.made = st.correction.rtol > 0;
       st.correction.rtol = 0;
     }

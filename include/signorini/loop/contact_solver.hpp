@@ -58,6 +58,9 @@ public:
   /// be condensed (a prescribed displacement still to apply): the step only has to find the next active set. Also
   /// the largest forcing term of the inexact Newton steps after it settles (NewtonForcing).
   static constexpr double SEARCH_RTOL = 0.1;
+  /// The loose tolerance of the iterative path's first solve of the first load step, held at the touching pairs (it
+  /// only shows which pairs go in; SolveAndUpdate), against -contact_active_set_rtol's 1e-3.
+  static constexpr double FIRST_SOLVE_RTOL = 0.1;
   /// The residual's round-off, in units of DBL_EPSILON times ||u|| times the mean sum_j |K_ij| of a row (krow_,
   /// Residual): rigidly translated bodies leave 0.17 to 0.5 of that unit in 2D and 3D (the Lame ring at 192 to 14k
   /// dofs, hertz3d at 6k and 40k, hexahedral and tetrahedral cubes, punch_on_plate's first steps), a bent cantilever
@@ -197,7 +200,7 @@ private:
     /// direction turned (3D), and the sets as one key per pair for cycle detection (Friction::SetKey).
     PetscInt friction_changes = 0, friction_turns = 0;
     std::vector<char> key{};
-    PetscInt krylov = 0;
+    PetscInt krylov = 0, solves = 0; ///< the last solve's Krylov iterations; the step's full solves
     double last_solve_time = 0, solve_residual = 0;
     bool loose = false; ///< the last solve was loose (an inexact active-set iteration)
     /// The equilibrium residual at the iterate, its force scale and its round-off (Residual).
@@ -222,6 +225,7 @@ private:
     } correction{};
     PetscInt set_changes = 0;       ///< iterations of this load step that changed the active set
     std::vector<double> u_before{}; ///< the displacement (local layout) before the last stabilised solve
+    std::vector<double> u_start{};  ///< the owned displacement at the step's start (RestartFromStepStart)
     bool measured = false; ///< u_before is that of the current pairs (the same on every rank: a rank may own none)
     int pivoted = 0;       ///< complementarity problems of this step (PivotedActiveSet), at most 2
     bool singular = false; ///< a factorisation found null pivots: nothing was solved, the step ends (DIVERGED_SINGULAR)
@@ -286,6 +290,13 @@ private:
   /// The active-set flags that identify a set for cycle detection: st.next, or with friction st.key.
   const std::vector<char> &SetKey(const StepState &st) const { return friction_.On() ? st.key : st.next; }
   [[nodiscard]] PetscErrorCode EvaluateIterate(StepState &st, PetscInt it);
+  /// The iterative path, linear material, first load step: the first update's solve starts from the step's start
+  /// (st.u_start, no multipliers) instead of the state of the solve held at the touching pairs when its right-hand
+  /// side is smaller there (RhsNorm; why: in active_set_step.cpp). Evaluates the iterate again. Collective.
+  [[nodiscard]] PetscErrorCode RestartFromStepStart(StepState &st, PetscInt it);
+  /// ||b|| of the next solve at the evaluated iterate (AssembleSystem): f - F_int on the free rows, the gaps of the
+  /// pairs of st.next. Collective.
+  [[nodiscard]] PetscErrorCode RhsNorm(const StepState &st, double &norm) const;
   [[nodiscard]] PetscErrorCode StepControl(StepState &st, PetscInt it, PetscInt &changes, Outcome &outcome);
   /// StepControl's parts, in its order. svk, once the set cycled: a switch away from an equilibrium of the current set
   /// is put off (st.next back to the current set); returns whether it was.
