@@ -486,8 +486,10 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
     PetscCall(CertifiedAtRest(st, ok));
     if (ok) PetscFunctionReturn(0);
   }
-  if (first && !model_->Nonlinear() && system_->Iterative() && !friction_.On())
+  if (first && !model_->Nonlinear() && system_->Iterative() && !friction_.On()) {
     PetscCall(OwnedDisplacement(st.u_start));
+    PetscCall(Held(std::vector<char>(pairs_.size(), 0), st.supported));
+  }
   PetscInt it = 0;
   for (;; ++it) {
     PetscInt changes = 0;

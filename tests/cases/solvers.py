@@ -227,7 +227,8 @@ def iterative_on_contact(runner, preset, case="hertz"):
         r"^\[0\] <sys> SolveKsp\(\): loose solve: rtol (\S+) of \|\|b\|\| = (\S+) \(the load step's first \|\|b\|\|: "
         r"(\S+)\)", r.output, re.M)]
     runner.expect_true("%d loose solves logged, at least 2" % len(loose), len(loose) >= 2)
-    # The first, held at the touching pairs, only shows which pairs go in: it stops at 0.1 (FIRST_SOLVE_RTOL).
+    # The first, held at the touching pairs of a body that its supports do not hold (both Hertz cases), only shows
+    # which pairs go in: it stops at 0.1 (FIRST_SOLVE_RTOL).
     if loose:
         ref = loose[0][1]
         ends = [rt * b / ref for rt, b, first in loose]

@@ -58,8 +58,9 @@ public:
   /// be condensed (a prescribed displacement still to apply): the step only has to find the next active set. Also
   /// the largest forcing term of the inexact Newton steps after it settles (NewtonForcing).
   static constexpr double SEARCH_RTOL = 0.1;
-  /// The loose tolerance of the iterative path's first solve of the first load step, held at the touching pairs (it
-  /// only shows which pairs go in; SolveAndUpdate), against -contact_active_set_rtol's 1e-3.
+  /// The loose tolerance of the iterative path's first solve of the first load step of a body that its supports do
+  /// not hold, held at the touching pairs (it only shows which pairs go in; SolveAndUpdate), against
+  /// -contact_active_set_rtol's 1e-3.
   static constexpr double FIRST_SOLVE_RTOL = 0.1;
   /// The residual's round-off, in units of DBL_EPSILON times ||u|| times the mean sum_j |K_ij| of a row (krow_,
   /// Residual): rigidly translated bodies leave 0.17 to 0.5 of that unit in 2D and 3D (the Lame ring at 192 to 14k
@@ -226,6 +227,7 @@ private:
     PetscInt set_changes = 0;       ///< iterations of this load step that changed the active set
     std::vector<double> u_before{}; ///< the displacement (local layout) before the last stabilised solve
     std::vector<double> u_start{};  ///< the owned displacement at the step's start (RestartFromStepStart)
+    bool supported = true;          ///< the supports alone hold the body (recorded with u_start)
     bool measured = false; ///< u_before is that of the current pairs (the same on every rank: a rank may own none)
     int pivoted = 0;       ///< complementarity problems of this step (PivotedActiveSet), at most 2
     bool singular = false; ///< a factorisation found null pivots: nothing was solved, the step ends (DIVERGED_SINGULAR)
