@@ -1082,8 +1082,11 @@ PetscErrorCode SaddlePointSystem::KeepDisplacementPreconditioner() {
     // 84.4 and 84.9 s (one GAMG set-up instead of two; 9 active-set iterations instead of 8, 103 Krylov iterations
     // instead of 94), the ball on a block at 316k 6.5 -> 5.4 s.
     // Friction's rows (nonsymmetric_) are left to the set-ups: its 3D tangential rows turn with the slip.
-    if (hierarchy_update_ && valid && constant_k_ && nonsymmetric_.empty() && gamg && counts[0] > 0 &&
-        !aug_rows_.empty()) {
+    // Whether some rank has augmented rows: a rank without pairs has none, and UpdateGalerkin is collective (the
+    // 3D patch test of a tetrahedral block on a hexahedral one, 2 ranks, with its slave side on one rank, hung here).
+    PetscBool rows = aug_rows_.empty() ? PETSC_FALSE : PETSC_TRUE;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &rows, 1, MPIU_BOOL, MPI_LOR, comm));
+    if (hierarchy_update_ && valid && constant_k_ && nonsymmetric_.empty() && gamg && counts[0] > 0 && rows) {
       bool updated;
       PetscCall(UpdateGalerkin(upc, updated));
       if (updated) {

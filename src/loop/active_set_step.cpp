@@ -298,8 +298,8 @@ PetscErrorCode ContactSolver::RestartFromStepStart(StepState &st, PetscInt it) {
   // loads, and spent 19 Krylov iterations undoing it. A direct solve does not care where it starts (the linear
   // material's solution of a set is one); an iterative one starts from the step's start instead (no multipliers)
   // when the right-hand side of the next solve is smaller there: the octant at 290k dofs 0.98 against 165, 86 -> 73
-  // Krylov iterations, 8 -> 7 active-set iterations; at 1.07M 198 V-cycles instead of 215. A cube pressed by a
-  // sphere (108k dofs) restarts too (0.032 against 0.35), at the same cost (22 Krylov iterations).
+  // Krylov iterations, 8 -> 7 active-set iterations; at 1.07M 99 Krylov iterations instead of 103. A cube pressed
+  // by a sphere (108k dofs) restarts too (0.032 against 0.35), at the same cost (22 Krylov iterations).
   double here, there;
   PetscCall(RhsNorm(st, here));
   std::vector<double> u_here, lambda_here = lambda_, mult_here = mult_;

@@ -486,10 +486,8 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
     PetscCall(CertifiedAtRest(st, ok));
     if (ok) PetscFunctionReturn(0);
   }
-  if (first && !model_->Nonlinear() && system_->Iterative() && !friction_.On()) {
-    PetscCall(OwnedDisplacement(st.u_start));
-    PetscCall(Held(std::vector<char>(pairs_.size(), 0), st.supported));
-  }
+  st.restartable = first && !model_->Nonlinear() && system_->Iterative() && !friction_.On();
+  if (st.restartable) PetscCall(OwnedDisplacement(st.u_start));
   PetscInt it = 0;
   for (;; ++it) {
     PetscInt changes = 0;
@@ -544,7 +542,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
     if (outcome == Outcome::CONVERGED) ok = true;
     if (outcome == Outcome::CONVERGED || outcome == Outcome::STOP) break;
     if (outcome == Outcome::EXTENDED) continue;
-    if (it == 1 && changes > 0 && !st.u_start.empty() && !st.stabilised) PetscCall(RestartFromStepStart(st, it));
+    if (it == 1 && changes > 0 && st.restartable && !st.stabilised) PetscCall(RestartFromStepStart(st, it));
     active_set_.Set(st.next);
     friction_.Adopt();
     bool held;

@@ -256,18 +256,10 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
       const bool loose = !model_->Nonlinear() && st.correction.rtol == 0 && opts_.active_set_rtol > 0 &&
                          system_->Iterative() && dofs_.GlobalLambda() > 0 && !friction_.On();
       if (loose) rtol = opts_.active_set_rtol;
-      // The first solve of the first step of a body that its supports do not hold, held at the touching pairs, turns
-      // the body about them and only shows which pairs go in: the next solve restarts from the step's start
-      // (RestartFromStepStart). The octant Hertz at 1.07M dofs: 10 Krylov iterations instead of 15, the same first
-      // activation and the same later solves. A body that its supports hold keeps 1e-3: its touching solve is near
-      // the answer, and the cube under a sphere at 824k dofs took 6 active-set iterations instead of 4 after a first
-      // solve to 0.1.
-      if (loose && st.first && st.solves == 0 && !st.supported) rtol = std::max(rtol, FIRST_SOLVE_RTOL);
       st.loose = loose;
       const PetscInt fallbacks = system_->KrylovFallbacks();
       PetscCall(system_->Solve(st.krylov, st.solve_residual, st.singular, rtol, loose));
       stats_.krylov_fallbacks += system_->KrylovFallbacks() - fallbacks;
-      st.solves++;
       st.correction.made = st.correction.rtol > 0;
       st.correction.rtol = 0;
     }

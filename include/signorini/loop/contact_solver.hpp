@@ -58,10 +58,6 @@ public:
   /// be condensed (a prescribed displacement still to apply): the step only has to find the next active set. Also
   /// the largest forcing term of the inexact Newton steps after it settles (NewtonForcing).
   static constexpr double SEARCH_RTOL = 0.1;
-  /// The loose tolerance of the iterative path's first solve of the first load step of a body that its supports do
-  /// not hold, held at the touching pairs (it only shows which pairs go in; SolveAndUpdate), against
-  /// -contact_active_set_rtol's 1e-3.
-  static constexpr double FIRST_SOLVE_RTOL = 0.1;
   /// The residual's round-off, in units of DBL_EPSILON times ||u|| times the mean sum_j |K_ij| of a row (krow_,
   /// Residual): rigidly translated bodies leave 0.17 to 0.5 of that unit in 2D and 3D (the Lame ring at 192 to 14k
   /// dofs, hertz3d at 6k and 40k, hexahedral and tetrahedral cubes, punch_on_plate's first steps), a bent cantilever
@@ -201,7 +197,7 @@ private:
     /// direction turned (3D), and the sets as one key per pair for cycle detection (Friction::SetKey).
     PetscInt friction_changes = 0, friction_turns = 0;
     std::vector<char> key{};
-    PetscInt krylov = 0, solves = 0; ///< the last solve's Krylov iterations; the step's full solves
+    PetscInt krylov = 0;
     double last_solve_time = 0, solve_residual = 0;
     bool loose = false; ///< the last solve was loose (an inexact active-set iteration)
     /// The equilibrium residual at the iterate, its force scale and its round-off (Residual).
@@ -227,7 +223,7 @@ private:
     PetscInt set_changes = 0;       ///< iterations of this load step that changed the active set
     std::vector<double> u_before{}; ///< the displacement (local layout) before the last stabilised solve
     std::vector<double> u_start{};  ///< the owned displacement at the step's start (RestartFromStepStart)
-    bool supported = true;          ///< the supports alone hold the body (recorded with u_start)
+    bool restartable = false;       ///< u_start is recorded (on every rank alike: a rank may own no vertex)
     bool measured = false; ///< u_before is that of the current pairs (the same on every rank: a rank may own none)
     int pivoted = 0;       ///< complementarity problems of this step (PivotedActiveSet), at most 2
     bool singular = false; ///< a factorisation found null pivots: nothing was solved, the step ends (DIVERGED_SINGULAR)
