@@ -944,7 +944,7 @@ PetscErrorCode SaddlePointSystem::SolveKsp(double rtol, bool loose, KSPConverged
     PetscReal bnorm;
     PetscCall(VecNorm(b_, NORM_2, &bnorm));
     if (!(loose_reference_ > 0)) loose_reference_ = bnorm;
-    if (bnorm > 0) rtol = std::min<double>(LOOSE_RTOL_MAX, rtol * loose_reference_ / bnorm);
+    if (bnorm > 0) rtol = std::min<double>(std::max<double>(LOOSE_RTOL_MAX, rtol), rtol * loose_reference_ / bnorm);
     PetscCall(PetscInfo(nullptr, "loose solve: rtol %.6g of ||b|| = %.6g (the load step's first ||b||: %.6g)\n", rtol,
                         (double)bnorm, (double)loose_reference_));
   }

@@ -395,6 +395,21 @@ def iterative_hierarchy_update(runner):
     runner.expect_equal("patch test: every slave node active", patch.get("contact.active_pairs"), 45)
 
 
+@test("iterative_prescribed_displacement")
+def iterative_prescribed_displacement(runner):
+    """A punch pressed by a prescribed displacement into a plate (options/punch_on_plate.yml) on the iterative path:
+    the prescribed rows make the step's first right-hand side 200 times the later ones, against which the loose
+    solves' tolerance is scaled; capped at 0.01 (SaddlePointSystem::LOOSE_RTOL_MAX) they still decide the sets, where
+    at 0.1 each took one Krylov iteration and the sets cycled (DIVERGED_CYCLING). The direct path's state to 1e-8."""
+    base = ["-options_file", "options/punch_on_plate.yml"]
+    ref = runner.run(base, "direct")
+    r = runner.run(base + ["-contact_solver", "iterative", "-info", ":sys"], "iterative")
+    tols = [float(x) for x in re.findall(r"loose solve: rtol (\S+) of", r.output)]
+    runner.expect_true("loose solves at most 0.01 relative to their start (%s)" % ", ".join("%.3g" % t for t in tols),
+                       len(tols) >= 2 and max(tols) <= 0.01)
+    expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+
+
 @test("gamg_square_graph_3d")
 def gamg_square_graph_3d(runner):
     """In 3D the iterative path's GAMG squares the graph on its first two levels (PETSc's default: one), unless the
