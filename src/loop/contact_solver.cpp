@@ -487,6 +487,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
     if (ok) PetscFunctionReturn(0);
   }
   st.restartable = first && !model_->Nonlinear() && system_->Iterative() && !friction_.On();
+  active_set_.SetOverlapRule(st.restartable);
   if (st.restartable) PetscCall(OwnedDisplacement(st.u_start));
   PetscInt it = 0;
   for (;; ++it) {
@@ -508,7 +509,8 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
         states_[p].lambda = lambda_[p];
         states_[p].active = active_set_.Flags()[p];
       }
-      if (it == 0) active_set_.First(states_, first, keys_, normals_, st.next);
+      if (it == 0)
+        PetscCall(active_set_.First(states_, first, keys_, normals_, st.next));
       else PetscCall(active_set_.Next(states_, it, keys_, normals_, st.next, changes));
       if (friction_.On()) {
         // The stick and slip sets of the next solve, from this solve's multipliers and slips.

@@ -418,6 +418,25 @@ def iterative_prescribed_displacement(runner):
     expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
+@test("iterative_first_overlap")
+def iterative_first_overlap(runner):
+    """A rigid sphere placed 0.01 into the top of a clamped cube (options/cube_under_sphere.yml) on the iterative path:
+    a smooth indenter pressed to a depth d touches over half the area it overlaps (Hertz: r^2 = R d against 2 R d), so
+    the first solve holds only the pairs that start at least half the deepest overlap in (ActiveSet::First), which
+    here is the answer's set: 2 active-set iterations (that solve and its correction), where the whole overlap took
+    one more. The direct path's state to 1e-8, 1 and 2 ranks."""
+    base = ["-options_file", "options/cube_under_sphere.yml", "-mesh_size_factor", "0.64"]
+    ref = runner.run(base + ["-contact_solver", "direct"], "direct")
+    r = runner.run(base + ["-contact_solver", "iterative", "-info", ":sys"], "iterative")
+    first = re.search(r"first set: (\d+) of the (\d+) pairs that start touching or overlapping", r.output)
+    runner.expect_true("the first set is part of the overlap (-info: %s)" % (first.group(0) if first else "no line"),
+                       first is not None and int(first.group(1)) < int(first.group(2)))
+    if first:
+        runner.expect_equal("the first set is the answer's", int(first.group(1)), ref.get("contact.active_pairs"))
+    runner.expect_equal("active-set iterations", r.get("iterations.active_set"), 2)
+    expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+
+
 @test("gamg_square_graph_3d")
 def gamg_square_graph_3d(runner):
     """In 3D the iterative path's GAMG squares the graph on its first two levels (PETSc's default: one), unless the

@@ -135,9 +135,12 @@ public:
   void BeginStep(double load_scale) { seen_.clear(), load_scale_ = load_scale, single_ = false; }
 
   /// The set of the first solve of a load step: in the first step the pairs in their zone whose gap is within
-  /// -contact_touch_tol, later the converged set of the previous step. Records the gaps at the start of the step.
-  void First(const std::vector<PairState> &states, bool first_step, const std::vector<PairKey> &keys,
-             const std::vector<std::array<double, 3>> &normals, std::vector<char> &next);
+  /// -contact_touch_tol (with SetOverlapRule, of those that start inside the obstacle only the ones at least
+  /// OVERLAP_FRACTION of the deepest in), later the converged set of the previous step. Records the gaps at the start
+  /// of the step. Collective.
+  [[nodiscard]] PetscErrorCode First(const std::vector<PairState> &states, bool first_step,
+                                     const std::vector<PairKey> &keys,
+                                     const std::vector<std::array<double, 3>> &normals, std::vector<char> &next);
   /// The set of the next solve after iteration `it` (>= 1) of a load step. In iteration 1 only the pairs
   /// penetrating deeper than -contact_activation_fraction times the deepest penetration of an inactive pair, and
   /// whose gap at the start of the step is at most -contact_activation_gap_factor times that of the deepest one, are
@@ -158,6 +161,10 @@ public:
   [[nodiscard]] PetscErrorCode SwitchOneAtATime(const std::vector<PairState> &states, const std::vector<PairKey> &keys,
                                                 std::vector<char> &next, PetscInt &changes);
   bool OneAtATime() const { return single_; }
+  /// Whether the first set of the first step holds only the deeper half of an overlap (First): the iterative path's
+  /// linear material without friction, where each active-set iteration costs a Krylov solve (on the direct path a
+  /// condensed solve; there the whole overlap stays the first set).
+  void SetOverlapRule(bool on) { overlap_rule_ = on; }
   /// Forgets the sets seen so far in this load step (the step goes on another way).
   void Forget() { seen_.clear(); }
   /// Forgets them and the one-at-a-time mode: the step starts again from another set.
@@ -176,6 +183,9 @@ public:
   /// Relative size, against the largest nodal force of the step (loads or multipliers), below which a negative
   /// multiplier counts as zero.
   static constexpr double MULTIPLIER_RTOL = 1e-6;
+  /// Of the pairs that start inside the obstacle, the first set holds those at least this fraction of the deepest in
+  /// (a smooth indenter touches over half the area it overlaps: First).
+  static constexpr double OVERLAP_FRACTION = 0.5;
 
 private:
   /// How negative an active pair's multiplier may be and still count as compressive: c times the gap tolerance,
@@ -199,6 +209,7 @@ private:
   std::vector<unsigned long long> seen_;
   std::vector<double> start_gap_; ///< the pairs' gaps at the start of the load step (First)
   bool started_ = false;          ///< start_gap_ holds the current pairs' (First since the last Reset)
+  bool overlap_rule_ = false;     ///< SetOverlapRule
 };
 
 } // namespace signorini
