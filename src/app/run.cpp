@@ -277,7 +277,7 @@ PetscErrorCode ReadCase(MPI_Comm comm, bool help, Case &c) {
 PetscErrorCode ListCaseHelp(MPI_Comm comm, Case &c) {
   PetscFunctionBeginUser;
   PetscCall(ReadBoundaryConditions(comm, 0, c.bc));
-  PetscCall(ReadContactOptions(comm, 1.0, c.material.MaxE() * c.material.thickness, c.contact));
+  PetscCall(ReadContactOptions(comm, 0, 1.0, c.material.MaxE() * c.material.thickness, c.contact));
   PetscCall(HelpKsp(comm));
   PetscCall(PrintGenericHelp(comm));
   PetscCall(PetscOptionsSetValue(nullptr, "-options_left", "0"));
@@ -303,7 +303,7 @@ PetscErrorCode CheckCaseOnMesh(MPI_Comm comm, const Mesh &mesh, Case &c, Box &bo
   // with one material), so that the stiffest part's multipliers are well scaled.
   const double E = c.material.MaxE();
   PetscCall(CheckLoadScale(comm, c.bc, L, E, c.material.thickness));
-  PetscCall(ReadContactOptions(comm, L, E * c.material.thickness, c.contact));
+  PetscCall(ReadContactOptions(comm, mesh.Dim(), L, E * c.material.thickness, c.contact));
   PetscCall(CheckContactInputs(mesh, c.obstacle, c.contact));
   PetscFunctionReturn(0);
 }

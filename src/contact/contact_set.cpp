@@ -84,7 +84,9 @@ PetscErrorCode CheckContactInputs(const Mesh &mesh, const Obstacle &obstacle, co
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOptions &opts) {
+double ActivationGapFactor(int dim) { return dim == 3 ? std::pow(3 * M_PI / 4, 2.0 / 3.0) : 2.0; }
+
+PetscErrorCode ReadContactOptions(MPI_Comm comm, int dim, double L, double k, ContactOptions &opts) {
   // Ranges (docs/options.md): a penetration or touching gap beyond 1e-3 of the body's size is a visibly wrong state,
   // alpha beyond 1e-2 projects a node off its facet, a radius beyond 1e5 diagonals pairs everything anyway (and keeps
   // the bin search finite), a gap factor beyond 1e6 holds nothing back, and c far from E t makes lambda - c g compare
@@ -99,6 +101,7 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
   opts.touch_tol = 1e-8 * L;
   opts.gap_tol = 1e-9 * L;
   opts.c = k;
+  opts.activation_gap_factor = ActivationGapFactor(dim);
   PetscOptionsBegin(comm, nullptr, "Contact options", "signorini");
   const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
   PetscCall(OptionsStringList(PetscOptionsObject, "-contact_groups", "Physical groups of candidate nodes (default: "
@@ -156,7 +159,8 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOpti
                         fraction, opts.activation_fraction));
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_activation_gap_factor", "In the first update of a load step, "
                         "activate only pairs whose gap at the start of the step is at most this factor times that of "
-                        "the deepest penetrating pair (0: off; otherwise at least 1)", gap_factor,
+                        "the deepest penetrating pair (0: off; otherwise at least 1; default 2 in 2D, (3 pi/4)^(2/3) = "
+                        "1.77 in 3D)", gap_factor,
                         opts.activation_gap_factor));
   PetscCall(OptionsInt(PetscOptionsObject, "-contact_max_it", "Maximum active-set iterations per load step (svk: "
                        "Newton iterations that change the active set)", 1,

@@ -146,10 +146,13 @@ public:
   /// whose gap at the start of the step is at most -contact_activation_gap_factor times that of the deepest one, are
   /// activated (the deepest always is), later every penetrating pair; parallel pairs are pruned. The gap factor:
   /// after a solve held at a touching point, a smooth (locally parabolic) contact is penetrated deepest where the
-  /// start gap is about half the gap at the contact's edge (at 1/sqrt(2) of the half-width in 2D, 0.75 of the radius
-  /// in 3D: the point load's indentation against the parabola), whatever the mesh size; the factor 2 activates about
-  /// the contact's final set. changes: global number of switched pairs. Collective.
-  [[nodiscard]] PetscErrorCode Next(const std::vector<PairState> &states, PetscInt it, const std::vector<PairKey> &keys,
+  /// start gap is a fixed fraction of the gap at the contact's edge (at 1/sqrt(2) of the half-width in 2D, 0.75 of the
+  /// radius in 3D: the point load's indentation against the parabola), whatever the mesh size; the factor
+  /// ActivationGapFactor (2 in 2D, 1.77 in 3D) activates about the contact's final set. loose: the states come from
+  /// a loose solve of the linear material, where an active pair's gap is only its row's residual (the rule then reads
+  /// an active pair's multiplier alone). changes: global number of switched pairs. Collective.
+  [[nodiscard]] PetscErrorCode Next(const std::vector<PairState> &states, PetscInt it, bool loose,
+                                    const std::vector<PairKey> &keys,
                                     const std::vector<std::array<double, 3>> &normals, std::vector<char> &next,
                                     PetscInt &changes) const;
   /// After the active set came back (Seen): from now on in this load step each update switches one pair only, the

@@ -32,17 +32,24 @@ struct ContactOptions {
   double c = -1;                   ///< -contact_complementarity_c: weight of the gap in the active-set rule
   double activation_fraction = 0.2; ///< -contact_activation_fraction: activate only penetrations deeper than this
                                     ///< fraction of the deepest one (0: every one, the rule of docs/theory.md §4)
-  double activation_gap_factor = 2; ///< -contact_activation_gap_factor: in the first update of a load step, activate
-                                    ///< only pairs whose start gap is at most this times the deepest one's (0: off)
+  double activation_gap_factor = -1; ///< -contact_activation_gap_factor: in the first update of a load step, activate
+                                     ///< only pairs whose start gap is at most this times the deepest one's (0: off;
+                                     ///< default ActivationGapFactor(dim))
   PetscInt max_it = 50;            ///< -contact_max_it: active-set iterations per load step
   PetscBool monitor = PETSC_FALSE;          ///< -contact_monitor
   PetscBool converged_reason = PETSC_FALSE; ///< -contact_converged_reason
 };
 
-/// Reads and validates the -contact_ options; negative defaults are filled from the body's size and stiffness
-/// (length scale L, stiffness scale k), and the ranges of the tolerances are relative to them (docs/options.md).
-/// Collective.
-[[nodiscard]] PetscErrorCode ReadContactOptions(MPI_Comm comm, double L, double k, ContactOptions &opts);
+/// The default of -contact_activation_gap_factor in dimension dim: the ratio of the start gaps at the edge of a smooth
+/// contact and where the solve held at its touching point penetrates deepest (the point load's indentation against
+/// the parabola: at 1/sqrt(2) of the half-width in 2D, 2; at (4 / 3 pi)^(1/3) of the radius in 3D, (3 pi / 4)^(2/3) =
+/// 1.77; docs/solver.md, *First activation*).
+double ActivationGapFactor(int dim);
+
+/// Reads and validates the -contact_ options; negative defaults are filled from the mesh's dimension dim (0: not
+/// known, -help), the body's size and stiffness (length scale L, stiffness scale k), and the ranges of the tolerances
+/// are relative to them (docs/options.md). Collective.
+[[nodiscard]] PetscErrorCode ReadContactOptions(MPI_Comm comm, int dim, double L, double k, ContactOptions &opts);
 
 /// The contact inputs that the option readers cannot judge alone, each an error naming the option: in a case without
 /// an obstacle, an option that acts only on contact (the pairs, the active-set rule, the kept factorisation of the
