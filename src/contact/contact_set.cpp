@@ -84,7 +84,9 @@ PetscErrorCode CheckContactInputs(const Mesh &mesh, const Obstacle &obstacle, co
   PetscFunctionReturn(0);
 }
 
-double ActivationGapFactor(int dim) { return dim == 3 ? std::pow(3 * M_PI / 4, 2.0 / 3.0) : 2.0; }
+double ActivationGapFactor(int dim) {
+  return dim == 3 ? std::pow(3 * M_PI / 4, 2.0 / 3.0) : 2.0;
+}
 
 PetscErrorCode ReadContactOptions(MPI_Comm comm, int dim, double L, double k, ContactOptions &opts) {
   // Ranges (docs/options.md): a penetration or touching gap beyond 1e-3 of the body's size is a visibly wrong state,
@@ -157,11 +159,12 @@ PetscErrorCode ReadContactOptions(MPI_Comm comm, int dim, double L, double k, Co
   PetscCall(OptionsReal(PetscOptionsObject, "-contact_activation_fraction", "In the first update of a load step, "
                         "activate only pairs penetrating deeper than this fraction of the deepest penetration (0: all)",
                         fraction, opts.activation_fraction));
-  PetscCall(OptionsReal(PetscOptionsObject, "-contact_activation_gap_factor", "In the first update of a load step, "
+  PetscCall(OptionsReal(PetscOptionsObject, "-contact_activation_gap_factor",
+                        "In the first update of a load step, "
                         "activate only pairs whose gap at the start of the step is at most this factor times that of "
                         "the deepest penetrating pair (0: off; otherwise at least 1; default 2 in 2D, (3 pi/4)^(2/3) = "
-                        "1.77 in 3D)", gap_factor,
-                        opts.activation_gap_factor));
+                        "1.77 in 3D)",
+                        gap_factor, opts.activation_gap_factor));
   PetscCall(OptionsInt(PetscOptionsObject, "-contact_max_it", "Maximum active-set iterations per load step (svk: "
                        "Newton iterations that change the active set)", 1,
                        CONTACT_MAX_IT_LIMIT, opts.max_it));

@@ -511,7 +511,8 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
       }
       if (it == 0)
         PetscCall(active_set_.First(states_, first, keys_, normals_, st.next));
-      else PetscCall(active_set_.Next(states_, it, st.loose, keys_, normals_, st.next, changes));
+      else
+        PetscCall(active_set_.Next(states_, it, st.loose, keys_, normals_, st.next, changes));
       if (friction_.On()) {
         // The stick and slip sets of the next solve, from this solve's multipliers and slips.
         st.friction_changes = st.friction_turns = 0;

@@ -152,9 +152,8 @@ public:
   /// a loose solve of the linear material, where an active pair's gap is only its row's residual (the rule then reads
   /// an active pair's multiplier alone). changes: global number of switched pairs. Collective.
   [[nodiscard]] PetscErrorCode Next(const std::vector<PairState> &states, PetscInt it, bool loose,
-                                    const std::vector<PairKey> &keys,
-                                    const std::vector<std::array<double, 3>> &normals, std::vector<char> &next,
-                                    PetscInt &changes) const;
+                                    const std::vector<PairKey> &keys, const std::vector<std::array<double, 3>> &normals,
+                                    std::vector<char> &next, PetscInt &changes) const;
   /// After the active set came back (Seen): from now on in this load step each update switches one pair only, the
   /// one that violates its condition most (|lambda - c g|: the deepest penetration or the most tensile multiplier;
   /// the smallest node and facet numbers at a tie), applied to `next` now (changes: 1). Updates that switch many pairs
