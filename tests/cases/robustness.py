@@ -210,10 +210,11 @@ def activation_rules(runner):
     """The first update's damping rules take other paths to the same state: the default (-contact_activation_gap_factor
     2 in 2D, 1.77 in 3D) against the seed's rule (no damping) and the fraction rule (-contact_activation_fraction 0.9,
     the earlier default), on smooth contacts that start at a touching point (2D and 3D Hertz, Hertz in 3 load steps),
-    on the plate pushed through an arc and the beam pushed onto a floor (no touching pair: the first solve has no contact at
-    all). The default must also take fewer iterations than both on the Hertz cases (the gap factor activates about the
-    final set at once) and on the beam (every candidate starts at the same gap: the default fraction 0.2 damps); the
-    default (the dimension's factor) also takes fewer iterations than the other dimension's on 2D and 3D Hertz."""
+    on the plate pushed through an arc and the beam pushed onto a floor (no touching pair: the first solve has no
+    contact at all). The default must also take fewer iterations than both on the Hertz cases (the gap factor
+    activates about the final set at once) and on the beam (every candidate starts at the same gap: the default
+    fraction 0.2 damps); the default (the dimension's factor) also takes fewer iterations than the other dimension's
+    on 2D and 3D Hertz."""
     seed = ["-contact_activation_fraction", "0", "-contact_activation_gap_factor", "0"]
     fraction = ["-contact_activation_fraction", "0.9", "-contact_activation_gap_factor", "0"]
     defaults = {}
