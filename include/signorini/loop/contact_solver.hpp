@@ -58,6 +58,11 @@ public:
   /// be condensed (a prescribed displacement still to apply): the step only has to find the next active set. Also
   /// the largest forcing term of the inexact Newton steps after it settles (NewtonForcing).
   static constexpr double SEARCH_RTOL = 0.1;
+  /// The iterative path's solve held at a touching point (TOUCHING_PAIRS pairs or fewer, first load step, linear
+  /// material): its displacement only picks the first update's pairs, and the next solve restarts from the step's
+  /// start (RestartFromStepStart), so it stops at this relative residual instead of -contact_active_set_rtol's.
+  static constexpr double TOUCHING_RTOL = 0.1;
+  static constexpr PetscInt TOUCHING_PAIRS = 3;
   /// The residual's round-off, in units of DBL_EPSILON times ||u|| times the mean sum_j |K_ij| of a row (krow_,
   /// Residual): rigidly translated bodies leave 0.17 to 0.5 of that unit in 2D and 3D (the Lame ring at 192 to 14k
   /// dofs, hertz3d at 6k and 40k, hexahedral and tetrahedral cubes, punch_on_plate's first steps), a bent cantilever
@@ -224,6 +229,7 @@ private:
     std::vector<double> u_before{}; ///< the displacement (local layout) before the last stabilised solve
     std::vector<double> u_start{};  ///< the owned displacement at the step's start (RestartFromStepStart)
     bool restartable = false;       ///< u_start is recorded (on every rank alike: a rank may own no vertex)
+    bool touching = false; ///< the next solve is held at a touching point alone (TOUCHING_RTOL; every rank alike)
     bool measured = false; ///< u_before is that of the current pairs (the same on every rank: a rank may own none)
     int pivoted = 0;       ///< complementarity problems of this step (PivotedActiveSet), at most 2
     bool singular = false; ///< a factorisation found null pivots: nothing was solved, the step ends (DIVERGED_SINGULAR)
