@@ -257,9 +257,9 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
                          system_->Iterative() && dofs_.GlobalLambda() > 0 && !friction_.On();
       if (loose) rtol = opts_.active_set_rtol;
       // Held at a touching point: this solve's displacement only picks the first update's pairs, and the next solve
-      // restarts from the step's start. The octant Hertz at 1.07M dofs: 10 Krylov iterations instead of 15 here, the
-      // same later path (docs/performance.md, nineteenth session); where the first set is larger (an indenter placed
-      // into the body, a patch test) its errors read as changes (the sixteenth session: 6 active-set iterations
+      // usually restarts from the step's start. The octant Hertz at 1.07M dofs: 10 Krylov iterations instead of 15
+      // here, the same later path (docs/performance.md, nineteenth session); where the first set is larger (an indenter
+      // placed into the body, a patch test) its errors read as changes (the sixteenth session: 6 active-set iterations
       // instead of 4 on the 824k cube, 7 instead of 2 on the 3D patch test), so a few pairs at most.
       if (loose && st.touching) rtol = std::max(rtol, TOUCHING_RTOL);
       st.loose = loose;

@@ -59,8 +59,8 @@ public:
   /// the largest forcing term of the inexact Newton steps after it settles (NewtonForcing).
   static constexpr double SEARCH_RTOL = 0.1;
   /// The iterative path's solve held at a touching point (TOUCHING_PAIRS pairs or fewer, first load step, linear
-  /// material): its displacement only picks the first update's pairs, and the next solve restarts from the step's
-  /// start (RestartFromStepStart), so it stops at this relative residual instead of -contact_active_set_rtol's.
+  /// material): its displacement only picks the first update's pairs, and the next solve usually restarts from the
+  /// step's start (RestartFromStepStart), so it stops at this relative residual instead of -contact_active_set_rtol's.
   static constexpr double TOUCHING_RTOL = 0.1;
   static constexpr PetscInt TOUCHING_PAIRS = 3;
   /// The residual's round-off, in units of DBL_EPSILON times ||u|| times the mean sum_j |K_ij| of a row (krow_,
