@@ -555,7 +555,7 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
     if (it == 0 && st.restartable && held) {
       PetscInt pairs = (PetscInt)std::count(st.next.begin(), st.next.end(), (char)1);
       PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &pairs, 1, MPIU_INT, MPI_SUM, mesh_.Comm()));
-      st.touching = pairs <= TOUCHING_PAIRS;
+      st.touching = pairs >= 1 && pairs <= TOUCHING_PAIRS;
     }
     PetscCall(AssembleSystem(st));
     PetscCall(SolveAndUpdate(st));

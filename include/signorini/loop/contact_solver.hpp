@@ -58,7 +58,7 @@ public:
   /// be condensed (a prescribed displacement still to apply): the step only has to find the next active set. Also
   /// the largest forcing term of the inexact Newton steps after it settles (NewtonForcing).
   static constexpr double SEARCH_RTOL = 0.1;
-  /// The iterative path's solve held at a touching point (TOUCHING_PAIRS pairs or fewer, first load step, linear
+  /// The iterative path's solve held at a touching point (1 to TOUCHING_PAIRS pairs, first load step, linear
   /// material): its displacement only picks the first update's pairs, and the next solve usually restarts from the
   /// step's start (RestartFromStepStart), so it stops at this relative residual instead of -contact_active_set_rtol's.
   static constexpr double TOUCHING_RTOL = 0.1;
