@@ -223,7 +223,7 @@ def iterative_on_contact(runner, preset, case="hertz"):
     # Each loose solve stops at -contact_active_set_rtol (1e-3) of the norm of the load step's first right-hand side,
     # whatever its own (-info, SolveKsp): the second solve's right-hand side holds the penetrations of the pairs the
     # first update activates (4.5 times the first's in 2D, 23 in 3D), and 1e-3 of it would stop there instead. The
-    # first solve, held at the touching point alone (a pair or two: ContactSolver::TOUCHING_PAIRS), stops at 0.1
+    # first solve, held at the touching point alone (1 to 3 pairs: ContactSolver::TOUCHING_PAIRS), stops at 0.1
     # (TOUCHING_RTOL): its displacement only picks the first update's pairs.
     loose = [(float(m.group(1)), float(m.group(2)), float(m.group(3))) for m in re.finditer(
         r"^\[0\] <sys> SolveKsp\(\): loose solve: rtol (\S+) of \|\|b\|\| = (\S+) \(the load step's first \|\|b\|\|: "
