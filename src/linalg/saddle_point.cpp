@@ -171,6 +171,19 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
                              "against a new Galerkin product of the current block (-info prints their relative "
                              "difference; a product of the whole matrix per update)",
                              "", opts.hierarchy_check, &opts.hierarchy_check, nullptr));
+  char weight_help[512];
+  std::snprintf(weight_help, sizeof(weight_help),
+                "Iterative path: the augmentation weight r of an active row (K + r B_A^T B_A) as a multiple of K's "
+                "mean diagonal entry on the candidate rows, at least the mean diagonal entry of an element stiffness "
+                "(inactive rows: a hundredth of that element scale); 0: r is the element scale (the direct path's "
+                "weight; a tenth of an assembled entry on a tetrahedral mesh's surface); default %g in 3D without "
+                "friction, else 0; range [0, 100]",
+                SaddlePointOptions::AUGMENTATION_WEIGHT_3D);
+  PetscCall(PetscOptionsReal("-contact_augmentation_weight", weight_help, "", opts.augmentation_weight,
+                             &opts.augmentation_weight, &opts.augmentation_weight_set));
+  PetscCheck((opts.augmentation_weight >= 0 && opts.augmentation_weight <= 100), comm, PETSC_ERR_USER_INPUT,
+             "-contact_augmentation_weight %g: expected a number in [0, 100] (0: the element stiffness scale)",
+             (double)opts.augmentation_weight);
   std::string budget;
   PetscCall(OptionsString(PetscOptionsObject, "-contact_memory_budget",
                           "Memory per rank that -contact_solver auto lets a factorisation use (bytes, or with a unit "
@@ -409,6 +422,12 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   augmented_ = (reuse_ && !turned_) || (!factor && dofs_->GlobalLambda() > 0);
   // Its inactive rows get a smaller weight (INACTIVE_WEIGHT); the kept factorisation needs a constant block.
   if (augmented_ && !reuse_) aug_inactive_ = INACTIVE_WEIGHT * aug_;
+  // The iterative path's weight relative to K's diagonal (IterativeWeight); by default in 3D without friction: in 2D
+  // the element scale is already a third to a half of an assembled entry and the measured paths moved either way
+  // (IterativeWeight), and friction's tangential rows keep the weights their cases were measured with.
+  double relative = opts.augmentation_weight;
+  if (!opts.augmentation_weight_set) relative = dofs_->Dim() == 3 && tangential_from_ < 0 ? relative : 0.0;
+  aug_relative_ = augmented_ && !reuse_ ? relative : 0.0;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu_));
   PetscCall(CheckKeptSolver(comm, opts, possible));
   kept_.solver = opts.kept_solver;
@@ -563,6 +582,7 @@ PetscErrorCode SaddlePointSystem::CreateKeptKsp(MPI_Comm comm) {
 
 PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<SparseRow> &rows) {
   PetscFunctionBeginUser;
+  if (aug_relative_ > 0) PetscCall(IterativeWeight(rows));
   // The weights of the current active set (an iterative solver's inactive rows: r_I), so that SetConstraints only
   // changes the rows whose state changes.
   std::vector<double> weight(rows.size(), aug_);
@@ -575,6 +595,49 @@ PetscErrorCode SaddlePointSystem::AddAugmentation(const std::vector<SparseRow> &
   // A new tangent (svk) keeps the displacement block's preconditioner of an earlier one while its solves stay cheap
   // (SolveKsp, LAGGED_U_PC_GROWTH): the Newton iterations' tangents differ little.
   if (constant_k_) u_pc_.valid = false;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::IterativeWeight(const std::vector<SparseRow> &rows) {
+  PetscFunctionBeginUser;
+  // The Schur complement of an active row is b (K + r B_A^T B_A)^-1 b^T, between about 1/(k + r) for a pressure that
+  // changes from node to node (k = b diag(K) b^T) and 1/r for a smooth one, and selfp's diagonal is 1/(k + r): with r
+  // the mean element diagonal entry (a tenth of k on a tetrahedral mesh's surface, a third in 2D) the preconditioned
+  // Schur complement spreads over a factor of about 10, with r near k over about 2, while GAMG on K + r B_A^T B_A loses
+  // more the larger r is. Measured (the octant Hertz at 290k dofs, one rank, iterative path): r as the element scale
+  // times 1, 2, 5, 10, 20, 50 took 53, 39, 36, 38, 49, 100 Krylov iterations (4, 4, 4, 5, 6, 9 active-set
+  // iterations); r = 0.5 of the candidate rows' mean diagonal entry is about 5 times that scale there (40 Krylov
+  // iterations; at 1.07M dofs 41 instead of 58, 87 V-cycles instead of 122).
+  // The weighted mean sum_j c_j K_jj / sum_j c_j, c_j the sum of the candidate rows' squared coefficients on dof j,
+  // of the block as assembled (before any augmentation: the first AddAugmentation after K's first assembly).
+  Mat K = Stiffness();
+  VecH diag, c;
+  PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY)); // the element matrices' additions (SetConstraints' later)
+  PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatCreateVecs(K, diag.out(), nullptr));
+  PetscCall(VecDuplicate(diag, c.out()));
+  PetscCall(MatGetDiagonal(K, diag));
+  PetscCall(VecSet(c, 0.0));
+  for (const SparseRow &row : rows)
+    for (PetscInt i = 0; i < row.ncols; ++i)
+      PetscCall(VecSetValue(c, nest_.on ? dofs_->UBlockRow(row.cols[i]) : row.cols[i], row.coef[i] * row.coef[i],
+                            ADD_VALUES));
+  PetscCall(VecAssemblyBegin(c));
+  PetscCall(VecAssemblyEnd(c));
+  PetscScalar num, den;
+  PetscCall(VecDot(c, diag, &num));
+  PetscCall(VecSum(c, &den));
+  // Never below the element scale (r > r_I).
+  const double r = std::max(aug_, aug_relative_ * (double)(num / std::max<PetscScalar>(den, 1e-300)));
+  PetscCall(PetscInfo(nullptr,
+                      "iterative augmentation weight r = %.6g (%.6g of the candidates' mean diagonal entry %.6g, at "
+                      "least the element scale %.6g)\n",
+                      r, aug_relative_, (double)(num / std::max<PetscScalar>(den, 1e-300)), aug_));
+  // The inactive rows keep r_I, INACTIVE_WEIGHT times the element scale: scaled with r they made the elastic
+  // reference of the octant at 1.07M dofs (no active pair) take 22 Krylov iterations instead of 14 (selfp's 1/r_I
+  // misjudges an inactive row's Schur complement 1/(r_I (1 + r_I mu)), mu its compliance, the more the larger r_I).
+  aug_ = r;
+  aug_relative_ = 0; // once per run: the weights that K carries and the multipliers' conversion stay consistent
   PetscFunctionReturn(0);
 }
 

@@ -432,6 +432,38 @@ def iterative_prescribed_displacement(runner):
     expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
+@test("iterative_augmentation_weight")
+def iterative_augmentation_weight(runner):
+    """The iterative path's augmentation weight r in 3D without friction is half of K's mean diagonal entry on the
+    candidate rows (-contact_augmentation_weight 0.5, IterativeWeight), about 6 times the element stiffness scale on
+    the octant's tetrahedral surface, where r was that scale before: selfp's diagonal 1/(k + r) then misjudged the
+    active rows' Schur complement (between 1/(k + r) and 1/r) by up to k/r. The octant of options/hertz3d.yml: the
+    direct path's state to 1e-8 with either weight, fewer Krylov iterations with the default; in 2D r stays the
+    element scale (a third of an assembled entry there already)."""
+    base = ["-options_file", "options/hertz3d.yml"]
+    ref = runner.run(base, "direct")
+    it = base + ["-contact_solver", "iterative", "-info", ":sys"]
+    new = runner.run(it, "iterative, default weight", heap_check=False)
+    m = re.search(r"iterative augmentation weight r = (\S+) \((\S+) of the candidates' mean diagonal entry (\S+), at "
+                  r"least the element scale (\S+)\)", new.output)
+    runner.expect_true("-info gives the weight", m is not None)
+    if m:
+        r, rel, mean, scale = (float(m.group(i)) for i in range(1, 5))
+        runner.expect_true("r = %g = 0.5 of the mean diagonal entry %g, which is %.1f times the element scale %g" % (
+            r, mean, mean / scale, scale), rel == 0.5 and abs(r - 0.5 * mean) <= 1e-5 * r and mean > 5 * scale)
+    old = runner.run(it + ["-contact_augmentation_weight", "0"], "iterative, the element scale", heap_check=False)
+    runner.expect_true("weight 0: r is the element scale",
+                       "iterative augmentation weight" not in old.output)
+    expect_same_state(runner, ref, new, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+    expect_same_state(runner, ref, old, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+    kn, ko = new.get("iterations.krylov"), old.get("iterations.krylov")
+    runner.expect_true("Krylov iterations: %d with the default weight < %d with the element scale" % (kn, ko), kn < ko)
+    flat = runner.run(["-options_file", "options/hertz.yml", "-contact_solver", "iterative", "-info", ":sys"],
+                      "2D iterative", heap_check=False)
+    runner.expect_true("2D: r stays the element scale", "iterative augmentation weight" not in flat.output)
+    runner.expect_equal("2D: converged", flat.get("status"), "converged")
+
+
 @test("iterative_first_overlap")
 def iterative_first_overlap(runner):
     """A rigid sphere placed 0.01 into the top of a clamped cube (options/cube_under_sphere.yml) on the iterative path:

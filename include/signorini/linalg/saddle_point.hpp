@@ -72,6 +72,11 @@ struct SaddlePointOptions {
   SolverPathOptions path; ///< -contact_solver, -contact_memory_budget
   PetscBool hierarchy_update = PETSC_TRUE; ///< -contact_hierarchy_update (UpdateGalerkin)
   PetscBool hierarchy_check = PETSC_FALSE; ///< -contact_hierarchy_check
+  /// -contact_augmentation_weight (the iterative path's r over the candidates' mean diagonal entry); not given: this
+  /// in 3D without friction, else 0
+  static constexpr double AUGMENTATION_WEIGHT_3D = 0.5;
+  PetscReal augmentation_weight = AUGMENTATION_WEIGHT_3D;
+  PetscBool augmentation_weight_set = PETSC_FALSE;
 };
 [[nodiscard]] PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts);
 
@@ -153,6 +158,8 @@ public:
   [[nodiscard]] PetscErrorCode AddAugmentation(const std::vector<SparseRow> &rows);
   /// Changes the augmentation weight of every owned row to weight[p] (ADD_VALUES of the difference, flush assembly).
   [[nodiscard]] PetscErrorCode Reweight(const std::vector<SparseRow> &rows, const std::vector<double> &weight);
+  /// The iterative path's r from K's diagonal on the candidate rows, at the first AddAugmentation.
+  [[nodiscard]] PetscErrorCode IterativeWeight(const std::vector<SparseRow> &rows);
   /// Writes the constraint rows. Plain form: active rows get their coefficients (in both B and B^T) and D = 0,
   /// inactive rows zeros and D = inactive_diag. Augmented form: every row keeps its coefficients, D = 0 on active
   /// rows and 1/r_I on inactive ones (weights r, r_I: Reweight). stabilisation s > 0 (s < r_I) adds a spring
@@ -413,7 +420,8 @@ private:
   bool kept_viewed_ = false; ///< a KSPSolve with the kept PC showed it (-contact_ksp_view); else Release does
   KSPH ksp_kept_;                      ///< changing K: FGMRES preconditioned by the kept factorisation
   PetscBool lu_ = PETSC_FALSE; ///< the PC is LU (the mumps_lu preset): the reuse mode factors with LU too
-  double aug_ = 1;  ///< augmentation weight r (the stiffness scale)
+  double aug_ = 1;             ///< augmentation weight r (the stiffness scale; the iterative path: IterativeWeight)
+  double aug_relative_ = 0;    ///< -contact_augmentation_weight; 0 once IterativeWeight set r (or never: direct)
   SolverPath path_ = SolverPath::DIRECT; ///< UsePath
   ConfirmFactor confirm_direct_;         ///< ConfirmDirectWith
   std::string direct_rejected_;          ///< DirectRejected
