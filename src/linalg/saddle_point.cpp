@@ -1077,7 +1077,7 @@ PetscErrorCode SaddlePointSystem::RetryKrylov(KSPConvergedReason &reason, PetscI
     PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
   }
-  if (failed != KSPGMRES && failed != KSPFGMRES) {
+  if (failed != KSPFGMRES) { // the iterative preset's GMRES(30) too: a longer restart against a stagnation
     PetscCall(KSPSetType(ksp_, KSPGMRES));
     PetscCall(KSPGMRESSetRestart(ksp_, 100));
     PetscCall(KSPSetPCSide(ksp_, PC_RIGHT));

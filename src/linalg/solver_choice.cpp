@@ -332,7 +332,7 @@ PetscErrorCode SolverOptionsGiven(bool &given, bool &factor_pc) {
 
 PetscErrorCode SetIterativeDefaults(std::vector<std::string> &set) {
   // options/solver/fieldsplit_gamg.yml (why each: there).
-  static const char *const DEFAULTS[][2] = {{"-contact_ksp_type", "bcgs"},
+  static const char *const DEFAULTS[][2] = {{"-contact_ksp_type", "gmres"},
                                             {"-contact_ksp_pc_side", "right"},
                                             {"-contact_ksp_rtol", "1e-10"},
                                             {"-contact_ksp_max_it", "2000"},

@@ -223,7 +223,7 @@ def iterative_on_contact(runner, preset, case="hertz"):
     # Each loose solve stops at -contact_active_set_rtol (1e-3) of the norm of the load step's first right-hand side,
     # whatever its own (-info, SolveKsp): the second solve's right-hand side holds the penetrations of the pairs the
     # first update activates (4.5 times the first's in 2D, 23 in 3D), and 1e-3 of it would stop there instead. The
-    # first solve, held at the touching point alone (1 to 3 pairs: ContactSolver::TOUCHING_PAIRS), stops at 0.1
+    # first solve, held at the touching point alone (1 to 3 pairs: ContactSolver::TOUCHING_PAIRS), stops at 0.03
     # (TOUCHING_RTOL): its displacement only picks the first update's pairs.
     loose = [(float(m.group(1)), float(m.group(2)), float(m.group(3))) for m in re.finditer(
         r"^\[0\] <sys> SolveKsp\(\): loose solve: rtol (\S+) of \|\|b\|\| = (\S+) \(the load step's first \|\|b\|\|: "
@@ -232,9 +232,9 @@ def iterative_on_contact(runner, preset, case="hertz"):
     if loose:
         ref = loose[0][1]
         ends = [rt * b / ref for rt, b, first in loose]
-        runner.expect_true("loose solves stop at %s of the first right-hand side's norm (the touching solve's 0.1, "
+        runner.expect_true("loose solves stop at %s of the first right-hand side's norm (the touching solve's 0.03, "
                            "then <= 1e-3), the reference the same in each" % ", ".join("%.3g" % e for e in ends),
-                           abs(ends[0] - 0.1) <= 1e-6 and max(ends[1:] + [0]) <= 1e-3 * (1 + 1e-5) and
+                           abs(ends[0] - 0.03) <= 1e-6 and max(ends[1:] + [0]) <= 1e-3 * (1 + 1e-5) and
                            all(first == ref for rt, b, first in loose))
         runner.expect_true("a right-hand side larger than the first's gets a tighter tolerance (%s)" % ", ".join(
             "%.3g of ||b|| %.3g" % (rt, b / ref) for rt, b, first in loose),
@@ -256,10 +256,11 @@ def iterative_on_contact(runner, preset, case="hertz"):
         runner.expect_true("correction solve: %d Krylov iterations < half of the %d before" % (
             h[-1]["krylov"], h[-2]["krylov"]), 2 * h[-1]["krylov"] < h[-2]["krylov"])
     its, krylov = exact.get("iterations.active_set"), exact.get("iterations.krylov")
-    max_mean_krylov = {("hertz", "fieldsplit_gamg"): 25}.get((case, preset))
+    max_mean_krylov = {("hertz", "fieldsplit_gamg"): 35}.get((case, preset))
     if max_mean_krylov:
-        # The inactive rows' small augmentation weight keeps the Schur complement well conditioned: BiCGStab takes
-        # 15-16 iterations per solve on 1 and 2 ranks, against 33-34 with the weight r on every row.
+        # The inactive rows' small augmentation weight keeps the Schur complement well conditioned: BiCGStab took
+        # 15-16 iterations per solve (30-32 V-cycles) on 1 and 2 ranks, against 33-34 with the weight r on every row;
+        # GMRES (one V-cycle per iteration) takes 30-31.
         runner.expect_true("Krylov iterations per solve %.1f <= %d" % (krylov / its, max_mean_krylov),
                            krylov <= max_mean_krylov * its)
 
@@ -481,7 +482,7 @@ def iterative_first_overlap(runner):
         runner.expect_equal("the first set is the answer's", int(first.group(1)), ref.get("contact.active_pairs"))
     runner.expect_equal("active-set iterations", r.get("iterations.active_set"), 2)
     # A first set of more than a few pairs is solved as any other set: to -contact_active_set_rtol (1e-3), not to the
-    # touching solve's 0.1 (ContactSolver::TOUCHING_PAIRS), whose errors would read as changes here.
+    # touching solve's 0.03 (ContactSolver::TOUCHING_PAIRS), whose errors would read as changes here.
     tols = [float(x) for x in re.findall(r"^\[0\] <sys> SolveKsp\(\): loose solve: rtol (\S+) of", r.output, re.M)]
     runner.expect_true("the first solve to 1e-3 (%s)" % ", ".join("%.3g" % t for t in tols),
                        len(tols) >= 1 and tols[0] == 1e-3)
