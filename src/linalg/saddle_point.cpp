@@ -627,12 +627,12 @@ PetscErrorCode SaddlePointSystem::IterativeWeight(const std::vector<SparseRow> &
   PetscScalar num, den;
   PetscCall(VecDot(c, diag, &num));
   PetscCall(VecSum(c, &den));
-  // Never below the element scale (r > r_I).
-  const double r = std::max(aug_, aug_relative_ * (double)(num / std::max<PetscScalar>(den, 1e-300)));
+  const double mean = (double)(num / std::max<PetscScalar>(den, 1e-300));
+  const double r = std::max(aug_, aug_relative_ * mean); // never below the element scale (r > r_I)
   PetscCall(PetscInfo(nullptr,
                       "iterative augmentation weight r = %.6g (%.6g of the candidates' mean diagonal entry %.6g, at "
                       "least the element scale %.6g)\n",
-                      r, aug_relative_, (double)(num / std::max<PetscScalar>(den, 1e-300)), aug_));
+                      r, aug_relative_, mean, aug_));
   // The inactive rows keep r_I, INACTIVE_WEIGHT times the element scale: scaled with r they made the elastic
   // reference of the octant at 1.07M dofs (no active pair) take 22 Krylov iterations instead of 14 (selfp's 1/r_I
   // misjudges an inactive row's Schur complement 1/(r_I (1 + r_I mu)), mu its compliance, the more the larger r_I).

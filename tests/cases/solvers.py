@@ -522,6 +522,15 @@ def krylov_fallback(runner):
     runner.expect_equal("one fallback (GMRES stays)", r.get("iterations.krylov_fallbacks"), 1)
     runner.expect_equal("no fallback on the direct path", ref.get("iterations.krylov_fallbacks"), 0)
     expect_same_state(runner, ref, r, keys=("contact.active_pairs",), tol=1e-8)
+    # GMRES itself (the iterative preset's method) that stagnates on a short restart gets the fallback's restart of
+    # 100: with GMRES(1) and 30 iterations at most the first solve stops, and the run then converges within them.
+    g = runner.run(base + ["-contact_solver", "iterative", "-contact_ksp_gmres_restart", "1", "-contact_ksp_max_it",
+                           "30", "-info", ":sys"], "GMRES(1), then GMRES(100)")
+    runner.expect_true("GMRES(1) stopped and GMRES(100) took over",
+                       re.search(r"RetryKrylov\(\): gmres stopped with DIVERGED_\w+ after \d+ iterations", g.output)
+                       is not None)
+    runner.expect_equal("GMRES(1): one fallback", g.get("iterations.krylov_fallbacks"), 1)
+    expect_same_state(runner, ref, g, keys=("contact.active_pairs",), tol=1e-8)
 
 
 @test("elastic_fieldsplit_block_size")
