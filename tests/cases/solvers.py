@@ -489,6 +489,30 @@ def iterative_first_overlap(runner):
     expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
+@test("iterative_first_overlap_update")
+def iterative_first_overlap_update(runner):
+    """After a first set of half an overlap (ActiveSet::First) the first update is not damped: that solve did not
+    overshoot, and the pairs it leaves penetrating are the ring just outside its set. The cube of
+    options/cube_under_sphere.yml at its coarsest mesh with the sphere 0.03 into it: 9 of the 21 overlapping pairs
+    first, then all 21 of the answer at once (3 active-set iterations: two solves and the correction), where the gap
+    factor, whose start gaps are negative here, held 8 of them back for one iteration more (13, 21, 21, 21). The
+    direct path's state to 1e-8, 1 and 2 ranks."""
+    base = ["-options_file", "options/cube_under_sphere.yml", "-obstacle_spheres", "0.5,0.5,1.47,0.5"]
+    ref = runner.run(base + ["-contact_solver", "direct"], "direct")
+    r = runner.run(base + ["-contact_solver", "iterative", "-info", ":sys"], "iterative")
+    first = re.search(r"first set: (\d+) of the (\d+) pairs that start touching or overlapping", r.output)
+    runner.expect_true("the first set is part of the overlap (-info: %s)" % (first.group(0) if first else "no line"),
+                       first is not None and int(first.group(1)) < int(first.group(2)) and
+                       int(first.group(1)) < ref.get("contact.active_pairs"))
+    runner.expect_true("-info: the first update not damped", "every penetrating pair activated (not damped)" in r.output
+                       and "penetrating pair(s) held back" not in r.output)
+    sets = [h["active"] for h in r.get("iterations.history")]
+    runner.expect_equal("the first update's set is the answer's (sets %s)" % sets, sets[0],
+                        ref.get("contact.active_pairs"))
+    runner.expect_equal("active-set iterations", r.get("iterations.active_set"), 3)
+    expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+
+
 @test("gamg_square_graph_3d")
 def gamg_square_graph_3d(runner):
     """In 3D the iterative path's GAMG squares the graph on its first two levels (PETSc's default: one), unless the

@@ -127,7 +127,9 @@ struct ActiveSetParams {
 class ActiveSet {
 public:
   ActiveSet(MPI_Comm comm, const ActiveSetParams &params) : comm_(comm), params_(params) {}
-  void Reset(std::size_t npairs) { active_.assign(npairs, 0), start_gap_.clear(), started_ = false; }
+  void Reset(std::size_t npairs) {
+    active_.assign(npairs, 0), start_gap_.clear(), started_ = false, half_overlap_ = false;
+  }
   const std::vector<char> &Flags() const { return active_; }
   void Set(const std::vector<char> &flags) { active_ = flags; }
   /// Starts a load step: forgets the sets seen in the previous one. load_scale: the largest nodal force of the
@@ -148,7 +150,9 @@ public:
   /// after a solve held at a touching point, a smooth (locally parabolic) contact is penetrated deepest where the
   /// start gap is a fixed fraction of the gap at the contact's edge (at 1/sqrt(2) of the half-width in 2D, 0.75 of the
   /// radius in 3D: the point load's indentation against the parabola), whatever the mesh size; the factor
-  /// ActivationGapFactor (2 in 2D, 1.77 in 3D) activates about the contact's final set. loose: the states come from
+  /// ActivationGapFactor (2 in 2D, 1.77 in 3D) activates about the contact's final set. Neither damps the update
+  /// after a first set that held the deeper half of an overlap (First): that solve did not overshoot, and the pairs
+  /// it leaves penetrating are the ring just outside its set. loose: the states come from
   /// a loose solve of the linear material, where an active pair's gap is only its row's residual (the rule then reads
   /// an active pair's multiplier alone). changes: global number of switched pairs. Collective.
   [[nodiscard]] PetscErrorCode Next(const std::vector<PairState> &states, PetscInt it, bool loose,
@@ -212,6 +216,7 @@ private:
   std::vector<double> start_gap_; ///< the pairs' gaps at the start of the load step (First)
   bool started_ = false;          ///< start_gap_ holds the current pairs' (First since the last Reset)
   bool overlap_rule_ = false;     ///< SetOverlapRule
+  bool half_overlap_ = false;     ///< the first set held the deeper half of an overlap (First; global)
 };
 
 } // namespace signorini
