@@ -1,17 +1,16 @@
 // GAMG's first Galerkin product P^T A P on several ranks in a rank's share of the memory (issue 37, item 5).
 //
-// Why not PETSc's own: PETSc 3.18's products of MPIAIJ matrices (MatPtAP's `scalable` default, `nonscalable`, and
-// `allatonce_merged`) form A P of the local rows whole before multiplying by P^T. On the 4.1M-dof hexahedral cube on
-// 2 ranks that is 5.0 GB per rank (each rank's resident memory went from 2.7 GB after the assembly to 7.7 GB in GAMG's
-// set-up, against 8.1 GB for the whole one-rank run); `allatonce` keeps no A P but took 5 times as long
-// (docs/performance.md). One rank's sequential product keeps one row of A P at a time, so each rank multiplies its
-// own rows here with that product: for a chunk of its rows, A's entries of those rows in the numbering of the rows of
-// P it needs (its own and its ghosts', rows P_e of P), the sequential P_e^T A_chunk P_e, and the ranks' parts added
-// into the parallel coarse operator (its rows follow P's columns). A chunk's copy of A is a quarter of the rank's rows.
+// Why not PETSc's own: PETSc 3.18's products of MPIAIJ matrices (MatPtAP's default, `scalable` and `nonscalable`)
+// form A P of the local rows whole before multiplying by P^T: on the 4.1M-dof hexahedral cube on 2 ranks each rank's
+// resident memory went from 4.4 GB before the product to 7.7 GB (the whole one-rank run: 8.1 GB); `allatonce` keeps
+// no A P but took 5 times as long (docs/performance.md). One rank's sequential product keeps one row of A P at a time,
+// so each rank multiplies its own rows with that product, in CHUNKS chunks: A's entries of a chunk's rows renumbered
+// to the rows of P they need (own and ghost rows, fetched by MatCreateSubMatrices), the sequential P_c^T A_c P_c, and
+// the ranks' parts added into the parallel coarse operator (its rows follow P's columns; its pattern through a
+// MATPREALLOCATOR). On that cube the product then adds 50 MB per rank instead of 3.3 GB, and takes about as long.
 #include "signorini/linalg/lean_ptap.hpp"
 
 #include "signorini/core/handle.hpp"
-#include "signorini/linalg/solver_choice.hpp"
 
 #include <algorithm>
 #include <vector>
@@ -20,9 +19,8 @@ namespace signorini {
 
 namespace {
 
-constexpr PetscInt CHUNKS = 4; ///< the copies of A's rows are this many chunks
+constexpr PetscInt CHUNKS = 8; ///< each rank's rows in this many chunks, each with the rows of P it needs
 constexpr const char *PARTS_KEY = "signorini_lean_ptap_parts";
-constexpr const char *SETTINGS_KEY = "signorini_lean_ptap_settings";
 PetscErrorCode (*mpiaij_set_from_options)(Mat) = nullptr; ///< PETSc's MatProductSetFromOptions of MPIAIJ
 
 /// The ranks' parts of a product that the symbolic phase computed and the first numeric phase adds.
@@ -50,24 +48,9 @@ PetscErrorCode ComputeParts(Mat A, Mat P, std::vector<Mat> &parts) {
   PetscCall(MatGetLocalSize(Ao, nullptr, &ng));
   PetscCall(MatGetSize(P, nullptr, &coarse));
   const PetscInt n = rend - rstart;
-  // The rows of P this rank needs, in global order: the ghosts below its range, its own rows, the ghosts above.
-  const PetscInt nlo = (PetscInt)(std::lower_bound(garray, garray + ng, rstart) - garray);
-  const PetscInt next = n + ng;
-  std::vector<PetscInt> ext(next);
-  for (PetscInt k = 0; k < nlo; ++k)
-    ext[k] = garray[k];
-  for (PetscInt i = 0; i < n; ++i)
-    ext[nlo + i] = rstart + i;
-  for (PetscInt k = nlo; k < ng; ++k)
-    ext[n + k] = garray[k];
-  ISH rows, cols;
-  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, next, ext.data(), PETSC_USE_POINTER, rows.out()));
-  PetscCall(ISCreateStride(PETSC_COMM_SELF, coarse, 0, 1, cols.out()));
-  IS isrow = rows, iscol = cols;
-  Mat *pe;
-  PetscCall(MatCreateSubMatrices(P, 1, &isrow, &iscol, MAT_INITIAL_MATRIX, &pe));
-  MatH Pe(pe[0]);
-  PetscCall(PetscFree(pe));
+  const PetscInt nlo = (PetscInt)(std::lower_bound(garray, garray + ng, rstart) - garray); // ghosts below the range
+  ISH all_columns;
+  PetscCall(ISCreateStride(PETSC_COMM_SELF, coarse, 0, 1, all_columns.out()));
 
   const PetscInt *ai, *aj, *oi, *oj;
   const PetscScalar *av, *ov;
@@ -79,30 +62,57 @@ PetscErrorCode ComputeParts(Mat A, Mat P, std::vector<Mat> &parts) {
   PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "the off-diagonal block's row structure is not available");
   PetscCall(MatSeqAIJGetArrayRead(Ad, &av));
   PetscCall(MatSeqAIJGetArrayRead(Ao, &ov));
-  const PetscInt chunk = std::max<PetscInt>(1, (n + CHUNKS - 1) / CHUNKS);
-  for (PetscInt r0 = 0; r0 < n || (n == 0 && r0 == 0); r0 += chunk) {
-    const PetscInt r1 = std::min(n, r0 + chunk);
-    // A's rows r0..r1 as rows nlo + i of a square matrix in the numbering of ext (columns: a ghost k below the range
-    // is k, an own row j is nlo + j, a ghost k above is n + k; each row stays sorted).
-    std::vector<PetscInt> ci(next + 1, 0);
+  // Position of an own row j and of a ghost k among the rows of P that a chunk needs (-1: not needed).
+  std::vector<PetscInt> own(n), ghost(ng);
+  for (PetscInt c = 0; c < CHUNKS; ++c) { // every rank CHUNKS times: MatCreateSubMatrices is collective
+    const PetscInt r0 = n * c / CHUNKS, r1 = n * (c + 1) / CHUNKS;
+    // The rows of P the chunk needs, in global order: the columns of A's rows r0..r1 (ghosts below the range, own
+    // rows, ghosts above), each chunk row among them.
+    std::fill(own.begin(), own.end(), -1);
+    std::fill(ghost.begin(), ghost.end(), -1);
+    for (PetscInt i = r0; i < r1; ++i) {
+      own[i] = 0;
+      for (PetscInt a = ai[i]; a < ai[i + 1]; ++a)
+        own[aj[a]] = 0;
+      for (PetscInt o = oi[i]; o < oi[i + 1]; ++o)
+        ghost[oj[o]] = 0;
+    }
+    std::vector<PetscInt> rows;
+    for (PetscInt k = 0; k < nlo; ++k)
+      if (ghost[k] == 0) ghost[k] = (PetscInt)rows.size(), rows.push_back(garray[k]);
+    for (PetscInt j = 0; j < n; ++j)
+      if (own[j] == 0) own[j] = (PetscInt)rows.size(), rows.push_back(rstart + j);
+    for (PetscInt k = nlo; k < ng; ++k)
+      if (ghost[k] == 0) ghost[k] = (PetscInt)rows.size(), rows.push_back(garray[k]);
+    const PetscInt ne = (PetscInt)rows.size();
+    ISH isrows;
+    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, ne, rows.data(), PETSC_USE_POINTER, isrows.out()));
+    IS isrow = isrows, iscol = all_columns;
+    Mat *pe;
+    PetscCall(MatCreateSubMatrices(P, 1, &isrow, &iscol, MAT_INITIAL_MATRIX, &pe));
+    MatH Pe(pe[0]);
+    PetscCall(PetscFree(pe));
+    // A's rows r0..r1 as a square matrix in the numbering of those rows (each row stays sorted: the positions keep
+    // the global order, and a row's ghosts below, own columns and ghosts above come in that order).
+    std::vector<PetscInt> ci(ne + 1, 0);
     for (PetscInt i = r0; i < r1; ++i)
-      ci[nlo + i + 1] = (ai[i + 1] - ai[i]) + (oi[i + 1] - oi[i]);
-    for (PetscInt e = 0; e < next; ++e)
+      ci[own[i] + 1] = (ai[i + 1] - ai[i]) + (oi[i + 1] - oi[i]);
+    for (PetscInt e = 0; e < ne; ++e)
       ci[e + 1] += ci[e];
-    std::vector<PetscInt> cj(std::max<PetscInt>(1, ci[next]));
+    std::vector<PetscInt> cj(std::max<PetscInt>(1, ci[ne]));
     std::vector<PetscScalar> ca(cj.size());
     for (PetscInt i = r0; i < r1; ++i) {
-      PetscInt q = ci[nlo + i];
+      PetscInt q = ci[own[i]];
       PetscInt o = oi[i];
       for (; o < oi[i + 1] && oj[o] < nlo; ++o)
-        cj[q] = oj[o], ca[q++] = ov[o];
+        cj[q] = ghost[oj[o]], ca[q++] = ov[o];
       for (PetscInt a = ai[i]; a < ai[i + 1]; ++a)
-        cj[q] = nlo + aj[a], ca[q++] = av[a];
+        cj[q] = own[aj[a]], ca[q++] = av[a];
       for (; o < oi[i + 1]; ++o)
-        cj[q] = n + oj[o], ca[q++] = ov[o];
+        cj[q] = ghost[oj[o]], ca[q++] = ov[o];
     }
     MatH Achunk, Cchunk;
-    PetscCall(MatCreateSeqAIJWithArrays(PETSC_COMM_SELF, next, next, ci.data(), cj.data(), ca.data(), Achunk.out()));
+    PetscCall(MatCreateSeqAIJWithArrays(PETSC_COMM_SELF, ne, ne, ci.data(), cj.data(), ca.data(), Achunk.out()));
     PetscCall(MatProductCreate(Achunk, Pe, nullptr, Cchunk.out()));
     PetscCall(MatProductSetType(Cchunk, MATPRODUCT_PtAP));
     PetscCall(MatProductSetAlgorithm(Cchunk, MATPRODUCTALGORITHMDEFAULT));
@@ -116,7 +126,6 @@ PetscErrorCode ComputeParts(Mat A, Mat P, std::vector<Mat> &parts) {
     Mat part = Cchunk;
     PetscCall(PetscObjectReference((PetscObject)part));
     parts.push_back(part);
-    if (n == 0) break;
   }
   PetscCall(MatSeqAIJRestoreArrayRead(Ad, &av));
   PetscCall(MatSeqAIJRestoreArrayRead(Ao, &ov));
@@ -202,58 +211,12 @@ PetscErrorCode Symbolic(Mat C) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode DestroySettings(void *ctx) {
-  PetscFunctionBeginUser;
-  delete static_cast<LeanPtAPSettings *>(ctx);
-  PetscFunctionReturn(0);
-}
-
-/// Whether P^T A P is LeanPtAP's: -contact_gamg_product, or (auto) PETSc's A P of the local rows does not fit.
-PetscErrorCode UseLean(Mat A, bool &lean) {
-  PetscFunctionBeginUser;
-  MPI_Comm comm = PetscObjectComm((PetscObject)A);
-  PetscContainer container = nullptr;
-  PetscCall(PetscObjectQuery((PetscObject)A, SETTINGS_KEY, (PetscObject *)&container));
-  LeanPtAPSettings settings;
-  if (container) {
-    LeanPtAPSettings *s;
-    PetscCall(PetscContainerGetPointer(container, (void **)&s));
-    settings = *s;
-  }
-  lean = settings.mode == GalerkinProduct::LEAN;
-  if (settings.mode != GalerkinProduct::AUTO) PetscFunctionReturn(0);
-  MatInfo info;
-  PetscCall(MatGetInfo(A, MAT_LOCAL, &info));
-  double need[2] = {PETSC_PTAP_BYTES_PER_ENTRY * info.nz_used, 0}, available;
-  if (settings.budget_given) {
-    PetscLogDouble rss;
-    PetscCall(PetscMemoryGetCurrentUsage(&rss));
-    available = settings.budget - rss;
-  } else
-    PetscCall(MemoryBudget(comm, available));
-  need[1] = need[0] > available ? 1 : 0;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, need, 2, MPI_DOUBLE, MPI_MAX, comm));
-  lean = need[1] > 0;
-  PetscCall(PetscInfo(A,
-                      "GAMG's first Galerkin product: PETSc's keeps A P of the local rows (about %.3g MB per rank), "
-                      "%.3g MB available (%s): %s\n",
-                      need[0] / 1048576.0, available / 1048576.0,
-                      settings.budget_given ? "-contact_memory_budget less the run's current use"
-                                            : "the node's available memory shared by its ranks, less a tenth",
-                      lean ? "the ranks' sequential products (LeanPtAP)" : "PETSc's"));
-  PetscFunctionReturn(0);
-}
-
-/// MatProductSetFromOptions of a product with A first: P^T A P is LeanPtAP's (UseLean), every other product PETSc's.
+/// MatProductSetFromOptions of a product with A first: P^T A P is LeanPtAP's, every other product PETSc's.
 PetscErrorCode SetFromOptions(Mat C) {
   PetscFunctionBeginUser;
   MatProductType type;
-  Mat A, P, unused;
   PetscCall(MatProductGetType(C, &type));
-  PetscCall(MatProductGetMats(C, &A, &P, &unused));
-  bool lean = false;
-  if (type == MATPRODUCT_PtAP) PetscCall(UseLean(A, lean));
-  if (lean) {
+  if (type == MATPRODUCT_PtAP) {
     PetscCall(PetscInfo(C, "P^T A P by the ranks' sequential products (LeanPtAP)\n"));
     PetscCall(MatSetOperation(C, MATOP_PRODUCTSYMBOLIC, (void (*)(void))Symbolic));
   } else
@@ -270,21 +233,13 @@ PetscErrorCode SetFromOptionsOfA(Mat C) {
 
 } // namespace
 
-PetscErrorCode LeanPtAPAttach(Mat A, const LeanPtAPSettings &settings) {
+PetscErrorCode LeanPtAPAttach(Mat A) {
   PetscFunctionBeginUser;
   PetscMPIInt size;
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)A), &size));
   PetscBool mpiaij;
   PetscCall(PetscObjectTypeCompare((PetscObject)A, MATMPIAIJ, &mpiaij));
   if (size == 1 || !mpiaij) PetscFunctionReturn(0);
-  // The settings are A's (a later call replaces them); the override stays once made.
-  PetscContainer container;
-  PetscCall(PetscContainerCreate(PETSC_COMM_SELF, &container));
-  PetscCall(PetscContainerSetPointer(container, new LeanPtAPSettings(settings)));
-  PetscCall(PetscContainerSetUserDestroy(container, DestroySettings));
-  PetscCall(PetscObjectCompose((PetscObject)A, SETTINGS_KEY, (PetscObject)container));
-  PetscCall(PetscContainerDestroy(&container));
-  if (settings.mode == GalerkinProduct::PETSC) PetscFunctionReturn(0);
   // PETSc's MatProductSetFromOptions_Private calls A's op when A's and P's agree; when they differ it asks A for the
   // composed MatProductSetFromOptions_mpiaij_mpiaij_C, which is this one.
   void (*op)(void) = nullptr;

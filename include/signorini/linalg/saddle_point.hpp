@@ -73,7 +73,7 @@ struct SaddlePointOptions {
   SolverPathOptions path; ///< -contact_solver, -contact_memory_budget
   PetscBool hierarchy_update = PETSC_TRUE; ///< -contact_hierarchy_update (UpdateGalerkin)
   PetscBool hierarchy_check = PETSC_FALSE; ///< -contact_hierarchy_check
-  GalerkinProduct galerkin_product = GalerkinProduct::AUTO; ///< -contact_gamg_product (LeanPtAPAttach)
+  GalerkinProduct galerkin_product = GalerkinProduct::LEAN; ///< -contact_gamg_product (LeanPtAPAttach)
   /// -contact_augmentation_weight (the iterative path's r over the candidates' mean diagonal entry); not given: this
   /// in 3D without friction, else 0
   static constexpr double AUGMENTATION_WEIGHT_3D = 0.5;
@@ -376,7 +376,7 @@ private:
   [[nodiscard]] PetscErrorCode UpdateGalerkin(PC mg, bool &updated);
   std::vector<SparseRow> aug_rows_; ///< the augmented rows of the last AddAugmentation (UpdateGalerkin)
   bool hierarchy_update_ = true, hierarchy_check_ = false; ///< -contact_hierarchy_update, -contact_hierarchy_check
-  LeanPtAPSettings galerkin_product_; ///< -contact_gamg_product and the memory budget it compares with
+  GalerkinProduct galerkin_product_ = GalerkinProduct::LEAN; ///< -contact_gamg_product
   /// After the first set-up of a Schur fieldsplit: the multiplier block's fieldsplit (if it is one) gets its splits
   /// (UseTangentialRows).
   [[nodiscard]] PetscErrorCode SplitMultiplierBlock();
