@@ -186,6 +186,8 @@ PetscErrorCode Symbolic(Mat C) {
   PetscInt pn, pN;
   PetscCall(MatGetLocalSize(P, nullptr, &pn));
   PetscCall(MatGetSize(P, nullptr, &pN));
+  PetscInt cbs; // the coarse operator's blocks are P's column blocks (the near null space's vectors per node)
+  PetscCall(MatGetBlockSizes(P, nullptr, &cbs));
   auto *parts = new Parts;
   PetscContainer container;
   PetscCall(PetscContainerCreate(PETSC_COMM_SELF, &container));
@@ -197,11 +199,11 @@ PetscErrorCode Symbolic(Mat C) {
   PetscCall(MatCreate(comm, pre.out()));
   PetscCall(MatSetType(pre, MATPREALLOCATOR));
   PetscCall(MatSetSizes(pre, pn, pn, pN, pN));
-  PetscCall(MatSetBlockSizesFromMats(pre, P, P));
+  PetscCall(MatSetBlockSizes(pre, cbs, cbs));
   PetscCall(MatSetUp(pre));
   PetscCall(AddParts(parts->mats, pre));
   PetscCall(MatSetSizes(C, pn, pn, pN, pN));
-  PetscCall(MatSetBlockSizesFromMats(C, P, P));
+  PetscCall(MatSetBlockSizes(C, cbs, cbs));
   PetscCall(MatSetType(C, MATMPIAIJ));
   PetscCall(MatPreallocatorPreallocate(pre, PETSC_TRUE, C));
   PetscCall(MatSetOption(C, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));

@@ -414,8 +414,8 @@ def gamg_lean_product(runner):
     parallel matrices keeps A P of each rank's rows (3.3 GB per rank on a 4.1M-dof cube on 2 ranks); lean, the
     default, multiplies each rank's rows by sequential products in chunks and adds the parts. On the octant of
     options/hertz3d.yml: lean and petsc each give the direct path's state to 1e-8; lean's product is the one the
-    hierarchy updates are checked against (-contact_hierarchy_check, 1e-12). One rank: PETSc's sequential product
-    whatever the option."""
+    hierarchy updates are checked against (-contact_hierarchy_check, 1e-12); the same on the 2D beam of
+    options/beam_on_floor.yml. One rank: PETSc's sequential product whatever the option."""
     base = ["-options_file", "options/hertz3d.yml"]
     ref = runner.run(base, "direct")
     it = base + ["-contact_solver", "iterative", "-info", ":mat,sys"]
@@ -435,6 +435,14 @@ def gamg_lean_product(runner):
     runner.expect_true("petsc: every hierarchy update equal to a new product (%s)" % checks,
                        len(checks) >= 1 and max(checks) <= 1e-12)
     expect_same_state(runner, ref, petsc, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+    # 2D: the coarse operator's blocks are P's column blocks (3 rigid modes per node), not the fine level's 2 (the
+    # first version took them from P's rows: "Local size 27 not compatible with block size 2" on 2 ranks).
+    beam = ["-options_file", "options/beam_on_floor.yml"]
+    ref2 = runner.run(beam, "2D beam, direct")
+    for product in ("lean", "petsc"):
+        r = runner.run(beam + ["-contact_solver", "iterative", "-contact_gamg_product", product], "2D beam, " + product,
+                       heap_check=False)
+        expect_same_state(runner, ref2, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
 @test("iterative_prescribed_displacement")
