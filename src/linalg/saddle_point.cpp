@@ -425,8 +425,7 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   constant_k_ = constant_k;
   kept_.max_it = opts.reuse_max_it;
   hierarchy_update_ = opts.hierarchy_update, hierarchy_check_ = opts.hierarchy_check;
-  galerkin_product_ = opts.galerkin_product;
-  if (nest_.on && nest_.K && galerkin_product_ == GalerkinProduct::LEAN) PetscCall(LeanPtAPAttach(nest_.K));
+  if (nest_.on && nest_.K && opts.galerkin_product == GalerkinProduct::LEAN) PetscCall(LeanPtAPAttach(nest_.K));
   // An iterative solver gets the augmented form too: its displacement block K + r B_C^T B_C is regular when the
   // candidates hold the body, so that a Schur fieldsplit with AMG on that block works for a body held by contact.
   // Friction's kept factorisation is of a fixed augmented matrix of its own (FactorFixedRows): A stays plain.

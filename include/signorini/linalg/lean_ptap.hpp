@@ -11,10 +11,10 @@ inline constexpr const char *GALERKIN_PRODUCT_NAMES[] = {"lean", "petsc"};
 /// Every later MatPtAP(A, P) of this MPIAIJ matrix (GAMG's first coarse operator, on any number of ranks above one)
 /// is formed by LeanPtAP: each rank multiplies its own rows in a few chunks by PETSc's sequential product, which keeps
 /// a row of A P at a time, and the ranks add their parts. PETSc 3.18's products of parallel matrices (its default,
-/// `scalable` and `nonscalable` alike) form A P of all local rows first: 5.0 GB per rank on the 4.1M-dof hexahedral
+/// `scalable` and `nonscalable` alike) form A P of all local rows first: 3.3 GB per rank on the 4.1M-dof hexahedral
 /// cube on 2 ranks, where the whole one-rank run peaks at 8.1 GB (docs/performance.md). A sequential matrix, or one
 /// rank, is left to PETSc. Other products of A go to PETSc's as before. On that cube: 5.3 instead of 7.7 GB per rank,
-/// the contact solve as fast (122 s against 117-123 s).
+/// the contact solve about as fast (122-125 s against 117-123 s).
 PetscErrorCode LeanPtAPAttach(Mat A);
 
 } // namespace signorini

@@ -376,7 +376,6 @@ private:
   [[nodiscard]] PetscErrorCode UpdateGalerkin(PC mg, bool &updated);
   std::vector<SparseRow> aug_rows_; ///< the augmented rows of the last AddAugmentation (UpdateGalerkin)
   bool hierarchy_update_ = true, hierarchy_check_ = false; ///< -contact_hierarchy_update, -contact_hierarchy_check
-  GalerkinProduct galerkin_product_ = GalerkinProduct::LEAN; ///< -contact_gamg_product
   /// After the first set-up of a Schur fieldsplit: the multiplier block's fieldsplit (if it is one) gets its splits
   /// (UseTangentialRows).
   [[nodiscard]] PetscErrorCode SplitMultiplierBlock();
