@@ -172,13 +172,12 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
                              "difference; a product of the whole matrix per update)",
                              "", opts.hierarchy_check, &opts.hierarchy_check, nullptr));
   PetscInt product = (PetscInt)opts.galerkin_product;
-  PetscCall(
-      PetscOptionsEList("-contact_gamg_product",
-                        "Iterative path on several ranks: GAMG's first Galerkin product P^T A P by each rank's "
-                        "sequential products of its own rows in chunks, the parts added (lean), or by PETSc's "
-                        "product of parallel matrices (petsc), which keeps A P of each rank's rows: 7.7 instead of "
-                        "5.3 GB per rank on a 4.1M-dof hexahedral cube on 2 ranks, the contact solve as fast",
-                        "", GALERKIN_PRODUCT_NAMES, 2, GALERKIN_PRODUCT_NAMES[product], &product, nullptr));
+  PetscCall(OptionsChoice(PetscOptionsObject, "-contact_gamg_product",
+                          "Iterative path on several ranks: GAMG's first Galerkin product P^T A P by each rank's "
+                          "sequential products of its own rows in chunks, the parts added (lean), or by PETSc's "
+                          "product of parallel matrices (petsc), which keeps A P of each rank's rows: 7.7 instead of "
+                          "5.3 GB per rank on a 4.1M-dof hexahedral cube on 2 ranks, the contact solve as fast",
+                          "lean or petsc", GALERKIN_PRODUCT_NAMES, 2, product));
   opts.galerkin_product = (GalerkinProduct)product;
   char weight_help[512];
   std::snprintf(weight_help, sizeof(weight_help),

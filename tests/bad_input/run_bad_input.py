@@ -555,6 +555,8 @@ CASES = {
                                                ["-contact_nested_dissection_parallel applies to METIS's ordering "
                                                 "only"], {}),
     # Who factors the kept factorisation (-contact_kept_solver): the supernodal Cholesky only where it applies.
+    "gamg_product_unknown": (["-contact_solver", "iterative", "-contact_gamg_product", "fast"],
+                             ["Unknown option fast for -contact_gamg_product", "lean petsc"], {}),
     "kept_solver_unknown": (["-contact_kept_solver", "lapack"],
                             ["Unknown option lapack for -contact_kept_solver", "auto mumps cholesky"], {}),
     "kept_solver_refactorising": (BEAM + ["-contact_kept_solver", "cholesky", "-contact_reuse_factorization", "false"],

@@ -365,6 +365,12 @@ def iterative_hierarchy_reuse(runner):
         expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
+def hierarchy_checks(output):
+    """The relative differences that -contact_hierarchy_check printed (-info :sys), one per hierarchy update."""
+    return [float(x) for x in re.findall(r"hierarchy check: the first coarse operator differs from a new Galerkin "
+                                         r"product by (\S+) of its norm", output)]
+
+
 @test("iterative_hierarchy_update")
 def iterative_hierarchy_update(runner):
     """The linear material's GAMG hierarchy follows the active set without a new set-up (-contact_hierarchy_update,
@@ -378,8 +384,7 @@ def iterative_hierarchy_update(runner):
     it = base + ["-contact_solver", "iterative", "-log_view"]
     r = runner.run(it + ["-contact_hierarchy_check", "-info", ":sys"], "iterative, updates checked", heap_check=False)
     runner.expect_equal("one GAMG set-up", log_event_count(r.output, "PCSetUp_GAMG+"), 1)
-    checks = [float(x) for x in re.findall(r"hierarchy check: the first coarse operator differs from a new Galerkin "
-                                           r"product by (\S+) of its norm", r.output)]
+    checks = hierarchy_checks(r.output)
     updates = r.output.count("updated (the changed rows' Galerkin images added to the coarse operators)")
     runner.expect_true("%d updates, each checked (%s)" % (updates, checks), updates >= 2 and len(checks) == updates)
     runner.expect_true("every update exact (largest difference %.3g)" % max(checks or [1]), max(checks or [1]) <= 1e-12)
@@ -422,16 +427,14 @@ def gamg_lean_product(runner):
     lean_line = "P^T A P by the ranks' sequential products (LeanPtAP)"
     lean = runner.run(it + ["-contact_hierarchy_check"], "lean (the default)", heap_check=False)
     runner.expect_equal("lean: the ranks' products (on one rank PETSc's)", lean_line in lean.output, runner.np > 1)
-    checks = [float(x) for x in re.findall(r"hierarchy check: the first coarse operator differs from a new Galerkin "
-                                           r"product by (\S+) of its norm", lean.output)]
+    checks = hierarchy_checks(lean.output)
     runner.expect_true("lean: every hierarchy update equal to a new product (%s)" % checks,
                        len(checks) >= 1 and max(checks) <= 1e-12)
     expect_same_state(runner, ref, lean, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
     petsc = runner.run(it + ["-contact_gamg_product", "petsc", "-contact_hierarchy_check"], "petsc",
                        heap_check=False)
     runner.expect_true("petsc: PETSc's product", lean_line not in petsc.output)
-    checks = [float(x) for x in re.findall(r"hierarchy check: the first coarse operator differs from a new Galerkin "
-                                           r"product by (\S+) of its norm", petsc.output)]
+    checks = hierarchy_checks(petsc.output)
     runner.expect_true("petsc: every hierarchy update equal to a new product (%s)" % checks,
                        len(checks) >= 1 and max(checks) <= 1e-12)
     expect_same_state(runner, ref, petsc, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
