@@ -1,15 +1,16 @@
 // One run: options, mesh, set-up, contact solve, results, output; and the built-in default case.
 #include "signorini/app/run.hpp"
 
-#include "signorini/post/report.hpp"
-#include "signorini/post/contact_results.hpp"
-#include "signorini/options/help.hpp"
-#include "signorini/options/unused_options.hpp"
 #include "signorini/core/parse.hpp"
 #include "signorini/core/progress.hpp"
 #include "signorini/io/output.hpp"
-#include "signorini/obstacles/obstacle_mesh.hpp"
+#include "signorini/linalg/pc_nullspace.hpp"
 #include "signorini/loop/contact_solver.hpp"
+#include "signorini/obstacles/obstacle_mesh.hpp"
+#include "signorini/options/help.hpp"
+#include "signorini/options/unused_options.hpp"
+#include "signorini/post/contact_results.hpp"
+#include "signorini/post/report.hpp"
 
 #include <dmumps_c.h>
 
@@ -116,6 +117,7 @@ PetscErrorCode HelpKsp(MPI_Comm comm) {
   ISH u, lambda;
   PetscCall(ISCreateStride(comm, 2, 3 * rank, 1, u.out()));
   PetscCall(ISCreateStride(comm, 1, 3 * rank + 2, 1, lambda.out()));
+  PetscCall(PCNullSpaceRegister());
   PetscCall(KSPCreate(comm, ksp.out()));
   PetscCall(KSPSetOperators(ksp, A, A));
   PetscCall(SetDefaultSolver(ksp));
@@ -136,7 +138,10 @@ PetscErrorCode HelpKsp(MPI_Comm comm) {
     PetscCall(PCFieldSplitSetIS(pc, "u", u));
     PetscCall(PCFieldSplitSetIS(pc, "lambda", lambda));
   }
-  PetscCall(KSPSetUp(ksp));
+  // The null-space preconditioner needs the nested matrix of a run: its PCSetFromOptions listed its block's solver.
+  PetscBool nullspace;
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCNULLSPACE, &nullspace));
+  if (!nullspace) PetscCall(KSPSetUp(ksp));
   PetscFunctionReturn(0);
 }
 

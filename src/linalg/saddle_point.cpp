@@ -2,6 +2,7 @@
 // saddle_point_kept.cpp; the contact problem in the multipliers: saddle_point_lcp.cpp).
 #include "signorini/linalg/saddle_point.hpp"
 #include "signorini/core/handle.hpp"
+#include "signorini/linalg/pc_nullspace.hpp"
 
 #include "signorini/linalg/pc_kept.hpp"
 #include "signorini/linalg/solver_options.hpp"
@@ -80,13 +81,13 @@ PetscErrorCode SaddlePointSystem::CreatePattern(const std::vector<SparseRow> &ro
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SetDefaultSolver(KSP ksp, SolverPath path, bool lu) {
+PetscErrorCode SetDefaultSolver(KSP ksp, SolverPath path, bool lu, bool nullspace) {
   PC pc;
   PetscFunctionBeginUser;
   // The iterative path: its settings become the options' defaults, which KSPSetFromOptions and the fieldsplit's
   // blocks read.
   std::vector<std::string> set;
-  if (path == SolverPath::ITERATIVE) PetscCall(SetIterativeDefaults(set));
+  if (path == SolverPath::ITERATIVE) PetscCall(SetIterativeDefaults(set, nullspace));
   PetscCall(KSPSetOptionsPrefix(ksp, "contact_"));
   PetscCall(KSPSetType(ksp, KSPPREONLY));
   PetscCall(KSPGetPC(ksp, &pc));
@@ -215,8 +216,16 @@ PetscErrorCode SaddlePointSystem::Create(const DofMap &dofs, const std::vector<S
   dofs_ = &dofs;
   aug_ = kscale;
   aug_inactive_ = kscale;
+  bool applies;
+  std::string why_not;
+  PetscCall(NullSpaceApplies(rows, applies, why_not));
+  nullspace_ = applies && dofs.Dim() == 3; // the default's choice (CreateKsp); 2D keeps the fieldsplit's paths
   bool fieldsplit;
   PetscCall(CreateKsp(comm, fieldsplit));
+  PetscCheck(!nullspace_ || why_not.empty(), comm, PETSC_ERR_USER_INPUT,
+             "-contact_pc_type " PCNULLSPACE " does not apply to this problem: %s; expected -contact_pc_type "
+             "fieldsplit (-options_file options/solver/fieldsplit_gamg.yml) or a direct solver",
+             why_not.c_str());
   nest_.on = fieldsplit && dofs.GlobalLambda() > 0;
   if (nest_.on) {
     PetscCall(CreateNest(rows, d_nnz_k, o_nnz_k, insert_k));
@@ -328,12 +337,13 @@ PetscErrorCode SaddlePointSystem::SetRow(const SparseRow &row, PetscInt p, const
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::CreateKsp(MPI_Comm comm, bool &fieldsplit) {
+PetscErrorCode SaddlePointSystem::CreateKsp(MPI_Comm comm, bool &nested) {
   PC pc;
-  PetscBool is_fieldsplit;
+  PetscBool is_fieldsplit, is_nullspace;
   PetscFunctionBeginUser;
+  PetscCall(PCNullSpaceRegister());
   PetscCall(KSPCreate(comm, ksp_.out()));
-  PetscCall(SetDefaultSolver(ksp_, path_, !nonsymmetric_.empty()));
+  PetscCall(SetDefaultSolver(ksp_, path_, !nonsymmetric_.empty(), nullspace_));
   PetscCall(KSPSetFromOptions(ksp_));
   // Every solve must end within ACCEPTED_RESIDUAL (CheckAndConvert): a looser Krylov tolerance would only fail after
   // the solve. The iterative presets take 1e-10 (PETSc reads no tolerance for KSPPREONLY, the direct presets).
@@ -345,7 +355,54 @@ PetscErrorCode SaddlePointSystem::CreateKsp(MPI_Comm comm, bool &fieldsplit) {
              (double)rtol, ACCEPTED_RESIDUAL, ACCEPTED_RESIDUAL);
   PetscCall(KSPGetPC(ksp_, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &is_fieldsplit));
-  fieldsplit = is_fieldsplit;
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCNULLSPACE, &is_nullspace));
+  nested = is_fieldsplit || is_nullspace;
+  nullspace_ = is_nullspace;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::NullSpaceApplies(const std::vector<SparseRow> &rows, bool &applies,
+                                                   std::string &why) const {
+  MPI_Comm comm = PetscObjectComm((PetscObject)dofs_->IsU());
+  PetscFunctionBeginUser;
+  // The null-space method eliminates each node's active rows with the node's own dofs (a small Gram matrix per node):
+  // a rigid obstacle's pair. A mortar row couples a slave node with master nodes; friction's rows make the matrix
+  // nonsymmetric. In 2D the fieldsplit keeps the paths its cases were measured with.
+  const PetscInt first = dofs_->RowStart(), end = first + dofs_->OwnedU();
+  const int dim = dofs_->Dim();
+  PetscBool local = PETSC_TRUE;
+  for (const SparseRow &row : rows)
+    for (PetscInt c : row.cols)
+      if (c < first || c >= end || (c - first) / dim != (row.cols[0] - first) / dim) local = PETSC_FALSE;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &local, 1, MPIU_BOOL, MPI_LAND, comm));
+  why.clear();
+  if (dofs_->GlobalLambda() == 0)
+    why = "it has no contact candidates";
+  else if (!local)
+    why = "a contact row couples several nodes (a contact between bodies)";
+  else if (!nonsymmetric_.empty() || tangential_from_ >= 0)
+    why = "friction makes the matrix nonsymmetric";
+  applies = why.empty();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::DisplacementKsp(KSP &u) const {
+  PC pc;
+  PetscBool fieldsplit;
+  PetscFunctionBeginUser;
+  u = nullptr;
+  PetscCall(KSPGetPC(ksp_, &pc));
+  if (nullspace_) {
+    PetscCall(PCNullSpaceGetSubKSP(pc, &u));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
+  if (!fieldsplit || !ksp_set_up_) PetscFunctionReturn(0);
+  KSP *sub;
+  PetscInt n;
+  PetscCall(PCFieldSplitGetSubKSP(pc, &n, &sub));
+  if (n > 0) u = sub[0];
+  PetscCall(PetscFree(sub));
   PetscFunctionReturn(0);
 }
 
@@ -376,8 +433,8 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   if (fieldsplit) {
     PetscCall(PCFieldSplitSetIS(pc, "u", dofs_->IsU()));
     PetscCall(PCFieldSplitSetIS(pc, "lambda", dofs_->IsLambda()));
-    if (dofs_->Dim() == 3) PetscCall(SetGamgDefaults3d());
   }
+  if ((fieldsplit || nullspace_) && dofs_->Dim() == 3) PetscCall(SetGamgDefaults3d());
   PetscBool factor;
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, ""));
   if (factor) PetscCall(SetupMumpsFactor(comm, pc));
@@ -825,6 +882,7 @@ PetscErrorCode SaddlePointSystem::FailureAdvice(std::string &advice) const {
   PetscFunctionBeginUser;
   PetscCall(KSPGetPC(ksp_, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
+  fieldsplit = fieldsplit || nullspace_ ? PETSC_TRUE : PETSC_FALSE;
   // Iterative solvers get the augmented block K + r B_C^T B_C, regular when the candidates hold the body; a failure
   // then means the candidates do not hold it, or the preconditioner does not fit the problem.
   const std::string direct = "; expected a solver that fits: the default MUMPS LDL^T (no solver preset, or "
@@ -835,20 +893,20 @@ PetscErrorCode SaddlePointSystem::FailureAdvice(std::string &advice) const {
              "displacement formulation and makes the system nearly singular)?" + direct;
     PetscFunctionReturn(0);
   }
-  PetscInt n = 0;
-  KSP *sub = nullptr;
+  KSP u;
   PCType u_pc = nullptr;
-  PetscCall(PCFieldSplitGetSubKSP(pc, &n, &sub));
-  if (n > 0) {
+  PetscCall(DisplacementKsp(u));
+  if (u) {
     PC upc;
-    PetscCall(KSPGetPC(sub[0], &upc));
+    PetscCall(KSPGetPC(u, &upc));
     PetscCall(PCGetType(upc, &u_pc));
   }
-  PetscCall(PetscFree(sub));
-  advice = std::string(": a Schur fieldsplit with the u block by ") + (u_pc ? u_pc : "?") +
-           " failed on the block K + r B_C^T B_C, which is singular when neither the Dirichlet conditions nor the "
-           "candidate contact pairs hold the body; raise -contact_ksp_max_it or -contact_ksp_rtol if it was converging" +
-           direct;
+  advice =
+      std::string(nullspace_ ? ": the null-space preconditioner" : ": a Schur fieldsplit") + " with the u block by " +
+      (u_pc ? u_pc : "?") +
+      " failed on the block K + r B_C^T B_C, which is singular when neither the Dirichlet conditions nor the "
+      "candidate contact pairs hold the body; raise -contact_ksp_max_it or -contact_ksp_rtol if it was converging" +
+      direct;
   PetscFunctionReturn(0);
 }
 
@@ -1080,6 +1138,9 @@ PetscErrorCode SaddlePointSystem::RetryKrylov(KSPConvergedReason &reason, PetscI
     for (PetscInt i = 0; i < n; ++i) PetscCall(KSPSetReusePreconditioner(sub[i], PETSC_FALSE));
     PetscCall(PetscFree(sub));
   }
+  KSP u;
+  PetscCall(DisplacementKsp(u));
+  if (u && nullspace_) PetscCall(KSPSetReusePreconditioner(u, PETSC_FALSE));
   u_pc_.valid = false;
   // A set-up of the same matrix would be skipped: an assembly (of no new values) moves the matrices' states on.
   for (Mat M : {Stiffness(), A_.get()}) {
@@ -1123,7 +1184,7 @@ PetscErrorCode SaddlePointSystem::KeepDisplacementPreconditioner() {
   if (!augmented_ || reuse_) PetscFunctionReturn(0);
   PetscCall(KSPGetPC(ksp_, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
-  if (!fieldsplit) PetscFunctionReturn(0);
+  if (!fieldsplit && !nullspace_) PetscFunctionReturn(0);
   // The displacement block K + sum_p w_p B_p^T B_p changes with the active set only in the weights of the rows that
   // changed: a rank-k change. While K is the one of the last set-up and k is small against the candidates, the
   // preconditioner of that block (a GAMG hierarchy) stays; the outer Krylov method works on the current matrix, and
@@ -1141,13 +1202,12 @@ PetscErrorCode SaddlePointSystem::KeepDisplacementPreconditioner() {
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &valid, 1, MPIU_BOOL, MPI_LAND, comm));
   PetscBool keep = valid && counts[0] <= KEEP_U_PC_FRACTION * counts[1] ? PETSC_TRUE : PETSC_FALSE;
   const char *how = keep ? "kept" : "set up again";
-  if (ksp_set_up_) {
-    KSP *sub;
-    PetscInt n;
+  KSP u = nullptr;
+  if (ksp_set_up_) PetscCall(DisplacementKsp(u));
+  if (u) {
     PC upc;
     PetscBool gamg;
-    PetscCall(PCFieldSplitGetSubKSP(pc, &n, &sub));
-    PetscCall(KSPGetPC(sub[0], &upc));
+    PetscCall(KSPGetPC(u, &upc));
     PetscCall(PetscObjectTypeCompare((PetscObject)upc, PCGAMG, &gamg));
     // A constant K whose GAMG hierarchy exists: the changed weights go down its levels instead of a new set-up.
     // Measured on one rank (docs/performance.md, twelfth session): the octant Hertz at 1.07M dofs 94.2 and 88.6 s ->
@@ -1167,8 +1227,7 @@ PetscErrorCode SaddlePointSystem::KeepDisplacementPreconditioner() {
         how = "updated (the changed rows' Galerkin images added to the coarse operators)";
       }
     }
-    PetscCall(KSPSetReusePreconditioner(sub[0], keep));
-    PetscCall(PetscFree(sub));
+    PetscCall(KSPSetReusePreconditioner(u, keep));
   }
   PetscCall(PetscInfo(nullptr,
                       "displacement block: %" PetscInt_FMT " of %" PetscInt_FMT " weights changed since its "

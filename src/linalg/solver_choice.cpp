@@ -1,5 +1,7 @@
 #include "signorini/linalg/solver_choice.hpp"
 
+#include "signorini/linalg/pc_nullspace.hpp"
+
 #include "signorini/core/parse.hpp"
 #include "signorini/linalg/mumps_schur.hpp"
 #include "signorini/linalg/parallel_dissection.hpp"
@@ -330,7 +332,7 @@ PetscErrorCode SolverOptionsGiven(bool &given, bool &factor_pc) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SetIterativeDefaults(std::vector<std::string> &set) {
+PetscErrorCode SetIterativeDefaults(std::vector<std::string> &set, bool nullspace) {
   // options/solver/fieldsplit_gamg.yml (why each: there).
   static const char *const DEFAULTS[][2] = {{"-contact_ksp_type", "gmres"},
                                             {"-contact_ksp_pc_side", "right"},
@@ -347,7 +349,46 @@ PetscErrorCode SetIterativeDefaults(std::vector<std::string> &set) {
                                             {"-contact_fieldsplit_lambda_pc_type", "jacobi"}};
   PetscFunctionBeginUser;
   set.clear();
+  // A preconditioner the run gives (a fieldsplit) gets the preset's settings of its own.
+  PetscBool pc_given, ksp_given;
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-contact_pc_type", &pc_given));
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-contact_ksp_type", &ksp_given));
+  // Options of the Schur fieldsplit's own (its type, its multiplier block) ask for it.
+  char *all = nullptr;
+  PetscCall(PetscOptionsGetAll(nullptr, &all));
+  const std::string given = all ? all : "";
+  PetscCall(PetscFree(all));
+  const bool schur_given = given.find("-contact_pc_fieldsplit_") != std::string::npos ||
+                           given.find("-contact_fieldsplit_lambda_") != std::string::npos;
+  nullspace = nullspace && !pc_given && !schur_given;
+  if (nullspace && !ksp_given) {
+    // CG on the null-space preconditioner: one V-cycle per iteration, as GMRES, but a few vectors instead of GMRES's
+    // 30 (a gigabyte per rank at 4M dofs), and no orthogonalisation; its test on the true residual, as right-
+    // preconditioned GMRES's (docs/performance.md, twenty-third session).
+    static const char *const CG[][2] = {
+        {"-contact_ksp_type", "cg"}, {"-contact_ksp_pc_side", "left"}, {"-contact_ksp_norm_type", "unpreconditioned"}};
+    for (const auto &d : CG) {
+      PetscBool has;
+      PetscCall(PetscOptionsHasName(nullptr, nullptr, d[0], &has));
+      if (has) continue;
+      PetscCall(PetscOptionsSetValue(nullptr, d[0], d[1]));
+      set.push_back(d[0]);
+    }
+  }
   for (const auto &d : DEFAULTS) {
+    const std::string name = d[0];
+    const bool schur =
+        name.rfind("-contact_pc_fieldsplit_", 0) == 0 || name.rfind("-contact_fieldsplit_lambda_", 0) == 0;
+    if (nullspace && schur) continue; // the Schur fieldsplit's own
+    if (nullspace && name == "-contact_pc_type") {
+      PetscBool has;
+      PetscCall(PetscOptionsHasName(nullptr, nullptr, d[0], &has));
+      if (!has) {
+        PetscCall(PetscOptionsSetValue(nullptr, d[0], PCNULLSPACE));
+        set.push_back(d[0]);
+      }
+      continue;
+    }
     PetscBool has;
     PetscCall(PetscOptionsHasName(nullptr, nullptr, d[0], &has));
     if (has) continue;

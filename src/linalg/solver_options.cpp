@@ -1,6 +1,7 @@
 // The values of the saddle-point solver's PETSc options, checked before PETSc reads them, and the refusal of those
 // that the chosen solver will never read.
 #include "signorini/linalg/solver_options.hpp"
+#include "signorini/linalg/pc_nullspace.hpp"
 
 #include "signorini/core/errors.hpp"
 #include "signorini/options/readers.hpp"
@@ -228,6 +229,7 @@ PetscErrorCode CheckSolverOptionValues(MPI_Comm comm) {
   PetscFunctionBeginUser;
   PetscCall(KSPInitializePackage()); // registers the KSP and PC types
   PetscCall(PCInitializePackage());
+  PetscCall(PCNullSpaceRegister()); // signorini's own type, a value of -contact_pc_type
   // The options not read yet: the solver's, before its KSP reads them.
   PetscCall(UnreadOptions(unread));
   for (const UnreadOption &o : unread)

@@ -555,6 +555,15 @@ CASES = {
                                                ["-contact_nested_dissection_parallel applies to METIS's ordering "
                                                 "only"], {}),
     # Who factors the kept factorisation (-contact_kept_solver): the supernodal Cholesky only where it applies.
+    # The null-space preconditioner eliminates each node's active rows with the node's own dofs: not a mortar row.
+    "nullspace_between_bodies": (["-options_file", "{root}/options/patch3d.yml", "-contact_solver", "iterative",
+                                  "-contact_pc_type", "nullspace"],
+                                 ["-contact_pc_type nullspace does not apply to this problem",
+                                  "a contact row couples several nodes", "expected -contact_pc_type fieldsplit"], {}),
+    "nullspace_friction": (SLIDING + ["-contact_solver", "iterative",
+                            "-contact_pc_type", "nullspace"],
+                           ["-contact_pc_type nullspace does not apply to this problem",
+                            "friction makes the matrix nonsymmetric"], {}),
     "gamg_product_unknown": (["-contact_solver", "iterative", "-contact_gamg_product", "fast"],
                              ["Unknown option fast for -contact_gamg_product", "lean petsc"], {}),
     "kept_solver_unknown": (["-contact_kept_solver", "lapack"],

@@ -448,6 +448,39 @@ def gamg_lean_product(runner):
         expect_same_state(runner, ref2, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
+@test("nullspace_pc")
+def nullspace_pc(runner):
+    """The iterative path's preconditioner in 3D (rigid obstacles, no friction) is the null-space method on the
+    active rows (-contact_pc_type nullspace, src/linalg/pc_nullspace.cpp) with CG; -contact_ksp_view shows it and its
+    displacement block's GAMG. On the octant of options/hertz3d.yml: CG (the default), GMRES and the Schur fieldsplit
+    each give the direct path's state to 1e-8. The cube pushed into three planes (nodes on two and three planes: Gram
+    blocks of 2 and 3 rows): the direct path's state and its 96 active pairs on 80 nodes."""
+    base = ["-options_file", "options/hertz3d.yml"]
+    ref = runner.run(base, "direct")
+    it = base + ["-contact_solver", "iterative"]
+    cg = runner.run(it + ["-contact_ksp_view"], "the default: CG on the null-space preconditioner")
+    runner.expect_true("the view names the null-space PC", "type: nullspace" in cg.output and
+                       "null-space method on the active rows" in cg.output)
+    runner.expect_true("the view names CG on the true residual", "type: cg" in cg.output and
+                       "using UNPRECONDITIONED norm type" in cg.output)
+    runner.expect_true("its displacement block by GAMG", "PC Object: (contact_fieldsplit_u_)" in cg.output)
+    expect_same_state(runner, ref, cg, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+    gm = runner.run(it + ["-contact_ksp_type", "gmres"], "GMRES on the null-space preconditioner")
+    expect_same_state(runner, ref, gm, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+    fs = runner.run(it + ["-contact_pc_type", "fieldsplit", "-contact_ksp_view"], "the Schur fieldsplit")
+    runner.expect_true("the fieldsplit when asked for", "type: fieldsplit" in fs.output and
+                       "type: nullspace" not in fs.output)
+    expect_same_state(runner, ref, fs, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+    corner = ["-mesh_file", "meshes/cube.msh", "-material_E", "1000", "-material_nu", "0.3", "-bc_body_force",
+              "-1,-1.5,-2", "-contact_groups", "bottom,left,front", "-obstacle_planes",
+              "0,0,0,0,0,1,0,0,0,1,0,0,0,0,0,0,1,0"]
+    cref = runner.run(corner, "cube in three planes, direct")
+    c = runner.run(corner + ["-contact_solver", "iterative", "-contact_ksp_view"], "cube in three planes, iterative")
+    runner.expect_true("96 rows on 80 nodes in the view", "(96 rows on 80 nodes)" in c.output)
+    runner.expect_equal("active pairs", c.get("contact.active_pairs"), 96)
+    expect_same_state(runner, cref, c, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+
+
 @test("iterative_prescribed_displacement")
 def iterative_prescribed_displacement(runner):
     """A punch pressed by a prescribed displacement into a plate (options/punch_on_plate.yml) on the iterative path:
@@ -578,18 +611,25 @@ def krylov_fallback(runner):
     same start, for the rest of the run; the state is the direct solver's and summary.json counts the fallbacks."""
     base = ["-options_file", "options/hertz3d.yml"]
     ref = runner.run(base, "direct")
-    r = runner.run(base + ["-contact_solver", "iterative", "-contact_ksp_type", "cg", "-contact_ksp_pc_side", "left",
-                           "-info", ":sys"], "CG, then GMRES")
+    # CG breaks down on the Schur fieldsplit (an indefinite preconditioner); on the null-space preconditioner of the
+    # default iterative path it converges (a constraint preconditioner: CG works in the constraints' null space).
+    r = runner.run(base + ["-contact_solver", "iterative", "-contact_pc_type", "fieldsplit", "-contact_ksp_type", "cg",
+                           "-contact_ksp_pc_side", "left", "-info", ":sys"], "CG, then GMRES")
     runner.expect_true("CG stopped and GMRES took over",
                        re.search(r"RetryKrylov\(\): cg stopped with DIVERGED_\w+ after \d+ iterations", r.output)
                        is not None)
     runner.expect_equal("one fallback (GMRES stays)", r.get("iterations.krylov_fallbacks"), 1)
     runner.expect_equal("no fallback on the direct path", ref.get("iterations.krylov_fallbacks"), 0)
     expect_same_state(runner, ref, r, keys=("contact.active_pairs",), tol=1e-8)
-    # GMRES itself (the iterative preset's method) that stagnates on a short restart gets the fallback's restart of
-    # 100: with GMRES(1) and 30 iterations at most the first solve stops, and the run then converges within them.
-    g = runner.run(base + ["-contact_solver", "iterative", "-contact_ksp_gmres_restart", "1", "-contact_ksp_max_it",
-                           "30", "-info", ":sys"], "GMRES(1), then GMRES(100)")
+    c = runner.run(base + ["-contact_solver", "iterative", "-contact_ksp_type", "cg", "-contact_ksp_pc_side", "left"],
+                   "CG on the null-space preconditioner")
+    runner.expect_equal("CG on the null-space preconditioner: no fallback", c.get("iterations.krylov_fallbacks"), 0)
+    expect_same_state(runner, ref, c, keys=("contact.active_pairs",), tol=1e-8)
+    # GMRES itself (the fieldsplit preset's method) that stagnates on a short restart gets the fallback's restart of
+    # 100: with GMRES(1) and 20 iterations at most the first solve stops, and the run then converges within them
+    # (with the null-space preconditioner GMRES(1) converges within 30).
+    g = runner.run(base + ["-contact_solver", "iterative", "-contact_ksp_type", "gmres", "-contact_ksp_gmres_restart",
+                           "1", "-contact_ksp_max_it", "20", "-info", ":sys"], "GMRES(1), then GMRES(100)")
     runner.expect_true("GMRES(1) stopped and GMRES(100) took over",
                        re.search(r"RetryKrylov\(\): gmres stopped with DIVERGED_\w+ after \d+ iterations", g.output)
                        is not None)

@@ -53,8 +53,10 @@ namespace signorini {
 /// The default saddle-point solver of a path (direct: MUMPS LDL^T of the whole matrix; iterative: the settings of
 /// options/solver/fieldsplit_gamg.yml, SetIterativeDefaults), options prefix -contact_, iterative tolerances rtol
 /// 1e-10; options given by the user override it at KSPSetFromOptions.
-/// lu: the matrix is nonsymmetric (friction): the direct path's default is MUMPS LU.
-[[nodiscard]] PetscErrorCode SetDefaultSolver(KSP ksp, SolverPath path = SolverPath::DIRECT, bool lu = false);
+/// lu: the matrix is nonsymmetric (friction): the direct path's default is MUMPS LU. nullspace: the iterative path's
+/// preconditioner is the null-space method (PCNULLSPACE) instead of the Schur fieldsplit (SetIterativeDefaults).
+[[nodiscard]] PetscErrorCode SetDefaultSolver(KSP ksp, SolverPath path = SolverPath::DIRECT, bool lu = false,
+                                              bool nullspace = false);
 
 /// Options of the saddle-point system: -contact_reuse_factorization (set tells whether the user gave it),
 /// -contact_reuse_max_it (the FGMRES iterations on a kept factorisation of an earlier tangent before a refactorisation,
@@ -255,9 +257,17 @@ public:
   static constexpr double LCP_REGULARISATION = 1e-10, LCP_RIGID_TOL = 1e-9;
 
 private:
-  /// The KSP from the options (-contact_ prefix, before the matrix exists); fieldsplit: its PC is a fieldsplit.
-  /// Collective.
-  [[nodiscard]] PetscErrorCode CreateKsp(MPI_Comm comm, bool &fieldsplit);
+  /// The KSP from the options (-contact_ prefix, before the matrix exists); nested: its PC works on the blocks of a
+  /// MATNEST (a fieldsplit, or the null-space preconditioner). Collective.
+  [[nodiscard]] PetscErrorCode CreateKsp(MPI_Comm comm, bool &nested);
+  /// Whether the null-space preconditioner (PCNULLSPACE) applies to the rows: 3D, no friction, every row on the dofs of
+  /// one node of its own rank (rigid obstacles); else why not (for the message when it is asked for). Collective.
+  [[nodiscard]] PetscErrorCode NullSpaceApplies(const std::vector<SparseRow> &rows, bool &applies,
+                                                std::string &why) const;
+  bool nullspace_ = false; ///< the KSP's PC is PCNULLSPACE
+  /// The displacement block's solver of the KSP's PC (a fieldsplit's "u" block, PCNULLSPACE's), or null (none yet,
+  /// or another PC). Not collective.
+  [[nodiscard]] PetscErrorCode DisplacementKsp(KSP &u) const;
   /// Inserts zeros at the constraint entries and the multiplier diagonal, then assembles A (final). Collective.
   [[nodiscard]] PetscErrorCode CreatePattern(const std::vector<SparseRow> &rows, Mat A) const;
   /// A as a MATNEST of the blocks nest_.K, Bt, B, D with their patterns (K's from insert_k, the constraint entries

@@ -103,7 +103,9 @@ void LeaveDirect(const std::string &why, SolverChoice &choice);
 
 /// The iterative path's settings (options/solver/fieldsplit_gamg.yml) as defaults of the options database under the
 /// prefix contact_: each one that the run did not give. Returns the names set, so that they can be taken out again.
-[[nodiscard]] PetscErrorCode SetIterativeDefaults(std::vector<std::string> &set);
+/// nullspace: the null-space preconditioner (PCNULLSPACE, pairs of one node each without friction) instead of the
+/// Schur fieldsplit, with the same displacement-block solver (-contact_fieldsplit_u_*) and Krylov method.
+[[nodiscard]] PetscErrorCode SetIterativeDefaults(std::vector<std::string> &set, bool nullspace = false);
 
 /// 3D, a fieldsplit whose displacement block is GAMG's (the iterative path, or a preset such as
 /// options/solver/fieldsplit_gamg.yml): GAMG squares the graph on its first two levels unless the run gave
