@@ -1123,9 +1123,27 @@ PetscErrorCode SaddlePointSystem::RetryKrylov(KSPConvergedReason &reason, PetscI
   // solves again from the start's guess, and stays for the rest of the run. Its own failure is the solve's.
   PetscCall(KSPGetType(ksp_, &type));
   const std::string failed = type;
-  PetscCall(PetscInfo(nullptr, "%s stopped with %s after %" PetscInt_FMT " iterations: set up again, solved by GMRES\n",
-                      failed.c_str(), KSPConvergedReasons[reason], krylov_iterations));
+  // CG on the null-space preconditioner needs its V-cycle positive definite, which a hierarchy whose coarse operators
+  // followed the active set (UpdateGalerkin) while its smoothers kept the eigenvalue bounds of its set-up need not
+  // be (the octant at 3.9M dofs, one rank: DIVERGED_INDEFINITE_PC in its second solve). GMRES does not need it: the
+  // same preconditioner serves, without a new set-up (20 s there).
+  const bool indefinite = reason == KSP_DIVERGED_INDEFINITE_PC || reason == KSP_DIVERGED_INDEFINITE_MAT;
+  const bool keep_pc = nullspace_ && indefinite;
+  PetscCall(PetscInfo(nullptr, "%s stopped with %s after %" PetscInt_FMT " iterations: %s, solved by GMRES\n",
+                      failed.c_str(), KSPConvergedReasons[reason], krylov_iterations,
+                      keep_pc ? "the preconditioner kept" : "set up again"));
   krylov_fallbacks_++;
+  if (keep_pc) {
+    PetscCall(KSPSetType(ksp_, KSPGMRES));
+    PetscCall(KSPSetPCSide(ksp_, PC_RIGHT));
+    PetscCall(InitialGuess());
+    PetscCall(KSPSolve(ksp_, b_, x_));
+    PetscCall(KSPGetConvergedReason(ksp_, &reason));
+    PetscInt its;
+    PetscCall(KSPGetIterationNumber(ksp_, &its));
+    krylov_iterations += its;
+    PetscFunctionReturn(0);
+  }
   PetscCall(KSPSetReusePreconditioner(ksp_, PETSC_FALSE));
   PC pc;
   PetscBool fieldsplit;
