@@ -1137,11 +1137,7 @@ PetscErrorCode SaddlePointSystem::RetryKrylov(KSPConvergedReason &reason, PetscI
     PetscCall(KSPSetType(ksp_, KSPGMRES));
     PetscCall(KSPSetPCSide(ksp_, PC_RIGHT));
     PetscCall(InitialGuess());
-    PetscCall(KSPSolve(ksp_, b_, x_));
-    PetscCall(KSPGetConvergedReason(ksp_, &reason));
-    PetscInt its;
-    PetscCall(KSPGetIterationNumber(ksp_, &its));
-    krylov_iterations += its;
+    PetscCall(SolveAgain(reason, krylov_iterations));
     PetscFunctionReturn(0);
   }
   PetscCall(KSPSetReusePreconditioner(ksp_, PETSC_FALSE));
@@ -1172,9 +1168,15 @@ PetscErrorCode SaddlePointSystem::RetryKrylov(KSPConvergedReason &reason, PetscI
   }
   PetscCall(InitialGuess());
   PetscCall(KSPSetUp(ksp_));
+  PetscCall(SolveAgain(reason, krylov_iterations));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::SolveAgain(KSPConvergedReason &reason, PetscInt &krylov_iterations) {
+  PetscInt its;
+  PetscFunctionBeginUser;
   PetscCall(KSPSolve(ksp_, b_, x_));
   PetscCall(KSPGetConvergedReason(ksp_, &reason));
-  PetscInt its;
   PetscCall(KSPGetIterationNumber(ksp_, &its));
   krylov_iterations += its;
   PetscFunctionReturn(0);

@@ -394,6 +394,8 @@ private:
   /// After a Krylov failure (reason < 0): the preconditioner set up again and GMRES from the start's guess; reason and
   /// krylov_iterations become the retry's (iterations added).
   [[nodiscard]] PetscErrorCode RetryKrylov(KSPConvergedReason &reason, PetscInt &krylov_iterations);
+  /// RetryKrylov's solve from x_: reason becomes its, its iterations are added. Collective.
+  [[nodiscard]] PetscErrorCode SolveAgain(KSPConvergedReason &reason, PetscInt &krylov_iterations);
   /// The start of the next solve in x_: zero for a direct solver; the last multipliers for an iterative one.
   [[nodiscard]] PetscErrorCode InitialGuess();
   /// What to use instead after a failed KSP solve (": ...; expected ..."), from the preconditioner that failed.
