@@ -1135,7 +1135,9 @@ PetscErrorCode SaddlePointSystem::RetryKrylov(KSPConvergedReason &reason, PetscI
   krylov_fallbacks_++;
   if (keep_pc) {
     PetscCall(KSPSetType(ksp_, KSPGMRES));
+    PetscCall(KSPGMRESSetRestart(ksp_, 100));
     PetscCall(KSPSetPCSide(ksp_, PC_RIGHT));
+    PetscCall(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED));
     PetscCall(InitialGuess());
     PetscCall(SolveAgain(reason, krylov_iterations));
     PetscFunctionReturn(0);

@@ -7,6 +7,7 @@
 #include "signorini/linalg/parallel_dissection.hpp"
 #include "signorini/linalg/schur_cholesky.hpp"
 
+#include <petscksp.h>
 #include <petscpc.h>
 
 #include <cmath>
@@ -349,51 +350,50 @@ PetscErrorCode SetIterativeDefaults(std::vector<std::string> &set, bool nullspac
                                             {"-contact_fieldsplit_lambda_pc_type", "jacobi"}};
   PetscFunctionBeginUser;
   set.clear();
-  // A preconditioner the run gives (a fieldsplit) gets the preset's settings of its own.
-  PetscBool pc_given, ksp_given;
-  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-contact_pc_type", &pc_given));
-  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-contact_ksp_type", &ksp_given));
-  // Options of the Schur fieldsplit's own (its type, its multiplier block) ask for it.
+  const auto set_default = [&set](const char *name, const char *value) -> PetscErrorCode {
+    PetscBool has;
+    PetscCall(PetscOptionsHasName(nullptr, nullptr, name, &has));
+    if (has) return 0;
+    PetscCall(PetscOptionsSetValue(nullptr, name, value));
+    set.push_back(name);
+    return 0;
+  };
+  char pc[64] = "", ksp[64] = "", side[16] = "";
+  PetscBool pc_given, ksp_given, side_given;
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-contact_pc_type", pc, sizeof(pc), &pc_given));
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-contact_ksp_type", ksp, sizeof(ksp), &ksp_given));
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-contact_ksp_pc_side", side, sizeof(side), &side_given));
   char *all = nullptr;
   PetscCall(PetscOptionsGetAll(nullptr, &all));
   const std::string given = all ? all : "";
   PetscCall(PetscFree(all));
   const bool schur_given = given.find("-contact_pc_fieldsplit_") != std::string::npos ||
                            given.find("-contact_fieldsplit_lambda_") != std::string::npos;
-  nullspace = nullspace && !pc_given && !schur_given;
-  if (nullspace && !ksp_given) {
-    // CG on the null-space preconditioner: one V-cycle per iteration, as GMRES, but a few vectors instead of GMRES's
-    // 30 (a gigabyte per rank at 4M dofs), and no orthogonalisation; its test on the true residual, as right-
-    // preconditioned GMRES's (docs/performance.md, twenty-third session).
-    static const char *const CG[][2] = {
-        {"-contact_ksp_type", "cg"}, {"-contact_ksp_pc_side", "left"}, {"-contact_ksp_norm_type", "unpreconditioned"}};
-    for (const auto &d : CG) {
-      PetscBool has;
-      PetscCall(PetscOptionsHasName(nullptr, nullptr, d[0], &has));
-      if (has) continue;
-      PetscCall(PetscOptionsSetValue(nullptr, d[0], d[1]));
-      set.push_back(d[0]);
+  // The null-space preconditioner where it applies, unless the run gives another preconditioner or options of the
+  // Schur fieldsplit's own (its type, its multiplier block); -contact_pc_type nullspace given (or set by an earlier
+  // system of the run) keeps it.
+  nullspace = pc_given ? std::string(pc) == PCNULLSPACE : nullspace && !schur_given;
+  // Its Krylov method: CG unless the run gives another (a right preconditioner side given: GMRES). CG: one V-cycle
+  // per iteration, as GMRES, but a few vectors instead of GMRES's 30 (a gigabyte per rank at 4M dofs), and no
+  // orthogonalisation; left-preconditioned, it tests the true residual as right-preconditioned GMRES does
+  // (docs/performance.md, twenty-third session).
+  const std::string method = ksp_given ? ksp : side_given && std::string(side) == "right" ? KSPGMRES : KSPCG;
+  const bool right =
+      method == KSPGMRES || method == KSPFGMRES || method == KSPLGMRES || method == KSPDGMRES || method == KSPPGMRES;
+  if (nullspace) {
+    PetscCall(set_default("-contact_pc_type", PCNULLSPACE));
+    PetscCall(set_default("-contact_ksp_type", method.c_str()));
+    if (method == KSPCG) {
+      PetscCall(set_default("-contact_ksp_pc_side", "left"));
+      PetscCall(set_default("-contact_ksp_norm_type", "unpreconditioned"));
     }
   }
   for (const auto &d : DEFAULTS) {
     const std::string name = d[0];
     const bool schur =
         name.rfind("-contact_pc_fieldsplit_", 0) == 0 || name.rfind("-contact_fieldsplit_lambda_", 0) == 0;
-    if (nullspace && schur) continue; // the Schur fieldsplit's own
-    if (nullspace && name == "-contact_pc_type") {
-      PetscBool has;
-      PetscCall(PetscOptionsHasName(nullptr, nullptr, d[0], &has));
-      if (!has) {
-        PetscCall(PetscOptionsSetValue(nullptr, d[0], PCNULLSPACE));
-        set.push_back(d[0]);
-      }
-      continue;
-    }
-    PetscBool has;
-    PetscCall(PetscOptionsHasName(nullptr, nullptr, d[0], &has));
-    if (has) continue;
-    PetscCall(PetscOptionsSetValue(nullptr, d[0], d[1]));
-    set.push_back(d[0]);
+    if (nullspace && (schur || (name == "-contact_ksp_pc_side" && !right))) continue; // the fieldsplit's, GMRES's
+    PetscCall(set_default(d[0], d[1]));
   }
   PetscFunctionReturn(0);
 }

@@ -467,6 +467,14 @@ def nullspace_pc(runner):
     expect_same_state(runner, ref, cg, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
     gm = runner.run(it + ["-contact_ksp_type", "gmres"], "GMRES on the null-space preconditioner")
     expect_same_state(runner, ref, gm, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+    # The defaults follow what the run gives: the PC named keeps CG; a right side asks for GMRES; CG never gets the
+    # right side (which it refuses), and no default is left unread.
+    for extra, method in ((["-contact_pc_type", "nullspace"], "cg"), (["-contact_ksp_pc_side", "right"], "gmres"),
+                          (["-contact_ksp_type", "cg"], "cg")):
+        r = runner.run(it + extra + ["-contact_ksp_view"], " ".join(extra))
+        runner.expect_true("%s: %s on the null-space PC" % (" ".join(extra), method),
+                           "type: %s" % method in r.output and "type: nullspace" in r.output)
+        expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
     fs = runner.run(it + ["-contact_pc_type", "fieldsplit", "-contact_ksp_view"], "the Schur fieldsplit")
     runner.expect_true("the fieldsplit when asked for", "type: fieldsplit" in fs.output and
                        "type: nullspace" not in fs.output)
