@@ -464,6 +464,17 @@ def nullspace_pc(runner):
     runner.expect_true("the view names CG on the true residual", "type: cg" in cg.output and
                        "using UNPRECONDITIONED norm type" in cg.output)
     runner.expect_true("its displacement block by GAMG", "PC Object: (contact_fieldsplit_u_)" in cg.output)
+    # After the hierarchy's update (UpdateGalerkin) the coarse levels' Chebyshev smoothers estimate their bounds
+    # themselves (EstimateCoarseBounds); the finest keeps GAMG's. The first solve's view: GAMG's bounds everywhere.
+    views = cg.output.split("KSP Object: (contact_) ")[1:]
+    bounds = [dict(re.findall(r"mg_levels_(\d+)_\) .*\n.*\n.*\n\s*eigenvalues (provided|estimated)", v))
+              for v in views]
+    runner.expect_true("every solve's smoothers on levels 1 and 2 (%s)" % bounds,
+                       len(bounds) >= 2 and all(set(b) == {"1", "2"} for b in bounds))
+    runner.expect_true("the first solve's smoothers have GAMG's bounds",
+                       bounds and set(bounds[0].values()) == {"provided"})
+    runner.expect_true("after the update: level 1 estimates its bounds, the finest (2) keeps GAMG's",
+                       bounds and bounds[-1] == {"1": "estimated", "2": "provided"})
     expect_same_state(runner, ref, cg, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
     gm = runner.run(it + ["-contact_ksp_type", "gmres"], "GMRES on the null-space preconditioner")
     expect_same_state(runner, ref, gm, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)

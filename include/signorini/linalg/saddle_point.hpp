@@ -384,6 +384,7 @@ private:
   /// operator gets the Galerkin image of the rank-k change (why: in saddle_point.cpp); updated: false for a
   /// hierarchy of one level (to be set up again). Collective.
   [[nodiscard]] PetscErrorCode UpdateGalerkin(PC mg, bool &updated);
+  [[nodiscard]] PetscErrorCode EstimateCoarseBounds(PC mg, PetscInt levels);
   std::vector<SparseRow> aug_rows_; ///< the augmented rows of the last AddAugmentation (UpdateGalerkin)
   bool hierarchy_update_ = true, hierarchy_check_ = false; ///< -contact_hierarchy_update, -contact_hierarchy_check
   /// After the first set-up of a Schur fieldsplit: the multiplier block's fieldsplit (if it is one) gets its splits
