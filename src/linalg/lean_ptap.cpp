@@ -235,6 +235,75 @@ PetscErrorCode SetFromOptionsOfA(Mat C) {
 
 } // namespace
 
+PetscErrorCode LeanRowsTimes(Mat G, Mat P, Mat *C) {
+  MPI_Comm comm = PetscObjectComm((PetscObject)G);
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  if (size == 1) {
+    PetscCall(MatMatMult(G, P, MAT_INITIAL_MATRIX, PETSC_DEFAULT, C));
+    PetscFunctionReturn(0);
+  }
+  // The rows of P that G's own rows need (G's columns), in global order.
+  PetscInt g0, g1, pN, cstart, cend;
+  PetscCall(MatGetOwnershipRange(G, &g0, &g1));
+  PetscCall(MatGetSize(P, nullptr, &pN));
+  PetscCall(MatGetOwnershipRangeColumn(P, &cstart, &cend));
+  std::vector<PetscInt> gi(1, 0), gj, rows;
+  std::vector<PetscScalar> gv;
+  for (PetscInt r = g0; r < g1; ++r) {
+    PetscInt nc;
+    const PetscInt *cols;
+    const PetscScalar *vals;
+    PetscCall(MatGetRow(G, r, &nc, &cols, &vals));
+    gj.insert(gj.end(), cols, cols + nc);
+    gv.insert(gv.end(), vals, vals + nc);
+    PetscCall(MatRestoreRow(G, r, &nc, &cols, &vals));
+    gi.push_back((PetscInt)gj.size());
+  }
+  rows = gj;
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  for (PetscInt &c : gj) // a column's position among the rows (each row's columns stay sorted)
+    c = (PetscInt)(std::lower_bound(rows.begin(), rows.end(), c) - rows.begin());
+  const PetscInt kg = g1 - g0, ne = (PetscInt)rows.size();
+  ISH isrows, all_columns;
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, ne, rows.data(), PETSC_USE_POINTER, isrows.out()));
+  PetscCall(ISCreateStride(PETSC_COMM_SELF, pN, 0, 1, all_columns.out()));
+  IS isrow = isrows, iscol = all_columns;
+  Mat *pe;
+  PetscCall(MatCreateSubMatrices(P, 1, &isrow, &iscol, MAT_INITIAL_MATRIX, &pe)); // collective
+  MatH Pe(pe[0]);
+  PetscCall(PetscFree(pe));
+  if (gj.empty()) gj.push_back(0), gv.push_back(0); // valid arrays for a rank without rows
+  MatH Gl, Cl;
+  PetscCall(MatCreateSeqAIJWithArrays(PETSC_COMM_SELF, kg, ne, gi.data(), gj.data(), gv.data(), Gl.out()));
+  PetscCall(MatMatMult(Gl, Pe, MAT_INITIAL_MATRIX, PETSC_DEFAULT, Cl.out()));
+  // Cl's rows are C's own rows; its columns are global.
+  const PetscInt *ci, *cj;
+  const PetscScalar *cv;
+  PetscInt m;
+  PetscBool done;
+  PetscCall(MatGetRowIJ(Cl, 0, PETSC_FALSE, PETSC_FALSE, &m, &ci, &cj, &done));
+  PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "the product's row structure is not available");
+  std::vector<PetscInt> d_nnz(kg, 0), o_nnz(kg, 0);
+  for (PetscInt i = 0; i < kg; ++i)
+    for (PetscInt a = ci[i]; a < ci[i + 1]; ++a)
+      (cj[a] >= cstart && cj[a] < cend ? d_nnz : o_nnz)[i]++;
+  PetscCall(MatCreateAIJ(comm, kg, cend - cstart, PETSC_DETERMINE, pN, 0, d_nnz.data(), 0, o_nnz.data(), C));
+  PetscCall(MatSeqAIJGetArrayRead(Cl, &cv));
+  for (PetscInt i = 0; i < kg; ++i) {
+    const PetscInt row = g0 + i;
+    if (ci[i + 1] > ci[i])
+      PetscCall(MatSetValues(*C, 1, &row, ci[i + 1] - ci[i], cj + ci[i], cv + ci[i], INSERT_VALUES));
+  }
+  PetscCall(MatSeqAIJRestoreArrayRead(Cl, &cv));
+  PetscCall(MatRestoreRowIJ(Cl, 0, PETSC_FALSE, PETSC_FALSE, &m, &ci, &cj, &done));
+  PetscCall(MatAssemblyBegin(*C, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*C, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode LeanPtAPAttach(Mat A) {
   PetscFunctionBeginUser;
   PetscMPIInt size;

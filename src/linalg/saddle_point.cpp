@@ -4,6 +4,7 @@
 #include "signorini/core/handle.hpp"
 #include "signorini/linalg/pc_nullspace.hpp"
 
+#include "signorini/linalg/lean_ptap.hpp"
 #include "signorini/linalg/pc_kept.hpp"
 #include "signorini/linalg/solver_options.hpp"
 
@@ -1318,7 +1319,7 @@ PetscErrorCode SaddlePointSystem::UpdateGalerkin(PC mg, bool &updated) {
     MatH coarse, scaled, delta;
     Mat P;
     PetscCall(PCMGGetInterpolation(mg, l, &P));
-    PetscCall(MatMatMult(G, P, MAT_INITIAL_MATRIX, PETSC_DEFAULT, coarse.out()));
+    PetscCall(LeanRowsTimes(G, P, coarse.out()));
     PetscCall(MatDuplicate(coarse, MAT_COPY_VALUES, scaled.out()));
     PetscCall(MatDiagonalScale(scaled, sign, nullptr));
     PetscCall(MatTransposeMatMult(coarse, scaled, MAT_INITIAL_MATRIX, PETSC_DEFAULT, delta.out()));
