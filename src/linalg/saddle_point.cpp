@@ -1124,10 +1124,10 @@ PetscErrorCode SaddlePointSystem::RetryKrylov(KSPConvergedReason &reason, PetscI
   // solves again from the start's guess, and stays for the rest of the run. Its own failure is the solve's.
   PetscCall(KSPGetType(ksp_, &type));
   const std::string failed = type;
-  // CG on the null-space preconditioner needs its V-cycle positive definite, which a hierarchy whose coarse operators
-  // followed the active set (UpdateGalerkin) while its smoothers kept the eigenvalue bounds of its set-up need not
-  // be (the octant at 3.9M dofs, one rank: DIVERGED_INDEFINITE_PC in its second solve). GMRES does not need it: the
-  // same preconditioner serves, without a new set-up (20 s there).
+  // CG on the null-space preconditioner needs its V-cycle positive definite. A hierarchy whose coarse operators
+  // followed the active set while their smoothers kept the bounds of the set-up was not (the octant at 3.9M dofs, one
+  // rank: DIVERGED_INDEFINITE_PC in its second solve; EstimateCoarseBounds now prevents it); should a V-cycle still
+  // not be, GMRES does not need it: the same preconditioner serves, without a new set-up (20 s there).
   const bool indefinite = reason == KSP_DIVERGED_INDEFINITE_PC || reason == KSP_DIVERGED_INDEFINITE_MAT;
   const bool keep_pc = nullspace_ && indefinite;
   PetscCall(PetscInfo(nullptr, "%s stopped with %s after %" PetscInt_FMT " iterations: %s, solved by GMRES\n",
