@@ -387,6 +387,7 @@ private:
   [[nodiscard]] PetscErrorCode EstimateCoarseBounds(PC mg, PetscInt levels);
   std::vector<SparseRow> aug_rows_; ///< the augmented rows of the last AddAugmentation (UpdateGalerkin)
   bool hierarchy_update_ = true, hierarchy_check_ = false; ///< -contact_hierarchy_update, -contact_hierarchy_check
+  bool lean_product_ = true;                               ///< -contact_gamg_product lean (LeanPtAPAttach)
   /// After the first set-up of a Schur fieldsplit: the multiplier block's fieldsplit (if it is one) gets its splits
   /// (UseTangentialRows).
   [[nodiscard]] PetscErrorCode SplitMultiplierBlock();
