@@ -938,17 +938,17 @@ PetscErrorCode SaddlePointSystem::InitialGuess() {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &residual, bool &singular,
-                                        double rtol, bool loose) {
+PetscErrorCode SaddlePointSystem::Solve(PetscInt &krylov_iterations, double &residual, bool &singular, double rtol,
+                                        bool loose, bool inexact) {
   PetscFunctionBeginUser;
   PetscCall(ShiftRhs());
-  PetscCall(SolveShifted(krylov_iterations, residual, singular, rtol, loose));
+  PetscCall(SolveShifted(krylov_iterations, residual, singular, rtol, loose, inexact));
   PetscCall(RestoreRhs());
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SaddlePointSystem::SolveShifted(PetscInt &krylov_iterations, double &residual, bool &singular,
-                                               double rtol, bool loose) {
+                                               double rtol, bool loose, bool inexact) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   KSPConvergedReason reason;
   PetscFunctionBeginUser;
@@ -956,8 +956,10 @@ PetscErrorCode SaddlePointSystem::SolveShifted(PetscInt &krylov_iterations, doub
   PetscCall(InitialGuess());
   singular = false;
   loose = loose && Iterative();
-  // The relative residual above which a solve is an error (CheckAndConvert); a loose solve only has to be finite.
-  double check_tol = loose ? INFINITY : ACCEPTED_RESIDUAL;
+  inexact = inexact && Iterative();
+  // The relative residual above which a solve is an error (CheckAndConvert); a loose solve and an inexact Newton step
+  // only have to be finite.
+  double check_tol = loose || inexact ? INFINITY : ACCEPTED_RESIDUAL;
   PetscReal known_residual[2] = {-1, -1}; // ||b - A x||, ||b|| of the final x_ when the restart loop computed them
   // The first solve of the reuse mode factors the current matrix (or declines the Schur complement: Factor).
   const bool fresh = reuse_ && !factored_;

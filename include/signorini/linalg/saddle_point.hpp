@@ -199,9 +199,11 @@ public:
   /// loose solve since BeginLooseSolves (the load step's: its loads' scale), without the restarts and the accepted
   /// residual of other solves (an active-set iteration whose set is still changing: the caller solves again, to its
   /// tolerance, once the set stays). Each loose iterate is then as accurate as the first, whatever its own start.
+  /// inexact (an iterative solver): an inexact Newton step of svk, to rtol relative to its start's residual, whose
+  /// residual is only checked finite (ContactSolver::NewtonForcing chose rtol; the caller evaluates the equilibrium).
   /// Collective.
-  [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual, bool &singular,
-                                     double rtol = 0, bool loose = false);
+  [[nodiscard]] PetscErrorCode Solve(PetscInt &krylov_iterations, double &residual, bool &singular, double rtol = 0,
+                                     bool loose = false, bool inexact = false);
   /// Starts a series of loose solves (a load step): the next loose solve's start residual is the series' reference.
   void BeginLooseSolves() { loose_reference_ = 0; }
   /// Solves that failed in the Krylov method and were solved again by GMRES (RetryKrylov).
@@ -408,8 +410,8 @@ private:
   /// becomes the augmented system's (SetConstraints above); RestoreRhs puts it back. Collective.
   [[nodiscard]] PetscErrorCode ShiftRhs();
   /// Solve on the shifted right-hand side.
-  [[nodiscard]] PetscErrorCode SolveShifted(PetscInt &krylov_iterations, double &residual, bool &singular,
-                                            double rtol, bool loose);
+  [[nodiscard]] PetscErrorCode SolveShifted(PetscInt &krylov_iterations, double &residual, bool &singular, double rtol,
+                                            bool loose, bool inexact);
   [[nodiscard]] PetscErrorCode RestoreRhs();
   /// The augmented form's scale 1 + w D of owned row p (1 on a row without D).
   double RowScale(std::size_t p) const {
