@@ -973,7 +973,7 @@ PetscErrorCode SaddlePointSystem::SolveShifted(PetscInt &krylov_iterations, doub
     if (singular) PetscFunctionReturn(0);
     reason = KSP_CONVERGED_ITS;
   } else {
-    PetscCall(SolveKsp(rtol, loose, reason, krylov_iterations, known_residual));
+    PetscCall(SolveKsp(rtol, loose, inexact, reason, krylov_iterations, known_residual));
     singular = !direct_rejected_.empty();
     if (singular) PetscFunctionReturn(0);
   }
@@ -1026,7 +1026,7 @@ PetscErrorCode SaddlePointSystem::SolveKept(bool fresh, double rtol, PetscInt &k
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::SolveKsp(double rtol, bool loose, KSPConvergedReason &reason,
+PetscErrorCode SaddlePointSystem::SolveKsp(double rtol, bool loose, bool inexact, KSPConvergedReason &reason,
                                            PetscInt &krylov_iterations, PetscReal known_residual[2]) {
   MPI_Comm comm = PetscObjectComm((PetscObject)A_.get());
   PetscFunctionBeginUser;
@@ -1101,12 +1101,16 @@ PetscErrorCode SaddlePointSystem::SolveKsp(double rtol, bool loose, KSPConverged
   if (reason < 0 && !preonly_) PetscCall(RetryKrylov(reason, krylov_iterations));
   // A Krylov method stops on its own (preconditioned) residual, which can sit orders of magnitude below the true
   // one (CG with GAMG on 2 ranks: 1e-10 against 3e-6). The solve restarts from where it stopped while that helps;
-  // the true residual is what CheckAndConvert accepts or refuses.
+  // the true residual is what CheckAndConvert accepts or refuses. An inexact Newton step (svk) restarts only while
+  // its true residual is above its own tolerance: restarts towards the accepted residual did again part of the work
+  // its forcing saved (the octant of options/hertz3d.yml at 290k dofs, svk, one rank: 214 Krylov iterations instead
+  // of 338, contact solve 42.7 s instead of 56.5 s, the same 14 iterations and state to 1e-8).
+  const double target = inexact ? std::max<double>(rtol, ACCEPTED_RESIDUAL) : ACCEPTED_RESIDUAL;
   double last = INFINITY;
   for (int restart = 0; !preonly_ && !loose && reason > 0 && restart < MAX_KRYLOV_RESTARTS; ++restart) {
     PetscReal rnorm, bnorm;
     PetscCall(TrueResidual(rnorm, bnorm));
-    if (!(rnorm > ACCEPTED_RESIDUAL * bnorm) || !(rnorm < 0.1 * last)) {
+    if (!(rnorm > target * bnorm) || !(rnorm < 0.1 * last)) {
       known_residual[0] = rnorm, known_residual[1] = bnorm; // x_ stays as it is: CheckAndConvert reuses them
       break;
     }
@@ -1120,12 +1124,18 @@ PetscErrorCode SaddlePointSystem::SolveKsp(double rtol, bool loose, KSPConverged
     PetscCall(KSPGetIterationNumber(ksp_, &its));
     krylov_iterations += its;
   }
+  const double solve_rtol = std::max<double>(rtol, ksp_rtol);
   if (rtol > ksp_rtol) PetscCall(KSPSetTolerances(ksp_, ksp_rtol, abstol, dtol, max_it));
   if (!constant_k_ && augmented_ && !reuse_) {
     // The lagged preconditioner of a changing K: set up again for the next solve once this one (its restarts
-    // included) took too many iterations.
-    if (u_pc_.first_its < 0) u_pc_.first_its = krylov_iterations;
-    else if (krylov_iterations > LAGGED_U_PC_GROWTH * std::max<PetscInt>(u_pc_.first_its, 5)) u_pc_.valid = false;
+    // included) took too many iterations. Inexact Newton steps ask for fewer decades than exact ones: the iterations
+    // are compared per decade of the tolerance asked (relative to the solve's start residual).
+    const double decades = std::max(1.0, -std::log10(solve_rtol));
+    const double rate = (double)krylov_iterations / decades;
+    if (u_pc_.first_rate < 0)
+      u_pc_.first_rate = rate;
+    else if (krylov_iterations > LAGGED_U_PC_GROWTH * std::max(u_pc_.first_rate * decades, 5.0))
+      u_pc_.valid = false;
   }
   PetscFunctionReturn(0);
 }
@@ -1274,7 +1284,7 @@ PetscErrorCode SaddlePointSystem::KeepDisplacementPreconditioner() {
   if (!keep) {
     u_pc_.weight = weight_;
     u_pc_.valid = true;
-    u_pc_.first_its = -1;
+    u_pc_.first_rate = -1;
   }
   PetscFunctionReturn(0);
 }

@@ -330,8 +330,9 @@ private:
                                          bool &singular);
   /// The KSP: its set-up, the solve to the relative tolerance rtol (when above the KSP's), after a Krylov failure
   /// GMRES (RetryKrylov), and unless loose the restarts from where it stopped while they reduce the true residual
-  /// (known_residual: ||b - A x||, ||b|| when computed). Collective.
-  [[nodiscard]] PetscErrorCode SolveKsp(double rtol, bool loose, KSPConvergedReason &reason,
+  /// above the accepted one (an inexact Newton step's: rtol of ||b||) (known_residual: ||b - A x||, ||b|| when
+  /// computed). Collective.
+  [[nodiscard]] PetscErrorCode SolveKsp(double rtol, bool loose, bool inexact, KSPConvergedReason &reason,
                                         PetscInt &krylov_iterations, PetscReal known_residual[2]);
   /// Reuse mode, changing K: x_ from FGMRES on the current matrix preconditioned by the kept factorisation, or, when
   /// it does not converge within -contact_reuse_max_it iterations (or the last solve contracted too slowly),
@@ -430,10 +431,11 @@ private:
   struct DisplacementPc {
     bool valid = false;         ///< the displacement block's preconditioner may serve the current K
     std::vector<double> weight; ///< the augmentation weights at that set-up
-    PetscInt first_its = -1;    ///< Krylov iterations of the first solve after the set-up (-1: none yet)
+    double first_rate = -1;     ///< Krylov iterations per decade of the first solve after the set-up (-1: none)
   } u_pc_;
   /// A changing K (svk): its Newton iterations keep the displacement block's preconditioner of an earlier tangent
-  /// while a solve takes at most this factor times the iterations of the first solve after its set-up.
+  /// while a solve takes at most this factor times the iterations that the first solve after its set-up took for
+  /// as many decades (at least 5).
   static constexpr double LAGGED_U_PC_GROWTH = 1.5;
   bool kept_viewed_ = false; ///< a KSPSolve with the kept PC showed it (-contact_ksp_view); else Release does
   KSPH ksp_kept_;                      ///< changing K: FGMRES preconditioned by the kept factorisation
