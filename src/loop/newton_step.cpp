@@ -264,11 +264,27 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
       // placed into the body, a patch test) its errors read as changes (the sixteenth session: 6 active-set iterations
       // instead of 4 on the 824k cube, 7 instead of 2 on the 3D patch test), so a few pairs at most.
       if (loose && st.touching) rtol = std::max(rtol, TOUCHING_RTOL);
+      // svk held at a touching point: like the linear material's, this solve only shows the first update's pairs
+      // (from its whole increment, touch_gaps), and the next one restarts from the step's start.
+      const bool touch_svk = model_->Nonlinear() && st.touching && st.restartable;
+      if (touch_svk) rtol = TOUCHING_RTOL;
       st.loose = loose;
       const PetscInt fallbacks = system_->KrylovFallbacks();
       const bool inexact = model_->Nonlinear() && !st.newton.lagged && rtol > 0;
       PetscCall(system_->Solve(st.krylov, st.solve_residual, st.singular, rtol, loose, inexact));
       stats_.krylov_fallbacks += system_->KrylovFallbacks() - fallbacks;
+      if (touch_svk && !st.singular) {
+        const PetscScalar *x;
+        PetscCall(VecGetArrayRead(system_->Solution(), &x));
+        st.touch_gaps.resize(pairs_.size());
+        for (std::size_t p = 0; p < pairs_.size(); ++p) {
+          double g = states_[p].gap;
+          for (int k = 0; k < mesh_.Dim(); ++k)
+            g += normals_[p][k] * x[dofs_.LocalOffset(pairs_[p].vertex, k)];
+          st.touch_gaps[p] = g;
+        }
+        PetscCall(VecRestoreArrayRead(system_->Solution(), &x));
+      }
       st.correction.made = st.correction.rtol > 0;
       st.correction.rtol = 0;
     }

@@ -232,6 +232,9 @@ private:
     std::vector<double> u_start{};  ///< the owned displacement at the step's start (RestartFromStepStart)
     bool restartable = false;       ///< u_start is recorded (on every rank alike: a rank may own no vertex)
     bool touching = false; ///< the next solve is held at a touching point alone (TOUCHING_RTOL; every rank alike)
+    /// svk: the gaps that the touching solve's whole increment gives, linearised (g + n . du), for the first update
+    /// (empty: none)
+    std::vector<double> touch_gaps{};
     bool measured = false; ///< u_before is that of the current pairs (the same on every rank: a rank may own none)
     int pivoted = 0;       ///< complementarity problems of this step (PivotedActiveSet), at most 2
     bool singular = false; ///< a factorisation found null pivots: nothing was solved, the step ends (DIVERGED_SINGULAR)
