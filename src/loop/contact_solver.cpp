@@ -494,6 +494,8 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
   PetscInt it = 0;
   for (;; ++it) {
     PetscInt changes = 0;
+    // svk after its touching solve: the iterate is the step's start (SolveAndUpdate), the gaps its increment's.
+    const bool at_start = it == 1 && !st.touch_gaps.empty();
     PetscCall(EvaluateIterate(st, it));
     if (it == 0) {
       // The iterative path's verdict on a body that no forces on its pairs can hold (UnbalancedLoad).
@@ -511,21 +513,29 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
         states_[p].lambda = lambda_[p];
         states_[p].active = active_set_.Flags()[p];
       }
-      if (it == 1 && !st.touch_gaps.empty()) {
+      if (at_start) {
         // svk after its touching solve: the step length cut that solve's increment while det F <= MIN_DET_F
         // somewhere (a body held at one node deforms there without bound; the octant of options/hertz3d.yml at 290k
         // dofs: to 1/128), and the cut iterate's gaps misled the first update: it activated 72 pairs, the next 3845,
         // and the updates after it released the surplus a ring at a time (14 Newton iterations, 214 Krylov ones). The
         // whole increment's linearised gaps are the linear material's, whose first update takes about the final set:
-        // 1542 pairs, then 7 Newton iterations in all, 116 Krylov iterations, the same state.
+        // 1542 pairs, then 7 Newton iterations in all, 116 Krylov iterations, the same state. The increment is not
+        // applied: the next solve starts from the step's start (as RestartFromStepStart would choose).
         for (std::size_t p = 0; p < pairs_.size(); ++p)
-          states_[p].gap = st.touch_gaps[p];
-        st.touch_gaps.clear();
+          std::swap(states_[p].gap, st.touch_gaps[p]);
+        PetscCall(PetscInfo(nullptr, "first update: from the gaps of the touching solve's whole increment (svk); the "
+                                     "next solve starts from the step's start\n"));
       }
       if (it == 0)
         PetscCall(active_set_.First(states_, first, keys_, normals_, st.next));
       else
         PetscCall(active_set_.Next(states_, it, st.loose, keys_, normals_, st.next, changes));
+      if (at_start) {
+        // The next solve's right-hand side has the gaps at the step's start.
+        for (std::size_t p = 0; p < pairs_.size(); ++p)
+          states_[p].gap = st.touch_gaps[p];
+        st.touch_gaps.clear();
+      }
       if (friction_.On()) {
         // The stick and slip sets of the next solve, from this solve's multipliers and slips.
         st.friction_changes = st.friction_turns = 0;
@@ -558,7 +568,8 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
     if (outcome == Outcome::CONVERGED) ok = true;
     if (outcome == Outcome::CONVERGED || outcome == Outcome::STOP) break;
     if (outcome == Outcome::EXTENDED) continue;
-    if (it == 1 && changes > 0 && st.restartable && !st.stabilised) PetscCall(RestartFromStepStart(st, it));
+    if (it == 1 && changes > 0 && st.restartable && !st.stabilised && !at_start)
+      PetscCall(RestartFromStepStart(st, it));
     active_set_.Set(st.next);
     friction_.Adopt();
     bool held;

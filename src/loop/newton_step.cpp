@@ -284,6 +284,10 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
           st.touch_gaps[p] = g;
         }
         PetscCall(VecRestoreArrayRead(system_->Solution(), &x));
+        // The increment itself is not applied: its iterate would be cut by the step length (or not made invertible
+        // by it: the octant at 1.07M dofs failed its full load step so and was cut in two), and the next solve
+        // starts from the step's start, without multipliers.
+        PetscCall(VecZeroEntries(system_->Solution()));
       }
       st.correction.made = st.correction.rtol > 0;
       st.correction.rtol = 0;
@@ -298,7 +302,7 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
   stats_.krylov_iterations += st.krylov;
   stats_.stabilised_solves += st.stabilised;
   st.base.condensed = condensed;
-  if (condensed) PetscFunctionReturn(0);
+  if (condensed || !st.touch_gaps.empty()) PetscFunctionReturn(0);
   double step_length;
   PetscCall(UpdateSolution(st.r.norm, st.stabilised, step_length));
   // What a shortened step left of the prescribed increment comes in the next solve; a full step lands exactly.

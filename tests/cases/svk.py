@@ -295,8 +295,8 @@ def nonlinear_onto_disc(runner):
 def svk_iterative_first_update(runner):
     """svk on the iterative path, held at a touching point first (the octant of options/hertz3d.yml): the step length
     cuts the touching solve's increment (det F <= 0 near the one node that holds the body), so the first update reads
-    the linearised gaps of the whole increment instead of the cut iterate's, and the next solve restarts from the step's
-    start, as for the linear material. The first update then changes the linear material's pairs (198; from the cut
+    the linearised gaps of the whole increment instead of the cut iterate's, which is not applied: the next solve
+    starts from the step's start, as the linear material's restarts there. The first update then changes the linear material's pairs (198; from the cut
     iterate 26, then 507 and a release over 10 Newton iterations), and the state is the direct path's (1e-8)."""
     base = ["-options_file", "options/hertz3d.yml", "-contact_solver", "iterative"]
     linear = runner.run(base, "linear, iterative", heap_check=False)
@@ -306,5 +306,7 @@ def svk_iterative_first_update(runner):
     first = [r.get("iterations.history")[0]["changed"] for r in (linear, svk)]
     runner.expect_true("the first update changes the linear material's pairs (%d, svk %d)" % tuple(first),
                        first[0] == first[1] and first[0] > 100)
-    runner.expect_true("the next solve restarts from the step's start", "restarts from the start" in svk.output)
+    runner.expect_true("the first update reads the whole increment's gaps, the next solve starts from the step's start",
+                       "first update: from the gaps of the touching solve's whole increment (svk); the next solve "
+                       "starts from the step's start" in svk.output)
     expect_same_state(runner, direct, svk, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
