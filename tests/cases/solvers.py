@@ -666,6 +666,28 @@ def krylov_fallback(runner):
     expect_same_state(runner, ref, g, keys=("contact.active_pairs",), tol=1e-8)
 
 
+@test("krylov_fallback_restart")
+def krylov_fallback_restart(runner):
+    """A Krylov restart (a solve that goes on from where it stopped) that breaks down gets the same fallback as a first
+    attempt: the 3D survey's seed 777 case 18 (an svk cube held by its left side and two walls, pulled off them) ended
+    in an error on the iterative path, CG stopping with DIVERGED_INDEFINITE_PC in a restart of an inexact Newton step
+    on a tangent no longer positive definite; it now ends as on the direct path: out of Newton iterations after the
+    load step's cuts (the direct path's verdict, DIVERGED_MAX_IT), with GMRES taking over."""
+    args = ["-mesh_file", "meshes/cube.msh", "-material_E", "414.077", "-material_nu", "0.148", "-contact_groups",
+            "bottom,front,left", "-material_model", "svk", "-bc_dirichlet", "left:x", "-bc_traction",
+            "top:0.0521297:-0.0095594:-0.22092", "-obstacle_planes", "0,0,0,1,0,0,0,0,0,0,1,0", "-obstacle_spheres",
+            "0.318687,0.419863,-1.03654,1"]
+    outcomes = []
+    for solver in ("direct", "iterative"):
+        status, out, result = runner.run_any(args + ["-contact_solver", solver, "-info", ":sys"], solver)
+        m = re.search(r"signorini: error: the contact solve did not converge at load factor \S+: (DIVERGED_\w+)", out)
+        outcomes.append(m.group(1) if m else ("converged" if status == 0 else "another error"))
+        if solver == "iterative":
+            runner.expect_true("GMRES took over from CG", "RetryKrylov(): cg stopped with DIVERGED_INDEFINITE_PC" in out)
+    runner.expect_equal("the same outcome on both paths", outcomes[1], outcomes[0])
+    runner.expect_equal("the direct path's verdict", outcomes[0], "DIVERGED_MAX_IT")
+
+
 @test("elastic_fieldsplit_block_size")
 def elastic_fieldsplit_block_size(runner):
     """The iterative path on a case with no multiplier (the octant on a plane out of reach of the search, held by
