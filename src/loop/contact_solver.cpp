@@ -513,28 +513,26 @@ PetscErrorCode ContactSolver::LoadStep(PetscInt step, double from, double factor
         states_[p].lambda = lambda_[p];
         states_[p].active = active_set_.Flags()[p];
       }
-      if (at_start) {
+      if (it == 0) {
+        PetscCall(active_set_.First(states_, first, keys_, normals_, st.next));
+      } else if (at_start) {
         // svk after its touching solve: the step length cut that solve's increment while det F <= MIN_DET_F
         // somewhere (a body held at one node deforms there without bound; the octant of options/hertz3d.yml at 290k
         // dofs: to 1/128), and the cut iterate's gaps misled the first update: it activated 72 pairs, the next 3845,
         // and the updates after it released the surplus a ring at a time (14 Newton iterations, 214 Krylov ones). The
         // whole increment's linearised gaps are the linear material's, whose first update takes about the final set:
         // 1542 pairs, then 7 Newton iterations in all, 116 Krylov iterations, the same state. The increment is not
-        // applied: the next solve starts from the step's start (as RestartFromStepStart would choose).
+        // applied: the next solve starts from the step's start (as RestartFromStepStart would choose), whose gaps
+        // states_ keeps for its right-hand side.
+        std::vector<PairState> touched = states_;
         for (std::size_t p = 0; p < pairs_.size(); ++p)
-          std::swap(states_[p].gap, st.touch_gaps[p]);
+          touched[p].gap = st.touch_gaps[p];
+        st.touch_gaps.clear();
         PetscCall(PetscInfo(nullptr, "first update: from the gaps of the touching solve's whole increment (svk); the "
                                      "next solve starts from the step's start\n"));
-      }
-      if (it == 0)
-        PetscCall(active_set_.First(states_, first, keys_, normals_, st.next));
-      else
+        PetscCall(active_set_.Next(touched, it, st.loose, keys_, normals_, st.next, changes));
+      } else {
         PetscCall(active_set_.Next(states_, it, st.loose, keys_, normals_, st.next, changes));
-      if (at_start) {
-        // The next solve's right-hand side has the gaps at the step's start.
-        for (std::size_t p = 0; p < pairs_.size(); ++p)
-          states_[p].gap = st.touch_gaps[p];
-        st.touch_gaps.clear();
       }
       if (friction_.On()) {
         // The stick and slip sets of the next solve, from this solve's multipliers and slips.

@@ -302,7 +302,7 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
   stats_.krylov_iterations += st.krylov;
   stats_.stabilised_solves += st.stabilised;
   st.base.condensed = condensed;
-  if (condensed || !st.touch_gaps.empty()) PetscFunctionReturn(0);
+  if (condensed || !st.touch_gaps.empty()) PetscFunctionReturn(0); // svk's touching solve: its increment not applied
   double step_length;
   PetscCall(UpdateSolution(st.r.norm, st.stabilised, step_length));
   // What a shortened step left of the prescribed increment comes in the next solve; a full step lands exactly.
