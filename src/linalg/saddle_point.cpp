@@ -488,8 +488,10 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   // candidates hold the body, so that a Schur fieldsplit with AMG on that block works for a body held by contact.
   // Friction's kept factorisation is of a fixed augmented matrix of its own (FactorFixedRows): A stays plain.
   augmented_ = (reuse_ && !turned_) || (!factor && dofs_->GlobalLambda() > 0);
-  // Its inactive rows get a smaller weight (INACTIVE_WEIGHT); the kept factorisation needs a constant block.
-  if (augmented_ && !reuse_) aug_inactive_ = INACTIVE_WEIGHT * aug_;
+  // Its inactive rows get a smaller weight (INACTIVE_WEIGHT; NULLSPACE_INACTIVE_WEIGHT for the null-space
+  // preconditioner of the linear material); the kept factorisation needs a constant block.
+  const bool light = nullspace_ && constant_k_;
+  if (augmented_ && !reuse_) aug_inactive_ = (light ? NULLSPACE_INACTIVE_WEIGHT : INACTIVE_WEIGHT) * aug_;
   // The iterative path's weight relative to K's diagonal (IterativeWeight); by default in 3D without friction: in 2D
   // the element scale is already a third to a half of an assembled entry and the measured paths moved either way
   // (IterativeWeight), and friction's tangential rows keep the weights their cases were measured with.

@@ -375,6 +375,15 @@ private:
   /// constant weight), 24-36/26-41/29-42 with 0.01, about the same with 0.001; it must stay well above the
   /// stabilisation spring (ContactSolver::STABILISATION r).
   static constexpr double INACTIVE_WEIGHT = 1e-2;
+  /// r_I / r of the null-space preconditioner (PCNULLSPACE). It eliminates the inactive rows exactly, so r_I only
+  /// enters the V-cycle M, built on K + r B_A^T B_A + r_I B_I^T B_I where the operator it preconditions is K + r
+  /// B_A^T B_A: the inactive rows' springs hold the whole candidate surface in M alone. A body held at a touching node
+  /// (the octant Hertz's first solve) sinks about it in the operator and hardly at all in M, and its Krylov iterations
+  /// converged at a third of an elastic solve's rate per decade. Measured (the octant of options/hertz3d.yml, its
+  /// touching solve to 0.03, one rank): 290k dofs r_I/r = 1e-2, 1e-3, 3e-4, 1e-4, 1e-6: 10, 8, 7, 6, 6 Krylov
+  /// iterations; 1.07M 12 -> 7, 3.9M 13 -> 8 with 2e-4 or 1e-6; the other solves and the elastic reference (every
+  /// row inactive) unchanged. Twice the stabilisation spring, which must stay below it.
+  static constexpr double NULLSPACE_INACTIVE_WEIGHT = 2e-4;
   /// A Schur fieldsplit keeps its displacement block's preconditioner while at most this fraction of the candidate
   /// rows changed weight since its set-up (and K did not change): KeepDisplacementPreconditioner. 0.3 against 0.1
   /// (fieldsplit_gamg, one rank; the same active sets): the ball on a block at 316k dofs 4 -> 2 GAMG set-ups, Krylov
