@@ -1040,7 +1040,7 @@ PetscErrorCode SaddlePointSystem::SolveKsp(double rtol, bool loose, bool inexact
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_BOOL, MPI_LAND, comm));
   PetscCall(KSPSetReusePreconditioner(ksp_, same));
   PetscCall(KeepDisplacementPreconditioner());
-  ProgressBegin("preconditioner set-up (analysis and factorisation)");
+  ProgressBegin(mumps_factor_ ? "preconditioner set-up (analysis and factorisation)" : "preconditioner set-up");
   PetscCall(KSPSetUp(ksp_));
   ProgressEnd();
   if (mumps_factor_) {
