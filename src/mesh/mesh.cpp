@@ -198,8 +198,9 @@ PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, M
   PetscBool size_factor_set = PETSC_FALSE, max_cells_set = PETSC_FALSE;
   PetscOptionsBegin(comm, nullptr, "Mesh options", "signorini");
   const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
-  PetscCall(OptionsString(PetscOptionsObject, "-mesh_file", "gmsh mesh (.msh 2.2/4.1), geometry (.geo, meshed by "
-                          "gmsh in a child process of rank 0) or a mesh written by -mesh_save (.h5, read in parallel)",
+  PetscCall(OptionsString(PetscOptionsObject, "-mesh_file",
+                          "gmsh mesh (.msh 2.2/4.1), geometry (.geo, meshed by "
+                          "gmsh in a child process of rank 0) or a mesh written by -mesh_save (.h5, PETSc's format)",
                           "a .msh, .geo or .h5 path", opts.file));
   PetscCall(OptionsReal(PetscOptionsObject, "-mesh_size_factor", "Mesh size factor applied when meshing a .geo file",
                         {MESH_SIZE_FACTOR_MIN, MESH_SIZE_FACTOR_MAX}, opts.size_factor, &size_factor_set));

@@ -45,7 +45,8 @@ std::string FindMeshFile(const MeshOptions &opts, std::string &absolute_path, st
 class Mesh {
 public:
   /// Reads the gmsh file on rank 0, builds, labels, partitions and distributes the DMPlex; or reads a .h5 written by
-  /// -mesh_save, every rank its part (LoadH5), and partitions it in parallel. Then writes -mesh_save if given (SaveH5).
+  /// -mesh_save (LoadH5: PETSc 3.18 loads its topology on rank 0) and partitions it with PTScotch. Then writes
+  /// -mesh_save if given (SaveH5).
   /// Collective.
   [[nodiscard]] PetscErrorCode Create(MPI_Comm comm, const MeshOptions &opts);
 
