@@ -178,7 +178,9 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
                           "Iterative path on several ranks: GAMG's first Galerkin product P^T A P by each rank's "
                           "sequential products of its own rows in chunks, the parts added (lean), or by PETSc's "
                           "product of parallel matrices (petsc), which keeps A P of each rank's rows: 7.7 instead of "
-                          "5.3 GB per rank on a 4.1M-dof hexahedral cube on 2 ranks, the contact solve as fast",
+                          "5.3 GB per rank on a 4.1M-dof hexahedral cube on 2 ranks, the contact solve as fast; lean "
+                          "also compacts GAMG's matrix of the aggregates' members on other ranks (the coarsener "
+                          "signorini_misk, unless -contact_fieldsplit_u_mat_coarsen_type is given)",
                           "lean or petsc", GALERKIN_PRODUCT_NAMES, 2, product));
   opts.galerkin_product = (GalerkinProduct)product;
   char weight_help[512];
@@ -484,6 +486,7 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   hierarchy_update_ = opts.hierarchy_update, hierarchy_check_ = opts.hierarchy_check;
   lean_product_ = opts.galerkin_product == GalerkinProduct::LEAN;
   if (nest_.on && nest_.K && lean_product_) PetscCall(LeanPtAPAttach(nest_.K));
+  if (!factor && lean_product_) PetscCall(LeanCoarsenDefault());
   // An iterative solver gets the augmented form too: its displacement block K + r B_C^T B_C is regular when the
   // candidates hold the body, so that a Schur fieldsplit with AMG on that block works for a body held by contact.
   // Friction's kept factorisation is of a fixed augmented matrix of its own (FactorFixedRows): A stays plain.

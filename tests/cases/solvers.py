@@ -427,6 +427,10 @@ def gamg_lean_product(runner):
     lean_line = "P^T A P by the ranks' sequential products (LeanPtAP)"
     lean = runner.run(it + ["-contact_hierarchy_check"], "lean (the default)", heap_check=False)
     runner.expect_equal("lean: the ranks' products (on one rank PETSc's)", lean_line in lean.output, runner.np > 1)
+    # The coarsener (lean_coarsen.cpp): PETSc's aggregation with its matrix of the aggregates' members on other ranks
+    # compacted, on every level; petsc keeps PETSc's coarsener.
+    coarsen = re.findall(r"members on other ranks: (\d+) entries kept of (\d+) allocated \(LeanCoarsen\)", lean.output)
+    runner.expect_true("lean: the compacting coarsener ran (%d levels)" % len(coarsen), len(coarsen) >= 2)
     checks = hierarchy_checks(lean.output)
     runner.expect_true("lean: every hierarchy update equal to a new product (%s)" % checks,
                        len(checks) >= 1 and max(checks) <= 1e-12)
@@ -434,6 +438,7 @@ def gamg_lean_product(runner):
     petsc = runner.run(it + ["-contact_gamg_product", "petsc", "-contact_hierarchy_check"], "petsc",
                        heap_check=False)
     runner.expect_true("petsc: PETSc's product", lean_line not in petsc.output)
+    runner.expect_true("petsc: PETSc's coarsener", "(LeanCoarsen)" not in petsc.output)
     checks = hierarchy_checks(petsc.output)
     runner.expect_true("petsc: every hierarchy update equal to a new product (%s)" % checks,
                        len(checks) >= 1 and max(checks) <= 1e-12)

@@ -23,4 +23,10 @@ PetscErrorCode LeanPtAPAttach(Mat A);
 /// 466 MB per rank at the first update, the run's peak. One rank: PETSc's product (no copy).
 PetscErrorCode LeanRowsTimes(Mat G, Mat P, Mat *C);
 
+/// GAMG's coarsener (PETSc's -mat_coarsen_type) for the iterative path's lean set-up, unless the run gives its own:
+/// PETSc's distance-k aggregation (MATCOARSENMISK), whose matrix of each node's aggregate members on other ranks is
+/// replaced by a copy of its filled entries (lean_coarsen.cpp). Registers the type once.
+inline constexpr const char *LEAN_COARSEN = "signorini_misk";
+PetscErrorCode LeanCoarsenDefault();
+
 } // namespace signorini
