@@ -200,7 +200,7 @@ PetscErrorCode ReadMeshOptions(MPI_Comm comm, const std::string &default_file, M
   const OptionsBlockGuard options_block(PetscOptionsObject); // ends the block on an error
   PetscCall(OptionsString(PetscOptionsObject, "-mesh_file",
                           "gmsh mesh (.msh 2.2/4.1), geometry (.geo, meshed by "
-                          "gmsh in a child process of rank 0) or a mesh written by -mesh_save (.h5, PETSc's format)",
+                          "gmsh in a child process of rank 0) or a mesh written by -mesh_save (.h5, read in parallel)",
                           "a .msh, .geo or .h5 path", opts.file));
   PetscCall(OptionsReal(PetscOptionsObject, "-mesh_size_factor", "Mesh size factor applied when meshing a .geo file",
                         {MESH_SIZE_FACTOR_MIN, MESH_SIZE_FACTOR_MAX}, opts.size_factor, &size_factor_set));
@@ -326,11 +326,7 @@ PetscErrorCode Mesh::BuildSerialDM(const std::string &file, DM *out) {
     // DMPlex orders the vertices of a tetrahedron, a pyramid and a hexahedron differently from gmsh (its first face
     // points inwards: the base of a pyramid clockwise seen from the apex); the element loops keep gmsh's order
     // (cell_vertices_).
-    if (dim_ == 3)
-      PetscCall(DMPlexInvertCell(n == 4   ? DM_POLYTOPE_TETRAHEDRON
-                                 : n == 5 ? DM_POLYTOPE_PYRAMID
-                                          : DM_POLYTOPE_HEXAHEDRON,
-                                 cone.data()));
+    if (dim_ == 3) PetscCall(DMPlexInvertCell(CellPolytope3D(n), cone.data()));
     PetscCall(DMPlexSetCone(dm, c, cone.data()));
   }
   PetscCall(DMPlexSymmetrize(dm));
@@ -345,19 +341,7 @@ PetscErrorCode Mesh::BuildSerialDM(const std::string &file, DM *out) {
   cell_face_offsets_.assign(1, 0);
   cell_face_codes_.clear();
   PetscCall(RunOnRoot(comm_, [&] { return SerialFaces(file, label_points); }));
-  for (std::size_t g = 0; g < label_points.size(); ++g) {
-    const std::string name = g < group_names_.size() ? LABEL_PREFIX + group_names_[g] : std::string(BOUNDARY_LABEL);
-    PetscCall(DMCreateLabel(dm, name.c_str()));
-    auto &pts = label_points[g];
-    std::sort(pts.begin(), pts.end());
-    pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
-    if (pts.empty()) continue;
-    DMLabel label;
-    ISH is;
-    PetscCall(DMGetLabel(dm, name.c_str(), &label));
-    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)pts.size(), pts.data(), PETSC_COPY_VALUES, is.out()));
-    PetscCall(DMLabelSetStratumIS(label, 1, is));
-  }
+  PetscCall(SetGroupLabels(dm, label_points));
 
   // The file's node and cell order travels with the points as a field: 1 dof on every cell and vertex.
   vertex_orig_.resize(nv);
@@ -372,6 +356,64 @@ PetscErrorCode Mesh::BuildSerialDM(const std::string &file, DM *out) {
   num_global_cells_ = ng[1];
   *out = dm.get();
   PetscCall(PetscObjectReference((PetscObject)*out));
+  PetscFunctionReturn(0);
+}
+
+std::string Mesh::GroupLabelName(std::size_t g) const {
+  return g < group_names_.size() ? LABEL_PREFIX + group_names_[g] : std::string(BOUNDARY_LABEL);
+}
+
+PetscErrorCode Mesh::SetGroupLabels(DM dm, std::vector<std::vector<PetscInt>> &label_points) const {
+  PetscFunctionBeginUser;
+  for (std::size_t g = 0; g < label_points.size(); ++g) {
+    const std::string name = GroupLabelName(g);
+    PetscCall(DMCreateLabel(dm, name.c_str()));
+    auto &pts = label_points[g];
+    std::sort(pts.begin(), pts.end());
+    pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+    if (pts.empty()) continue;
+    DMLabel label;
+    ISH is;
+    PetscCall(DMGetLabel(dm, name.c_str(), &label));
+    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)pts.size(), pts.data(), PETSC_COPY_VALUES, is.out()));
+    PetscCall(DMLabelSetStratumIS(label, 1, is));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Mesh::PointLabels(std::vector<PetscInt> &offsets, std::vector<int> &labels) const {
+  PetscInt pstart, pend;
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetChart(dm_, &pstart, &pend));
+  offsets.assign(pend - pstart + 1, 0);
+  // Two passes over the labels' points: the counts, then the labels in the points' rows (in label order).
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<PetscInt> next;
+    if (pass == 1) {
+      for (PetscInt p = 0; p < pend - pstart; ++p)
+        offsets[p + 1] += offsets[p];
+      labels.resize(offsets.back());
+      next.assign(offsets.begin(), offsets.end() - 1);
+    }
+    for (std::size_t g = 0; g <= group_names_.size(); ++g) {
+      DMLabel label;
+      ISH is;
+      PetscCall(DMGetLabel(dm_, GroupLabelName(g).c_str(), &label));
+      if (label) PetscCall(DMLabelGetStratumIS(label, 1, is.out()));
+      if (!is) continue;
+      PetscInt n;
+      const PetscInt *pts;
+      PetscCall(ISGetLocalSize(is, &n));
+      PetscCall(ISGetIndices(is, &pts));
+      for (PetscInt i = 0; i < n; ++i) {
+        if (pass == 0)
+          offsets[pts[i] - pstart + 1]++;
+        else
+          labels[next[pts[i] - pstart]++] = (int)g;
+      }
+      PetscCall(ISRestoreIndices(is, &pts));
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -510,7 +552,7 @@ PetscErrorCode Mesh::MetisPartition(std::vector<PetscInt> &sizes, std::vector<Pe
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Mesh::PackPointData(DM dm, bool local_vertices, SectionH &s, VecH &d) const {
+PetscErrorCode Mesh::PackPointData(DM dm, SectionH &s, VecH &d) const {
   PetscInt pstart, pend, n;
   PetscFunctionBeginUser;
   PetscCall(DMPlexGetChart(dm, &pstart, &pend));
@@ -533,7 +575,7 @@ PetscErrorCode Mesh::PackPointData(DM dm, bool local_vertices, SectionH &s, VecH
     a[off++] = cell_orig_[c];
     a[off++] = cell_offsets_[c + 1] - cell_offsets_[c];
     for (PetscInt k = cell_offsets_[c]; k < cell_offsets_[c + 1]; ++k)
-      a[off++] = local_vertices ? vertex_orig_[cell_vertices_[k]] : cell_vertices_[k];
+      a[off++] = cell_vertices_[k];
     for (PetscInt k = cell_face_offsets_[c]; k < cell_face_offsets_[c + 1]; ++k) a[off++] = cell_face_codes_[k];
   }
   for (PetscInt v = 0; v < nv; ++v) {
@@ -587,7 +629,7 @@ PetscErrorCode Mesh::Distribute(DMH &dm) {
   // The point data (PackPointData) travels with the points.
   SectionH sec;
   VecH orig;
-  PetscCall(PackPointData(dm, false, sec, orig));
+  PetscCall(PackPointData(dm, sec, orig));
   SFH migration;
   DMH dist;
   PetscCall(DMPlexDistribute(dm, 0, migration.out(), dist.out()));
@@ -618,22 +660,15 @@ PetscErrorCode Mesh::BuildCellGroups() {
   PetscFunctionBeginUser;
   // The cell labels travel with the cells through distribution and the .h5 file alike, so both paths agree; they are
   // copied here because the DM is released after the set-up (ReleaseDM).
+  std::vector<PetscInt> offsets;
+  std::vector<int> labels;
+  PetscInt pstart, pend;
+  PetscCall(DMPlexGetChart(dm_, &pstart, &pend));
+  PetscCall(PointLabels(offsets, labels));
   std::vector<std::vector<int>> groups(nc);
-  for (std::size_t g = 0; g < group_names_.size(); ++g) {
-    if (group_dims_[g] != dim_) continue;
-    DMLabel label;
-    ISH is;
-    PetscCall(DMGetLabel(dm_, (LABEL_PREFIX + group_names_[g]).c_str(), &label));
-    if (label) PetscCall(DMLabelGetStratumIS(label, 1, is.out()));
-    if (!is) continue;
-    PetscInt n;
-    const PetscInt *pts;
-    PetscCall(ISGetLocalSize(is, &n));
-    PetscCall(ISGetIndices(is, &pts));
-    for (PetscInt i = 0; i < n; ++i)
-      if (pts[i] >= cstart_ && pts[i] < cstart_ + nc) groups[pts[i] - cstart_].push_back((int)g);
-    PetscCall(ISRestoreIndices(is, &pts));
-  }
+  for (PetscInt c = 0; c < nc; ++c)
+    for (PetscInt k = offsets[cstart_ + c - pstart]; k < offsets[cstart_ + c - pstart + 1]; ++k)
+      if (labels[k] < (int)group_names_.size() && group_dims_[labels[k]] == dim_) groups[c].push_back(labels[k]);
   cell_group_offsets_.assign(1, 0);
   cell_groups_.clear();
   for (const auto &cg : groups) {

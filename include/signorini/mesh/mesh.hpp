@@ -15,6 +15,10 @@ namespace signorini {
 
 /// Most vertices of a cell (the hexahedron).
 constexpr int MAX_CELL_VERTICES = 8;
+/// The DMPlex polytope of a 3D cell of n vertices (a tetrahedron, a pyramid or a hexahedron).
+inline DMPolytopeType CellPolytope3D(int n) {
+  return n == 4 ? DM_POLYTOPE_TETRAHEDRON : n == 5 ? DM_POLYTOPE_PYRAMID : DM_POLYTOPE_HEXAHEDRON;
+}
 
 /// A face of the cells (codimension 1) as local vertex indices, oriented outwards: an edge in 2D with the body on the
 /// left of v[0] -> v[1]; a triangle or quadrilateral in 3D, vertices in cyclic order, its right-hand normal pointing
@@ -45,8 +49,8 @@ std::string FindMeshFile(const MeshOptions &opts, std::string &absolute_path, st
 class Mesh {
 public:
   /// Reads the gmsh file on rank 0, builds, labels, partitions and distributes the DMPlex; or reads a .h5 written by
-  /// -mesh_save (LoadH5: PETSc 3.18 loads its topology on rank 0) and partitions it with PTScotch. Then writes
-  /// -mesh_save if given (SaveH5).
+  /// -mesh_save, every rank its part (LoadH5), and partitions it with PTScotch. Then writes -mesh_save if given
+  /// (SaveH5).
   /// Collective.
   [[nodiscard]] PetscErrorCode Create(MPI_Comm comm, const MeshOptions &opts);
 
@@ -135,14 +139,29 @@ private:
   [[nodiscard]] PetscErrorCode Distribute(DMH &dm);
   /// The data each point of dm carries (the file's index of a vertex; of a cell: its file index, its vertex count, its
   /// vertices in gmsh's order as file indices, then its face codes), as a section over dm's chart and a sequential
-  /// vector; local_vertices: cell_vertices_ holds local vertex indices (after BuildLocalArrays), else file indices.
-  [[nodiscard]] PetscErrorCode PackPointData(DM dm, bool local_vertices, SectionH &sec, VecH &data) const;
+  /// vector (before BuildLocalArrays, while cell_vertices_ holds file indices).
+  [[nodiscard]] PetscErrorCode PackPointData(DM dm, SectionH &sec, VecH &data) const;
   /// The point arrays (vstart_, cstart_, vertex_orig_, cell_orig_, cell vertices as file indices, face codes) from
   /// PackPointData's section and vector over dm.
   [[nodiscard]] PetscErrorCode UnpackPointData(DM dm, PetscSection sec, Vec data);
   /// Writes the distributed mesh to path in PETSc's DMPlex HDF5 format with the point data, the groups and the
   /// file's tags (mesh_h5.cpp), through a temporary file renamed at the end. Collective.
   [[nodiscard]] PetscErrorCode SaveH5(const std::string &path) const;
+  /// SaveH5's blocks of signorini's own (format 2; mesh_h5.hpp): this rank's cells, then its owned vertices, each
+  /// with what rebuilds them, in the DMPlex's order. Collective.
+  [[nodiscard]] PetscErrorCode ViewH5Blocks(PetscViewer viewer) const;
+  /// LoadH5's part that reads: every rank a block of the cells (BlockOf) and of the vertices, the vertices its cells
+  /// use gathered from the ranks whose blocks hold them (the lowest such rank owns a shared vertex), and dm built
+  /// from them with its point SF, coordinates, labels and point arrays (PackPointData's). Collective.
+  [[nodiscard]] PetscErrorCode LoadH5Blocks(PetscViewer viewer, DMH &dm);
+  /// The label of group g (LABEL_PREFIX + its name), or for g = the number of groups the boundary's.
+  std::string GroupLabelName(std::size_t g) const;
+  /// Creates on dm the labels of the groups and of the boundary (GroupLabelName) with value 1 on label_points[g]
+  /// (sorted and made unique here). Local.
+  [[nodiscard]] PetscErrorCode SetGroupLabels(DM dm, std::vector<std::vector<PetscInt>> &label_points) const;
+  /// For each point of dm_'s chart (from its start), the labels (GroupLabelName's g) that hold it: labels from
+  /// offsets[p] to offsets[p + 1]. Local.
+  [[nodiscard]] PetscErrorCode PointLabels(std::vector<PetscInt> &offsets, std::vector<int> &labels) const;
   /// Reads a file written by SaveH5 (opts.file), every rank a part, and partitions and distributes it with
   /// opts.partitioner (ptscotch for the default metis, or simple). Collective.
   [[nodiscard]] PetscErrorCode LoadH5(const MeshOptions &opts);
