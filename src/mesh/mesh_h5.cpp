@@ -635,6 +635,10 @@ PetscErrorCode Mesh::LoadH5Blocks(PetscViewer viewer, DMH &out) {
       coords_[dim_ * i + d] = vcoords[dim_ * b + d];
   }
 
+  PetscCall(PetscInfo(nullptr,
+                      "read cells %" PetscInt_FMT " to %" PetscInt_FMT " of %" PetscInt_FMT ", vertices %" PetscInt_FMT
+                      " to %" PetscInt_FMT " of %" PetscInt_FMT "; %" PetscInt_FMT " vertices local (LoadH5Blocks)\n",
+                      c0, c0 + nc, num_global_cells_, v0, v0 + nb, nvertices, nv));
   // 4. The DMPlex of this rank's cells and vertices (as BuildSerialDM), its point SF to the vertices' owners.
   DMH dm;
   PetscCall(DMPlexCreate(comm_, dm.out()));

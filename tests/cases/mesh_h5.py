@@ -3,6 +3,7 @@ file, saved on 1 rank and read on 1 or 2, and saved on 2 ranks and read on 1 or 
 
 import json
 import os
+import re
 
 import numpy as np
 
@@ -92,3 +93,14 @@ def mesh_h5(runner, case):
                     runner.expect_true("%s: nodes.csv byte for byte" % what, f.read() == g.read())
             else:
                 same_state(runner, what, base, r, tol)
+    # Every rank reads its part: on np ranks, each a block of the cells and of the vertices, none the whole mesh
+    # (PETSc 3.18's DMPlexTopologyLoad read the whole topology on rank 0).
+    if np_ > 1:
+        r = runner.run(options + ["-mesh_file", saved[np_], "-info", ":sys"], "%s from h5, -info" % case)
+        blocks = re.findall(r"\[(\d+)\] <sys> LoadH5Blocks\(\): read cells (\d+) to (\d+) of (\d+), "
+                            r"vertices (\d+) to (\d+) of (\d+); (\d+) vertices local", r.output)
+        runner.expect_equal("every rank read a block", sorted(int(b[0]) for b in blocks), list(range(np_)))
+        cells = sum(int(b[2]) - int(b[1]) for b in blocks)
+        runner.expect_equal("the blocks cover the cells once", cells, int(blocks[0][3]) if blocks else -1)
+        runner.expect_true("no rank read all the cells or held all the vertices (%s)" % blocks,
+                           all(int(b[2]) - int(b[1]) < int(b[3]) and int(b[7]) < int(b[6]) for b in blocks))
