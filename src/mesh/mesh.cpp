@@ -17,6 +17,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <tuple>
@@ -621,6 +622,15 @@ PetscErrorCode Mesh::UnpackPointData(DM dm, PetscSection sec, Vec data) {
   PetscFunctionReturn(0);
 }
 
+void Mesh::SingleThreadScotch() {
+  // Debian's Scotch 7 partitions with threads, and its partition differed from run to run: the 290k-dof octant read
+  // from its .h5 on 2 ranks: the ranks sent 217121 and 66384 of their cells to rank 0 in one run, 113215 and 168170
+  // in another, and the runs took 7 13 10 18 or 7 12 8 8 14 CG iterations (the same state). One thread (Scotch's
+  // SCOTCH_PTHREAD_NUMBER, read when it partitions; a value the user set stays) gave the same partition in every run
+  // measured; seeding its random generator (SCOTCH_randomSeed, SCOTCH_randomReset) did not.
+  setenv("SCOTCH_PTHREAD_NUMBER", "1", 0);
+}
+
 PetscErrorCode Mesh::Distribute(DMH &dm) {
   PetscMPIInt size;
   PetscFunctionBeginUser;
@@ -632,6 +642,7 @@ PetscErrorCode Mesh::Distribute(DMH &dm) {
   PetscCall(PackPointData(dm, sec, orig));
   SFH migration;
   DMH dist;
+  SingleThreadScotch(); // -mesh_partitioner ptscotch partitions here
   PetscCall(DMPlexDistribute(dm, 0, migration.out(), dist.out()));
   if (!dist) PetscFunctionReturn(0);
   SectionH new_sec;

@@ -284,6 +284,7 @@ PetscErrorCode Mesh::ParallelPartition(DM dm, const std::string &partitioner) co
     PetscCall(DualGraph(offsets, adjacency));
     PetscCall(PetscPartitionerCreate(comm_, scotch.out()));
     PetscCall(PetscPartitionerSetType(scotch, PETSCPARTITIONERPTSCOTCH));
+    SingleThreadScotch();
     PetscCall(PetscSectionCreate(comm_, part_section.out()));
     PetscCall(PetscPartitionerPartition(scotch, size, (PetscInt)offsets.size() - 1, offsets.data(), adjacency.data(),
                                         nullptr, nullptr, part_section, partition.out()));

@@ -137,6 +137,8 @@ private:
   /// takes it: sizes (zero on entry) the cells of each part, points the cells part by part. Rank 0 (RunOnRoot).
   [[nodiscard]] PetscErrorCode MetisPartition(std::vector<PetscInt> &sizes, std::vector<PetscInt> &points) const;
   [[nodiscard]] PetscErrorCode Distribute(DMH &dm);
+  /// Scotch on one thread, before each of PTScotch's partitions: the same partition every run.
+  static void SingleThreadScotch();
   /// The data each point of dm carries (the file's index of a vertex; of a cell: its file index, its vertex count, its
   /// vertices in gmsh's order as file indices, then its face codes), as a section over dm's chart and a sequential
   /// vector (before BuildLocalArrays, while cell_vertices_ holds file indices).
