@@ -522,13 +522,36 @@ PetscErrorCode Mesh::LoadH5Blocks(PetscViewer viewer, DMH &out) {
   const auto block_of = [&](PetscInt u) {
     return (PetscMPIInt)(std::upper_bound(first.begin(), first.end() - 1, u) - first.begin() - 1);
   };
-  std::vector<PetscInt> cell_nodes(nodes.size());
-  for (std::size_t k = 0; k < nodes.size(); ++k) {
-    cell_nodes[k] = (PetscInt)nodes[k];
-    PetscCheck(cell_nodes[k] >= 0 && cell_nodes[k] < nvertices, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-               "the mesh file's cell vertex %" PetscInt_FMT " is not one of its %" PetscInt_FMT " vertices",
-               cell_nodes[k], nvertices);
+  // A damaged file is refused on every rank, with the first rank's finding.
+  {
+    std::string bad;
+    const double nlabels = (double)group_names_.size() + 1;
+    const auto text = [](double x) {
+      char t[32];
+      std::snprintf(t, sizeof(t), "%g", x);
+      return std::string(t);
+    };
+    for (PetscInt c = 0; c < nc && bad.empty(); ++c)
+      if (!(sizes[c] >= dim_ + 1 && sizes[c] <= MAX_CELL_VERTICES))
+        bad = "cell " + std::to_string(c0 + c) + " has " + text(sizes[c]) + " vertices";
+    for (std::size_t k = 0; k < nodes.size() && bad.empty(); ++k)
+      if (!(nodes[k] >= 0 && nodes[k] < (double)nvertices))
+        bad = "a cell's vertex " + text(nodes[k]) + " is not one of its " + std::to_string(nvertices) + " vertices";
+    for (const std::vector<double> *values : {&label_values, &vlabels})
+      for (std::size_t k = 0; k < values->size() && bad.empty(); ++k)
+        if (!((*values)[k] >= 0 && (*values)[k] < nlabels))
+          bad = "it names label " + text((*values)[k]) + " of " + text(nlabels);
+    PetscMPIInt who = bad.empty() ? size : rank;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &who, 1, MPI_INT, MPI_MIN, comm_));
+    if (who < size) {
+      PetscCall(Broadcast(comm_, who, bad));
+      PetscCheck(false, comm_, PETSC_ERR_FILE_UNEXPECTED,
+                 "-mesh_file '%s' is damaged: %s; expected a mesh written by "
+                 "-mesh_save",
+                 path_.c_str(), bad.c_str());
+    }
   }
+  std::vector<PetscInt> cell_nodes(nodes.begin(), nodes.end());
   nodes.clear();
   nodes.shrink_to_fit();
 
@@ -607,13 +630,9 @@ PetscErrorCode Mesh::LoadH5Blocks(PetscViewer viewer, DMH &out) {
   vertex_orig_.assign(nv, -1);
   coords_.assign((std::size_t)dim_ * nv, 0.0);
   std::vector<std::vector<PetscInt>> label_points(group_names_.size() + 1);
-  const auto add_labels = [&](PetscInt point, const double *g, PetscInt n) -> PetscErrorCode {
-    for (PetscInt k = 0; k < n; ++k) {
-      PetscCheck(g[k] >= 0 && g[k] < (double)label_points.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-                 "the mesh file names label %g of %d", g[k], (int)label_points.size());
+  const auto add_labels = [&](PetscInt point, const double *g, PetscInt n) {
+    for (PetscInt k = 0; k < n; ++k)
       label_points[(std::size_t)g[k]].push_back(point);
-    }
-    return 0;
   };
   {
     std::size_t k = 0, x = 0;
@@ -622,7 +641,7 @@ PetscErrorCode Mesh::LoadH5Blocks(PetscViewer viewer, DMH &out) {
         const PetscInt i = local_of(u), n = got[k + 2];
         remote_point[i] = got[k], vertex_orig_[i] = got[k + 1];
         std::vector<double> g(got.begin() + k + 3, got.begin() + k + 3 + n);
-        PetscCall(add_labels(nc + i, g.data(), n));
+        add_labels(nc + i, g.data(), n);
         k += 3 + n;
         for (int d = 0; d < dim_; ++d)
           coords_[dim_ * i + d] = got_xyz[x++];
@@ -631,7 +650,7 @@ PetscErrorCode Mesh::LoadH5Blocks(PetscViewer viewer, DMH &out) {
   for (PetscInt u : unused) {
     const PetscInt i = local_of(u), b = u - v0;
     vertex_orig_[i] = (PetscInt)vorig[b];
-    PetscCall(add_labels(nc + i, vlabels.data() + vlabel_offsets[b], vlabel_offsets[b + 1] - vlabel_offsets[b]));
+    add_labels(nc + i, vlabels.data() + vlabel_offsets[b], vlabel_offsets[b + 1] - vlabel_offsets[b]);
     for (int d = 0; d < dim_; ++d)
       coords_[dim_ * i + d] = vcoords[dim_ * b + d];
   }
@@ -653,8 +672,6 @@ PetscErrorCode Mesh::LoadH5Blocks(PetscViewer viewer, DMH &out) {
   std::vector<PetscInt> cone(MAX_CELL_VERTICES);
   for (PetscInt c = 0, k = 0; c < nc; ++c) {
     const int n = (int)sizes[c];
-    PetscCheck(n >= dim_ + 1 && n <= MAX_CELL_VERTICES, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-               "the mesh file's cell %" PetscInt_FMT " has %d vertices", c0 + c, n);
     for (int j = 0; j < n; ++j, ++k) {
       const PetscInt i = local_of(cell_nodes[k]);
       cone[j] = nc + i;
@@ -684,7 +701,7 @@ PetscErrorCode Mesh::LoadH5Blocks(PetscViewer viewer, DMH &out) {
     PetscCall(PetscSFDestroy(&sf));
   }
   for (PetscInt c = 0, k = 0; c < nc; ++c) {
-    PetscCall(add_labels(c, label_values.data() + k, (PetscInt)label_sizes[c]));
+    add_labels(c, label_values.data() + k, (PetscInt)label_sizes[c]);
     k += (PetscInt)label_sizes[c];
   }
   PetscCall(SetGroupLabels(dm, label_points));

@@ -78,6 +78,10 @@ CASES = {
     "mesh_h5_old_format": (mesh("old_format.h5"), ["-mesh_file", "old_format.h5", "'signorini mesh 1'",
                                                    "write it again with -mesh_save",
                                                    "expected a mesh written by -mesh_save"], {}),
+    # A cell's vertex out of range in signorini's blocks (damaged.h5: tet_only.msh saved, one entry overwritten): every
+    # rank stops with the first rank's finding.
+    "mesh_h5_damaged": (mesh("damaged.h5"), ["-mesh_file", "damaged.h5", "is damaged", "is not one of its 4 vertices",
+                                             "expected a mesh written by -mesh_save"], {}),
     "mesh_h5_metis": (mesh("not_signorini.h5") + ["-mesh_partitioner", "metis"],
                       ["-mesh_partitioner metis", "not_signorini.h5", "expected ptscotch or simple"], {}),
     "mesh_save_unwritable": (["-mesh_save", "{file}/mesh.h5"], ["-mesh_save", "a_file/mesh.h5", "cannot create",
