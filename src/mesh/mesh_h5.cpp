@@ -443,6 +443,12 @@ PetscErrorCode Mesh::ViewH5Blocks(PetscViewer viewer) const {
   PetscCall(PointLabels(label_offsets, labels));
   const auto stored = [&](PetscInt v) { return (double)(number[v] >= 0 ? number[v] : -(number[v] + 1)); };
   std::vector<double> sizes, nodes, orig, face_sizes, faces, label_sizes, label_values;
+  const auto add_labels = [&](PetscInt point) { // point's labels, as a count and the list
+    const PetscInt p = point - pstart;
+    label_sizes.push_back((double)(label_offsets[p + 1] - label_offsets[p]));
+    for (PetscInt k = label_offsets[p]; k < label_offsets[p + 1]; ++k)
+      label_values.push_back((double)labels[k]);
+  };
   for (PetscInt c = 0; c < nc; ++c) {
     PetscInt n;
     const PetscInt *cv = CellVertices(c, n);
@@ -453,10 +459,7 @@ PetscErrorCode Mesh::ViewH5Blocks(PetscViewer viewer) const {
     face_sizes.push_back((double)(cell_face_offsets_[c + 1] - cell_face_offsets_[c]));
     for (PetscInt k = cell_face_offsets_[c]; k < cell_face_offsets_[c + 1]; ++k)
       faces.push_back((double)cell_face_codes_[k]);
-    const PetscInt p = cstart_ + c - pstart;
-    label_sizes.push_back((double)(label_offsets[p + 1] - label_offsets[p]));
-    for (PetscInt k = label_offsets[p]; k < label_offsets[p + 1]; ++k)
-      label_values.push_back((double)labels[k]);
+    add_labels(cstart_ + c);
   }
   PetscCall(ViewValues(comm_, viewer, "cell_sizes", sizes));
   PetscCall(ViewValues(comm_, viewer, "cell_vertices", nodes));
@@ -472,10 +475,7 @@ PetscErrorCode Mesh::ViewH5Blocks(PetscViewer viewer) const {
     orig.push_back((double)vertex_orig_[v]);
     for (int d = 0; d < dim_; ++d)
       coords.push_back(X(v)[d]);
-    const PetscInt p = vstart_ + v - pstart;
-    label_sizes.push_back((double)(label_offsets[p + 1] - label_offsets[p]));
-    for (PetscInt k = label_offsets[p]; k < label_offsets[p + 1]; ++k)
-      label_values.push_back((double)labels[k]);
+    add_labels(vstart_ + v);
   }
   PetscCall(ISRestoreIndices(numbering, &number));
   PetscCall(ViewValues(comm_, viewer, "vertex_orig", orig));
@@ -546,9 +546,7 @@ PetscErrorCode Mesh::LoadH5Blocks(PetscViewer viewer, DMH &out) {
     if (who < size) {
       PetscCall(Broadcast(comm_, who, bad));
       PetscCheck(false, comm_, PETSC_ERR_FILE_UNEXPECTED,
-                 "-mesh_file '%s' is damaged: %s; expected a mesh written by "
-                 "-mesh_save",
-                 path_.c_str(), bad.c_str());
+                 "-mesh_file '%s' is damaged: %s; expected a mesh written by -mesh_save", path_.c_str(), bad.c_str());
     }
   }
   std::vector<PetscInt> cell_nodes(nodes.begin(), nodes.end());
@@ -630,7 +628,7 @@ PetscErrorCode Mesh::LoadH5Blocks(PetscViewer viewer, DMH &out) {
   vertex_orig_.assign(nv, -1);
   coords_.assign((std::size_t)dim_ * nv, 0.0);
   std::vector<std::vector<PetscInt>> label_points(group_names_.size() + 1);
-  const auto add_labels = [&](PetscInt point, const double *g, PetscInt n) {
+  const auto add_labels = [&](PetscInt point, const auto *g, PetscInt n) { // labels as read (double) or sent
     for (PetscInt k = 0; k < n; ++k)
       label_points[(std::size_t)g[k]].push_back(point);
   };
@@ -640,8 +638,7 @@ PetscErrorCode Mesh::LoadH5Blocks(PetscViewer viewer, DMH &out) {
       for (PetscInt u : ask[r]) {
         const PetscInt i = local_of(u), n = got[k + 2];
         remote_point[i] = got[k], vertex_orig_[i] = got[k + 1];
-        std::vector<double> g(got.begin() + k + 3, got.begin() + k + 3 + n);
-        add_labels(nc + i, g.data(), n);
+        add_labels(nc + i, got.data() + k + 3, n);
         k += 3 + n;
         for (int d = 0; d < dim_; ++d)
           coords_[dim_ * i + d] = got_xyz[x++];

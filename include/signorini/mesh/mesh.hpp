@@ -146,8 +146,8 @@ private:
   /// The point arrays (vstart_, cstart_, vertex_orig_, cell_orig_, cell vertices as file indices, face codes) from
   /// PackPointData's section and vector over dm.
   [[nodiscard]] PetscErrorCode UnpackPointData(DM dm, PetscSection sec, Vec data);
-  /// Writes the distributed mesh to path in PETSc's DMPlex HDF5 format with the point data, the groups and the
-  /// file's tags (mesh_h5.cpp), through a temporary file renamed at the end. Collective.
+  /// Writes the distributed mesh to path in PETSc's DMPlex HDF5 format with signorini's blocks (ViewH5Blocks), the
+  /// groups and the file's tags (mesh_h5.cpp), through a temporary file renamed at the end. Collective.
   [[nodiscard]] PetscErrorCode SaveH5(const std::string &path) const;
   /// SaveH5's blocks of signorini's own (format 2; mesh_h5.hpp): this rank's cells, then its owned vertices, each
   /// with what rebuilds them, in the DMPlex's order. Collective.
