@@ -8,7 +8,23 @@
 
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
+
+namespace {
+
+/// Open MPI's shared file pointers without its shared-memory component. Open MPI 4.1 (OMPIO) opens every MPI-IO file
+/// with a shared file pointer whose component "sm" takes a POSIX semaphore named after the file's base name alone
+/// (/dev/shm/sem.OMPIO_solution.h5 for every run's output, whatever its directory). A run killed while it held it
+/// left it taken, and every later run that opened a file of that name (one rank or several) waited for it in
+/// MPI_File_open forever. signorini never moves a shared file pointer (HDF5 writes at explicit offsets), so the
+/// other components (a lock file beside the file, released when a process dies) serve; a value the user set stays.
+/// Read by MPI_Init, so set before it; other MPI libraries ignore it.
+void NoSharedMemoryFilePointer() {
+  setenv("OMPI_MCA_sharedfp", "^sm", 0);
+}
+
+} // namespace
 
 int main(int argc, char **argv) {
   // The handler goes first so that a bad -options_file, read by PetscInitialize, is reported like any other input.
@@ -17,6 +33,7 @@ int main(int argc, char **argv) {
   // No help text here: PETSc would print it with a stray separator line; Run() prints it above the option groups.
   // MPI first, so that an options file that cannot be read is reported once, by rank 0, before PETSc reads it
   // (PETSc's own check of a directory or an unreadable file is made by rank 0 alone, while the others wait).
+  NoSharedMemoryFilePointer();
   MPI_Init(&argc, &argv);
   std::string files;
   const std::string problem = signorini::OptionsFileProblem(argc, argv, files);

@@ -14,8 +14,8 @@ namespace signorini {
 
 using namespace detail;
 
-PetscLogEvent detail::EV_ASSEMBLY = 0, detail::EV_ACTIVE_SET = 0, detail::EV_SOLVE = 0;
-
+PetscLogEvent detail::EV_ASSEMBLY = 0, detail::EV_ACTIVE_SET = 0, detail::EV_SOLVE = 0, detail::EV_FINT = 0,
+              detail::EV_STIFFNESS = 0;
 
 PetscErrorCode ContactSolver::Setup() {
   MPI_Comm comm = mesh_.Comm();
@@ -27,6 +27,8 @@ PetscErrorCode ContactSolver::Setup() {
     PetscCall(PetscLogEventRegister("SigAssembly", id, &EV_ASSEMBLY));
     PetscCall(PetscLogEventRegister("SigActiveSet", id, &EV_ACTIVE_SET));
     PetscCall(PetscLogEventRegister("SigSolve", id, &EV_SOLVE));
+    PetscCall(PetscLogEventRegister("SigInternalForces", id, &EV_FINT));
+    PetscCall(PetscLogEventRegister("SigStiffness", id, &EV_STIFFNESS));
   }
   PetscCall(BuildDirichlet(mesh_, bc_, dirichlet_));
   if (!contact_.pairs.empty()) PetscCall(SetBodyCompliance());

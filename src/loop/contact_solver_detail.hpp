@@ -16,7 +16,7 @@ namespace signorini::detail {
 constexpr double MIN_DET_F = 1e-10;
 
 /// Log events of the loop, registered by ContactSolver::Setup.
-extern PetscLogEvent EV_ASSEMBLY, EV_ACTIVE_SET, EV_SOLVE;
+extern PetscLogEvent EV_ASSEMBLY, EV_ACTIVE_SET, EV_SOLVE, EV_FINT, EV_STIFFNESS;
 
 /// Accumulates the wall time of a scope (maximum over ranks is taken when reported).
 class ScopedTimer {

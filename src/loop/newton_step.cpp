@@ -26,8 +26,10 @@ PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double
   if (same) {
     min_J = fint_at_.min_J;
   } else {
+    PetscCall(PetscLogEventBegin(EV_FINT, 0, 0, 0, 0));
     PetscCall(VecZeroEntries(fint_));
     PetscCall(assembler_->Assemble(u_local_.data(), nullptr, 0, fint_, &min_J));
+    PetscCall(PetscLogEventEnd(EV_FINT, 0, 0, 0, 0));
     fint_at_.u = u_local_;
     fint_at_.min_J = min_J;
   }
@@ -116,6 +118,7 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
   const std::vector<ConstraintRow> &normal_rows = consistent ? linearised : rows_;
   if ((model_->Nonlinear() && !st.newton.lagged) || !k_assembled_) {
     ProgressBegin("stiffness assembly");
+    PetscCall(PetscLogEventBegin(EV_STIFFNESS, 0, 0, 0, 0));
     PetscCall(MatZeroEntries(system_->Stiffness()));
     PetscCall(assembler_->Assemble(u_local_.data(), system_->Stiffness(), kscale_, nullptr, nullptr));
     PetscCall(MatAssemblyBegin(system_->Stiffness(), MAT_FLUSH_ASSEMBLY));
@@ -128,6 +131,7 @@ PetscErrorCode ContactSolver::AssembleSystem(StepState &st) {
     }
     if (system_->Augmented()) PetscCall(system_->AddAugmentation(friction_.On() ? rows : normal_rows));
     k_assembled_ = true;
+    PetscCall(PetscLogEventEnd(EV_STIFFNESS, 0, 0, 0, 0));
     ProgressEnd();
   }
   if (friction_.On()) {
