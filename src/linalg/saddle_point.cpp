@@ -516,6 +516,14 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SaddlePointSystem::KrylovIsCg(bool &cg) const {
+  PetscBool is_cg = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  if (ksp_) PetscCall(PetscObjectTypeCompare((PetscObject)ksp_.get(), KSPCG, &is_cg));
+  cg = is_cg;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SaddlePointSystem::SetNearNullSpace(MPI_Comm comm, const std::vector<double> &coords) {
   PetscFunctionBeginUser;
   // Rigid-body modes of the displacement block, offered to fieldsplit's "u" solver as its near-null space.

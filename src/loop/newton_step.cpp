@@ -267,7 +267,11 @@ PetscErrorCode ContactSolver::SolveAndUpdate(StepState &st) {
       // here, the same later path (docs/performance.md, nineteenth session); where the first set is larger (an indenter
       // placed into the body, a patch test) its errors read as changes (the sixteenth session: 6 active-set iterations
       // instead of 4 on the 824k cube, 7 instead of 2 on the 3D patch test), so a few pairs at most.
-      if (loose && st.touching) rtol = std::max(rtol, TOUCHING_RTOL);
+      if (loose && st.touching) {
+        bool cg;
+        PetscCall(system_->KrylovIsCg(cg));
+        rtol = std::max(rtol, cg ? TOUCHING_RTOL_CG : TOUCHING_RTOL);
+      }
       // svk held at a touching point: like the linear material's, this solve only shows the first update's pairs
       // (from its whole increment, touch_gaps), and the next one restarts from the step's start.
       const bool touch_svk = model_->Nonlinear() && st.touching && st.restartable;

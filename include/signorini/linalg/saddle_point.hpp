@@ -210,6 +210,8 @@ public:
   PetscInt KrylovFallbacks() const { return krylov_fallbacks_; }
   /// An iterative solver (a Krylov method with no kept factorisation).
   bool Iterative() const { return !reuse_ && !preonly_; }
+  /// The saddle-point KSP is CG (the null-space preconditioner's method in 3D, unless the user chose another).
+  [[nodiscard]] PetscErrorCode KrylovIsCg(bool &cg) const;
   /// "the saddle-point system is singular (MUMPS found N null pivot(s)): " and cause (the caller's: what leaves the
   /// body free), with the MUMPS controls given that decide which pivots are null (-contact_mat_mumps_cntl_<k>, ...)
   /// named first as another possible cause.
