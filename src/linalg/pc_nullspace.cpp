@@ -45,6 +45,12 @@ struct PcNullSpace {
   std::vector<Row> rows;                      ///< every owned multiplier row
   std::vector<ActiveNode> nodes;              ///< in the order of their dofs (R's rows: dim per node)
   PetscInt active_rows = 0, active_nodes = 0; ///< over all ranks, for the view
+  Mat fine = nullptr;                         ///< the eliminated operator of the block's finest level (FineLevel)
+  Mat fine_A = nullptr;                       ///< the block it eliminates the active rows of (not owned)
+  Vec fine_t = nullptr, fine_diag = nullptr;  ///< its work vector and diagonal
+  std::vector<PetscScalar> fine_scale;        ///< per active node: the weight of its eliminated directions
+  bool eliminated_fine = true;                ///< -contact_pc_nullspace_fine_level eliminated (else augmented)
+  bool fine_given = false;                    ///< the option was given (PCNullSpaceSetFineLevelDefault leaves it)
 };
 
 PcNullSpace *Data(PC pc) {
@@ -136,6 +142,167 @@ PetscErrorCode Project(const PcNullSpace *s, Vec x) {
         a[n.u0 + d] -= s->rows[n.rows[i]].b[d] * c[i];
   }
   PetscCall(VecRestoreArray(x, &a));
+  PetscFunctionReturn(0);
+}
+
+/// The finest level's operator with the active rows eliminated: A_e x = P A P x + d_n (I - P) x, where P is the
+/// projection onto the null space of the active rows and d_n, per active node, the mean of its diagonal entries in A
+/// (the eliminated directions decoupled, with a weight of the block's scale).
+PetscErrorCode MatMult_Eliminated(Mat M, Vec x, Vec y) {
+  PcNullSpace *s;
+  PetscFunctionBeginUser;
+  PetscCall(MatShellGetContext(M, &s));
+  PetscCall(VecCopy(x, s->fine_t));
+  PetscCall(Project(s, s->fine_t));
+  PetscCall(MatMult(s->fine_A, s->fine_t, y));
+  PetscCall(Project(s, y));
+  const PetscScalar *xa;
+  PetscScalar *ya;
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArray(y, &ya));
+  for (std::size_t i = 0; i < s->nodes.size(); ++i) {
+    const ActiveNode &n = s->nodes[i];
+    std::array<PetscScalar, MAX_DIM> c{};
+    NodeSolve(s, n, xa + n.u0, c.data());
+    for (int a = 0; a < n.k; ++a)
+      for (PetscInt d = 0; d < s->dim; ++d)
+        ya[n.u0 + d] += s->fine_scale[i] * s->rows[n.rows[a]].b[d] * c[a];
+  }
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MatGetInfo_Eliminated(Mat M, MatInfoType flag, MatInfo *info) {
+  PcNullSpace *s;
+  PetscFunctionBeginUser;
+  PetscCall(MatShellGetContext(M, &s));
+  PetscCall(MatGetInfo(s->fine_A, flag, info)); // what it multiplies by (-contact_ksp_view)
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MatGetDiagonal_Eliminated(Mat M, Vec d) {
+  PcNullSpace *s;
+  PetscFunctionBeginUser;
+  PetscCall(MatShellGetContext(M, &s));
+  PetscCall(VecCopy(s->fine_diag, d));
+  PetscFunctionReturn(0);
+}
+
+/// The block's multigrid smooths its finest level on the operator with the active rows eliminated (MatMult_Eliminated),
+/// the one the null-space method solves, instead of the augmented block A, whose springs on the active rows only
+/// approximate the elimination; the coarse levels keep A's Galerkin products (and the hierarchy update). PETSc's
+/// multigrid takes any operator per level (PCMGSetResidual, the smoother's KSPSetOperators); GAMG's own set-up reads
+/// the finest operator from that smoother, so it gets the block back first (RestoreFineLevel). CG iterations of the
+/// contact solve, one rank (docs/performance.md, twenty-eighth session): the octant of options/hertz3d.yml at 1.07M
+/// dofs 40 against 45, the 824k-dof cube under a sphere 25 against 33, the 4.1M-dof one 31 against 42 (2 ranks), the
+/// same states. The linear material's only (PCNullSpaceSetFineLevelDefault).
+/// The finest level of the block's multigrid (nullptr: one level, or not a multigrid).
+PetscErrorCode FineSmoother(PC pc, PC &ip, PetscInt &levels, KSP &smoother) {
+  PcNullSpace *s = Data(pc);
+  PetscBool mg;
+  PetscFunctionBeginUser;
+  smoother = nullptr;
+  levels = 0;
+  PetscCall(KSPGetPC(s->inner, &ip));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)ip, &mg, PCGAMG, PCMG, ""));
+  if (mg && ip->setupcalled) PetscCall(PCMGGetLevels(ip, &levels));
+  if (levels >= 2) PetscCall(PCMGGetSmoother(ip, levels - 1, &smoother));
+  PetscFunctionReturn(0);
+}
+
+/// The operator of the finest level: its smoother's and its residual's.
+PetscErrorCode SetFineOperator(PC ip, PetscInt levels, KSP smoother, Mat op) {
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetOperators(smoother, op, op));
+  PetscCall(PCMGSetResidual(ip, levels - 1, PCMGResidualDefault, op));
+  PetscFunctionReturn(0);
+}
+
+/// Before the block's multigrid is set up again: its finest level on the block itself (GAMG takes the operator of a
+/// finer level from its smoother for the Galerkin products).
+PetscErrorCode RestoreFineLevel(PC pc, Mat A) {
+  PcNullSpace *s = Data(pc);
+  PC ip;
+  PetscInt levels;
+  KSP smoother;
+  PetscFunctionBeginUser;
+  if (!s->fine || !s->inner) PetscFunctionReturn(0);
+  PetscCall(FineSmoother(pc, ip, levels, smoother));
+  if (!smoother) PetscFunctionReturn(0);
+  Mat op;
+  PetscCall(KSPGetOperators(smoother, &op, nullptr));
+  if (op == s->fine) PetscCall(SetFineOperator(ip, levels, smoother, A));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FineLevel(PC pc, Mat A) {
+  PcNullSpace *s = Data(pc);
+  PC ip;
+  PetscInt levels;
+  KSP smoother;
+  PetscFunctionBeginUser;
+  PetscCall(FineSmoother(pc, ip, levels, smoother));
+  if (!smoother || !s->eliminated_fine) PetscFunctionReturn(0);
+  if (s->active_rows == 0) {
+    // Nothing to eliminate: the block itself (an elastic solve's path unchanged).
+    PetscCall(SetFineOperator(ip, levels, smoother, A));
+    PetscFunctionReturn(0);
+  }
+  if (!s->fine) {
+    PetscInt m, n, M, N;
+    PetscCall(MatGetLocalSize(A, &m, &n));
+    PetscCall(MatGetSize(A, &M, &N));
+    PetscCall(MatCreateShell(PetscObjectComm((PetscObject)pc), m, n, M, N, s, &s->fine));
+    PetscCall(MatShellSetOperation(s->fine, MATOP_MULT, (void (*)(void))MatMult_Eliminated));
+    PetscCall(MatShellSetOperation(s->fine, MATOP_GET_DIAGONAL, (void (*)(void))MatGetDiagonal_Eliminated));
+    PetscCall(MatShellSetOperation(s->fine, MATOP_GETINFO, (void (*)(void))MatGetInfo_Eliminated));
+    PetscCall(MatCreateVecs(A, &s->fine_t, &s->fine_diag));
+  }
+  s->fine_A = A;
+  // The diagonal: A's, and at an active node that of P K_n P + d_n (I - P) from the node's block K_n of A.
+  PetscCall(MatGetDiagonal(A, s->fine_diag));
+  PetscInt ustart;
+  PetscCall(MatGetOwnershipRange(A, &ustart, nullptr));
+  PetscScalar *dg;
+  PetscCall(VecGetArray(s->fine_diag, &dg));
+  const PetscInt dim = s->dim;
+  s->fine_scale.assign(s->nodes.size(), 0.0);
+  for (std::size_t i = 0; i < s->nodes.size(); ++i) {
+    const ActiveNode &nd = s->nodes[i];
+    std::array<PetscInt, MAX_DIM> idx{};
+    for (PetscInt d = 0; d < dim; ++d)
+      idx[d] = ustart + nd.u0 + d;
+    std::array<PetscScalar, MAX_DIM * MAX_DIM> k{};
+    PetscCall(MatGetValues(A, dim, idx.data(), dim, idx.data(), k.data()));
+    // P = I - B_n^T G^-1 B_n, column by column
+    std::array<std::array<PetscScalar, MAX_DIM>, MAX_DIM> P{};
+    for (PetscInt j = 0; j < dim; ++j) {
+      std::array<PetscScalar, MAX_DIM> e{};
+      e[j] = 1;
+      std::array<PetscScalar, MAX_DIM> c{};
+      NodeSolve(s, nd, e.data(), c.data());
+      for (PetscInt d = 0; d < dim; ++d) {
+        P[d][j] = e[d];
+        for (int a = 0; a < nd.k; ++a)
+          P[d][j] -= s->rows[nd.rows[a]].b[d] * c[a];
+      }
+    }
+    PetscScalar mean = 0;
+    for (PetscInt d = 0; d < dim; ++d)
+      mean += k[d * dim + d] / dim;
+    s->fine_scale[i] = mean;
+    for (PetscInt d = 0; d < dim; ++d) {
+      PetscScalar v = 0;
+      for (PetscInt a = 0; a < dim; ++a)
+        for (PetscInt b = 0; b < dim; ++b)
+          v += P[d][a] * k[a * dim + b] * P[b][d];
+      dg[nd.u0 + d] = v + mean * (1.0 - P[d][d]);
+    }
+  }
+  PetscCall(VecRestoreArray(s->fine_diag, &dg));
+  PetscCall(PetscObjectStateIncrease((PetscObject)s->fine));
+  PetscCall(SetFineOperator(ip, levels, smoother, s->fine));
   PetscFunctionReturn(0);
 }
 
@@ -416,7 +583,19 @@ PetscErrorCode CreateInner(PC pc) {
 }
 
 PetscErrorCode PCSetFromOptions_NullSpace(PC pc, PetscOptionItems *PetscOptionsObject) {
+  PcNullSpace *s = Data(pc);
+  static const char *const fine_levels[] = {"eliminated", "augmented"};
+  PetscInt fine = s->eliminated_fine ? 0 : 1;
+  PetscBool given = PETSC_FALSE;
   PetscFunctionBeginUser;
+  PetscOptionsHeadBegin(PetscOptionsObject, "Null-space method on the active rows (" PCNULLSPACE ")");
+  PetscCall(PetscOptionsEList("-pc_nullspace_fine_level",
+                              "The displacement block's multigrid smooths its finest level on the operator with the "
+                              "active rows eliminated (the one the method solves) or on the augmented block itself",
+                              "", fine_levels, 2, fine_levels[fine], &fine, &given));
+  PetscOptionsHeadEnd();
+  s->eliminated_fine = fine == 0;
+  s->fine_given = s->fine_given || given;
   // Under -help the block's solver lists its options here; a run creates it at the first set-up, when the defaults
   // that SaddlePointSystem adds for it (SetGamgDefaults3d) are in the options.
   if (PetscOptionsObject->printhelp && !Data(pc)->inner) PetscCall(CreateInner(pc));
@@ -444,8 +623,10 @@ PetscErrorCode PCSetUp_NullSpace(PC pc) {
   PetscCall(PetscObjectQuery((PetscObject)is[0], "nearnullspace", (PetscObject *)&near));
   if (near) PetscCall(MatSetNearNullSpace(A, near));
   PetscCall(Analyse(pc, A, B, D));
+  PetscCall(RestoreFineLevel(pc, A));
   PetscCall(KSPSetOperators(s->inner, A, A));
   PetscCall(KSPSetUp(s->inner));
+  PetscCall(FineLevel(pc, A));
   PetscFunctionReturn(0);
 }
 
@@ -460,6 +641,10 @@ PetscErrorCode PCView_NullSpace(PC pc, PetscViewer viewer) {
                                    " nodes): u_N from the constraints, u_F by the displacement block's solver "
                                    "between projections onto the rows' null space, multipliers from the residual\n",
                                    s->active_rows, s->active_nodes));
+  if (s->fine && s->eliminated_fine && s->active_rows > 0)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "finest level smoothed on the operator with the active rows eliminated "
+                                             "(-pc_nullspace_fine_level eliminated); its operator in the view below is "
+                                             "that of the coarse levels' Galerkin products\n"));
   if (s->inner) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "displacement block's solver:\n"));
     PetscCall(PetscViewerASCIIPushTab(viewer));
@@ -474,7 +659,8 @@ PetscErrorCode PCReset_NullSpace(PC pc) {
   PetscFunctionBeginUser;
   PetscCall(KSPDestroy(&s->inner));
   PetscCall(MatDestroy(&s->R));
-  for (Vec *w : {&s->un, &s->rn, &s->z})
+  PetscCall(MatDestroy(&s->fine));
+  for (Vec *w : {&s->un, &s->rn, &s->z, &s->fine_t, &s->fine_diag})
     PetscCall(VecDestroy(w));
   s->nodes.clear();
   s->rows.clear();
@@ -509,6 +695,14 @@ PetscErrorCode PCNullSpaceRegister() {
   PetscFunctionBeginUser;
   if (!registered) PetscCall(PCRegister(PCNULLSPACE, PCCreate_NullSpace));
   registered = true;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PCNullSpaceSetFineLevelDefault(PC pc, bool eliminated) {
+  PetscBool is;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCNULLSPACE, &is));
+  if (is && !Data(pc)->fine_given) Data(pc)->eliminated_fine = eliminated;
   PetscFunctionReturn(0);
 }
 
