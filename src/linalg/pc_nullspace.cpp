@@ -189,14 +189,6 @@ PetscErrorCode MatGetDiagonal_Eliminated(Mat M, Vec d) {
   PetscFunctionReturn(0);
 }
 
-/// The block's multigrid smooths its finest level on the operator with the active rows eliminated (MatMult_Eliminated),
-/// the one the null-space method solves, instead of the augmented block A, whose springs on the active rows only
-/// approximate the elimination; the coarse levels keep A's Galerkin products (and the hierarchy update). PETSc's
-/// multigrid takes any operator per level (PCMGSetResidual, the smoother's KSPSetOperators); GAMG's own set-up reads
-/// the finest operator from that smoother, so it gets the block back first (RestoreFineLevel). CG iterations of the
-/// contact solve, one rank (docs/performance.md, twenty-eighth session): the octant of options/hertz3d.yml at 1.07M
-/// dofs 40 against 45, the 824k-dof cube under a sphere 25 against 33, the 4.1M-dof one 31 against 42 (2 ranks), the
-/// same states. The linear material's only (PCNullSpaceSetFineLevelDefault).
 /// The finest level of the block's multigrid (nullptr: one level, or not a multigrid).
 PetscErrorCode FineSmoother(PC pc, PC &ip, PetscInt &levels, KSP &smoother) {
   PcNullSpace *s = Data(pc);
@@ -236,6 +228,14 @@ PetscErrorCode RestoreFineLevel(PC pc, Mat A) {
   PetscFunctionReturn(0);
 }
 
+/// The block's multigrid smooths its finest level on the operator with the active rows eliminated (MatMult_Eliminated),
+/// the one the null-space method solves, instead of the augmented block A, whose springs on the active rows only
+/// approximate the elimination; the coarse levels keep A's Galerkin products (and the hierarchy update). PETSc's
+/// multigrid takes any operator per level (PCMGSetResidual, the smoother's KSPSetOperators); GAMG's own set-up reads
+/// the finest operator from that smoother, so it gets the block back first (RestoreFineLevel). CG iterations of the
+/// contact solve, one rank (docs/performance.md, twenty-eighth session): the octant of options/hertz3d.yml at 1.07M
+/// dofs 40 against 45, the 824k-dof cube under a sphere 25 against 33, the 4.1M-dof one 31 against 42 (2 ranks), the
+/// same states. The linear material's only (PCNullSpaceSetFineLevelDefault).
 PetscErrorCode FineLevel(PC pc, Mat A) {
   PcNullSpace *s = Data(pc);
   PC ip;
