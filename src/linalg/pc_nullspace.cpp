@@ -642,9 +642,11 @@ PetscErrorCode PCView_NullSpace(PC pc, PetscViewer viewer) {
                                    "between projections onto the rows' null space, multipliers from the residual\n",
                                    s->active_rows, s->active_nodes));
   if (s->fine && s->eliminated_fine && s->active_rows > 0)
-    PetscCall(PetscViewerASCIIPrintf(viewer, "finest level smoothed on the operator with the active rows eliminated "
-                                             "(-pc_nullspace_fine_level eliminated); its operator in the view below is "
-                                             "that of the coarse levels' Galerkin products\n"));
+    PetscCall(PetscViewerASCIIPrintf(viewer,
+                                     "finest level smoothed on the operator with the active rows eliminated "
+                                     "(-pc_nullspace_fine_level eliminated): the finest level's matrix below is "
+                                     "a shell that multiplies by the block between the projections (its "
+                                     "nonzeros are the block's)\n"));
   if (s->inner) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "displacement block's solver:\n"));
     PetscCall(PetscViewerASCIIPushTab(viewer));
