@@ -49,8 +49,7 @@ struct PcNullSpace {
   Mat fine_A = nullptr;                       ///< the block it eliminates the active rows of (not owned)
   Vec fine_t = nullptr, fine_diag = nullptr;  ///< its work vector and diagonal
   std::vector<PetscScalar> fine_scale;        ///< per active node: the weight of its eliminated directions
-  bool eliminated_fine = true;                ///< -contact_pc_nullspace_fine_level eliminated (else augmented)
-  bool fine_given = false;                    ///< the option was given (PCNullSpaceSetFineLevelDefault leaves it)
+  bool eliminated_fine = true;                ///< the finest level on the eliminated operator (PCNullSpaceSetFineLevel)
 };
 
 PcNullSpace *Data(PC pc) {
@@ -211,42 +210,30 @@ PetscErrorCode SetFineOperator(PC ip, PetscInt levels, KSP smoother, Mat op) {
   PetscFunctionReturn(0);
 }
 
-/// Before the block's multigrid is set up again: its finest level on the block itself (GAMG takes the operator of a
-/// finer level from its smoother for the Galerkin products).
-PetscErrorCode RestoreFineLevel(PC pc, Mat A) {
-  PcNullSpace *s = Data(pc);
-  PC ip;
-  PetscInt levels;
-  KSP smoother;
-  PetscFunctionBeginUser;
-  if (!s->fine || !s->inner) PetscFunctionReturn(0);
-  PetscCall(FineSmoother(pc, ip, levels, smoother));
-  if (!smoother) PetscFunctionReturn(0);
-  Mat op;
-  PetscCall(KSPGetOperators(smoother, &op, nullptr));
-  if (op == s->fine) PetscCall(SetFineOperator(ip, levels, smoother, A));
-  PetscFunctionReturn(0);
-}
-
 /// The block's multigrid smooths its finest level on the operator with the active rows eliminated (MatMult_Eliminated),
 /// the one the null-space method solves, instead of the augmented block A, whose springs on the active rows only
 /// approximate the elimination; the coarse levels keep A's Galerkin products (and the hierarchy update). PETSc's
 /// multigrid takes any operator per level (PCMGSetResidual, the smoother's KSPSetOperators); GAMG's own set-up reads
-/// the finest operator from that smoother, so it gets the block back first (RestoreFineLevel). CG iterations of the
+/// the finest operator from that smoother, so it gets the block back first. CG iterations of the
 /// contact solve, one rank (docs/performance.md, twenty-eighth session): the octant of options/hertz3d.yml at 1.07M
 /// dofs 40 against 45, the 824k-dof cube under a sphere 25 against 33, the 4.1M-dof one 31 against 42 (2 ranks), the
-/// same states. The linear material's only (PCNullSpaceSetFineLevelDefault).
-PetscErrorCode FineLevel(PC pc, Mat A) {
+/// same states. By default the linear material's only (-contact_nullspace_fine_level, SaddlePointSystem).
+/// eliminate false: the block itself on that level, as before the block's multigrid is set up again (GAMG takes the
+/// operator of a finer level from its smoother for the Galerkin products).
+PetscErrorCode FineLevel(PC pc, Mat A, bool eliminate) {
   PcNullSpace *s = Data(pc);
   PC ip;
   PetscInt levels;
   KSP smoother;
   PetscFunctionBeginUser;
+  if (!s->inner) PetscFunctionReturn(0);
   PetscCall(FineSmoother(pc, ip, levels, smoother));
-  if (!smoother || !s->eliminated_fine) PetscFunctionReturn(0);
-  if (s->active_rows == 0) {
-    // Nothing to eliminate: the block itself (an elastic solve's path unchanged).
-    PetscCall(SetFineOperator(ip, levels, smoother, A));
+  if (!smoother) PetscFunctionReturn(0);
+  if (!eliminate || !s->eliminated_fine || s->active_rows == 0) {
+    // The block itself (with nothing to eliminate, an elastic solve's path unchanged).
+    Mat op;
+    PetscCall(KSPGetOperators(smoother, &op, nullptr));
+    if (op != A) PetscCall(SetFineOperator(ip, levels, smoother, A));
     PetscFunctionReturn(0);
   }
   if (!s->fine) {
@@ -583,19 +570,7 @@ PetscErrorCode CreateInner(PC pc) {
 }
 
 PetscErrorCode PCSetFromOptions_NullSpace(PC pc, PetscOptionItems *PetscOptionsObject) {
-  PcNullSpace *s = Data(pc);
-  static const char *const fine_levels[] = {"eliminated", "augmented"};
-  PetscInt fine = s->eliminated_fine ? 0 : 1;
-  PetscBool given = PETSC_FALSE;
   PetscFunctionBeginUser;
-  PetscOptionsHeadBegin(PetscOptionsObject, "Null-space method on the active rows (" PCNULLSPACE ")");
-  PetscCall(PetscOptionsEList("-pc_nullspace_fine_level",
-                              "The displacement block's multigrid smooths its finest level on the operator with the "
-                              "active rows eliminated (the one the method solves) or on the augmented block itself",
-                              "", fine_levels, 2, fine_levels[fine], &fine, &given));
-  PetscOptionsHeadEnd();
-  s->eliminated_fine = fine == 0;
-  s->fine_given = s->fine_given || given;
   // Under -help the block's solver lists its options here; a run creates it at the first set-up, when the defaults
   // that SaddlePointSystem adds for it (SetGamgDefaults3d) are in the options.
   if (PetscOptionsObject->printhelp && !Data(pc)->inner) PetscCall(CreateInner(pc));
@@ -623,10 +598,10 @@ PetscErrorCode PCSetUp_NullSpace(PC pc) {
   PetscCall(PetscObjectQuery((PetscObject)is[0], "nearnullspace", (PetscObject *)&near));
   if (near) PetscCall(MatSetNearNullSpace(A, near));
   PetscCall(Analyse(pc, A, B, D));
-  PetscCall(RestoreFineLevel(pc, A));
+  PetscCall(FineLevel(pc, A, false));
   PetscCall(KSPSetOperators(s->inner, A, A));
   PetscCall(KSPSetUp(s->inner));
-  PetscCall(FineLevel(pc, A));
+  PetscCall(FineLevel(pc, A, true));
   PetscFunctionReturn(0);
 }
 
@@ -642,11 +617,10 @@ PetscErrorCode PCView_NullSpace(PC pc, PetscViewer viewer) {
                                    "between projections onto the rows' null space, multipliers from the residual\n",
                                    s->active_rows, s->active_nodes));
   if (s->fine && s->eliminated_fine && s->active_rows > 0)
-    PetscCall(PetscViewerASCIIPrintf(viewer,
-                                     "finest level smoothed on the operator with the active rows eliminated "
-                                     "(-pc_nullspace_fine_level eliminated): the finest level's matrix below is "
-                                     "a shell that multiplies by the block between the projections (its "
-                                     "nonzeros are the block's)\n"));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "finest level smoothed on the operator with the active rows eliminated "
+                                             "(-contact_nullspace_fine_level): the finest level's matrix below is "
+                                             "a shell that multiplies by the block between the projections (its "
+                                             "nonzeros are the block's)\n"));
   if (s->inner) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "displacement block's solver:\n"));
     PetscCall(PetscViewerASCIIPushTab(viewer));
@@ -700,11 +674,11 @@ PetscErrorCode PCNullSpaceRegister() {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PCNullSpaceSetFineLevelDefault(PC pc, bool eliminated) {
+PetscErrorCode PCNullSpaceSetFineLevel(PC pc, bool eliminated) {
   PetscBool is;
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCNULLSPACE, &is));
-  if (is && !Data(pc)->fine_given) Data(pc)->eliminated_fine = eliminated;
+  if (is) Data(pc)->eliminated_fine = eliminated;
   PetscFunctionReturn(0);
 }
 

@@ -183,6 +183,15 @@ PetscErrorCode ReadSaddlePointOptions(MPI_Comm comm, SaddlePointOptions &opts) {
                           "signorini_misk, unless -contact_fieldsplit_u_mat_coarsen_type is given)",
                           "lean or petsc", GALERKIN_PRODUCT_NAMES, 2, product));
   opts.galerkin_product = (GalerkinProduct)product;
+  PetscInt fine = (PetscInt)opts.fine_level;
+  PetscCall(
+      OptionsChoice(PetscOptionsObject, "-contact_nullspace_fine_level",
+                    "Iterative path, the null-space preconditioner (-contact_pc_type nullspace): its displacement "
+                    "block's multigrid smooths the finest level on the operator with the active rows eliminated "
+                    "(the one the method solves) or on the augmented block; auto: eliminated for the linear "
+                    "material, augmented for svk",
+                    "auto, eliminated or augmented", SaddlePointOptions::FINE_LEVEL_NAMES, 3, fine));
+  opts.fine_level = (SaddlePointOptions::FineLevel)fine;
   char weight_help[512];
   std::snprintf(weight_help, sizeof(weight_help),
                 "Iterative path: the augmentation weight r of an active row (K + r B_A^T B_A) as a multiple of K's "
@@ -495,12 +504,16 @@ PetscErrorCode SaddlePointSystem::SetupKsp(const std::vector<double> &coords, bo
   // preconditioner of the linear material); the kept factorisation needs a constant block.
   const bool light = nullspace_ && constant_k_;
   // The null-space preconditioner smooths its multigrid's finest level on the eliminated operator for the linear
-  // material only: svk's tangents may stop being positive definite, and on the 3D survey's case 18 (test
-  // krylov_fallback_restart) its Newton steps then took another course than the direct path's.
+  // material only, unless -contact_nullspace_fine_level says otherwise: svk's tangents may stop being positive
+  // definite, and on the 3D survey's case 18 (test krylov_fallback_restart) its Newton steps then took another course
+  // than the direct path's.
   if (nullspace_) {
     PC pc;
     PetscCall(KSPGetPC(ksp_, &pc));
-    PetscCall(PCNullSpaceSetFineLevelDefault(pc, constant_k_));
+    const bool eliminated = opts.fine_level == SaddlePointOptions::FineLevel::AUTO
+                                ? constant_k_
+                                : opts.fine_level == SaddlePointOptions::FineLevel::ELIMINATED;
+    PetscCall(PCNullSpaceSetFineLevel(pc, eliminated));
   }
   if (augmented_ && !reuse_) aug_inactive_ = (light ? NULLSPACE_INACTIVE_WEIGHT : INACTIVE_WEIGHT) * aug_;
   // The iterative path's weight relative to K's diagonal (IterativeWeight); by default in 3D without friction: in 2D

@@ -524,7 +524,7 @@ def nullspace_pc(runner):
 @test("nullspace_fine_level")
 def nullspace_fine_level(runner):
     """The null-space preconditioner's multigrid smooths its finest level on the operator with the active rows
-    eliminated, the one the method solves (-contact_pc_nullspace_fine_level eliminated, the default), instead of the
+    eliminated, the one the method solves (-contact_nullspace_fine_level eliminated, the default), instead of the
     augmented block, whose springs on the active rows only approximate the elimination. The octant of
     options/hertz3d.yml: the direct path's state to 1e-8 either way, fewer CG iterations eliminated; the view says
     which, and an elastic solve (no active row) is not changed."""
@@ -533,7 +533,7 @@ def nullspace_fine_level(runner):
     it = base + ["-contact_solver", "iterative", "-contact_ksp_view"]
     line = "finest level smoothed on the operator with the active rows eliminated"
     new = runner.run(it, "iterative, finest level eliminated")
-    old = runner.run(it + ["-contact_pc_nullspace_fine_level", "augmented"], "iterative, finest level augmented")
+    old = runner.run(it + ["-contact_nullspace_fine_level", "augmented"], "iterative, finest level augmented")
     runner.expect_true("the view says the finest level is eliminated", line in new.output)
     runner.expect_true("and not when asked for the augmented block", line not in old.output)
     expect_same_state(runner, ref, new, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
@@ -544,7 +544,7 @@ def nullspace_fine_level(runner):
     free = base + ["-contact_solver", "iterative", "-bc_dirichlet", "symmetry_x:x,symmetry_y:y,top:x:y:z",
                    "-bc_body_force", "0,0,0.00716", "-obstacle_planes", "0,0,-10.0001,0,0,1"]
     fn = runner.run(free, "elastic, eliminated")
-    fo = runner.run(free + ["-contact_pc_nullspace_fine_level", "augmented"], "elastic, augmented")
+    fo = runner.run(free + ["-contact_nullspace_fine_level", "augmented"], "elastic, augmented")
     runner.expect_equal("elastic: the same CG iterations", fn.get("iterations.krylov"), fo.get("iterations.krylov"))
     expect_same_state(runner, fo, fn, keys=("contact.active_pairs",), tol=1e-12)
 

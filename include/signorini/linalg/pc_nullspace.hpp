@@ -28,8 +28,8 @@ namespace signorini {
 /// The displacement block's solver of pc (of type PCNULLSPACE; null before the PC's first set-up), as
 /// PCFieldSplitGetSubKSP gives a fieldsplit's. Not collective.
 [[nodiscard]] PetscErrorCode PCNullSpaceGetSubKSP(PC pc, KSP *ksp);
-/// The default of -contact_pc_nullspace_fine_level (eliminated: true) where the run does not give it; no effect on a PC
-/// of another type.
-[[nodiscard]] PetscErrorCode PCNullSpaceSetFineLevelDefault(PC pc, bool eliminated);
+/// Whether the displacement block's multigrid smooths its finest level on the operator with the active rows eliminated
+/// (true, the default) or on the augmented block (-contact_nullspace_fine_level); no effect on a PC of another type.
+[[nodiscard]] PetscErrorCode PCNullSpaceSetFineLevel(PC pc, bool eliminated);
 
 } // namespace signorini

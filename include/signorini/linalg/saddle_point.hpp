@@ -76,6 +76,10 @@ struct SaddlePointOptions {
   PetscBool hierarchy_update = PETSC_TRUE; ///< -contact_hierarchy_update (UpdateGalerkin)
   PetscBool hierarchy_check = PETSC_FALSE; ///< -contact_hierarchy_check
   GalerkinProduct galerkin_product = GalerkinProduct::LEAN; ///< -contact_gamg_product (LeanPtAPAttach)
+  /// -contact_nullspace_fine_level: the null-space preconditioner's finest multigrid level on the eliminated operator
+  /// or the augmented block; auto: eliminated for the linear material, augmented for svk
+  enum class FineLevel { AUTO, ELIMINATED, AUGMENTED } fine_level = FineLevel::AUTO;
+  static constexpr const char *FINE_LEVEL_NAMES[] = {"auto", "eliminated", "augmented"};
   /// -contact_augmentation_weight (the iterative path's r over the candidates' mean diagonal entry); not given: this
   /// in 3D without friction, else 0
   static constexpr double AUGMENTATION_WEIGHT_3D = 0.5;
