@@ -527,7 +527,8 @@ def nullspace_fine_level(runner):
     eliminated, the one the method solves (-contact_nullspace_fine_level eliminated, the default), instead of the
     augmented block, whose springs on the active rows only approximate the elimination. The octant of
     options/hertz3d.yml: the direct path's state to 1e-8 either way, fewer CG iterations eliminated; the view says
-    which, and an elastic solve (no active row) is not changed."""
+    which, and an elastic solve (no active row) is not changed. The touching solve stops at 0.1 with CG, 0.03 with
+    GMRES."""
     base = ["-options_file", "options/hertz3d.yml"]
     ref = runner.run(base, "direct")
     it = base + ["-contact_solver", "iterative", "-contact_ksp_view"]
@@ -547,6 +548,12 @@ def nullspace_fine_level(runner):
     fo = runner.run(free + ["-contact_nullspace_fine_level", "augmented"], "elastic, augmented")
     runner.expect_equal("elastic: the same CG iterations", fn.get("iterations.krylov"), fo.get("iterations.krylov"))
     expect_same_state(runner, fo, fn, keys=("contact.active_pairs",), tol=1e-12)
+    # The touching solve (held at one node) stops at 0.1 with CG (ContactSolver::TOUCHING_RTOL_CG), 0.03 with GMRES.
+    for extra, label, want in (([], "CG", 0.1), (["-contact_ksp_type", "gmres"], "GMRES", 0.03)):
+        r = runner.run(base + ["-contact_solver", "iterative", "-info", ":sys"] + extra, "touching solve, " + label)
+        tols = [float(x) for x in re.findall(r"^\[0\] <sys> SolveKsp\(\): loose solve: rtol (\S+) of", r.output, re.M)]
+        runner.expect_true("%s: the touching solve to %g (%s)" % (label, want, tols[:1]), tols[:1] == [want])
+        expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
 @test("iterative_prescribed_displacement")
