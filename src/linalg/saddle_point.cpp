@@ -765,6 +765,43 @@ PetscErrorCode SaddlePointSystem::Reweight(const std::vector<SparseRow> &rows, c
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SaddlePointSystem::StiffnessTimes(const std::vector<SparseRow> &rows, const PetscScalar *du,
+                                                 std::vector<double> &y, bool &done) {
+  const PetscInt nu = dofs_->OwnedU(), start = dofs_->RowStart();
+  PetscFunctionBeginUser;
+  // The nested block is K + sum_p w_p B_p^T B_p (Reweight keeps weight_ to what it holds) as long as no stabilisation,
+  // no row's D and no column of its own changed the system (friction, svk's mortar tangent), and K is constant.
+  bool possible = nest_.on && augmented_ && !reuse_ && constant_k_ && stab_ == 0 && weight_.size() == rows.size();
+  for (double d : aug_diag_)
+    possible = possible && d == 0;
+  for (const SparseRow &extra : col_extra_)
+    possible = possible && extra.ncols == 0;
+  for (const SparseRow &row : rows)
+    for (PetscInt i = 0; i < row.ncols && possible; ++i)
+      possible = row.cols[i] >= start && row.cols[i] < start + nu;
+  PetscCallMPI(MPI_Allreduce(&possible, &done, 1, MPI_CXX_BOOL, MPI_LAND, PetscObjectComm((PetscObject)A_.get())));
+  if (!done) PetscFunctionReturn(0);
+  if (!k_x_) PetscCall(MatCreateVecs(nest_.K, k_x_.out(), k_y_.out()));
+  PetscScalar *a;
+  PetscCall(VecGetArrayWrite(k_x_, &a));
+  std::copy(du, du + nu, a);
+  PetscCall(VecRestoreArrayWrite(k_x_, &a));
+  PetscCall(MatMult(nest_.K, k_x_, k_y_));
+  const PetscScalar *ky;
+  PetscCall(VecGetArrayRead(k_y_, &ky));
+  y.assign(ky, ky + nu);
+  PetscCall(VecRestoreArrayRead(k_y_, &ky));
+  for (std::size_t p = 0; p < rows.size(); ++p) {
+    const SparseRow &row = rows[p];
+    double bu = 0;
+    for (PetscInt i = 0; i < row.ncols; ++i)
+      bu += row.coef[i] * du[row.cols[i] - start];
+    for (PetscInt i = 0; i < row.ncols; ++i)
+      y[row.cols[i] - start] -= weight_[p] * row.coef[i] * bu;
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SaddlePointSystem::ToRoot(const std::vector<double> &owned, std::vector<PetscScalar> &root) {
   PetscScalar *a;
   PetscInt m;

@@ -237,7 +237,7 @@ PetscErrorCode ContactSolver::EvaluateIterate(StepState &st, PetscInt it) {
   // right-hand side instead of adding up over the iterations (octant Hertz at 290k dofs: 1e-3 loose solves decided
   // the set on a state wrong by their sum and converged to 1257 pairs before the correction solve showed 1528).
   if (model_->Nonlinear() || it == 0 || st.stabilised || st.loose) {
-    PetscCall(Residual(lambda_, st.r.norm, st.r.scale, nullptr, nullptr, &st.r.roundoff));
+    PetscCall(Residual(lambda_, st.r.norm, st.r.scale, nullptr, nullptr, &st.r.roundoff, st.loose));
   } else {
     // Linear material after a solve: K du was solved for exactly (to the solve's residual), so F_int = f + B^T x on
     // the free rows (x: the solved multipliers), without a pass over the cells; the monitor shows the solve's

@@ -15,7 +15,7 @@ namespace signorini {
 using namespace detail;
 
 PetscLogEvent detail::EV_ASSEMBLY = 0, detail::EV_ACTIVE_SET = 0, detail::EV_SOLVE = 0, detail::EV_FINT = 0,
-              detail::EV_STIFFNESS = 0;
+              detail::EV_STIFFNESS = 0, detail::EV_PRODUCT = 0;
 
 PetscErrorCode ContactSolver::Setup() {
   MPI_Comm comm = mesh_.Comm();
@@ -29,6 +29,7 @@ PetscErrorCode ContactSolver::Setup() {
     PetscCall(PetscLogEventRegister("SigSolve", id, &EV_SOLVE));
     PetscCall(PetscLogEventRegister("SigInternalForces", id, &EV_FINT));
     PetscCall(PetscLogEventRegister("SigStiffness", id, &EV_STIFFNESS));
+    PetscCall(PetscLogEventRegister("SigStiffnessProduct", id, &EV_PRODUCT));
   }
   PetscCall(BuildDirichlet(mesh_, bc_, dirichlet_));
   if (!contact_.pairs.empty()) PetscCall(SetBodyCompliance());

@@ -15,8 +15,8 @@ namespace signorini::detail {
 /// of ranks.
 constexpr double MIN_DET_F = 1e-10;
 
-/// Log events of the loop, registered by ContactSolver::Setup.
-extern PetscLogEvent EV_ASSEMBLY, EV_ACTIVE_SET, EV_SOLVE, EV_FINT, EV_STIFFNESS;
+/// Log events of the loop, registered by ContactSolver::Setup (EV_FINT: F_int from the cells, EV_PRODUCT: from K du).
+extern PetscLogEvent EV_ASSEMBLY, EV_ACTIVE_SET, EV_SOLVE, EV_FINT, EV_STIFFNESS, EV_PRODUCT;
 
 /// Accumulates the wall time of a scope (maximum over ranks is taken when reported).
 class ScopedTimer {

@@ -556,6 +556,36 @@ def nullspace_fine_level(runner):
         expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
 
 
+@test("stiffness_product")
+def stiffness_product(runner):
+    """On the iterative path the linear material's loose solves get their iterate's internal forces as the last
+    iterate's plus K du, a product with the assembled displacement block less its augmentation
+    (SaddlePointSystem::StiffnessTimes), instead of a pass over the cells; the certificate's residual is the cells'.
+    Where both are at the same displacement (-info) they agree to round-off. The octant of options/hertz3d.yml (the
+    null-space preconditioner), the beam of options/beam_on_floor.yml (2D, the fieldsplit) and the two cylinders of
+    options/cylinders_2d.yml (mortar rows: on 2 ranks some span ranks, and the cells serve): the direct path's state
+    to 1e-8."""
+    pattern = re.compile(r"F_int from the stiffness product: \|\|difference\|\| (\S+) against the cells' \|\|F_int\|\| "
+                         r"(\S+) on the free rows")
+    for case in ("hertz3d", "beam_on_floor", "cylinders_2d"):
+        base = ["-options_file", "options/%s.yml" % case]
+        ref = runner.run(base, case + ", direct")
+        r = runner.run(base + ["-contact_solver", "iterative", "-info", ":sys", "-log_view"], case + ", iterative",
+                       heap_check=False)
+        expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
+        pairs = [(float(a), float(b)) for a, b in pattern.findall(r.output)]
+        products = log_event_count(r.output, "SigStiffnessProduct")
+        passes = log_event_count(r.output, "SigInternalForces")
+        solves = len(r.get("iterations.history"))
+        if case == "cylinders_2d" and runner.np > 1:
+            runner.expect_true("%s: no product where rows span ranks" % case, not pairs)
+            continue
+        runner.expect_true("%s: the product against the cells at the same displacement (%s)" % (case, pairs),
+                           len(pairs) >= 1 and all(d <= 1e-10 * f for d, f in pairs))
+        runner.expect_true("%s: %d products, %d passes over the cells for %d solves" % (case, products, passes, solves),
+                           products >= 1)
+
+
 @test("iterative_prescribed_displacement")
 def iterative_prescribed_displacement(runner):
     """A punch pressed by a prescribed displacement into a plate (options/punch_on_plate.yml) on the iterative path:

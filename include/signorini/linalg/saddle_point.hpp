@@ -166,6 +166,14 @@ public:
   [[nodiscard]] PetscErrorCode AddAugmentation(const std::vector<SparseRow> &rows);
   /// Changes the augmentation weight of every owned row to weight[p] (ADD_VALUES of the difference, flush assembly).
   [[nodiscard]] PetscErrorCode Reweight(const std::vector<SparseRow> &rows, const std::vector<double> &weight);
+  /// K du without a pass over the cells (the linear material on the iterative path): the displacement block of the
+  /// augmented form less the augmentation it carries, y = A du - sum_p w_p B_p^T B_p du, on the owned displacement
+  /// rows (du and y: OwnedU values, in the order of Solution()'s displacement rows; du 0 on the Dirichlet rows, where
+  /// y is then 0 too). rows: those AddAugmentation and SetConstraints were given. done false, nothing computed: the
+  /// block is not K and the augmentation alone (no augmented nested block, springs or columns of friction's rows, a
+  /// stabilised system) or a row has columns on other ranks (mortar). Collective.
+  [[nodiscard]] PetscErrorCode StiffnessTimes(const std::vector<SparseRow> &rows, const PetscScalar *du,
+                                              std::vector<double> &y, bool &done);
   /// The iterative path's r from K's diagonal on the candidate rows, at the first AddAugmentation.
   [[nodiscard]] PetscErrorCode IterativeWeight(const std::vector<SparseRow> &rows);
   /// Writes the constraint rows. Plain form: active rows get their coefficients (in both B and B^T) and D = 0,
@@ -509,6 +517,7 @@ private:
     MatH K, Bt, B, D;
   } nest_;
   VecH x_, b_, r_;
+  VecH k_x_, k_y_; ///< StiffnessTimes' vectors of the displacement block
   KSPH ksp_;
   NullSpaceH near_null_;
   Mat mumps_factor_ = nullptr; ///< the MUMPS factor of a direct solve (owned by the PC), for the null-pivot check
