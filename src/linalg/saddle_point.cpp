@@ -781,16 +781,17 @@ PetscErrorCode SaddlePointSystem::StiffnessTimes(const std::vector<SparseRow> &r
       possible = row.cols[i] >= start && row.cols[i] < start + nu;
   PetscCallMPI(MPI_Allreduce(&possible, &done, 1, MPI_CXX_BOOL, MPI_LAND, PetscObjectComm((PetscObject)A_.get())));
   if (!done) PetscFunctionReturn(0);
-  if (!k_x_) PetscCall(MatCreateVecs(nest_.K, k_x_.out(), k_y_.out()));
+  VecH kx, ky;
+  PetscCall(MatCreateVecs(nest_.K, kx.out(), ky.out()));
   PetscScalar *a;
-  PetscCall(VecGetArrayWrite(k_x_, &a));
+  PetscCall(VecGetArrayWrite(kx, &a));
   std::copy(du, du + nu, a);
-  PetscCall(VecRestoreArrayWrite(k_x_, &a));
-  PetscCall(MatMult(nest_.K, k_x_, k_y_));
-  const PetscScalar *ky;
-  PetscCall(VecGetArrayRead(k_y_, &ky));
-  y.assign(ky, ky + nu);
-  PetscCall(VecRestoreArrayRead(k_y_, &ky));
+  PetscCall(VecRestoreArrayWrite(kx, &a));
+  PetscCall(MatMult(nest_.K, kx, ky));
+  const PetscScalar *b;
+  PetscCall(VecGetArrayRead(ky, &b));
+  y.assign(b, b + nu);
+  PetscCall(VecRestoreArrayRead(ky, &b));
   for (std::size_t p = 0; p < rows.size(); ++p) {
     const SparseRow &row = rows[p];
     double bu = 0;

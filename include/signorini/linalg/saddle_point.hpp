@@ -517,7 +517,6 @@ private:
     MatH K, Bt, B, D;
   } nest_;
   VecH x_, b_, r_;
-  VecH k_x_, k_y_; ///< StiffnessTimes' vectors of the displacement block
   KSPH ksp_;
   NullSpaceH near_null_;
   Mat mumps_factor_ = nullptr; ///< the MUMPS factor of a direct solve (owned by the PC), for the null-pivot check
