@@ -765,8 +765,7 @@ PetscErrorCode SaddlePointSystem::Reweight(const std::vector<SparseRow> &rows, c
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::StiffnessTimes(const std::vector<SparseRow> &rows, const PetscScalar *du,
-                                                 std::vector<double> &y, bool &done) {
+PetscErrorCode SaddlePointSystem::StiffnessTimesApplies(const std::vector<SparseRow> &rows, bool &applies) const {
   const PetscInt nu = dofs_->OwnedU(), start = dofs_->RowStart();
   PetscFunctionBeginUser;
   // The nested block is K + sum_p w_p B_p^T B_p (Reweight keeps weight_ to what it holds) as long as no stabilisation,
@@ -779,8 +778,14 @@ PetscErrorCode SaddlePointSystem::StiffnessTimes(const std::vector<SparseRow> &r
   for (const SparseRow &row : rows)
     for (PetscInt i = 0; i < row.ncols && possible; ++i)
       possible = row.cols[i] >= start && row.cols[i] < start + nu;
-  PetscCallMPI(MPI_Allreduce(&possible, &done, 1, MPI_CXX_BOOL, MPI_LAND, PetscObjectComm((PetscObject)A_.get())));
-  if (!done) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Allreduce(&possible, &applies, 1, MPI_CXX_BOOL, MPI_LAND, PetscObjectComm((PetscObject)A_.get())));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::StiffnessTimes(const std::vector<SparseRow> &rows, const PetscScalar *du,
+                                                 std::vector<double> &y) {
+  const PetscInt nu = dofs_->OwnedU(), start = dofs_->RowStart();
+  PetscFunctionBeginUser;
   VecH kx, ky;
   PetscCall(MatCreateVecs(nest_.K, kx.out(), ky.out()));
   PetscScalar *a;

@@ -25,10 +25,12 @@ PetscErrorCode ContactSolver::Residual(const std::vector<double> &lambda, double
   if (same) {
     min_J = fint_at_.min_J;
   } else {
-    // F_int of the stiffness product at this displacement (AddStiffnessProduct) against the cells' (-info; test
-    // stiffness_product).
+    // F_int of the stiffness product at this displacement (AddStiffnessProduct) against the cells', with -info
+    // (PetscInfo's class of a null object; test stiffness_product).
     VecH by_product;
-    const bool compare = fint_at_.u == u_local_ && !fint_at_.exact;
+    PetscBool info;
+    PetscCall(PetscInfoEnabled(PETSC_SMALLEST_CLASSID, &info));
+    const bool compare = info && fint_at_.u == u_local_ && !fint_at_.exact;
     if (compare) {
       PetscCall(VecDuplicate(fint_, by_product.out()));
       PetscCall(VecCopy(fint_, by_product));
@@ -361,6 +363,9 @@ PetscErrorCode ContactSolver::AddStiffnessProduct() {
   const int dim = mesh_.Dim();
   const PetscInt nu = dofs_.OwnedU();
   PetscFunctionBeginUser;
+  bool possible;
+  PetscCall(system_->StiffnessTimesApplies(rows_, possible));
+  if (!possible) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(EV_PRODUCT, 0, 0, 0, 0));
   // The step moved the free rows by du; the Dirichlet rows keep their values (SetDirichlet).
   const PetscScalar *x;
@@ -372,17 +377,14 @@ PetscErrorCode ContactSolver::AddStiffnessProduct() {
       for (int k = 0; k < dim; ++k)
         if (dirichlet_.fixed[v * dim + k]) du[dofs_.LocalOffset(v, k)] = 0;
   std::vector<double> kdu;
-  bool done;
-  PetscCall(system_->StiffnessTimes(rows_, du.data(), kdu, done));
-  if (done) {
-    PetscScalar *fi;
-    PetscCall(VecGetArray(fint_, &fi));
-    for (PetscInt i = 0; i < nu; ++i)
-      fi[i] += kdu[i];
-    PetscCall(VecRestoreArray(fint_, &fi));
-    fint_at_.u = u_local_;
-    fint_at_.exact = false;
-  }
+  PetscCall(system_->StiffnessTimes(rows_, du.data(), kdu));
+  PetscScalar *fi;
+  PetscCall(VecGetArray(fint_, &fi));
+  for (PetscInt i = 0; i < nu; ++i)
+    fi[i] += kdu[i];
+  PetscCall(VecRestoreArray(fint_, &fi));
+  fint_at_.u = u_local_;
+  fint_at_.exact = false;
   PetscCall(PetscLogEventEnd(EV_PRODUCT, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

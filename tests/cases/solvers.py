@@ -575,15 +575,13 @@ def stiffness_product(runner):
         expect_same_state(runner, ref, r, keys=("contact.active_pairs", "contact.active_nodes"), tol=1e-8)
         pairs = [(float(a), float(b)) for a, b in pattern.findall(r.output)]
         products = log_event_count(r.output, "SigStiffnessProduct")
-        passes = log_event_count(r.output, "SigInternalForces")
-        solves = len(r.get("iterations.history"))
         if case == "cylinders_2d" and runner.np > 1:
-            runner.expect_true("%s: no product where rows span ranks" % case, not pairs)
+            runner.expect_true("%s: no product where rows span ranks (%d)" % (case, products),
+                               not pairs and products == 0)
             continue
         runner.expect_true("%s: the product against the cells at the same displacement (%s)" % (case, pairs),
                            len(pairs) >= 1 and all(d <= 1e-10 * f for d, f in pairs))
-        runner.expect_true("%s: %d products, %d passes over the cells for %d solves" % (case, products, passes, solves),
-                           products >= 1)
+        runner.expect_true("%s: %d products" % (case, products), products >= 1)
 
 
 @test("iterative_prescribed_displacement")

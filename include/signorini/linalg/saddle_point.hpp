@@ -169,11 +169,14 @@ public:
   /// K du without a pass over the cells (the linear material on the iterative path): the displacement block of the
   /// augmented form less the augmentation it carries, y = A du - sum_p w_p B_p^T B_p du, on the owned displacement
   /// rows (du and y: OwnedU values, in the order of Solution()'s displacement rows; du 0 on the Dirichlet rows, where
-  /// y is then 0 too). rows: those AddAugmentation and SetConstraints were given. done false, nothing computed: the
-  /// block is not K and the augmentation alone (no augmented nested block, springs or columns of friction's rows, a
-  /// stabilised system) or a row has columns on other ranks (mortar). Collective.
+  /// y is then 0 too). rows: those AddAugmentation and SetConstraints were given. Only where StiffnessTimesApplies.
+  /// Collective.
   [[nodiscard]] PetscErrorCode StiffnessTimes(const std::vector<SparseRow> &rows, const PetscScalar *du,
-                                              std::vector<double> &y, bool &done);
+                                              std::vector<double> &y);
+  /// Whether StiffnessTimes gives K du: not where the block is more than K and the augmentation (no augmented nested
+  /// block, springs or columns of friction's rows, a stabilised system) or a row has columns on other ranks (mortar).
+  /// Collective.
+  [[nodiscard]] PetscErrorCode StiffnessTimesApplies(const std::vector<SparseRow> &rows, bool &applies) const;
   /// The iterative path's r from K's diagonal on the candidate rows, at the first AddAugmentation.
   [[nodiscard]] PetscErrorCode IterativeWeight(const std::vector<SparseRow> &rows);
   /// Writes the constraint rows. Plain form: active rows get their coefficients (in both B and B^T) and D = 0,
